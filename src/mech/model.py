@@ -1,0 +1,350 @@
+"""The mechanism as the file describes it: immutable, SI, nothing computed.
+
+The loader builds these objects from YAML; every analysis reads them and none
+changes them.  They hold exactly what the file says (a length that was not
+given is absent, a joint that was not drawn has no ``at``): deciding what
+follows from it is the analyses' job.
+
+All lengths are in metres, angles in radians (counter-clockwise from +x),
+angular velocities in rad/s with counter-clockwise positive.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from enum import Enum
+from typing import Union
+
+from mech.errors import Where
+
+__all__ = [
+    "Claim",
+    "Drive",
+    "Joint",
+    "JointType",
+    "Length",
+    "Link",
+    "Mechanism",
+    "Path",
+    "Placement",
+    "Point",
+    "Ref",
+    "Tolerance",
+    "Vec",
+]
+
+Vec = tuple[float, float]
+
+
+class JointType(str, Enum):
+    """Kinds of joint in format 1, with how each is counted and classified."""
+
+    REVOLUTE = "revolute"
+    PRISMATIC = "prismatic"
+    SLOT = "slot"
+    ROLLING = "rolling"
+    CAM = "cam"
+    GEAR = "gear"
+    CONTACT = "contact"
+    SCREW = "screw"
+    SPHERICAL = "spherical"
+
+    @property
+    def is_higher(self) -> bool:
+        """True for the pairs Kutzbach counts in h (one freedom removed each)."""
+        return self in _HIGHER
+
+    @property
+    def is_planar(self) -> bool:
+        """False for the pairs the planar solvers cannot model (screw, spherical)."""
+        return self not in (JointType.SCREW, JointType.SPHERICAL)
+
+    @property
+    def relative_motion(self) -> str:
+        """The lecture notes' classification by the relative motion of the elements."""
+        return _MOTION[self]
+
+    @property
+    def contact(self) -> str:
+        """Lower (surface contact) or higher (line or point contact)."""
+        return "higher" if self in _LINE_CONTACT else "lower"
+
+    @property
+    def default_closure(self) -> str:
+        """Self-closed (mechanically) or force-closed (kept in contact by a force)."""
+        return "force" if self in (JointType.CAM, JointType.CONTACT, JointType.ROLLING) else "self"
+
+
+_HIGHER = frozenset({JointType.SLOT, JointType.CAM, JointType.GEAR, JointType.CONTACT})
+_LINE_CONTACT = frozenset(
+    {JointType.SLOT, JointType.CAM, JointType.GEAR, JointType.CONTACT, JointType.ROLLING}
+)
+_MOTION = {
+    JointType.REVOLUTE: "turning",
+    JointType.PRISMATIC: "sliding",
+    JointType.SLOT: "sliding and turning (pin in slot)",
+    JointType.ROLLING: "rolling",
+    JointType.CAM: "cam (sliding and rolling)",
+    JointType.GEAR: "gear (sliding and rolling)",
+    JointType.CONTACT: "sliding and rolling (point contact)",
+    JointType.SCREW: "screw",
+    JointType.SPHERICAL: "spherical",
+}
+
+
+@dataclass(frozen=True, slots=True)
+class Ref:
+    """A location named in a file: coordinates ``xy`` or the name of a joint or point."""
+
+    xy: Vec | None = None
+    name: str | None = None
+
+    def __str__(self) -> str:
+        return self.name if self.name is not None else f"({self.xy[0]:g}, {self.xy[1]:g})"  # type: ignore[index]
+
+
+@dataclass(frozen=True, slots=True)
+class Placement:
+    """How a joint or point is placed, exactly as written.
+
+    ``at``: drawn here in the analysed configuration (global, metres).
+    ``near``: a hint only — initial guess and assembly branch.
+    ``origin``/``toward`` with ``distance`` (along origin→toward) or ``offset``
+    ``(u, v)`` (u along origin→toward, v to its left): rigidly placed relative
+    to two points of the same link.  (``origin`` is the file's ``from``.)
+    """
+
+    at: Vec | None = None
+    near: Vec | None = None
+    origin: str | None = None
+    toward: str | None = None
+    distance: float | None = None
+    offset: Vec | None = None
+
+    @property
+    def is_relative(self) -> bool:
+        return self.origin is not None
+
+
+@dataclass(frozen=True, slots=True)
+class Path:
+    """A straight line fixed in a guide link: through a point, at an angle or toward a point.
+
+    On a moving guide, ``angle`` is the line's direction in the analysed
+    (drawn) configuration; ``toward`` keeps it fixed to the guide's points.
+    """
+
+    through: Ref
+    angle: float | None = None
+    toward: Ref | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Link:
+    """A kinematic link.  ``index`` is its place in the file's order (ground = 0)."""
+
+    name: str
+    index: int
+    kind: str = "rigid"
+    description: str | None = None
+    is_ground: bool = False
+    where: Where | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Joint:
+    """A kinematic pair between two or more links, as the file writes it.
+
+    A revolute joint listing k links is one joint of order k, i.e. k − 1
+    equivalent binary joints.  The extra fields belong to particular types:
+    ``path`` and ``point`` to prismatic and slot joints, ``normal`` (rad) to cam,
+    contact and gear, ``radii``/``teeth``/``module``/``internal``/``pressure_angle``
+    to gear, ``radius`` (pin radius, m) to revolute.
+    """
+
+    name: str
+    type: JointType
+    links: tuple[str, ...]
+    place: Placement = Placement()
+    path: Path | None = None
+    point: str | None = None
+    radius: float | None = None
+    normal: float | None = None
+    pressure_angle: float | None = None
+    radii: Vec | None = None
+    teeth: tuple[int, int] | None = None
+    module: float | None = None
+    internal: bool = False
+    closure: str | None = None
+    where: Where | None = field(default=None, compare=False)
+
+    @property
+    def order(self) -> int:
+        """How many links meet here: 2 binary, 3 ternary, 4 quaternary …"""
+        return len(self.links)
+
+    @property
+    def equivalent_binary(self) -> int:
+        """Binary joints this joint is worth (a joint of k links is k − 1)."""
+        return len(self.links) - 1
+
+    @property
+    def closure_kind(self) -> str:
+        """``self`` or ``force``: the file's ``closure`` (form → self) or the type's default."""
+        if self.closure is None:
+            return self.type.default_closure
+        return "self" if self.closure in ("form", "self") else "force"
+
+
+@dataclass(frozen=True, slots=True)
+class Point:
+    """A named point fixed on one link (a coupler point, a lever's far end …)."""
+
+    name: str
+    link: str
+    place: Placement
+    where: Where | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Length:
+    """The distance between two named joints or points of one link (metres)."""
+
+    a: str
+    b: str
+    value: float
+    where: Where | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Drive:
+    """One independent input.
+
+    Either a link turning about a ground pivot (``link``, ``angle`` in rad,
+    ``omega`` in rad/s, counter-clockwise positive, ``alpha`` in rad/s²,
+    ``about`` the pivot joint), or a slider (``joint`` with ``speed`` in m/s
+    along its path and ``accel`` in m/s²).  ``None`` means "not given".
+    """
+
+    link: str | None = None
+    joint: str | None = None
+    angle: float | None = None
+    omega: float | None = None
+    alpha: float | None = None
+    about: str | None = None
+    speed: float | None = None
+    accel: float | None = None
+    where: Where | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Tolerance:
+    """``relative`` (a fraction: 0.02 is 2%) or ``absolute`` (in SI units of the answer)."""
+
+    value: float
+    relative: bool = True
+
+    def __str__(self) -> str:
+        return f"{self.value * 100:g}%" if self.relative else f"{self.value:g}"
+
+
+ClaimValue = Union[float, Vec, str, int]
+
+
+@dataclass(frozen=True, slots=True)
+class Claim:
+    """One claimed answer for ``mech check``.
+
+    ``key`` is as written (``omega.rocker``); ``value`` is SI (a float), a point
+    ``(x, y)`` in metres, the string ``"infinity"``, an int count, or a name
+    (for ``chain``).  ``sense`` is ``"cw"``/``"ccw"`` when the claim states it.
+    ``dimension`` is the :class:`mech.units.Dimension` value the key expects.
+    """
+
+    key: str
+    value: ClaimValue
+    dimension: str | None = None
+    sense: str | None = None
+    tolerance: Tolerance | None = None
+    text: str = ""
+    where: Where | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Mechanism:
+    """A whole mechanism file, validated, in SI.
+
+    ``links`` are in file order (ground wherever the file put it: ``ground``
+    names it); I-centres are numbered ground first, then the others in order.
+    """
+
+    name: str | None
+    path: str
+    ground: str
+    links: tuple[Link, ...]
+    joints: tuple[Joint, ...]
+    points: tuple[Point, ...] = ()
+    lengths: tuple[Length, ...] = ()
+    drives: tuple[Drive, ...] = ()
+    answers: tuple[Claim, ...] = ()
+    tolerance: Tolerance = Tolerance(0.02)
+    length_unit: str = "m"
+    angle_unit: str = "deg"
+    source: str | None = field(default=None, repr=False, compare=False)
+
+    # -- lookups -----------------------------------------------------------------
+    def link(self, name: str) -> Link:
+        for link in self.links:
+            if link.name == name:
+                return link
+        raise KeyError(name)
+
+    def joint(self, name: str) -> Joint:
+        for joint in self.joints:
+            if joint.name == name:
+                return joint
+        raise KeyError(name)
+
+    def point(self, name: str) -> Point:
+        for point in self.points:
+            if point.name == name:
+                return point
+        raise KeyError(name)
+
+    @property
+    def label(self) -> str:
+        """The mechanism's name, or its file name."""
+        return self.name or self.path
+
+    @property
+    def moving_links(self) -> tuple[Link, ...]:
+        return tuple(link for link in self.links if not link.is_ground)
+
+    @property
+    def numbered_links(self) -> tuple[Link, ...]:
+        """Links in I-centre numbering order: ground is 1, the others follow in file order."""
+        ground = [link for link in self.links if link.is_ground]
+        return tuple(ground + [link for link in self.links if not link.is_ground])
+
+    def joints_of(self, link: str) -> tuple[Joint, ...]:
+        """The joints a link takes part in."""
+        return tuple(j for j in self.joints if link in j.links)
+
+    def points_of(self, link: str) -> tuple[str, ...]:
+        """Names of every located thing on a link: its joints (those with a point) and points."""
+        names = [j.name for j in self.joints_of(link) if j.type is not JointType.PRISMATIC]
+        names += [p.name for p in self.points if p.link == link]
+        return tuple(names)
+
+    def iter_names(self) -> Iterator[str]:
+        yield from (link.name for link in self.links)
+        yield from (j.name for j in self.joints)
+        yield from (p.name for p in self.points)
+
+    @property
+    def has_geometry(self) -> bool:
+        """True when the file places anything (so positions may be solvable)."""
+        return any(j.place.at is not None for j in self.joints) or any(
+            p.place.at is not None for p in self.points
+        )

@@ -1,0 +1,84 @@
+"""Options folded into values, validated once (command line and library alike).
+
+A command builds one :class:`SolveOptions` from its flags and hands it down;
+no layer below the CLI sees a flag.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+__all__ = ["OutputUnits", "SolveOptions"]
+
+
+@dataclass(frozen=True, slots=True)
+class SolveOptions:
+    """What the solver needs beyond the file.
+
+    Parameters
+    ----------
+    angle
+        Overrides the (single) drive's angle, rad, counter-clockwise from +x.
+    omega
+        Overrides the drive's angular speed magnitude, rad/s (``--rpm`` is
+        converted before it gets here).  For a slider drive: its speed, m/s.
+    direction
+        ``"cw"`` or ``"ccw"``: overrides the drive's sense of rotation.
+    alpha
+        Overrides the drive's angular acceleration, rad/s² (signed, ccw +).
+    tol
+        Newton's stopping tolerance on the constraint residual, relative to
+        the mechanism's size (its largest joint distance).  1e-12 leaves
+        about 1e-9 relative accuracy in velocities at ordinary conditioning.
+    max_iter
+        Cap on Newton iterations per solve.
+    """
+
+    angle: float | None = None
+    omega: float | None = None
+    direction: str | None = None
+    alpha: float | None = None
+    tol: float = 1e-12
+    max_iter: int = 50
+
+    def __post_init__(self) -> None:
+        if self.direction not in (None, "cw", "ccw"):
+            raise ValueError(f"direction must be 'cw' or 'ccw', not {self.direction!r}")
+        if not (0.0 < self.tol < 1.0) or not math.isfinite(self.tol):
+            raise ValueError(f"tol must be between 0 and 1, not {self.tol!r}")
+        if self.max_iter < 1:
+            raise ValueError("max_iter must be at least 1")
+        for name in ("angle", "omega", "alpha"):
+            v = getattr(self, name)
+            if v is not None and not math.isfinite(v):
+                raise ValueError(f"{name} must be finite")
+        if self.omega is not None and self.omega < 0:
+            raise ValueError("omega is a magnitude; give the sense with direction")
+
+    def with_(self, **changes: object) -> SolveOptions:
+        """A copy with some fields changed (options are immutable)."""
+        return replace(self, **changes)  # type: ignore[arg-type]
+
+
+@dataclass(frozen=True, slots=True)
+class OutputUnits:
+    """Units in which reports print numbers (analysis is always SI)."""
+
+    length: str = "m"
+    velocity: str = "m/s"
+    acceleration: str = "m/s^2"
+    angular_velocity: str = "rad/s"
+    angular_acceleration: str = "rad/s^2"
+    angle: str = "deg"
+
+    @classmethod
+    def named(cls, name: str) -> OutputUnits:
+        """``si`` (m, m/s …) or ``mm`` (mm, mm/s, mm/s²): the ``--units`` choices."""
+        if name in ("si", "m"):
+            return cls()
+        if name == "mm":
+            return cls(length="mm", velocity="mm/s", acceleration="mm/s^2")
+        if name == "cm":
+            return cls(length="cm", velocity="cm/s", acceleration="cm/s^2")
+        raise ValueError(f"unknown unit system {name!r} (choose si, mm or cm)")

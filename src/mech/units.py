@@ -1,0 +1,201 @@
+"""The small unit table: read ``"40 mm"`` or ``"4.8 rad/s cw"``, write SI.
+
+Every quantity inside mech is SI (m, rad, s).  Units appear only at the two
+edges: when a file is read (a bare number is in the file's ``units``, a string
+may carry its own unit) and when a report is written.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from enum import Enum
+
+__all__ = [
+    "Dimension",
+    "Quantity",
+    "format_unit",
+    "parse_number",
+    "parse_quantity",
+    "to_unit",
+    "unit_factor",
+]
+
+
+class Dimension(str, Enum):
+    """What a number measures; the value is the SI unit it is stored in."""
+
+    LENGTH = "m"
+    ANGLE = "rad"
+    ANGULAR_VELOCITY = "rad/s"
+    VELOCITY = "m/s"
+    ACCELERATION = "m/s^2"
+    ANGULAR_ACCELERATION = "rad/s^2"
+    TIME = "s"
+    NUMBER = "1"
+
+    @property
+    def label(self) -> str:
+        return self.name.lower().replace("_", " ")
+
+
+_TWO_PI = 2.0 * math.pi
+_DEG = math.pi / 180.0
+
+# unit spelling -> (dimension, factor to SI)
+_UNITS: dict[str, tuple[Dimension, float]] = {
+    # length
+    "m": (Dimension.LENGTH, 1.0),
+    "mm": (Dimension.LENGTH, 1e-3),
+    "cm": (Dimension.LENGTH, 1e-2),
+    "dm": (Dimension.LENGTH, 1e-1),
+    "km": (Dimension.LENGTH, 1e3),
+    "um": (Dimension.LENGTH, 1e-6),
+    "µm": (Dimension.LENGTH, 1e-6),
+    "in": (Dimension.LENGTH, 0.0254),
+    "ft": (Dimension.LENGTH, 0.3048),
+    # angle
+    "rad": (Dimension.ANGLE, 1.0),
+    "deg": (Dimension.ANGLE, _DEG),
+    "°": (Dimension.ANGLE, _DEG),
+    "rev": (Dimension.ANGLE, _TWO_PI),
+    # angular velocity
+    "rad/s": (Dimension.ANGULAR_VELOCITY, 1.0),
+    "rpm": (Dimension.ANGULAR_VELOCITY, _TWO_PI / 60.0),
+    "rev/min": (Dimension.ANGULAR_VELOCITY, _TWO_PI / 60.0),
+    "r.p.m.": (Dimension.ANGULAR_VELOCITY, _TWO_PI / 60.0),
+    "rps": (Dimension.ANGULAR_VELOCITY, _TWO_PI),
+    "rev/s": (Dimension.ANGULAR_VELOCITY, _TWO_PI),
+    "deg/s": (Dimension.ANGULAR_VELOCITY, _DEG),
+    # velocity
+    "m/s": (Dimension.VELOCITY, 1.0),
+    "mm/s": (Dimension.VELOCITY, 1e-3),
+    "cm/s": (Dimension.VELOCITY, 1e-2),
+    "km/h": (Dimension.VELOCITY, 1.0 / 3.6),
+    "m/min": (Dimension.VELOCITY, 1.0 / 60.0),
+    "in/s": (Dimension.VELOCITY, 0.0254),
+    "ft/s": (Dimension.VELOCITY, 0.3048),
+    "ft/min": (Dimension.VELOCITY, 0.3048 / 60.0),
+    # acceleration
+    "m/s^2": (Dimension.ACCELERATION, 1.0),
+    "mm/s^2": (Dimension.ACCELERATION, 1e-3),
+    "cm/s^2": (Dimension.ACCELERATION, 1e-2),
+    "in/s^2": (Dimension.ACCELERATION, 0.0254),
+    "ft/s^2": (Dimension.ACCELERATION, 0.3048),
+    "g": (Dimension.ACCELERATION, 9.80665),
+    # angular acceleration
+    "rad/s^2": (Dimension.ANGULAR_ACCELERATION, 1.0),
+    "deg/s^2": (Dimension.ANGULAR_ACCELERATION, _DEG),
+    "rpm/s": (Dimension.ANGULAR_ACCELERATION, _TWO_PI / 60.0),
+    # time
+    "s": (Dimension.TIME, 1.0),
+    "ms": (Dimension.TIME, 1e-3),
+    "min": (Dimension.TIME, 60.0),
+}
+
+_NUMBER = r"[+-]?(?:\d+(?:[_\d]*)(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?"
+
+
+def _normalise_unit(unit: str) -> str:
+    """Spellings users write for the same unit: ``m/s²``, ``m/s2``, ``m/sec^2``, ``RPM``."""
+    u = unit.strip().replace("²", "^2").replace("**2", "^2").replace("sec", "s")
+    u = re.sub(r"/s2$", "/s^2", u)
+    u = u.replace(" ", "")
+    if u.lower() in ("rpm", "r.p.m.", "r.p.m", "rev/min"):
+        return "rpm"
+    if u in ("radians", "radian"):
+        return "rad"
+    if u in ("degree", "degrees"):
+        return "deg"
+    return u
+
+
+def unit_factor(unit: str) -> tuple[Dimension, float]:
+    """The dimension of ``unit`` and its factor to SI.
+
+    Raises
+    ------
+    KeyError
+        If the unit is unknown (the loader turns this into a located error).
+    """
+    return _UNITS[_normalise_unit(unit)]
+
+
+def known_units(dimension: Dimension) -> list[str]:
+    """Unit spellings of one dimension, for hints in error messages."""
+    return [u for u, (d, _) in _UNITS.items() if d is dimension and u.isascii()]
+
+
+def parse_number(text: str) -> float:
+    """A plain number as YAML 1.1 fails to read it: ``1e3`` is 1000, not a string.
+
+    Raises ``ValueError`` for anything else, including NaN and infinity,
+    which have no place in a mechanism.
+    """
+    s = text.strip().replace("_", "")
+    if not re.fullmatch(_NUMBER.replace("[_\\d]*", "\\d*"), s):
+        raise ValueError(f"{text!r} is not a number")
+    value = float(s)
+    if not math.isfinite(value):
+        raise ValueError(f"{text!r} is not a finite number")
+    return value
+
+
+@dataclass(frozen=True, slots=True)
+class Quantity:
+    """A number read from text, in SI, with the dimension its unit named.
+
+    ``dimension`` is None for a bare number (its unit comes from context);
+    ``sense`` is ``"cw"`` or ``"ccw"`` when the text ended with one.
+    """
+
+    value: float
+    dimension: Dimension | None
+    unit: str | None = None
+    sense: str | None = None
+
+
+def parse_quantity(text: str) -> Quantity:
+    """Read ``"40 mm"``, ``"600 rpm"``, ``"4.8 rad/s cw"``, ``"126 m/s^2"`` or ``"1e3"``.
+
+    Examples
+    --------
+    >>> parse_quantity("12 cm").value
+    0.12
+    >>> q = parse_quantity("10 rpm ccw"); round(q.value, 6), q.sense
+    (1.047198, 'ccw')
+
+    Raises
+    ------
+    ValueError
+        When the text is not a number followed by an optional unit.
+    KeyError
+        When the unit is unknown.
+    """
+    s = text.strip()
+    sense = None
+    m = re.search(r"\s+(cw|ccw|CW|CCW|clockwise|anticlockwise|counterclockwise|counter-clockwise)$", s)
+    if m:
+        word = m.group(1).lower()
+        sense = "cw" if word in ("cw", "clockwise") else "ccw"
+        s = s[: m.start()].strip()
+    m = re.match(rf"^\s*({_NUMBER})\s*(.*?)\s*$", s)
+    if not m:
+        raise ValueError(f"{text!r} is not a number with a unit")
+    value = parse_number(m.group(1))
+    unit = m.group(2)
+    if not unit:
+        return Quantity(value, None, None, sense)
+    dimension, factor = unit_factor(unit)
+    return Quantity(value * factor, dimension, _normalise_unit(unit), sense)
+
+
+def to_unit(value: float, unit: str) -> float:
+    """Convert an SI value to ``unit`` (``to_unit(0.385, "mm/s") == 385.0``)."""
+    return value / unit_factor(unit)[1]
+
+
+def format_unit(unit: str) -> str:
+    """Pretty unit for reports: ``m/s^2`` → ``m/s²``."""
+    return unit.replace("^2", "²")
