@@ -190,6 +190,21 @@ class Joint:
         return len(self.links) - 1
 
     @property
+    def located_on(self) -> tuple[str, ...]:
+        """The links this joint is a *point* of (where a length may end).
+
+        A prismatic joint is a pair, not a point (its ``point`` is the
+        slider's).  A slot joint is the pin's centre, a point of the pin link
+        only: it moves along the slotted link.  Every other joint is a point of
+        each link it joins (a contact point at the drawn instant).
+        """
+        if self.type is JointType.PRISMATIC:
+            return ()
+        if self.type is JointType.SLOT:
+            return self.links[:1]
+        return self.links
+
+    @property
     def closure_kind(self) -> str:
         """``self`` or ``force``: the file's ``closure`` (form → self) or the type's default."""
         if self.closure is None:
@@ -333,7 +348,7 @@ class Mechanism:
 
     def points_of(self, link: str) -> tuple[str, ...]:
         """Names of every located thing on a link: its joints (those with a point) and points."""
-        names = [j.name for j in self.joints_of(link) if j.type is not JointType.PRISMATIC]
+        names = [j.name for j in self.joints if link in j.located_on]
         names += [p.name for p in self.points if p.link == link]
         return tuple(names)
 

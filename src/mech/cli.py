@@ -1,0 +1,306 @@
+"""The ``mech`` command line: parse options, call the library, hand results to a renderer.
+
+This module imports click and nothing heavy: numpy and rich are imported inside
+the commands that need them, so ``mech dof`` over a folder starts fast.
+Exit status: 0 success, 1 a failed check, 2 bad input or usage.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Callable, Sequence
+from enum import IntEnum
+from functools import wraps
+from typing import Any, TypeVar
+
+import click
+
+from mech import __version__
+from mech.errors import MechError
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+DEFAULT_FILE = "mechanism.yaml"
+
+
+class ExitStatus(IntEnum):
+    """What ``mech`` returns to the shell."""
+
+    OK = 0
+    CHECK_FAILED = 1
+    BAD_INPUT = 2
+
+
+def _report_error(error: MechError) -> None:
+    click.echo(error.format(), err=True)
+
+
+def handles_errors(fn: F) -> F:
+    """Turn a :class:`MechError` into its message on stderr and exit status 2.
+
+    Only errors mech raises on purpose are caught: a bug still shows its
+    traceback, so that it gets reported rather than disguised as bad input.
+    """
+
+    @wraps(fn)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return fn(*args, **kwargs)
+        except MechError as error:
+            _report_error(error)
+            sys.exit(error.exit_code)
+
+    return wrapper  # type: ignore[return-value]
+
+
+file_argument = click.argument("file", default=DEFAULT_FILE, type=click.Path(dir_okay=False, allow_dash=True))
+json_option = click.option("--json", "as_json", is_flag=True, help="Print JSON (structure in cli.md) instead of tables.")
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, "-V", "--version", prog_name="mech", message="%(prog)s %(version)s")
+def cli() -> None:
+    """Analyse planar mechanisms described in YAML.
+
+    \b
+    mech dof mechanisms/four_bar.yaml           degrees of freedom, worked
+    mech classify mechanisms/four_bar.yaml      links, joints and pairs
+    mech velocity mechanisms/slider_crank.yaml --rpm 600
+    mech check homework/                        verdicts on claimed answers
+
+    FILE defaults to mechanism.yaml in this folder; - reads standard input.
+    """
+
+
+# -- counting -------------------------------------------------------------------------
+@cli.command()
+@click.argument("files", nargs=-1, type=click.Path(dir_okay=False, allow_dash=True))
+@click.option(
+    "--mobility",
+    is_flag=True,
+    help="Also compute the true mobility from the constraint Jacobian's rank (needs geometry).",
+)
+@json_option
+def dof(files: Sequence[str], mobility: bool, as_json: bool) -> None:
+    """Count degrees of freedom by Kutzbach and check Grübler's criterion.
+
+    Shows l, j and h, the link and joint classes and the count worked out;
+    several files give one table.  A bad file is reported on stderr and the
+    others are still counted (exit status 2 at the end).
+    """
+    from mech.loader import load
+    from mech.topology import classify
+
+    results = []
+    errors: list[tuple[str, MechError]] = []
+    mobilities: dict[str, Any] = {}
+    for path in files or (DEFAULT_FILE,):
+        try:
+            mechanism = load(path)
+            results.append(classify(mechanism))
+            if mobility:
+                mobilities[path] = _mobility(mechanism)
+        except MechError as error:
+            errors.append((path, error))
+            if not as_json:
+                _report_error(error)
+    if as_json:
+        from mech.render.jsonout import dumps, error_dict
+        from mech.render.topology import topology_dict
+
+        out = []
+        for t in results:
+            record = topology_dict(t)
+            if mobility:
+                record["mobility"] = mobilities[t.path]
+            out.append(record)
+        out += [{"file": p, "error": error_dict(e)} for p, e in errors]
+        click.echo(dumps(out if len(out) != 1 or errors else out[0]))
+    elif results:
+        from mech.render.console import stdout
+        from mech.render.topology import dof_table
+
+        console = stdout()
+        dof_table(results, console)
+        for t in results:
+            if mobility:
+                m = mobilities[t.path]
+                console.print(f"  {t.path}: numeric mobility {m['text']}")
+    if errors:
+        sys.exit(ExitStatus.BAD_INPUT)
+
+
+def _mobility(mechanism: Any) -> dict[str, Any]:
+    """Numeric mobility for ``mech dof --mobility``: a dict, or the reason it cannot be had."""
+    from mech.kinematics import mobility
+
+    try:
+        m = mobility(mechanism)
+    except MechError as error:
+        return {"value": None, "text": f"not computed: {error.problems[0].message}"}
+    return {"value": m.numeric, "text": m.describe(), "condition": m.condition}
+
+
+@cli.command(name="classify")
+@file_argument
+@json_option
+@handles_errors
+def classify_command(file: str, as_json: bool) -> None:
+    """Classify links (binary, ternary …), joints and kinematic pairs.
+
+    Pairs are classified as the lecture notes do: by relative motion (turning,
+    sliding, rolling, screw, spherical, cam or gear), by contact (lower or
+    higher) and by closure (self-closed or force-closed).
+    """
+    from mech.loader import load
+    from mech.topology import classify
+
+    t = classify(load(file))
+    if as_json:
+        from mech.render.jsonout import dumps
+        from mech.render.topology import classify_dict
+
+        click.echo(dumps(classify_dict(t)))
+        return
+    from mech.render.console import stdout
+    from mech.render.topology import classify_tables
+
+    classify_tables(t, stdout())
+
+
+@cli.command()
+@click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True), help="Write to a file.")
+def schema(output: str | None) -> None:
+    """Print the JSON Schema (draft-07) of the mechanism file format.
+
+    Point your editor's YAML plugin at it for validation and completion.
+    """
+    from mech.render.jsonout import dumps
+    from mech.schema import SCHEMA
+
+    text = dumps(SCHEMA)
+    if output:
+        with open(output, "w", encoding="utf-8") as f:
+            f.write(text + "\n")
+    else:
+        click.echo(text)
+
+
+# -- kinematics -----------------------------------------------------------------------
+def kinematic_options(fn: F) -> F:
+    """Options shared by the commands that solve the mechanism."""
+    decorators = [
+        file_argument,
+        click.option("--rpm", type=float, help="Crank speed in rev/min (overrides the file)."),
+        click.option("--omega", type=float, help="Crank speed in rad/s (overrides the file)."),
+        click.option("--angle", type=float, help="Crank angle in degrees, counter-clockwise from +x."),
+        click.option("--direction", type=click.Choice(["cw", "ccw"]), help="Sense of the crank's rotation."),
+        click.option(
+            "--tol",
+            type=float,
+            default=1e-12,
+            show_default=True,
+            help="Newton tolerance on the loop closure, relative to the mechanism's size.",
+        ),
+        click.option(
+            "--units",
+            "unit_system",
+            type=click.Choice(["si", "mm", "cm"]),
+            default="si",
+            show_default=True,
+            help="Print lengths and speeds in m, mm or cm (angles always in deg, rad/s).",
+        ),
+        json_option,
+    ]
+    for decorator in reversed(decorators):
+        fn = decorator(fn)
+    return fn
+
+
+def _solve_options(rpm: float | None, omega: float | None, angle: float | None, direction: str | None, tol: float, alpha: float | None = None) -> Any:
+    from mech.errors import InputError
+    from mech.options import SolveOptions
+
+    if rpm is not None and omega is not None:
+        raise InputError("give --rpm or --omega, not both")
+    speed = None
+    for name, value, factor in (("--rpm", rpm, 2 * math.pi / 60), ("--omega", omega, 1.0)):
+        if value is not None:
+            if not math.isfinite(value) or value < 0:
+                raise InputError(f"{name} must be a finite speed ≥ 0", hint="give the sense with --direction cw|ccw")
+            speed = value * factor
+    if angle is not None and not math.isfinite(angle):
+        raise InputError("--angle must be a finite number of degrees")
+    try:
+        return SolveOptions(
+            angle=None if angle is None else math.radians(angle),
+            omega=speed,
+            direction=direction,
+            alpha=alpha,
+            tol=tol,
+        )
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
+
+
+def _kinematics(file: str, level: str, options: Any, unit_system: str, as_json: bool) -> None:
+    from mech.kinematics import solve
+    from mech.loader import load
+    from mech.options import OutputUnits
+
+    kin = solve(load(file), level=level, options=options)
+    units = OutputUnits.named(unit_system)
+    if as_json:
+        from mech.render.jsonout import dumps
+        from mech.render.kinematics import kinematics_json
+
+        click.echo(dumps(kinematics_json(kin, units=units)))
+        return
+    from mech.render.console import stdout
+    from mech.render.kinematics import kinematics_table
+
+    kinematics_table(kin, stdout(), units=units)
+
+
+@cli.command()
+@kinematic_options
+@handles_errors
+def position(file: str, rpm: float | None, omega: float | None, angle: float | None, direction: str | None, tol: float, unit_system: str, as_json: bool) -> None:
+    """Solve the positions of every joint and point at the crank angle."""
+    _kinematics(file, "position", _solve_options(rpm, omega, angle, direction, tol), unit_system, as_json)
+
+
+@cli.command()
+@kinematic_options
+@handles_errors
+def velocity(file: str, rpm: float | None, omega: float | None, angle: float | None, direction: str | None, tol: float, unit_system: str, as_json: bool) -> None:
+    """Velocities of every point and link at the crank angle and speed.
+
+    Absolute velocities of joints and points, angular velocities of links,
+    relative velocities along links (the velocity polygon's ab, bc …), sliding
+    velocities in slides and slots, and rubbing velocities at pins with a radius.
+    """
+    _kinematics(file, "velocity", _solve_options(rpm, omega, angle, direction, tol), unit_system, as_json)
+
+
+@cli.command()
+@kinematic_options
+@click.option("--alpha", type=float, help="Crank angular acceleration in rad/s², counter-clockwise positive.")
+@handles_errors
+def acceleration(file: str, rpm: float | None, omega: float | None, angle: float | None, direction: str | None, tol: float, unit_system: str, as_json: bool, alpha: float | None) -> None:
+    """Accelerations (normal, tangential, Coriolis) of every point and link."""
+    if alpha is not None and not math.isfinite(alpha):
+        from mech.errors import InputError
+
+        raise InputError("--alpha must be a finite number")
+    _kinematics(file, "acceleration", _solve_options(rpm, omega, angle, direction, tol, alpha), unit_system, as_json)
+
+
+def main(argv: Sequence[str] | None = None) -> None:
+    """Entry point of the ``mech`` console script and ``python -m mech``."""
+    cli.main(args=list(argv) if argv is not None else None, prog_name="mech")
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

@@ -1,0 +1,1044 @@
+"""YAML text → :class:`~mech.model.Mechanism`: units, names, validation.
+
+The loader walks the node tree PyYAML composes (with libyaml's C parser when
+present) instead of the Python objects it would construct, for three reasons:
+
+* every value keeps its line and column, so each message can point at it;
+* a duplicate key, which YAML silently lets overwrite, is caught;
+* scalars are read from their raw text, so YAML 1.1's surprises do not leak in:
+  ``1e3`` is the number 1000 (PyYAML makes it a string), and a link called
+  ``no`` or ``on`` is a name, not a boolean.
+
+Nothing is constructed from tags, so the loader is as safe as ``safe_load``.
+All problems in a file are gathered and raised together as one
+:class:`~mech.errors.InputError`.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import os
+import re
+import sys
+from collections.abc import Callable, Iterable
+from pathlib import Path as FsPath
+from typing import Any
+
+import yaml
+
+from mech.answers import LINK_CLASSES, parse_key
+from mech.errors import InputError, Problem, Where
+from mech.model import (
+    Claim,
+    Drive,
+    Joint,
+    JointType,
+    Length,
+    Link,
+    Mechanism,
+    Path,
+    Placement,
+    Point,
+    Ref,
+    Tolerance,
+    Vec,
+)
+from mech.units import Dimension, known_units, parse_number, parse_quantity, unit_factor
+
+__all__ = ["load", "loads"]
+
+_YamlLoader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+
+_TOP_KEYS = (
+    "name",
+    "description",
+    "source",
+    "units",
+    "ground",
+    "links",
+    "joints",
+    "lengths",
+    "drive",
+    "points",
+    "answers",
+)
+_PLACE_KEYS = ("at", "near", "from", "toward", "distance", "offset")
+_JOINT_KEYS: dict[JointType, tuple[str, ...]] = {
+    JointType.REVOLUTE: ("radius",),
+    JointType.PRISMATIC: ("path", "point"),
+    JointType.SLOT: ("path", "point"),
+    JointType.ROLLING: (),
+    JointType.CAM: ("normal",),
+    JointType.CONTACT: ("normal",),
+    JointType.GEAR: ("normal", "pressure_angle", "radii", "teeth", "module", "internal"),
+    JointType.SCREW: (),
+    JointType.SPHERICAL: (),
+}
+_COMMON_JOINT_KEYS = ("type", "links", "closure", "description", *_PLACE_KEYS)
+_NAME = re.compile(r"^[^\s.\-\[\]{},:#]+$")
+_MAX_NODES = 200_000  # an alias bomb is refused, not expanded
+
+_PLAIN_NULLS = {"", "~", "null", "Null", "NULL"}
+_TRUE = {"true", "True", "TRUE", "yes", "Yes", "YES", "on", "On", "ON"}
+_FALSE = {"false", "False", "FALSE", "no", "No", "NO", "off", "Off", "OFF"}
+
+
+def load(path: str | os.PathLike[str]) -> Mechanism:
+    """Read a mechanism file.  ``"-"`` reads standard input.
+
+    Raises
+    ------
+    InputError
+        Naming the file, line and column of every problem, with a hint.
+    """
+    name = os.fspath(path)
+    if name == "-":
+        data = sys.stdin.buffer.read()
+        return loads(data, path="<stdin>")
+    try:
+        data = FsPath(name).read_bytes()
+    except FileNotFoundError:
+        raise InputError(
+            f"no such file: {name}",
+            where=Where(name),
+            hint="check the path; with no FILE, mech reads mechanism.yaml in this folder",
+        ) from None
+    except IsADirectoryError:
+        raise InputError(
+            f"{name} is a folder, not a mechanism file",
+            where=Where(name),
+            hint="name a .yaml file (mech check takes folders)",
+        ) from None
+    except OSError as exc:
+        raise InputError(f"cannot read {name}: {exc.strerror}", where=Where(name)) from None
+    return loads(data, path=name)
+
+
+def loads(text: str | bytes, *, path: str = "<string>") -> Mechanism:
+    """Read a mechanism from YAML text (``path`` is used only in messages).
+
+    Examples
+    --------
+    >>> m = loads('''
+    ... links: [frame, crank, coupler, rocker]
+    ... joints:
+    ...   A: {type: revolute, links: [frame, crank]}
+    ...   B: {type: revolute, links: [crank, coupler]}
+    ...   C: {type: revolute, links: [coupler, rocker]}
+    ...   D: {type: revolute, links: [rocker, frame]}
+    ... ''')
+    >>> m.ground, len(m.joints)
+    ('frame', 4)
+    """
+    if isinstance(text, bytes):
+        if b"\x00" in text:
+            raise InputError(
+                "this is a binary file, not a YAML mechanism file",
+                where=Where(path),
+                hint="mech reads text files in the format of cli.md (see mechanisms/ for examples)",
+            )
+        try:
+            text = text.decode("utf-8-sig")
+        except UnicodeDecodeError as exc:
+            raise InputError(
+                f"this file is not UTF-8 text (byte {exc.start} cannot be read)",
+                where=Where(path),
+                hint="save the file as UTF-8",
+            ) from None
+    return _Reader(text, path).read()
+
+
+# --------------------------------------------------------------------------------------
+class _Skip(Exception):
+    """A value could not be read; its problem is already recorded."""
+
+
+class _Reader:
+    """One pass over one file, collecting every problem before raising."""
+
+    def __init__(self, text: str, path: str) -> None:
+        self.text = text
+        self.path = path
+        self.problems: list[Problem] = []
+        self.length_factor = 1.0
+        self.angle_factor = math.pi / 180.0
+        self.length_unit = "m"
+        self.angle_unit = "deg"
+
+    # -- problems -----------------------------------------------------------------------
+    def where(self, node: yaml.Node | None) -> Where:
+        if node is None or node.start_mark is None:
+            return Where(self.path)
+        return Where(self.path, node.start_mark.line + 1, node.start_mark.column + 1)
+
+    def problem(self, node: yaml.Node | None, message: str, hint: str | None = None) -> _Skip:
+        self.problems.append(Problem(message, self.where(node), hint))
+        return _Skip()
+
+    def fail(self) -> None:
+        if self.problems:
+            raise InputError(problems=self.problems, source=self.text)
+
+    # -- the file -----------------------------------------------------------------------
+    def read(self) -> Mechanism:
+        if not self.text.strip() or all(
+            not ln.strip() or ln.lstrip().startswith("#") for ln in self.text.splitlines()
+        ):
+            raise InputError(
+                "the file is empty",
+                where=Where(self.path, 1, 1),
+                hint="a mechanism needs at least `links:` and `joints:` (see mechanisms/)",
+            )
+        try:
+            root = yaml.compose(self.text, Loader=_YamlLoader)
+        except yaml.MarkedYAMLError as exc:
+            mark = exc.problem_mark or exc.context_mark
+            where = (
+                Where(self.path, mark.line + 1, mark.column + 1) if mark else Where(self.path)
+            )
+            what = exc.problem or exc.context or "malformed YAML"
+            raise InputError(
+                f"this is not valid YAML: {what}",
+                where=where,
+                hint="check indentation, colons and brackets near this place",
+                source=self.text,
+            ) from None
+        except yaml.YAMLError as exc:
+            raise InputError(f"this is not valid YAML: {exc}", where=Where(self.path)) from None
+        if root is None:
+            raise InputError("the file is empty", where=Where(self.path, 1, 1))
+        self._check_size(root)
+        if not isinstance(root, yaml.MappingNode):
+            raise InputError(
+                "a mechanism file must be a mapping of keys (links:, joints: …), "
+                f"not a {_kind(root)}",
+                where=self.where(root),
+                hint="start with `links: [...]` and `joints: {...}`",
+                source=self.text,
+            )
+        top = self.mapping(root, "the file", allowed=_TOP_KEYS)
+        return self._mechanism(root, top)
+
+    def _check_size(self, root: yaml.Node) -> None:
+        seen = 0
+        stack = [root]
+        while stack:
+            node = stack.pop()
+            seen += 1
+            if seen > _MAX_NODES:
+                raise InputError(
+                    "the file expands to too many values (an alias bomb?)",
+                    where=self.where(root),
+                    hint="a mechanism file needs a few hundred values, not millions",
+                )
+            if isinstance(node, yaml.MappingNode):
+                for k, v in node.value:
+                    stack.extend((k, v))
+            elif isinstance(node, yaml.SequenceNode):
+                stack.extend(node.value)
+
+    def _mechanism(self, root: yaml.MappingNode, top: dict[str, tuple[Any, Any]]) -> Mechanism:
+        name = self.optional(top, "name", self.text_value)
+        self.optional(top, "description", self.text_value)
+        self.optional(top, "source", self.text_value)
+        self.optional(top, "units", self._units)
+
+        if "links" not in top:
+            self.problem(root, "the file has no `links:`", "list the links: `links: [frame, crank, …]`")
+            links_raw: list[tuple[str, yaml.Node, dict[str, Any]]] = []
+        else:
+            links_raw = self.guard(lambda: self._links(top["links"][1]), [])
+        if "joints" not in top:
+            self.problem(
+                root,
+                "the file has no `joints:`",
+                "add `joints:` with e.g. `A: {type: revolute, links: [frame, crank]}`",
+            )
+        link_names = [n for n, _, _ in links_raw]
+        ground = self._ground(root, top, link_names)
+        links = tuple(
+            Link(
+                name=n,
+                index=i,
+                kind=extra.get("kind", "rigid"),
+                description=extra.get("description"),
+                is_ground=(n == ground),
+                where=self.where(node),
+            )
+            for i, (n, node, extra) in enumerate(links_raw)
+        )
+        joints: list[Joint] = []
+        if "joints" in top:
+            joints = self.guard(lambda: self._joints(top["joints"][1], set(link_names)), [])
+        points: list[Point] = []
+        if "points" in top:
+            points = self.guard(lambda: self._points(top["points"][1], set(link_names)), [])
+
+        self._names(links_raw, top, joints, points)
+        located = _located_on(joints, points)
+        self._check_refs(joints, points, located)
+        lengths: list[Length] = []
+        if "lengths" in top:
+            lengths = self.guard(lambda: self._lengths(top["lengths"][1], located), [])
+        drives: list[Drive] = []
+        if "drive" in top:
+            drives = self.guard(
+                lambda: self._drives(top["drive"][1], set(link_names), ground, joints), []
+            )
+        answers: list[Claim] = []
+        tolerance = Tolerance(0.02)
+        if "answers" in top:
+            answers, tolerance = self.guard(
+                lambda: self._answers(top["answers"][1], links, joints, points),
+                ([], tolerance),
+            )
+        self.fail()
+        return Mechanism(
+            name=name,
+            path=self.path,
+            ground=ground or "",
+            links=links,
+            joints=tuple(joints),
+            points=tuple(points),
+            lengths=tuple(lengths),
+            drives=tuple(drives),
+            answers=tuple(answers),
+            tolerance=tolerance,
+            length_unit=self.length_unit,
+            angle_unit=self.angle_unit,
+            source=self.text,
+        )
+
+    # -- generic readers ----------------------------------------------------------------
+    def guard(self, fn: Callable[[], Any], default: Any) -> Any:
+        try:
+            return fn()
+        except _Skip:
+            return default
+
+    def optional(self, mapping: dict[str, tuple[Any, Any]], key: str, reader: Callable[..., Any]) -> Any:
+        if key not in mapping:
+            return None
+        try:
+            return reader(mapping[key][1])
+        except _Skip:
+            return None
+
+    def mapping(
+        self, node: yaml.Node, what: str, *, allowed: Iterable[str] | None = None
+    ) -> dict[str, tuple[yaml.Node, yaml.Node]]:
+        """A mapping node as ``{key: (key node, value node)}``; duplicates and unknown keys reported."""
+        if not isinstance(node, yaml.MappingNode):
+            raise self.problem(node, f"{what} must be a mapping (`key: value` lines), not a {_kind(node)}")
+        out: dict[str, tuple[yaml.Node, yaml.Node]] = {}
+        allowed_set = set(allowed) if allowed is not None else None
+        for knode, vnode in node.value:
+            if not isinstance(knode, yaml.ScalarNode):
+                self.problem(knode, f"a key in {what} must be a plain name, not a {_kind(knode)}")
+                continue
+            key = knode.value
+            if key == "<<":
+                self.problem(knode, "YAML merge keys (<<) are not supported", "write the keys out")
+                continue
+            if key in out:
+                first = self.where(out[key][0])
+                self.problem(
+                    knode,
+                    f"duplicate key {key!r} in {what} (first at line {first.line})",
+                    "YAML would silently keep only the last one; remove or rename one",
+                )
+                continue
+            if allowed_set is not None and key not in allowed_set:
+                self.problem(knode, f"unknown key {key!r} in {what}", _did_you_mean(key, allowed_set))
+                continue
+            out[key] = (knode, vnode)
+        return out
+
+    def sequence(self, node: yaml.Node, what: str) -> list[yaml.Node]:
+        if not isinstance(node, yaml.SequenceNode):
+            raise self.problem(node, f"{what} must be a list, not a {_kind(node)}")
+        return list(node.value)
+
+    def scalar(self, node: yaml.Node, what: str) -> str:
+        if not isinstance(node, yaml.ScalarNode):
+            raise self.problem(node, f"{what} must be a single value, not a {_kind(node)}")
+        return node.value
+
+    def text_value(self, node: yaml.Node) -> str:
+        return self.scalar(node, "this value")
+
+    def name(self, node: yaml.Node, what: str) -> str:
+        if isinstance(node, yaml.ScalarNode) and node.style is None and node.value in _PLAIN_NULLS:
+            raise self.problem(node, f"{what} is empty", "write a name")
+        value = self.scalar(node, what)
+        if not _NAME.match(value):
+            raise self.problem(
+                node,
+                f"{value!r} is not a usable name for {what}",
+                "names are one word without spaces, dots or dashes (e.g. O2, crank, B1)",
+            )
+        return value
+
+    def boolean(self, node: yaml.Node, what: str) -> bool:
+        value = self.scalar(node, what)
+        if value in _TRUE:
+            return True
+        if value in _FALSE:
+            return False
+        raise self.problem(node, f"{what} must be true or false, not {value!r}")
+
+    def number(self, node: yaml.Node, what: str, dimension: Dimension, *, positive: bool = False) -> float:
+        """A number in SI: a bare number is in the file's units, a string may carry its unit."""
+        if isinstance(node, yaml.ScalarNode) and node.style is None and node.value in _PLAIN_NULLS:
+            raise self.problem(node, f"{what} is empty", "write a number")
+        raw = self.scalar(node, what)
+        try:
+            q = parse_quantity(raw)
+        except KeyError as exc:
+            raise self.problem(
+                node,
+                f"unknown unit {exc.args[0]!r} in {what}",
+                f"{dimension.label} units: {', '.join(known_units(dimension))}",
+            ) from None
+        except ValueError:
+            nonfinite = raw.strip().lower().lstrip("+-") in (".nan", "nan", ".inf", "inf", "infinity")
+            raise self.problem(
+                node,
+                f"{what} must be a finite number, not {raw!r}"
+                if nonfinite
+                else f"{what} must be a number, not {raw!r}",
+                f"e.g. 40 or \"40 mm\" ({dimension.label})",
+            ) from None
+        if q.sense is not None:
+            raise self.problem(node, f"{what} cannot carry a sense ({q.sense})")
+        if q.dimension is None:
+            value = q.value * self._default_factor(dimension)
+        elif q.dimension is not dimension:
+            raise self.problem(
+                node,
+                f"{what} must be a {dimension.label}, but {q.unit!r} is a unit of {q.dimension.label}",
+                f"{dimension.label} units: {', '.join(known_units(dimension))}",
+            )
+        else:
+            value = q.value
+        if positive and not value > 0:
+            raise self.problem(node, f"{what} must be greater than zero, not {raw}")
+        return value
+
+    def _default_factor(self, dimension: Dimension) -> float:
+        if dimension is Dimension.LENGTH:
+            return self.length_factor
+        if dimension is Dimension.ANGLE:
+            return self.angle_factor
+        return 1.0
+
+    def vec(self, node: yaml.Node, what: str) -> Vec:
+        items = self.sequence(node, what)
+        if len(items) != 2:
+            raise self.problem(node, f"{what} must be a pair [x, y], not {len(items)} values")
+        x = self.number(items[0], f"x of {what}", Dimension.LENGTH)
+        y = self.number(items[1], f"y of {what}", Dimension.LENGTH)
+        return (x, y)
+
+    # -- sections -----------------------------------------------------------------------
+    def _units(self, node: yaml.Node) -> None:
+        units = self.mapping(node, "units", allowed=("length", "angle"))
+        if "length" in units:
+            vnode = units["length"][1]
+            u = self.scalar(vnode, "the length unit")
+            try:
+                dim, factor = unit_factor(u)
+            except KeyError:
+                dim, factor = None, 0.0
+            if dim is not Dimension.LENGTH:
+                self.problem(vnode, f"{u!r} is not a unit of length", f"use one of {', '.join(known_units(Dimension.LENGTH))}")
+            else:
+                self.length_factor, self.length_unit = factor, u
+        if "angle" in units:
+            vnode = units["angle"][1]
+            u = self.scalar(vnode, "the angle unit")
+            try:
+                dim, factor = unit_factor(u)
+            except KeyError:
+                dim, factor = None, 0.0
+            if dim is not Dimension.ANGLE:
+                self.problem(vnode, f"{u!r} is not a unit of angle", "use deg or rad")
+            else:
+                self.angle_factor, self.angle_unit = factor, u
+
+    def _links(self, node: yaml.Node) -> list[tuple[str, yaml.Node, dict[str, Any]]]:
+        out: list[tuple[str, yaml.Node, dict[str, Any]]] = []
+        if isinstance(node, yaml.SequenceNode):
+            for item in node.value:
+                try:
+                    out.append((self.name(item, "a link"), item, {}))
+                except _Skip:
+                    pass
+        elif isinstance(node, yaml.MappingNode):
+            for key, (knode, vnode) in self.mapping(node, "links").items():
+                try:
+                    name = self.name(knode, "a link")
+                except _Skip:
+                    continue
+                extra: dict[str, Any] = {}
+                is_null = isinstance(vnode, yaml.ScalarNode) and vnode.style is None and vnode.value in _PLAIN_NULLS
+                if not is_null:
+                    try:
+                        fields = self.mapping(vnode, f"link {key}", allowed=("kind", "description"))
+                    except _Skip:
+                        fields = {}
+                    if "kind" in fields:
+                        kind = self.scalar(fields["kind"][1], "kind")
+                        if kind not in ("rigid", "flexible", "fluid"):
+                            self.problem(fields["kind"][1], f"unknown link kind {kind!r}", "kind is rigid, flexible or fluid")
+                        extra["kind"] = kind
+                    if "description" in fields:
+                        extra["description"] = self.scalar(fields["description"][1], "description")
+                out.append((name, knode, extra))
+        else:
+            raise self.problem(node, f"links must be a list of names or a mapping, not a {_kind(node)}", "e.g. `links: [frame, crank, coupler, rocker]`")
+        if not out and not self.problems:
+            raise self.problem(node, "there are no links", "a mechanism has at least two links")
+        return out
+
+    def _ground(self, root: yaml.Node, top: dict[str, tuple[Any, Any]], links: list[str]) -> str | None:
+        if "ground" in top:
+            vnode = top["ground"][1]
+            try:
+                g = self.name(vnode, "the ground link")
+            except _Skip:
+                return None
+            if links and g not in links:
+                self.problem(vnode, f"ground link {g!r} is not among the links", _did_you_mean(g, links) or f"links: {', '.join(links)}")
+                return None
+            return g
+        candidates = [n for n in links if n in ("frame", "ground")]
+        if len(candidates) == 1:
+            return candidates[0]
+        if len(candidates) == 2:
+            self.problem(top["links"][1], "two links could be ground: frame and ground", "say which with `ground: frame`")
+            return None
+        if links:
+            self.problem(
+                top["links"][1] if "links" in top else root,
+                "no ground link: none is named frame or ground",
+                "name the fixed link with `ground: <link>`",
+            )
+        return None
+
+    def _place(self, fields: dict[str, tuple[Any, Any]], what: str) -> Placement:
+        at = self.optional(fields, "at", lambda n: self.vec(n, f"`at` of {what}"))
+        near = self.optional(fields, "near", lambda n: self.vec(n, f"`near` of {what}"))
+        origin = self.optional(fields, "from", lambda n: self.name(n, f"`from` of {what}"))
+        toward = self.optional(fields, "toward", lambda n: self.name(n, f"`toward` of {what}"))
+        distance = self.optional(fields, "distance", lambda n: self.number(n, f"`distance` of {what}", Dimension.LENGTH))
+        offset = self.optional(fields, "offset", lambda n: self.vec(n, f"`offset` of {what}"))
+        relative = [k for k in ("from", "toward", "distance", "offset") if k in fields]
+        if relative:
+            anchor = fields[relative[0]][0]
+            if "from" not in fields or "toward" not in fields:
+                self.problem(anchor, f"{what} is placed relative to two points: give both `from` and `toward`")
+            if ("distance" in fields) == ("offset" in fields):
+                self.problem(anchor, f"{what} needs exactly one of `distance` or `offset` with from/toward")
+            if "at" in fields:
+                self.problem(fields["at"][0], f"{what} has both `at` and from/toward", "place it one way")
+        return Placement(at=at, near=near, origin=origin, toward=toward, distance=distance, offset=offset)
+
+    def _joints(self, node: yaml.Node, links: set[str]) -> list[Joint]:
+        joints: list[Joint] = []
+        entries = self.mapping(node, "joints")
+        if not entries:
+            raise self.problem(node, "there are no joints")
+        for key, (knode, vnode) in entries.items():
+            try:
+                joints.append(self._joint(knode, vnode, links))
+            except _Skip:
+                continue
+        return joints
+
+    def _joint(self, knode: yaml.Node, vnode: yaml.Node, links: set[str]) -> Joint:
+        name = self.name(knode, "a joint")
+        what = f"joint {name}"
+        fields = self.mapping(vnode, what)
+        if "type" not in fields:
+            raise self.problem(vnode, f"{what} has no `type`", "e.g. `type: revolute` (" + ", ".join(t.value for t in JointType) + ")")
+        type_node = fields["type"][1]
+        type_text = self.scalar(type_node, "the joint type")
+        try:
+            jtype = JointType(type_text)
+        except ValueError:
+            raise self.problem(
+                type_node,
+                f"unknown joint type {type_text!r}",
+                _did_you_mean(type_text, [t.value for t in JointType]) or "types: " + ", ".join(t.value for t in JointType),
+            ) from None
+        allowed = set(_COMMON_JOINT_KEYS) | set(_JOINT_KEYS[jtype])
+        for key, (kn, _) in fields.items():
+            if key not in allowed:
+                others = [t.value for t, keys in _JOINT_KEYS.items() if key in keys]
+                hint = f"`{key}` belongs to {', '.join(others)} joints" if others else _did_you_mean(key, allowed)
+                self.problem(kn, f"unknown key {key!r} for a {jtype.value} joint", hint)
+        if "links" not in fields:
+            raise self.problem(vnode, f"{what} has no `links`", "e.g. `links: [frame, crank]`")
+        lnode = fields["links"][1]
+        names: list[str] = []
+        for item in self.sequence(lnode, f"the links of {what}"):
+            try:
+                ln = self.name(item, "a link")
+            except _Skip:
+                continue
+            if links and ln not in links:
+                self.problem(item, f"{what} names unknown link {ln!r}", _did_you_mean(ln, links) or "add it to `links:`")
+            elif ln in names:
+                self.problem(item, f"{what} lists link {ln!r} twice")
+            else:
+                names.append(ln)
+        if len(lnode.value) < 2:
+            raise self.problem(lnode, f"{what} joins {len(lnode.value)} link; a joint joins at least two", "list both links it connects")
+        if len(lnode.value) > 2 and jtype is not JointType.REVOLUTE:
+            raise self.problem(lnode, f"a {jtype.value} joint joins exactly two links, not {len(lnode.value)}", "only a revolute (pin) joint may join more than two")
+        place = self._place(fields, what)
+        path = self.optional(fields, "path", lambda n: self._path(n, what))
+        if jtype in (JointType.PRISMATIC, JointType.SLOT) and "path" not in fields:
+            self.problem(vnode, f"{what} has no `path`", "e.g. `path: {through: O, angle: 0}` (a straight line fixed in the guide)")
+        point = self.optional(fields, "point", lambda n: self.name(n, f"`point` of {what}"))
+        radius = self.optional(fields, "radius", lambda n: self.number(n, "the pin radius", Dimension.LENGTH, positive=True))
+        normal = self.optional(fields, "normal", lambda n: self.number(n, "the common normal", Dimension.ANGLE))
+        pressure = self.optional(fields, "pressure_angle", lambda n: self.number(n, "the pressure angle", Dimension.ANGLE))
+        radii = self.optional(fields, "radii", lambda n: self._pair(n, "radii", positive=True))
+        teeth = self.optional(fields, "teeth", self._teeth)
+        module = self.optional(fields, "module", lambda n: self.number(n, "the module", Dimension.LENGTH, positive=True))
+        internal = bool(self.optional(fields, "internal", lambda n: self.boolean(n, "internal")))
+        closure = self.optional(fields, "closure", lambda n: self.scalar(n, "closure"))
+        if closure is not None and closure not in ("form", "force", "self"):
+            self.problem(fields["closure"][1], f"unknown closure {closure!r}", "closure is form (self-closed) or force")
+        if teeth is not None and module is None:
+            self.problem(fields["teeth"][0], "gear teeth need a `module` to give the pitch radii")
+        if radii is not None and teeth is not None:
+            self.problem(fields["radii"][0], "give `radii` or `teeth` with `module`, not both")
+        if "description" in fields:
+            self.scalar(fields["description"][1], "description")
+        return Joint(
+            name=name,
+            type=jtype,
+            links=tuple(names),
+            place=place,
+            path=path,
+            point=point,
+            radius=radius,
+            normal=normal,
+            pressure_angle=pressure,
+            radii=radii,
+            teeth=teeth,
+            module=module,
+            internal=internal,
+            closure=closure,
+            where=self.where(knode),
+        )
+
+    def _pair(self, node: yaml.Node, what: str, *, positive: bool) -> Vec:
+        items = self.sequence(node, what)
+        if len(items) != 2:
+            raise self.problem(node, f"{what} must be a pair [a, b]")
+        return (
+            self.number(items[0], f"the first of {what}", Dimension.LENGTH, positive=positive),
+            self.number(items[1], f"the second of {what}", Dimension.LENGTH, positive=positive),
+        )
+
+    def _teeth(self, node: yaml.Node) -> tuple[int, int]:
+        items = self.sequence(node, "teeth")
+        if len(items) != 2:
+            raise self.problem(node, "teeth must be a pair [z1, z2]")
+        out = []
+        for item in items:
+            raw = self.scalar(item, "a tooth count")
+            if not re.fullmatch(r"\d+", raw.strip()) or int(raw) < 1:
+                raise self.problem(item, f"a tooth count must be a whole number above zero, not {raw!r}")
+            out.append(int(raw))
+        return (out[0], out[1])
+
+    def _ref(self, node: yaml.Node, what: str) -> Ref:
+        if isinstance(node, yaml.SequenceNode):
+            return Ref(xy=self.vec(node, what))
+        return Ref(name=self.name(node, what))
+
+    def _path(self, node: yaml.Node, what: str) -> Path:
+        fields = self.mapping(node, f"the path of {what}", allowed=("through", "angle", "toward"))
+        if "through" not in fields:
+            raise self.problem(node, f"the path of {what} has no `through`", "e.g. `path: {through: O, angle: 0}`")
+        if ("angle" in fields) == ("toward" in fields):
+            raise self.problem(node, f"the path of {what} needs exactly one of `angle` or `toward`")
+        through = self._ref(fields["through"][1], f"`through` of {what}")
+        angle = self.optional(fields, "angle", lambda n: self.number(n, "the path angle", Dimension.ANGLE))
+        toward = self.optional(fields, "toward", lambda n: self._ref(n, f"`toward` of {what}"))
+        return Path(through=through, angle=angle, toward=toward)
+
+    def _points(self, node: yaml.Node, links: set[str]) -> list[Point]:
+        out: list[Point] = []
+        for _key, (knode, vnode) in self.mapping(node, "points").items():
+            try:
+                name = self.name(knode, "a point")
+                what = f"point {name}"
+                fields = self.mapping(vnode, what, allowed=("link", "description", *_PLACE_KEYS))
+                if "link" not in fields:
+                    raise self.problem(vnode, f"{what} has no `link`", "say which link it is fixed on")
+                link = self.name(fields["link"][1], f"the link of {what}")
+                if links and link not in links:
+                    raise self.problem(fields["link"][1], f"{what} is on unknown link {link!r}", _did_you_mean(link, links))
+                place = self._place(fields, what)
+                if place.at is None and not place.is_relative:
+                    raise self.problem(vnode, f"{what} is not placed", "give `at: [x, y]` or `from`/`toward` with `distance` or `offset`")
+                out.append(Point(name=name, link=link, place=place, where=self.where(knode)))
+            except _Skip:
+                continue
+        return out
+
+    def _names(
+        self,
+        links: list[tuple[str, yaml.Node, dict[str, Any]]],
+        top: dict[str, tuple[Any, Any]],
+        joints: list[Joint],
+        points: list[Point],
+    ) -> None:
+        """Links, joints and points share one namespace."""
+        seen: dict[str, str] = {}
+        entries: list[tuple[str, str, Where | None]] = [(n, "link", self.where(node)) for n, node, _ in links]
+        entries += [(j.name, "joint", j.where) for j in joints]
+        entries += [(p.name, "point", p.where) for p in points]
+        for name, kind, where in entries:
+            if name in seen:
+                self.problems.append(
+                    Problem(f"the name {name!r} is used twice (a {seen[name]} and a {kind})", where, "links, joints and points share one set of names")
+                )
+            else:
+                seen[name] = kind
+
+    def _check_refs(self, joints: list[Joint], points: list[Point], located: dict[str, set[str]]) -> None:
+        """Names used in from/toward, path and point must be on the right link."""
+        for j in joints:
+            w = j.where
+            if j.place.is_relative:
+                for ref in (j.place.origin, j.place.toward):
+                    if ref is not None and not (located.get(ref, set()) & set(j.links)):
+                        self.problems.append(Problem(f"joint {j.name} is placed from {ref!r}, which is not a point of {' or '.join(j.links)}", w))
+            if j.type in (JointType.PRISMATIC, JointType.SLOT) and len(j.links) == 2:
+                mover, guide = j.links
+                if j.path is not None:
+                    for ref in (j.path.through, j.path.toward):
+                        if ref is not None and ref.name is not None and guide not in located.get(ref.name, set()):
+                            self.problems.append(
+                                Problem(f"the path of {j.name} goes through {ref.name!r}, which is not a point of the guide {guide}", w, "a path is fixed in the guide (the second link): name one of its joints or points, or give coordinates")
+                            )
+                if j.point is not None:
+                    if j.point != j.name and mover not in located.get(j.point, set()):
+                        self.problems.append(Problem(f"`point` of {j.name} is {j.point!r}, which is not a point of {mover}", w, f"name a joint or point of {mover}"))
+                elif j.type is JointType.PRISMATIC:
+                    # a slot's pin is the slot joint itself; a prismatic slider runs on a point of its own
+                    others = [o.name for o in joints if o is not j and mover in o.links and o.type is not JointType.PRISMATIC]
+                    others += [p.name for p in points if p.link == mover]
+                    if len(others) != 1:
+                        self.problems.append(
+                            Problem(
+                                f"joint {j.name} does not say which point of {mover} runs on its path ({len(others)} candidates)",
+                                w,
+                                f"add `point: <name>` ({', '.join(others) or 'give the slider a joint or point'})",
+                            )
+                        )
+        for p in points:
+            for ref in (p.place.origin, p.place.toward):
+                if ref is not None and p.link not in located.get(ref, set()):
+                    self.problems.append(Problem(f"point {p.name} is placed from {ref!r}, which is not a point of {p.link}", p.where))
+
+    def _lengths(self, node: yaml.Node, located: dict[str, set[str]]) -> list[Length]:
+        out: list[Length] = []
+        seen: dict[frozenset[str], str] = {}
+        for key, (knode, vnode) in self.mapping(node, "lengths").items():
+            try:
+                a, b = self._length_key(knode, key, located)
+                if a == b:
+                    raise self.problem(knode, f"length {key} joins {a!r} to itself")
+                common = located[a] & located[b]
+                if not common:
+                    raise self.problem(
+                        knode,
+                        f"{a} and {b} are not on one link ({a}: {', '.join(sorted(located[a]))}; {b}: {', '.join(sorted(located[b]))})",
+                        "a length is the distance between two points of the same link",
+                    )
+                pair = frozenset((a, b))
+                if pair in seen:
+                    raise self.problem(knode, f"length {key} is given twice (also as {seen[pair]})")
+                seen[pair] = key
+                value = self.number(vnode, f"length {key}", Dimension.LENGTH, positive=True)
+                out.append(Length(a, b, value, self.where(knode)))
+            except _Skip:
+                continue
+        return out
+
+    def _length_key(self, knode: yaml.Node, key: str, located: dict[str, set[str]]) -> tuple[str, str]:
+        if "-" in key:
+            parts = key.split("-")
+            if len(parts) != 2 or not all(parts):
+                raise self.problem(knode, f"length {key!r} must name two points as A-B")
+            for part in parts:
+                if part not in located:
+                    raise self.problem(knode, f"length {key} names unknown point {part!r}", _did_you_mean(part, located) or "name joints or points")
+            return parts[0], parts[1]
+        splits = [(key[:i], key[i:]) for i in range(1, len(key)) if key[:i] in located and key[i:] in located]
+        if len(splits) == 1:
+            return splits[0]
+        if len(splits) > 1:
+            options = " or ".join(f"{a}-{b}" for a, b in splits)
+            raise self.problem(knode, f"length {key!r} is ambiguous", f"write {options}")
+        raise self.problem(knode, f"length {key!r} does not name two known points", "write it as A-B with the names of two joints or points")
+
+    def _drives(self, node: yaml.Node, links: set[str], ground: str | None, joints: list[Joint]) -> list[Drive]:
+        items = node.value if isinstance(node, yaml.SequenceNode) else [node]
+        out = []
+        for item in items:
+            try:
+                out.append(self._drive(item, links, ground, joints))
+            except _Skip:
+                continue
+        return out
+
+    def _drive(self, node: yaml.Node, links: set[str], ground: str | None, joints: list[Joint]) -> Drive:
+        keys = ("link", "joint", "angle", "rpm", "omega", "direction", "alpha", "about", "speed", "accel", "acceleration")
+        f = self.mapping(node, "the drive", allowed=keys)
+        link = self.optional(f, "link", lambda n: self.name(n, "the driven link"))
+        joint = self.optional(f, "joint", lambda n: self.name(n, "the driven joint"))
+        if (link is None) == (joint is None):
+            raise self.problem(node, "a drive names either a `link` (a crank) or a `joint` (a slider)")
+        if link is not None:
+            if links and link not in links:
+                raise self.problem(f["link"][1], f"the drive turns unknown link {link!r}", _did_you_mean(link, links))
+            if link == ground:
+                raise self.problem(f["link"][1], "the drive cannot turn the ground link", "drive the crank")
+            for key in ("speed", "accel", "acceleration"):
+                if key in f:
+                    self.problem(f[key][0], f"`{key}` belongs to a slider drive (`joint:`); a crank takes rpm or omega")
+        if joint is not None:
+            known = {j.name: j for j in joints}
+            if joint not in known:
+                raise self.problem(f["joint"][1], f"the drive moves unknown joint {joint!r}", _did_you_mean(joint, known))
+            if known[joint].type not in (JointType.PRISMATIC, JointType.SLOT):
+                raise self.problem(f["joint"][1], f"a joint drive moves a slider; {joint} is {known[joint].type.value}", "drive a prismatic joint, or use `link:` for a crank")
+            for key in ("rpm", "omega", "angle", "alpha", "direction", "about"):
+                if key in f:
+                    self.problem(f[key][0], f"`{key}` belongs to a crank drive (`link:`); a slider takes speed")
+        if "rpm" in f and "omega" in f:
+            self.problem(f["omega"][0], "give rpm or omega, not both")
+        direction = self.optional(f, "direction", lambda n: self.scalar(n, "direction"))
+        if direction is not None and direction not in ("cw", "ccw"):
+            self.problem(f["direction"][1], f"direction must be cw or ccw, not {direction!r}")
+            direction = None
+        omega = None
+        for key, unit_factor_ in (("rpm", 2 * math.pi / 60), ("omega", 1.0)):
+            if key in f:
+                omega, sense = self._angular(f[key][1], key, unit_factor_)
+                if sense and direction and sense != direction:
+                    self.problem(f[key][1], f"{key} says {sense} but direction says {direction}")
+                direction = direction or sense
+        sign = -1.0 if direction == "cw" else 1.0
+        alpha = None
+        if "alpha" in f:
+            alpha = self._signed(f["alpha"][1], "alpha", Dimension.ANGULAR_ACCELERATION)
+        angle = self.optional(f, "angle", lambda n: self.number(n, "the drive angle", Dimension.ANGLE))
+        about = self.optional(f, "about", lambda n: self.name(n, "`about`"))
+        speed = self.optional(f, "speed", lambda n: self.number(n, "the slider speed", Dimension.VELOCITY))
+        acc_key = "accel" if "accel" in f else "acceleration"
+        accel = self.optional(f, acc_key, lambda n: self.number(n, "the slider acceleration", Dimension.ACCELERATION))
+        return Drive(
+            link=link,
+            joint=joint,
+            angle=angle,
+            omega=None if omega is None else sign * omega,
+            alpha=alpha,
+            about=about,
+            speed=speed,
+            accel=accel,
+            where=self.where(node),
+        )
+
+    def _angular(self, node: yaml.Node, key: str, bare_factor: float) -> tuple[float, str | None]:
+        raw = self.scalar(node, key)
+        try:
+            q = parse_quantity(raw)
+        except (KeyError, ValueError):
+            raise self.problem(node, f"{key} must be a speed such as 600 or \"62.8 rad/s\", not {raw!r}") from None
+        if q.dimension is None:
+            value = q.value * bare_factor
+        elif q.dimension is Dimension.ANGULAR_VELOCITY:
+            value = q.value
+        else:
+            raise self.problem(node, f"{key} must be an angular velocity, but {q.unit!r} is a unit of {q.dimension.label}")
+        if value < 0:
+            raise self.problem(node, f"{key} must not be negative", "give the sense with `direction: cw` or `ccw`")
+        return value, q.sense
+
+    def _signed(self, node: yaml.Node, key: str, dimension: Dimension) -> float:
+        """A signed value, counter-clockwise positive; ``"5 rad/s^2 cw"`` is −5."""
+        raw = self.scalar(node, key)
+        try:
+            q = parse_quantity(raw)
+        except (KeyError, ValueError):
+            raise self.problem(node, f"{key} must be a number such as 5 or \"5 {dimension.value} cw\", not {raw!r}") from None
+        if q.dimension not in (None, dimension):
+            raise self.problem(node, f"{key} must be a {dimension.label}, but {q.unit!r} is a unit of {q.dimension.label}")  # type: ignore[union-attr]
+        if q.sense == "cw":
+            return -abs(q.value)
+        if q.sense == "ccw":
+            return abs(q.value)
+        return q.value
+
+    def _answers(
+        self, node: yaml.Node, links: tuple[Link, ...], joints: list[Joint], points: list[Point]
+    ) -> tuple[list[Claim], Tolerance]:
+        entries = self.mapping(node, "answers")
+        tolerance = Tolerance(0.02)
+        if "tolerance" in entries:
+            try:
+                tolerance = self._tolerance(entries["tolerance"][1], None, file_level=True)
+            except _Skip:
+                pass
+        link_names = {link.name for link in links}
+        joint_names = {j.name for j in joints}
+        point_names = joint_names | {p.name for p in points}
+        n = len(links)
+        ic_names = {f"I{a}{b}" for a in range(1, n + 1) for b in range(a + 1, n + 1)} if n < 10 else {f"I{a}.{b}" for a in range(1, n + 1) for b in range(a + 1, n + 1)}
+        kinds = {"link": link_names, "joint": joint_names, "point": point_names, "icpoint": point_names | ic_names}
+        claims: list[Claim] = []
+        for key, (knode, vnode) in entries.items():
+            if key == "tolerance":
+                continue
+            try:
+                claims.append(self._claim(key, knode, vnode, kinds))
+            except _Skip:
+                continue
+        return claims, tolerance
+
+    def _claim(self, key: str, knode: yaml.Node, vnode: yaml.Node, kinds: dict[str, set[str]]) -> Claim:
+        from mech.answers import KEY_FORMS
+
+        try:
+            akey = parse_key(key)
+        except ValueError as exc:
+            raise self.problem(knode, str(exc), _did_you_mean(key.split(".")[0], {f.split(".")[0] for f in KEY_FORMS}) or "see `answers` in cli.md") from None
+        for name, kind in zip(akey.names, akey.kinds):
+            if name not in kinds[kind]:
+                label = {"icpoint": "point or I-centre"}.get(kind, kind)
+                raise self.problem(knode, f"answer {key} names unknown {label} {name!r}", _did_you_mean(name, kinds[kind]))
+        tolerance = None
+        value_node = vnode
+        if isinstance(vnode, yaml.MappingNode):
+            f = self.mapping(vnode, f"answer {key}", allowed=("value", "tolerance"))
+            if "value" not in f:
+                raise self.problem(vnode, f"answer {key} has no `value`")
+            value_node = f["value"][1]
+            if "tolerance" in f:
+                tolerance = self._tolerance(f["tolerance"][1], akey.dimension, file_level=False)
+        text = _text(value_node)
+        if akey.family == "chain":
+            return Claim(key, self.scalar(value_node, "the chain"), None, None, tolerance, text, self.where(knode))
+        if akey.is_count:
+            raw = self.scalar(value_node, f"answer {key}")
+            if not re.fullmatch(r"[+-]?\d+", raw.strip()):
+                raise self.problem(value_node, f"answer {key} is a count: a whole number, not {raw!r}")
+            return Claim(key, int(raw), Dimension.NUMBER.value, None, tolerance, text, self.where(knode))
+        if akey.family == "icentre":
+            if isinstance(value_node, yaml.ScalarNode) and value_node.value.strip().lower() in ("infinity", "inf", "at infinity"):
+                return Claim(key, "infinity", Dimension.LENGTH.value, None, tolerance, text, self.where(knode))
+            pt = self._claim_point(value_node, key)
+            return Claim(key, pt, Dimension.LENGTH.value, None, tolerance, text, self.where(knode))
+        dimension = akey.dimension
+        assert dimension is not None
+        raw = self.scalar(value_node, f"answer {key}")
+        try:
+            q = parse_quantity(raw)
+        except KeyError as exc:
+            raise self.problem(value_node, f"unknown unit {exc.args[0]!r} in answer {key}", f"{dimension.label} units: {', '.join(known_units(dimension))}") from None
+        except ValueError:
+            raise self.problem(value_node, f"answer {key} must be a number with an optional unit, not {raw!r}") from None
+        if q.dimension is not None and q.dimension is not dimension:
+            raise self.problem(
+                value_node,
+                f"answer {key} is a {dimension.label}, but {q.unit!r} is a unit of {q.dimension.label}",
+                f"{dimension.label} units: {', '.join(known_units(dimension)) or 'none (a plain number)'}",
+            )
+        if q.sense is not None and dimension not in (Dimension.ANGULAR_VELOCITY, Dimension.ANGULAR_ACCELERATION):
+            raise self.problem(value_node, f"answer {key} is not an angular quantity: cw/ccw does not apply")
+        return Claim(key, q.value, dimension.value, q.sense, tolerance, text, self.where(knode))
+
+    def _claim_point(self, node: yaml.Node, key: str) -> Vec:
+        items = self.sequence(node, f"answer {key} (a point [x, y] or infinity)")
+        if len(items) != 2:
+            raise self.problem(node, f"answer {key} must be a point [x, y] or infinity")
+        out = []
+        for item in items:
+            raw = self.scalar(item, "a coordinate")
+            try:
+                q = parse_quantity(raw)
+            except (KeyError, ValueError):
+                raise self.problem(item, f"a coordinate of answer {key} must be a length, not {raw!r}") from None
+            if q.dimension not in (None, Dimension.LENGTH):
+                raise self.problem(item, f"a coordinate of answer {key} must be a length")
+            out.append(q.value)
+        return (out[0], out[1])
+
+    def _tolerance(self, node: yaml.Node, dimension: Dimension | None, *, file_level: bool) -> Tolerance:
+        raw = self.scalar(node, "tolerance").strip()
+        if raw.endswith("%"):
+            try:
+                value = parse_number(raw[:-1])
+            except ValueError:
+                raise self.problem(node, f"tolerance {raw!r} is not a percentage") from None
+            if value < 0:
+                raise self.problem(node, "a tolerance cannot be negative")
+            return Tolerance(value / 100.0, relative=True)
+        if file_level:
+            raise self.problem(node, f"the file's tolerance must be a percentage such as 2%, not {raw!r}", "per answer, `{value: …, tolerance: 0.05 m/s}` may be absolute")
+        try:
+            q = parse_quantity(raw)
+        except (KeyError, ValueError):
+            raise self.problem(node, f"tolerance {raw!r} must be a percentage or a value with a unit") from None
+        if q.dimension is not None and dimension is not None and q.dimension is not dimension:
+            raise self.problem(node, f"tolerance {raw!r} is a {q.dimension.label}, but the answer is a {dimension.label}")
+        if q.value < 0:
+            raise self.problem(node, "a tolerance cannot be negative")
+        return Tolerance(q.value, relative=False)
+
+
+def _located_on(joints: list[Joint], points: list[Point]) -> dict[str, set[str]]:
+    """Name → links it is a point of (see :attr:`Joint.located_on`)."""
+    out: dict[str, set[str]] = {}
+    for j in joints:
+        if j.located_on:
+            out[j.name] = set(j.located_on)
+    for p in points:
+        out[p.name] = {p.link}
+    return out
+
+
+def _kind(node: yaml.Node | None) -> str:
+    if isinstance(node, yaml.MappingNode):
+        return "mapping"
+    if isinstance(node, yaml.SequenceNode):
+        return "list"
+    if isinstance(node, yaml.ScalarNode):
+        if node.style is None and node.value in _PLAIN_NULLS:
+            return "empty value"
+        return f"single value ({node.value!r})" if len(node.value) < 40 else "single value"
+    return "nothing"
+
+
+def _text(node: yaml.Node) -> str:
+    if isinstance(node, yaml.ScalarNode):
+        return node.value
+    if isinstance(node, yaml.SequenceNode):
+        return "[" + ", ".join(_text(n) for n in node.value) + "]"
+    return "…"
+
+
+def _did_you_mean(word: str, choices: Iterable[str]) -> str | None:
+    match = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
+    return f"did you mean {match[0]!r}?" if match else None

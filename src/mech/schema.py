@@ -1,0 +1,156 @@
+"""JSON Schema (draft-07) of mechanism file format 1, for editors' YAML plugins.
+
+It describes the shape of a file (keys, types, enumerations) so an editor can
+complete and flag typos as you write.  The loader checks more than a schema
+can (names that must exist, lengths on one link, units of the right kind), so
+a file the schema accepts may still be refused by ``mech`` with a located
+message.  ``mech schema`` prints it.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from mech.model import JointType
+
+_NUMBER: dict[str, Any] = {
+    "description": "A bare number in the file's units, or a string with its unit (\"40 mm\", \"60 deg\").",
+    "oneOf": [{"type": "number"}, {"type": "string", "pattern": r"^\s*[+-]?(\d[\d_]*(\.\d*)?|\.\d+)([eE][+-]?\d+)?\s*[^\s\d]*.*$"}],
+}
+_NAME: dict[str, Any] = {"type": "string", "pattern": r"^[^\s.\-\[\]{},:#]+$"}
+_XY: dict[str, Any] = {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2}
+_REF: dict[str, Any] = {"oneOf": [_NAME, _XY], "description": "Coordinates [x, y] or the name of a point."}
+_PLACE: dict[str, Any] = {
+    "at": {**_XY, "description": "Drawn here, in the analysed configuration."},
+    "near": {**_XY, "description": "A hint: initial guess and assembly branch."},
+    "from": {**_NAME, "description": "Placed relative to this point of the same link…"},
+    "toward": {**_NAME, "description": "…along the line toward this one."},
+    "distance": _NUMBER,
+    "offset": {**_XY, "description": "[u, v]: u along from→toward, v to its left."},
+}
+
+SCHEMA: dict[str, Any] = {
+    "$schema": "http://json-schema.org/draft-07/schema#",
+    "$id": "https://github.com/planar-mech/mech/schema/format-1.json",
+    "title": "mech mechanism file (format 1)",
+    "description": "A planar mechanism: links, joints, lengths, drive and claimed answers. See cli.md.",
+    "type": "object",
+    "additionalProperties": False,
+    "required": ["links", "joints"],
+    "properties": {
+        "name": {"type": "string"},
+        "description": {"type": "string"},
+        "source": {"type": "string"},
+        "units": {
+            "type": "object",
+            "additionalProperties": False,
+            "properties": {
+                "length": {"enum": ["m", "mm", "cm", "dm", "km", "um", "µm", "in", "ft"]},
+                "angle": {"enum": ["deg", "rad", "°"]},
+            },
+        },
+        "ground": _NAME,
+        "links": {
+            "oneOf": [
+                {"type": "array", "items": _NAME, "minItems": 2},
+                {
+                    "type": "object",
+                    "additionalProperties": {
+                        "oneOf": [
+                            {"type": "null"},
+                            {
+                                "type": "object",
+                                "additionalProperties": False,
+                                "properties": {
+                                    "kind": {"enum": ["rigid", "flexible", "fluid"]},
+                                    "description": {"type": "string"},
+                                },
+                            },
+                        ]
+                    },
+                },
+            ]
+        },
+        "joints": {
+            "type": "object",
+            "minProperties": 1,
+            "additionalProperties": {
+                "type": "object",
+                "required": ["type", "links"],
+                "additionalProperties": False,
+                "properties": {
+                    "type": {"enum": [t.value for t in JointType]},
+                    "links": {"type": "array", "items": _NAME, "minItems": 2},
+                    "description": {"type": "string"},
+                    "closure": {"enum": ["form", "force", "self"]},
+                    **_PLACE,
+                    "path": {
+                        "type": "object",
+                        "required": ["through"],
+                        "additionalProperties": False,
+                        "properties": {"through": _REF, "angle": _NUMBER, "toward": _REF},
+                    },
+                    "point": _NAME,
+                    "radius": _NUMBER,
+                    "normal": _NUMBER,
+                    "pressure_angle": _NUMBER,
+                    "radii": {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
+                    "teeth": {"type": "array", "items": {"type": "integer", "minimum": 1}, "minItems": 2, "maxItems": 2},
+                    "module": _NUMBER,
+                    "internal": {"type": "boolean"},
+                },
+            },
+        },
+        "lengths": {"type": "object", "additionalProperties": _NUMBER},
+        "points": {
+            "type": "object",
+            "additionalProperties": {
+                "type": "object",
+                "required": ["link"],
+                "additionalProperties": False,
+                "properties": {"link": _NAME, "description": {"type": "string"}, **_PLACE},
+            },
+        },
+        "drive": {
+            "oneOf": [
+                {"$ref": "#/definitions/drive"},
+                {"type": "array", "items": {"$ref": "#/definitions/drive"}, "minItems": 1},
+            ]
+        },
+        "answers": {
+            "type": "object",
+            "properties": {"tolerance": {"type": "string", "pattern": r"^\s*\d+(\.\d*)?\s*%\s*$"}},
+            "additionalProperties": {
+                "oneOf": [
+                    {"type": ["number", "string"]},
+                    {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
+                    {
+                        "type": "object",
+                        "required": ["value"],
+                        "additionalProperties": False,
+                        "properties": {"value": {}, "tolerance": {"type": ["string", "number"]}},
+                    },
+                ]
+            },
+        },
+    },
+    "definitions": {
+        "drive": {
+            "type": "object",
+            "additionalProperties": False,
+            "properties": {
+                "link": _NAME,
+                "joint": _NAME,
+                "angle": _NUMBER,
+                "rpm": _NUMBER,
+                "omega": _NUMBER,
+                "direction": {"enum": ["cw", "ccw"]},
+                "alpha": _NUMBER,
+                "about": _NAME,
+                "speed": _NUMBER,
+                "accel": _NUMBER,
+                "acceleration": _NUMBER,
+            },
+        }
+    },
+}
