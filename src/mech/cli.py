@@ -55,7 +55,9 @@ def handles_errors(fn: F) -> F:
 
 
 file_argument = click.argument("file", default=DEFAULT_FILE, type=click.Path(dir_okay=False, allow_dash=True))
-json_option = click.option("--json", "as_json", is_flag=True, help="Print JSON (structure in cli.md) instead of tables.")
+json_option = click.option(
+    "--json", "as_json", is_flag=True, help="Print JSON (structure in cli.md) instead of tables."
+)
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
@@ -218,7 +220,14 @@ def kinematic_options(fn: F) -> F:
     return fn
 
 
-def _solve_options(rpm: float | None, omega: float | None, angle: float | None, direction: str | None, tol: float, alpha: float | None = None) -> Any:
+def _solve_options(
+    rpm: float | None,
+    omega: float | None,
+    angle: float | None,
+    direction: str | None,
+    tol: float,
+    alpha: float | None = None,
+) -> Any:
     from mech.errors import InputError
     from mech.options import SolveOptions
 
@@ -228,7 +237,9 @@ def _solve_options(rpm: float | None, omega: float | None, angle: float | None, 
     for name, value, factor in (("--rpm", rpm, 2 * math.pi / 60), ("--omega", omega, 1.0)):
         if value is not None:
             if not math.isfinite(value) or value < 0:
-                raise InputError(f"{name} must be a finite speed ≥ 0", hint="give the sense with --direction cw|ccw")
+                raise InputError(
+                    f"{name} must be a finite speed ≥ 0", hint="give the sense with --direction cw|ccw"
+                )
             speed = value * factor
     if angle is not None and not math.isfinite(angle):
         raise InputError("--angle must be a finite number of degrees")
@@ -266,7 +277,16 @@ def _kinematics(file: str, level: str, options: Any, unit_system: str, as_json: 
 @cli.command()
 @kinematic_options
 @handles_errors
-def position(file: str, rpm: float | None, omega: float | None, angle: float | None, direction: str | None, tol: float, unit_system: str, as_json: bool) -> None:
+def position(
+    file: str,
+    rpm: float | None,
+    omega: float | None,
+    angle: float | None,
+    direction: str | None,
+    tol: float,
+    unit_system: str,
+    as_json: bool,
+) -> None:
     """Solve the positions of every joint and point at the crank angle."""
     _kinematics(file, "position", _solve_options(rpm, omega, angle, direction, tol), unit_system, as_json)
 
@@ -274,7 +294,16 @@ def position(file: str, rpm: float | None, omega: float | None, angle: float | N
 @cli.command()
 @kinematic_options
 @handles_errors
-def velocity(file: str, rpm: float | None, omega: float | None, angle: float | None, direction: str | None, tol: float, unit_system: str, as_json: bool) -> None:
+def velocity(
+    file: str,
+    rpm: float | None,
+    omega: float | None,
+    angle: float | None,
+    direction: str | None,
+    tol: float,
+    unit_system: str,
+    as_json: bool,
+) -> None:
     """Velocities of every point and link at the crank angle and speed.
 
     Absolute velocities of joints and points, angular velocities of links,
@@ -288,13 +317,25 @@ def velocity(file: str, rpm: float | None, omega: float | None, angle: float | N
 @kinematic_options
 @click.option("--alpha", type=float, help="Crank angular acceleration in rad/s², counter-clockwise positive.")
 @handles_errors
-def acceleration(file: str, rpm: float | None, omega: float | None, angle: float | None, direction: str | None, tol: float, unit_system: str, as_json: bool, alpha: float | None) -> None:
+def acceleration(
+    file: str,
+    rpm: float | None,
+    omega: float | None,
+    angle: float | None,
+    direction: str | None,
+    tol: float,
+    unit_system: str,
+    as_json: bool,
+    alpha: float | None,
+) -> None:
     """Accelerations (normal, tangential, Coriolis) of every point and link."""
     if alpha is not None and not math.isfinite(alpha):
         from mech.errors import InputError
 
         raise InputError("--alpha must be a finite number")
-    _kinematics(file, "acceleration", _solve_options(rpm, omega, angle, direction, tol, alpha), unit_system, as_json)
+    _kinematics(
+        file, "acceleration", _solve_options(rpm, omega, angle, direction, tol, alpha), unit_system, as_json
+    )
 
 
 def main(argv: Sequence[str] | None = None) -> None:

@@ -16,6 +16,7 @@ All problems in a file are gathered and raised together as one
 
 from __future__ import annotations
 
+import contextlib
 import difflib
 import math
 import os
@@ -27,7 +28,7 @@ from typing import Any
 
 import yaml
 
-from mech.answers import LINK_CLASSES, parse_key
+from mech.answers import parse_key
 from mech.errors import InputError, Problem, Where
 from mech.model import (
     Claim,
@@ -178,7 +179,10 @@ class _Reader:
 
     def fail(self) -> None:
         if self.problems:
-            raise InputError(problems=self.problems, source=self.text)
+            ordered = sorted(
+                self.problems, key=lambda p: (p.where.line, p.where.column) if p.where else (0, 0)
+            )
+            raise InputError(problems=ordered, source=self.text)
 
     # -- the file -----------------------------------------------------------------------
     def read(self) -> Mechanism:
@@ -194,10 +198,11 @@ class _Reader:
             root = yaml.compose(self.text, Loader=_YamlLoader)
         except yaml.MarkedYAMLError as exc:
             mark = exc.problem_mark or exc.context_mark
-            where = (
-                Where(self.path, mark.line + 1, mark.column + 1) if mark else Where(self.path)
-            )
+            where = Where(self.path, mark.line + 1, mark.column + 1) if mark else Where(self.path)
             what = exc.problem or exc.context or "malformed YAML"
+            if exc.context and exc.problem and exc.context_mark is not None and mark is exc.problem_mark:
+                cm = exc.context_mark
+                what += f" ({exc.context} at line {cm.line + 1}, column {cm.column + 1})"
             raise InputError(
                 f"this is not valid YAML: {what}",
                 where=where,
@@ -211,8 +216,7 @@ class _Reader:
         self._check_size(root)
         if not isinstance(root, yaml.MappingNode):
             raise InputError(
-                "a mechanism file must be a mapping of keys (links:, joints: …), "
-                f"not a {_kind(root)}",
+                f"a mechanism file must be a mapping of keys (links:, joints: …), not a {_kind(root)}",
                 where=self.where(root),
                 hint="start with `links: [...]` and `joints: {...}`",
                 source=self.text,
@@ -283,9 +287,7 @@ class _Reader:
             lengths = self.guard(lambda: self._lengths(top["lengths"][1], located), [])
         drives: list[Drive] = []
         if "drive" in top:
-            drives = self.guard(
-                lambda: self._drives(top["drive"][1], set(link_names), ground, joints), []
-            )
+            drives = self.guard(lambda: self._drives(top["drive"][1], set(link_names), ground, joints), [])
         answers: list[Claim] = []
         tolerance = Tolerance(0.02)
         if "answers" in top:
@@ -369,7 +371,7 @@ class _Reader:
         return self.scalar(node, "this value")
 
     def name(self, node: yaml.Node, what: str) -> str:
-        if isinstance(node, yaml.ScalarNode) and node.style is None and node.value in _PLAIN_NULLS:
+        if _is_null(node):
             raise self.problem(node, f"{what} is empty", "write a name")
         value = self.scalar(node, what)
         if not _NAME.match(value):
@@ -390,7 +392,7 @@ class _Reader:
 
     def number(self, node: yaml.Node, what: str, dimension: Dimension, *, positive: bool = False) -> float:
         """A number in SI: a bare number is in the file's units, a string may carry its unit."""
-        if isinstance(node, yaml.ScalarNode) and node.style is None and node.value in _PLAIN_NULLS:
+        if _is_null(node):
             raise self.problem(node, f"{what} is empty", "write a number")
         raw = self.scalar(node, what)
         try:
@@ -408,7 +410,7 @@ class _Reader:
                 f"{what} must be a finite number, not {raw!r}"
                 if nonfinite
                 else f"{what} must be a number, not {raw!r}",
-                f"e.g. 40 or \"40 mm\" ({dimension.label})",
+                f'e.g. 40 or "40 mm" ({dimension.label})',
             ) from None
         if q.sense is not None:
             raise self.problem(node, f"{what} cannot carry a sense ({q.sense})")
@@ -452,7 +454,11 @@ class _Reader:
             except KeyError:
                 dim, factor = None, 0.0
             if dim is not Dimension.LENGTH:
-                self.problem(vnode, f"{u!r} is not a unit of length", f"use one of {', '.join(known_units(Dimension.LENGTH))}")
+                self.problem(
+                    vnode,
+                    f"{u!r} is not a unit of length",
+                    f"use one of {', '.join(known_units(Dimension.LENGTH))}",
+                )
             else:
                 self.length_factor, self.length_unit = factor, u
         if "angle" in units:
@@ -471,10 +477,8 @@ class _Reader:
         out: list[tuple[str, yaml.Node, dict[str, Any]]] = []
         if isinstance(node, yaml.SequenceNode):
             for item in node.value:
-                try:
+                with contextlib.suppress(_Skip):
                     out.append((self.name(item, "a link"), item, {}))
-                except _Skip:
-                    pass
         elif isinstance(node, yaml.MappingNode):
             for key, (knode, vnode) in self.mapping(node, "links").items():
                 try:
@@ -482,7 +486,7 @@ class _Reader:
                 except _Skip:
                     continue
                 extra: dict[str, Any] = {}
-                is_null = isinstance(vnode, yaml.ScalarNode) and vnode.style is None and vnode.value in _PLAIN_NULLS
+                is_null = _is_null(vnode)
                 if not is_null:
                     try:
                         fields = self.mapping(vnode, f"link {key}", allowed=("kind", "description"))
@@ -491,13 +495,21 @@ class _Reader:
                     if "kind" in fields:
                         kind = self.scalar(fields["kind"][1], "kind")
                         if kind not in ("rigid", "flexible", "fluid"):
-                            self.problem(fields["kind"][1], f"unknown link kind {kind!r}", "kind is rigid, flexible or fluid")
+                            self.problem(
+                                fields["kind"][1],
+                                f"unknown link kind {kind!r}",
+                                "kind is rigid, flexible or fluid",
+                            )
                         extra["kind"] = kind
                     if "description" in fields:
                         extra["description"] = self.scalar(fields["description"][1], "description")
                 out.append((name, knode, extra))
         else:
-            raise self.problem(node, f"links must be a list of names or a mapping, not a {_kind(node)}", "e.g. `links: [frame, crank, coupler, rocker]`")
+            raise self.problem(
+                node,
+                f"links must be a list of names or a mapping, not a {_kind(node)}",
+                "e.g. `links: [frame, crank, coupler, rocker]`",
+            )
         if not out and not self.problems:
             raise self.problem(node, "there are no links", "a mechanism has at least two links")
         return out
@@ -510,14 +522,22 @@ class _Reader:
             except _Skip:
                 return None
             if links and g not in links:
-                self.problem(vnode, f"ground link {g!r} is not among the links", _did_you_mean(g, links) or f"links: {', '.join(links)}")
+                self.problem(
+                    vnode,
+                    f"ground link {g!r} is not among the links",
+                    _did_you_mean(g, links) or f"links: {', '.join(links)}",
+                )
                 return None
             return g
         candidates = [n for n in links if n in ("frame", "ground")]
         if len(candidates) == 1:
             return candidates[0]
         if len(candidates) == 2:
-            self.problem(top["links"][1], "two links could be ground: frame and ground", "say which with `ground: frame`")
+            self.problem(
+                top["links"][1],
+                "two links could be ground: frame and ground",
+                "say which with `ground: frame`",
+            )
             return None
         if links:
             self.problem(
@@ -532,13 +552,17 @@ class _Reader:
         near = self.optional(fields, "near", lambda n: self.vec(n, f"`near` of {what}"))
         origin = self.optional(fields, "from", lambda n: self.name(n, f"`from` of {what}"))
         toward = self.optional(fields, "toward", lambda n: self.name(n, f"`toward` of {what}"))
-        distance = self.optional(fields, "distance", lambda n: self.number(n, f"`distance` of {what}", Dimension.LENGTH))
+        distance = self.optional(
+            fields, "distance", lambda n: self.number(n, f"`distance` of {what}", Dimension.LENGTH)
+        )
         offset = self.optional(fields, "offset", lambda n: self.vec(n, f"`offset` of {what}"))
         relative = [k for k in ("from", "toward", "distance", "offset") if k in fields]
         if relative:
             anchor = fields[relative[0]][0]
             if "from" not in fields or "toward" not in fields:
-                self.problem(anchor, f"{what} is placed relative to two points: give both `from` and `toward`")
+                self.problem(
+                    anchor, f"{what} is placed relative to two points: give both `from` and `toward`"
+                )
             if ("distance" in fields) == ("offset" in fields):
                 self.problem(anchor, f"{what} needs exactly one of `distance` or `offset` with from/toward")
             if "at" in fields:
@@ -550,7 +574,7 @@ class _Reader:
         entries = self.mapping(node, "joints")
         if not entries:
             raise self.problem(node, "there are no joints")
-        for key, (knode, vnode) in entries.items():
+        for _key, (knode, vnode) in entries.items():
             try:
                 joints.append(self._joint(knode, vnode, links))
             except _Skip:
@@ -562,7 +586,11 @@ class _Reader:
         what = f"joint {name}"
         fields = self.mapping(vnode, what)
         if "type" not in fields:
-            raise self.problem(vnode, f"{what} has no `type`", "e.g. `type: revolute` (" + ", ".join(t.value for t in JointType) + ")")
+            raise self.problem(
+                vnode,
+                f"{what} has no `type`",
+                "e.g. `type: revolute` (" + ", ".join(t.value for t in JointType) + ")",
+            )
         type_node = fields["type"][1]
         type_text = self.scalar(type_node, "the joint type")
         try:
@@ -571,13 +599,18 @@ class _Reader:
             raise self.problem(
                 type_node,
                 f"unknown joint type {type_text!r}",
-                _did_you_mean(type_text, [t.value for t in JointType]) or "types: " + ", ".join(t.value for t in JointType),
+                _did_you_mean(type_text, [t.value for t in JointType])
+                or "types: " + ", ".join(t.value for t in JointType),
             ) from None
         allowed = set(_COMMON_JOINT_KEYS) | set(_JOINT_KEYS[jtype])
         for key, (kn, _) in fields.items():
             if key not in allowed:
                 others = [t.value for t, keys in _JOINT_KEYS.items() if key in keys]
-                hint = f"`{key}` belongs to {', '.join(others)} joints" if others else _did_you_mean(key, allowed)
+                hint = (
+                    f"`{key}` belongs to {', '.join(others)} joints"
+                    if others
+                    else _did_you_mean(key, allowed)
+                )
                 self.problem(kn, f"unknown key {key!r} for a {jtype.value} joint", hint)
         if "links" not in fields:
             raise self.problem(vnode, f"{what} has no `links`", "e.g. `links: [frame, crank]`")
@@ -589,30 +622,50 @@ class _Reader:
             except _Skip:
                 continue
             if links and ln not in links:
-                self.problem(item, f"{what} names unknown link {ln!r}", _did_you_mean(ln, links) or "add it to `links:`")
+                self.problem(
+                    item,
+                    f"{what} names unknown link {ln!r}",
+                    _did_you_mean(ln, links) or "add it to `links:`",
+                )
             elif ln in names:
                 self.problem(item, f"{what} lists link {ln!r} twice")
             else:
                 names.append(ln)
         if len(lnode.value) < 2:
-            raise self.problem(lnode, f"{what} joins {len(lnode.value)} link; a joint joins at least two", "list both links it connects")
+            raise self.problem(
+                lnode,
+                f"{what} joins {len(lnode.value)} link; a joint joins at least two",
+                "list both links it connects",
+            )
         if len(lnode.value) > 2 and jtype is not JointType.REVOLUTE:
-            raise self.problem(lnode, f"a {jtype.value} joint joins exactly two links, not {len(lnode.value)}", "only a revolute (pin) joint may join more than two")
+            raise self.problem(
+                lnode,
+                f"a {jtype.value} joint joins exactly two links, not {len(lnode.value)}",
+                "only a revolute (pin) joint may join more than two",
+            )
         place = self._place(fields, what)
         path = self.optional(fields, "path", lambda n: self._path(n, what))
-        if jtype in (JointType.PRISMATIC, JointType.SLOT) and "path" not in fields:
-            self.problem(vnode, f"{what} has no `path`", "e.g. `path: {through: O, angle: 0}` (a straight line fixed in the guide)")
         point = self.optional(fields, "point", lambda n: self.name(n, f"`point` of {what}"))
-        radius = self.optional(fields, "radius", lambda n: self.number(n, "the pin radius", Dimension.LENGTH, positive=True))
-        normal = self.optional(fields, "normal", lambda n: self.number(n, "the common normal", Dimension.ANGLE))
-        pressure = self.optional(fields, "pressure_angle", lambda n: self.number(n, "the pressure angle", Dimension.ANGLE))
+        radius = self.optional(
+            fields, "radius", lambda n: self.number(n, "the pin radius", Dimension.LENGTH, positive=True)
+        )
+        normal = self.optional(
+            fields, "normal", lambda n: self.number(n, "the common normal", Dimension.ANGLE)
+        )
+        pressure = self.optional(
+            fields, "pressure_angle", lambda n: self.number(n, "the pressure angle", Dimension.ANGLE)
+        )
         radii = self.optional(fields, "radii", lambda n: self._pair(n, "radii", positive=True))
         teeth = self.optional(fields, "teeth", self._teeth)
-        module = self.optional(fields, "module", lambda n: self.number(n, "the module", Dimension.LENGTH, positive=True))
+        module = self.optional(
+            fields, "module", lambda n: self.number(n, "the module", Dimension.LENGTH, positive=True)
+        )
         internal = bool(self.optional(fields, "internal", lambda n: self.boolean(n, "internal")))
         closure = self.optional(fields, "closure", lambda n: self.scalar(n, "closure"))
         if closure is not None and closure not in ("form", "force", "self"):
-            self.problem(fields["closure"][1], f"unknown closure {closure!r}", "closure is form (self-closed) or force")
+            self.problem(
+                fields["closure"][1], f"unknown closure {closure!r}", "closure is form (self-closed) or force"
+            )
         if teeth is not None and module is None:
             self.problem(fields["teeth"][0], "gear teeth need a `module` to give the pitch radii")
         if radii is not None and teeth is not None:
@@ -666,7 +719,9 @@ class _Reader:
     def _path(self, node: yaml.Node, what: str) -> Path:
         fields = self.mapping(node, f"the path of {what}", allowed=("through", "angle", "toward"))
         if "through" not in fields:
-            raise self.problem(node, f"the path of {what} has no `through`", "e.g. `path: {through: O, angle: 0}`")
+            raise self.problem(
+                node, f"the path of {what} has no `through`", "e.g. `path: {through: O, angle: 0}`"
+            )
         if ("angle" in fields) == ("toward" in fields):
             raise self.problem(node, f"the path of {what} needs exactly one of `angle` or `toward`")
         through = self._ref(fields["through"][1], f"`through` of {what}")
@@ -685,10 +740,16 @@ class _Reader:
                     raise self.problem(vnode, f"{what} has no `link`", "say which link it is fixed on")
                 link = self.name(fields["link"][1], f"the link of {what}")
                 if links and link not in links:
-                    raise self.problem(fields["link"][1], f"{what} is on unknown link {link!r}", _did_you_mean(link, links))
+                    raise self.problem(
+                        fields["link"][1], f"{what} is on unknown link {link!r}", _did_you_mean(link, links)
+                    )
                 place = self._place(fields, what)
                 if place.at is None and not place.is_relative:
-                    raise self.problem(vnode, f"{what} is not placed", "give `at: [x, y]` or `from`/`toward` with `distance` or `offset`")
+                    raise self.problem(
+                        vnode,
+                        f"{what} is not placed",
+                        "give `at: [x, y]` or `from`/`toward` with `distance` or `offset`",
+                    )
                 out.append(Point(name=name, link=link, place=place, where=self.where(knode)))
             except _Skip:
                 continue
@@ -709,7 +770,11 @@ class _Reader:
         for name, kind, where in entries:
             if name in seen:
                 self.problems.append(
-                    Problem(f"the name {name!r} is used twice (a {seen[name]} and a {kind})", where, "links, joints and points share one set of names")
+                    Problem(
+                        f"the name {name!r} is used twice (a {seen[name]} and a {kind})",
+                        where,
+                        "links, joints and points share one set of names",
+                    )
                 )
             else:
                 seen[name] = kind
@@ -721,21 +786,44 @@ class _Reader:
             if j.place.is_relative:
                 for ref in (j.place.origin, j.place.toward):
                     if ref is not None and not (located.get(ref, set()) & set(j.links)):
-                        self.problems.append(Problem(f"joint {j.name} is placed from {ref!r}, which is not a point of {' or '.join(j.links)}", w))
+                        self.problems.append(
+                            Problem(
+                                f"joint {j.name} is placed from {ref!r}, which is not a point of {' or '.join(j.links)}",
+                                w,
+                            )
+                        )
             if j.type in (JointType.PRISMATIC, JointType.SLOT) and len(j.links) == 2:
                 mover, guide = j.links
                 if j.path is not None:
                     for ref in (j.path.through, j.path.toward):
-                        if ref is not None and ref.name is not None and guide not in located.get(ref.name, set()):
+                        if (
+                            ref is not None
+                            and ref.name is not None
+                            and guide not in located.get(ref.name, set())
+                        ):
                             self.problems.append(
-                                Problem(f"the path of {j.name} goes through {ref.name!r}, which is not a point of the guide {guide}", w, "a path is fixed in the guide (the second link): name one of its joints or points, or give coordinates")
+                                Problem(
+                                    f"the path of {j.name} goes through {ref.name!r}, which is not a point of the guide {guide}",
+                                    w,
+                                    "a path is fixed in the guide (the second link): name one of its joints or points, or give coordinates",
+                                )
                             )
                 if j.point is not None:
                     if j.point != j.name and mover not in located.get(j.point, set()):
-                        self.problems.append(Problem(f"`point` of {j.name} is {j.point!r}, which is not a point of {mover}", w, f"name a joint or point of {mover}"))
-                elif j.type is JointType.PRISMATIC:
+                        self.problems.append(
+                            Problem(
+                                f"`point` of {j.name} is {j.point!r}, which is not a point of {mover}",
+                                w,
+                                f"name a joint or point of {mover}",
+                            )
+                        )
+                elif j.type is JointType.PRISMATIC and j.path is not None:
                     # a slot's pin is the slot joint itself; a prismatic slider runs on a point of its own
-                    others = [o.name for o in joints if o is not j and mover in o.links and o.type is not JointType.PRISMATIC]
+                    others = [
+                        o.name
+                        for o in joints
+                        if o is not j and mover in o.links and o.type is not JointType.PRISMATIC
+                    ]
                     others += [p.name for p in points if p.link == mover]
                     if len(others) != 1:
                         self.problems.append(
@@ -748,7 +836,12 @@ class _Reader:
         for p in points:
             for ref in (p.place.origin, p.place.toward):
                 if ref is not None and p.link not in located.get(ref, set()):
-                    self.problems.append(Problem(f"point {p.name} is placed from {ref!r}, which is not a point of {p.link}", p.where))
+                    self.problems.append(
+                        Problem(
+                            f"point {p.name} is placed from {ref!r}, which is not a point of {p.link}",
+                            p.where,
+                        )
+                    )
 
     def _lengths(self, node: yaml.Node, located: dict[str, set[str]]) -> list[Length]:
         out: list[Length] = []
@@ -782,7 +875,11 @@ class _Reader:
                 raise self.problem(knode, f"length {key!r} must name two points as A-B")
             for part in parts:
                 if part not in located:
-                    raise self.problem(knode, f"length {key} names unknown point {part!r}", _did_you_mean(part, located) or "name joints or points")
+                    raise self.problem(
+                        knode,
+                        f"length {key} names unknown point {part!r}",
+                        _did_you_mean(part, located) or "name joints or points",
+                    )
             return parts[0], parts[1]
         splits = [(key[:i], key[i:]) for i in range(1, len(key)) if key[:i] in located and key[i:] in located]
         if len(splits) == 1:
@@ -790,9 +887,15 @@ class _Reader:
         if len(splits) > 1:
             options = " or ".join(f"{a}-{b}" for a, b in splits)
             raise self.problem(knode, f"length {key!r} is ambiguous", f"write {options}")
-        raise self.problem(knode, f"length {key!r} does not name two known points", "write it as A-B with the names of two joints or points")
+        raise self.problem(
+            knode,
+            f"length {key!r} does not name two known points",
+            "write it as A-B with the names of two joints or points",
+        )
 
-    def _drives(self, node: yaml.Node, links: set[str], ground: str | None, joints: list[Joint]) -> list[Drive]:
+    def _drives(
+        self, node: yaml.Node, links: set[str], ground: str | None, joints: list[Joint]
+    ) -> list[Drive]:
         items = node.value if isinstance(node, yaml.SequenceNode) else [node]
         out = []
         for item in items:
@@ -803,7 +906,19 @@ class _Reader:
         return out
 
     def _drive(self, node: yaml.Node, links: set[str], ground: str | None, joints: list[Joint]) -> Drive:
-        keys = ("link", "joint", "angle", "rpm", "omega", "direction", "alpha", "about", "speed", "accel", "acceleration")
+        keys = (
+            "link",
+            "joint",
+            "angle",
+            "rpm",
+            "omega",
+            "direction",
+            "alpha",
+            "about",
+            "speed",
+            "accel",
+            "acceleration",
+        )
         f = self.mapping(node, "the drive", allowed=keys)
         link = self.optional(f, "link", lambda n: self.name(n, "the driven link"))
         joint = self.optional(f, "joint", lambda n: self.name(n, "the driven joint"))
@@ -811,21 +926,33 @@ class _Reader:
             raise self.problem(node, "a drive names either a `link` (a crank) or a `joint` (a slider)")
         if link is not None:
             if links and link not in links:
-                raise self.problem(f["link"][1], f"the drive turns unknown link {link!r}", _did_you_mean(link, links))
+                raise self.problem(
+                    f["link"][1], f"the drive turns unknown link {link!r}", _did_you_mean(link, links)
+                )
             if link == ground:
                 raise self.problem(f["link"][1], "the drive cannot turn the ground link", "drive the crank")
             for key in ("speed", "accel", "acceleration"):
                 if key in f:
-                    self.problem(f[key][0], f"`{key}` belongs to a slider drive (`joint:`); a crank takes rpm or omega")
+                    self.problem(
+                        f[key][0], f"`{key}` belongs to a slider drive (`joint:`); a crank takes rpm or omega"
+                    )
         if joint is not None:
             known = {j.name: j for j in joints}
             if joint not in known:
-                raise self.problem(f["joint"][1], f"the drive moves unknown joint {joint!r}", _did_you_mean(joint, known))
+                raise self.problem(
+                    f["joint"][1], f"the drive moves unknown joint {joint!r}", _did_you_mean(joint, known)
+                )
             if known[joint].type not in (JointType.PRISMATIC, JointType.SLOT):
-                raise self.problem(f["joint"][1], f"a joint drive moves a slider; {joint} is {known[joint].type.value}", "drive a prismatic joint, or use `link:` for a crank")
+                raise self.problem(
+                    f["joint"][1],
+                    f"a joint drive moves a slider; {joint} is {known[joint].type.value}",
+                    "drive a prismatic joint, or use `link:` for a crank",
+                )
             for key in ("rpm", "omega", "angle", "alpha", "direction", "about"):
                 if key in f:
-                    self.problem(f[key][0], f"`{key}` belongs to a crank drive (`link:`); a slider takes speed")
+                    self.problem(
+                        f[key][0], f"`{key}` belongs to a crank drive (`link:`); a slider takes speed"
+                    )
         if "rpm" in f and "omega" in f:
             self.problem(f["omega"][0], "give rpm or omega, not both")
         direction = self.optional(f, "direction", lambda n: self.scalar(n, "direction"))
@@ -847,7 +974,9 @@ class _Reader:
         about = self.optional(f, "about", lambda n: self.name(n, "`about`"))
         speed = self.optional(f, "speed", lambda n: self.number(n, "the slider speed", Dimension.VELOCITY))
         acc_key = "accel" if "accel" in f else "acceleration"
-        accel = self.optional(f, acc_key, lambda n: self.number(n, "the slider acceleration", Dimension.ACCELERATION))
+        accel = self.optional(
+            f, acc_key, lambda n: self.number(n, "the slider acceleration", Dimension.ACCELERATION)
+        )
         return Drive(
             link=link,
             joint=joint,
@@ -865,15 +994,21 @@ class _Reader:
         try:
             q = parse_quantity(raw)
         except (KeyError, ValueError):
-            raise self.problem(node, f"{key} must be a speed such as 600 or \"62.8 rad/s\", not {raw!r}") from None
+            raise self.problem(
+                node, f'{key} must be a speed such as 600 or "62.8 rad/s", not {raw!r}'
+            ) from None
         if q.dimension is None:
             value = q.value * bare_factor
         elif q.dimension is Dimension.ANGULAR_VELOCITY:
             value = q.value
         else:
-            raise self.problem(node, f"{key} must be an angular velocity, but {q.unit!r} is a unit of {q.dimension.label}")
+            raise self.problem(
+                node, f"{key} must be an angular velocity, but {q.unit!r} is a unit of {q.dimension.label}"
+            )
         if value < 0:
-            raise self.problem(node, f"{key} must not be negative", "give the sense with `direction: cw` or `ccw`")
+            raise self.problem(
+                node, f"{key} must not be negative", "give the sense with `direction: cw` or `ccw`"
+            )
         return value, q.sense
 
     def _signed(self, node: yaml.Node, key: str, dimension: Dimension) -> float:
@@ -882,9 +1017,13 @@ class _Reader:
         try:
             q = parse_quantity(raw)
         except (KeyError, ValueError):
-            raise self.problem(node, f"{key} must be a number such as 5 or \"5 {dimension.value} cw\", not {raw!r}") from None
+            raise self.problem(
+                node, f'{key} must be a number such as 5 or "5 {dimension.value} cw", not {raw!r}'
+            ) from None
         if q.dimension not in (None, dimension):
-            raise self.problem(node, f"{key} must be a {dimension.label}, but {q.unit!r} is a unit of {q.dimension.label}")  # type: ignore[union-attr]
+            raise self.problem(
+                node, f"{key} must be a {dimension.label}, but {q.unit!r} is a unit of {q.dimension.label}"
+            )  # type: ignore[union-attr]
         if q.sense == "cw":
             return -abs(q.value)
         if q.sense == "ccw":
@@ -897,16 +1036,23 @@ class _Reader:
         entries = self.mapping(node, "answers")
         tolerance = Tolerance(0.02)
         if "tolerance" in entries:
-            try:
+            with contextlib.suppress(_Skip):
                 tolerance = self._tolerance(entries["tolerance"][1], None, file_level=True)
-            except _Skip:
-                pass
         link_names = {link.name for link in links}
         joint_names = {j.name for j in joints}
         point_names = joint_names | {p.name for p in points}
         n = len(links)
-        ic_names = {f"I{a}{b}" for a in range(1, n + 1) for b in range(a + 1, n + 1)} if n < 10 else {f"I{a}.{b}" for a in range(1, n + 1) for b in range(a + 1, n + 1)}
-        kinds = {"link": link_names, "joint": joint_names, "point": point_names, "icpoint": point_names | ic_names}
+        ic_names = (
+            {f"I{a}{b}" for a in range(1, n + 1) for b in range(a + 1, n + 1)}
+            if n < 10
+            else {f"I{a}.{b}" for a in range(1, n + 1) for b in range(a + 1, n + 1)}
+        )
+        kinds = {
+            "link": link_names,
+            "joint": joint_names,
+            "point": point_names,
+            "icpoint": point_names | ic_names,
+        }
         claims: list[Claim] = []
         for key, (knode, vnode) in entries.items():
             if key == "tolerance":
@@ -923,11 +1069,18 @@ class _Reader:
         try:
             akey = parse_key(key)
         except ValueError as exc:
-            raise self.problem(knode, str(exc), _did_you_mean(key.split(".")[0], {f.split(".")[0] for f in KEY_FORMS}) or "see `answers` in cli.md") from None
-        for name, kind in zip(akey.names, akey.kinds):
+            raise self.problem(
+                knode,
+                str(exc),
+                _did_you_mean(key.split(".")[0], {f.split(".")[0] for f in KEY_FORMS})
+                or "see `answers` in cli.md",
+            ) from None
+        for name, kind in zip(akey.names, akey.kinds, strict=False):
             if name not in kinds[kind]:
                 label = {"icpoint": "point or I-centre"}.get(kind, kind)
-                raise self.problem(knode, f"answer {key} names unknown {label} {name!r}", _did_you_mean(name, kinds[kind]))
+                raise self.problem(
+                    knode, f"answer {key} names unknown {label} {name!r}", _did_you_mean(name, kinds[kind])
+                )
         tolerance = None
         value_node = vnode
         if isinstance(vnode, yaml.MappingNode):
@@ -939,15 +1092,23 @@ class _Reader:
                 tolerance = self._tolerance(f["tolerance"][1], akey.dimension, file_level=False)
         text = _text(value_node)
         if akey.family == "chain":
-            return Claim(key, self.scalar(value_node, "the chain"), None, None, tolerance, text, self.where(knode))
+            return Claim(
+                key, self.scalar(value_node, "the chain"), None, None, tolerance, text, self.where(knode)
+            )
         if akey.is_count:
             raw = self.scalar(value_node, f"answer {key}")
             if not re.fullmatch(r"[+-]?\d+", raw.strip()):
                 raise self.problem(value_node, f"answer {key} is a count: a whole number, not {raw!r}")
             return Claim(key, int(raw), Dimension.NUMBER.value, None, tolerance, text, self.where(knode))
         if akey.family == "icentre":
-            if isinstance(value_node, yaml.ScalarNode) and value_node.value.strip().lower() in ("infinity", "inf", "at infinity"):
-                return Claim(key, "infinity", Dimension.LENGTH.value, None, tolerance, text, self.where(knode))
+            if isinstance(value_node, yaml.ScalarNode) and value_node.value.strip().lower() in (
+                "infinity",
+                "inf",
+                "at infinity",
+            ):
+                return Claim(
+                    key, "infinity", Dimension.LENGTH.value, None, tolerance, text, self.where(knode)
+                )
             pt = self._claim_point(value_node, key)
             return Claim(key, pt, Dimension.LENGTH.value, None, tolerance, text, self.where(knode))
         dimension = akey.dimension
@@ -956,16 +1117,25 @@ class _Reader:
         try:
             q = parse_quantity(raw)
         except KeyError as exc:
-            raise self.problem(value_node, f"unknown unit {exc.args[0]!r} in answer {key}", f"{dimension.label} units: {', '.join(known_units(dimension))}") from None
+            raise self.problem(
+                value_node,
+                f"unknown unit {exc.args[0]!r} in answer {key}",
+                f"{dimension.label} units: {', '.join(known_units(dimension))}",
+            ) from None
         except ValueError:
-            raise self.problem(value_node, f"answer {key} must be a number with an optional unit, not {raw!r}") from None
+            raise self.problem(
+                value_node, f"answer {key} must be a number with an optional unit, not {raw!r}"
+            ) from None
         if q.dimension is not None and q.dimension is not dimension:
             raise self.problem(
                 value_node,
                 f"answer {key} is a {dimension.label}, but {q.unit!r} is a unit of {q.dimension.label}",
                 f"{dimension.label} units: {', '.join(known_units(dimension)) or 'none (a plain number)'}",
             )
-        if q.sense is not None and dimension not in (Dimension.ANGULAR_VELOCITY, Dimension.ANGULAR_ACCELERATION):
+        if q.sense is not None and dimension not in (
+            Dimension.ANGULAR_VELOCITY,
+            Dimension.ANGULAR_ACCELERATION,
+        ):
             raise self.problem(value_node, f"answer {key} is not an angular quantity: cw/ccw does not apply")
         return Claim(key, q.value, dimension.value, q.sense, tolerance, text, self.where(knode))
 
@@ -979,7 +1149,9 @@ class _Reader:
             try:
                 q = parse_quantity(raw)
             except (KeyError, ValueError):
-                raise self.problem(item, f"a coordinate of answer {key} must be a length, not {raw!r}") from None
+                raise self.problem(
+                    item, f"a coordinate of answer {key} must be a length, not {raw!r}"
+                ) from None
             if q.dimension not in (None, Dimension.LENGTH):
                 raise self.problem(item, f"a coordinate of answer {key} must be a length")
             out.append(q.value)
@@ -996,13 +1168,21 @@ class _Reader:
                 raise self.problem(node, "a tolerance cannot be negative")
             return Tolerance(value / 100.0, relative=True)
         if file_level:
-            raise self.problem(node, f"the file's tolerance must be a percentage such as 2%, not {raw!r}", "per answer, `{value: …, tolerance: 0.05 m/s}` may be absolute")
+            raise self.problem(
+                node,
+                f"the file's tolerance must be a percentage such as 2%, not {raw!r}",
+                "per answer, `{value: …, tolerance: 0.05 m/s}` may be absolute",
+            )
         try:
             q = parse_quantity(raw)
         except (KeyError, ValueError):
-            raise self.problem(node, f"tolerance {raw!r} must be a percentage or a value with a unit") from None
+            raise self.problem(
+                node, f"tolerance {raw!r} must be a percentage or a value with a unit"
+            ) from None
         if q.dimension is not None and dimension is not None and q.dimension is not dimension:
-            raise self.problem(node, f"tolerance {raw!r} is a {q.dimension.label}, but the answer is a {dimension.label}")
+            raise self.problem(
+                node, f"tolerance {raw!r} is a {q.dimension.label}, but the answer is a {dimension.label}"
+            )
         if q.value < 0:
             raise self.problem(node, "a tolerance cannot be negative")
         return Tolerance(q.value, relative=False)
@@ -1019,13 +1199,18 @@ def _located_on(joints: list[Joint], points: list[Point]) -> dict[str, set[str]]
     return out
 
 
+def _is_null(node: yaml.Node | None) -> bool:
+    """An empty value (``key:``, ``~``, ``null``): YAML's resolver tagged it null."""
+    return isinstance(node, yaml.ScalarNode) and node.tag == "tag:yaml.org,2002:null"
+
+
 def _kind(node: yaml.Node | None) -> str:
     if isinstance(node, yaml.MappingNode):
         return "mapping"
     if isinstance(node, yaml.SequenceNode):
         return "list"
     if isinstance(node, yaml.ScalarNode):
-        if node.style is None and node.value in _PLAIN_NULLS:
+        if _is_null(node):
             return "empty value"
         return f"single value ({node.value!r})" if len(node.value) < 40 else "single value"
     return "nothing"

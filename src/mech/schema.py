@@ -14,8 +14,11 @@ from typing import Any
 from mech.model import JointType
 
 _NUMBER: dict[str, Any] = {
-    "description": "A bare number in the file's units, or a string with its unit (\"40 mm\", \"60 deg\").",
-    "oneOf": [{"type": "number"}, {"type": "string", "pattern": r"^\s*[+-]?(\d[\d_]*(\.\d*)?|\.\d+)([eE][+-]?\d+)?\s*[^\s\d]*.*$"}],
+    "description": 'A bare number in the file\'s units, or a string with its unit ("40 mm", "60 deg").',
+    "oneOf": [
+        {"type": "number"},
+        {"type": "string", "pattern": r"^\s*[+-]?(\d[\d_]*(\.\d*)?|\.\d+)([eE][+-]?\d+)?\s*[^\s\d]*.*$"},
+    ],
 }
 _NAME: dict[str, Any] = {"type": "string", "pattern": r"^[^\s.\-\[\]{},:#]+$"}
 _XY: dict[str, Any] = {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2}
@@ -95,7 +98,12 @@ SCHEMA: dict[str, Any] = {
                     "normal": _NUMBER,
                     "pressure_angle": _NUMBER,
                     "radii": {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
-                    "teeth": {"type": "array", "items": {"type": "integer", "minimum": 1}, "minItems": 2, "maxItems": 2},
+                    "teeth": {
+                        "type": "array",
+                        "items": {"type": "integer", "minimum": 1},
+                        "minItems": 2,
+                        "maxItems": 2,
+                    },
                     "module": _NUMBER,
                     "internal": {"type": "boolean"},
                 },

@@ -185,7 +185,9 @@ def dof(mechanism: Mechanism) -> DofCount:
     j = sum(jt.equivalent_binary for jt in mechanism.joints if not jt.type.is_higher)
     higher = tuple(jt.name for jt in mechanism.joints if jt.type.is_higher)
     h = len(higher)
-    return DofCount(l=l, j=j, h=h, n=3 * (l - 1) - 2 * j - h, joints=len(mechanism.joints), higher_pairs=higher)
+    return DofCount(
+        l=l, j=j, h=h, n=3 * (l - 1) - 2 * j - h, joints=len(mechanism.joints), higher_pairs=higher
+    )
 
 
 def classify(mechanism: Mechanism) -> Topology:
@@ -247,7 +249,9 @@ def chain_name(mechanism: Mechanism) -> str | None:
         return "five-bar"
     if n_links == 6 and n_joints == 7:
         ternary = [link.name for link in mechanism.links if len(mechanism.joints_of(link.name)) == 3]
-        if len(ternary) != 2 or any(len(mechanism.joints_of(link.name)) not in (2, 3) for link in mechanism.links):
+        if len(ternary) != 2 or any(
+            len(mechanism.joints_of(link.name)) not in (2, 3) for link in mechanism.links
+        ):
             return None
         adjacent = any(set(ternary) <= set(j.links) for j in joints)
         return "watt" if adjacent else "stephenson"

@@ -26,7 +26,11 @@ def topology_dict(t: Topology) -> dict[str, Any]:
         "higher_pairs": c.h,
         "dof": c.n,
         "formula": c.formula,
-        "grubler": {"value": c.grubler_value, "satisfied": c.grubler_value == 0 and c.h == 0, "text": c.grubler},
+        "grubler": {
+            "value": c.grubler_value,
+            "satisfied": c.grubler_value == 0 and c.h == 0,
+            "text": c.grubler,
+        },
         "kind": c.kind,
         "verdict": c.verdict,
         "chain": t.chain,
@@ -40,7 +44,13 @@ def classify_dict(t: Topology) -> dict[str, Any]:
     """The JSON of ``mech classify --json``: the dof record plus every link and pair."""
     out = topology_dict(t)
     out["link_table"] = [
-        {"link": k.name, "class": k.class_name, "joints": list(k.joints), "kind": k.kind, "ground": k.is_ground}
+        {
+            "link": k.name,
+            "class": k.class_name,
+            "joints": list(k.joints),
+            "kind": k.kind,
+            "ground": k.is_ground,
+        }
         for k in t.links
     ]
     out["pairs"] = [
@@ -68,7 +78,7 @@ def dof_table(results: Sequence[Topology], console: Console) -> None:
     """One table for one or many files: l, j, h, n worked, Grübler, verdict."""
     table = Table(box=table_box(console), title="Degrees of freedom (Kutzbach)" if len(results) > 1 else None)
     if len(results) > 1:
-        table.add_column("file")
+        table.add_column("file", overflow="fold")
     table.add_column("l", justify="right")
     table.add_column("j", justify="right")
     table.add_column("h", justify="right")
@@ -78,7 +88,7 @@ def dof_table(results: Sequence[Topology], console: Console) -> None:
         c = t.count
         row = [str(c.l), str(c.j), str(c.h), c.formula, c.verdict]
         if len(results) > 1:
-            row.insert(0, t.path)
+            row = [t.path, *row[:-1], c.kind if c.n <= 1 else f"{c.n} inputs"]
         table.add_row(*row)
     if len(results) == 1:
         t = results[0]
@@ -107,15 +117,32 @@ def classify_tables(t: Topology, console: Console) -> None:
     for col in ("link", "class", "joints", "kind"):
         links.add_column(col)
     for k in t.links:
-        links.add_row(k.name + (" (ground)" if k.is_ground else ""), k.class_name, ", ".join(k.joints), k.kind)
+        links.add_row(
+            k.name + (" (ground)" if k.is_ground else ""), k.class_name, ", ".join(k.joints), k.kind
+        )
     console.print(links)
     pairs = Table(box=table_box(console), title="Kinematic pairs")
-    for col in ("joint", "type", "links", "joint class", "relative motion", "contact", "closure", "counts in"):
+    for col in (
+        "joint",
+        "type",
+        "links",
+        "joint class",
+        "relative motion",
+        "contact",
+        "closure",
+        "counts in",
+    ):
         pairs.add_column(col)
     for p in t.pairs:
         joint_class = p.joint_class + (f" (= {p.equivalent_binary} binary)" if p.order > 2 else "")
         pairs.add_row(
-            p.joint, p.type, "–".join(p.links), joint_class, p.relative_motion, p.contact, p.closure,
+            p.joint,
+            p.type,
+            "–".join(p.links),
+            joint_class,
+            p.relative_motion,
+            p.contact,
+            p.closure,
             "h (higher)" if p.kutzbach == "h" else f"j (+{p.equivalent_binary})",
         )
     console.print(pairs)

@@ -1,0 +1,547 @@
+"""The drawn configuration: global positions of every location from the file's data.
+
+Unknowns are the positions of the locations not placed by ``at``; equations
+are the file's lengths, the drive angles, "point on path" for prismatic and
+slot joints, and relative placements (``from``/``toward`` with ``distance`` or
+``offset``).  A first guess comes from closed-form dyads (two lengths to known
+points, a length and a path, a drive direction, a relative placement), with
+the branch chosen by ``near`` or, failing that, by a documented default rule
+reported in the notes:
+
+* a dyad apex (two lengths to known joints P, Q, P listed first in the file)
+  lies to the **left of P → Q**;
+* a point at a length from a known point on a path lies at the intersection
+  **farther along the path's direction** (``through → toward``, or ``angle``).
+
+Gauss–Newton with least-squares steps then polishes every equation at once,
+so over-determined but consistent files (a double parallelogram) assemble.
+Work is done in shifted, scaled coordinates (origin at a drawn ground joint,
+lengths divided by the mechanism's size), so tolerances are relative.
+
+Errors, all in the file's length unit:
+
+* a moving joint drawn with ``at`` and also given a length or a drive angle
+  that disagrees (relative tolerance 1e-6): :class:`InputError` saying by how much;
+* no assembly (a loop that cannot close): :class:`GeometryError` with the gap;
+* a location the data leaves free: :class:`GeometryError` naming it (from the
+  SVD null vector) and what to add.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from mech.errors import GeometryError, InputError, Problem
+from mech.kinematics.geometry import circle_circle, circle_line
+from mech.kinematics.layout import Layout
+from mech.model import JointType, Placement, Ref
+from mech.units import to_unit
+
+__all__ = ["Drawn", "assemble"]
+
+_AGREE = 1e-6  # drawn vs given data: relative to size
+_CONVERGED = 1e-12  # Gauss-Newton residual, relative to size
+_ACCEPT = 1e-10  # accepted residual when convergence is slow (tangent circles)
+
+
+@dataclass(frozen=True, slots=True)
+class Drawn:
+    """The assembled (drawn) configuration.
+
+    Attributes
+    ----------
+    positions
+        location name (and synthetic ``#joint.through``/``#joint.toward`` for
+        path coordinates) → global position, metres.
+    drive_angles
+        per drive, the drawn angle (rad) of a rotary drive, None for a slider.
+    scale
+        the length scale used (m): the largest datum (length, drawn distance).
+    notes
+        branch choices made by rule.
+    """
+
+    positions: dict[str, tuple[float, float]]
+    drive_angles: tuple[float | None, ...]
+    scale: float
+    notes: tuple[str, ...]
+
+
+# -- equations ----------------------------------------------------------------------
+class _Eq:
+    """One equation (1 or 2 rows) on the positions of named locations (scaled)."""
+
+    names: tuple[str, ...] = ()
+    rows = 1
+
+    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
+        """Residual (rows,) and its gradient (rows, 2) for each name."""
+        raise NotImplementedError
+
+
+class _Dist(_Eq):
+    def __init__(self, a: str, b: str, length: float, text: str) -> None:
+        self.names, self.length, self.text = (a, b), length, text
+
+    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
+        w = p[1] - p[0]
+        d = math.hypot(w[0], w[1])
+        e = w / d if d > 0 else np.array([1.0, 0.0])
+        return np.array([d - self.length]), [-e[None, :], e[None, :]]
+
+
+class _Dir(_Eq):
+    """Drive: ``b`` lies on the ray from ``o`` at angle ``phi``."""
+
+    def __init__(self, o: str, b: str, phi: float, text: str) -> None:
+        self.names, self.phi, self.text = (o, b), phi, text
+        self.n = np.array([-math.sin(phi), math.cos(phi)])
+
+    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
+        return np.array([self.n @ (p[1] - p[0])]), [-self.n[None, :], self.n[None, :]]
+
+
+class _OnLine(_Eq):
+    """``p`` on the line through ``t`` at fixed direction ``u`` (a path given by angle)."""
+
+    def __init__(self, pt: str, t: str, u: np.ndarray, text: str) -> None:
+        self.names, self.text = (pt, t), text
+        self.n = np.array([-u[1], u[0]])
+
+    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
+        return np.array([self.n @ (p[0] - p[1])]), [self.n[None, :], -self.n[None, :]]
+
+
+class _OnLineToward(_Eq):
+    """``p`` on the line through ``t`` and ``q``: ``(q − t) × (p − t) / |q − t| = 0``."""
+
+    def __init__(self, pt: str, t: str, q: str, text: str) -> None:
+        self.names, self.text = (pt, t, q), text
+
+    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
+        w, z = p[2] - p[1], p[0] - p[1]
+        m = math.hypot(w[0], w[1]) or 1.0
+        c = w[0] * z[1] - w[1] * z[0]
+        gp = np.array([-w[1], w[0]]) / m
+        gq = np.array([z[1], -z[0]]) / m - c * w / m**3
+        return np.array([c / m]), [gp[None, :], (-gp - gq)[None, :], gq[None, :]]
+
+
+class _Rel(_Eq):
+    """``p = o + u·e + v·e⊥`` with ``e`` the unit vector ``o → t`` (a relative placement)."""
+
+    rows = 2
+
+    def __init__(self, pt: str, o: str, t: str, u: float, v: float, text: str) -> None:
+        self.names, self.u, self.v, self.text = (pt, o, t), u, v, text
+
+    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
+        w = p[2] - p[1]
+        m = math.hypot(w[0], w[1]) or 1.0
+        e = w / m
+        perp = np.array([-e[1], e[0]])
+        r = p[0] - p[1] - self.u * e - self.v * perp
+        rot = np.array([[0.0, -1.0], [1.0, 0.0]])
+        dm = (self.u * np.eye(2) + self.v * rot) @ (np.eye(2) - np.outer(e, e)) / m
+        return r, [np.eye(2), -np.eye(2) + dm, -dm]
+
+
+# -- assembly ------------------------------------------------------------------------
+def assemble(lay: Layout, *, drive_angles: Sequence[float | None] | None = None) -> Drawn:
+    """Positions of every location in the drawn configuration.
+
+    Parameters
+    ----------
+    lay
+        The mechanism's layout.
+    drive_angles
+        Per drive, an angle (rad) to use where the file's drive gives none
+        (``--angle`` on a file that only draws ground pivots).
+
+    Raises
+    ------
+    InputError
+        Drawn positions disagree with given lengths or drive angles.
+    GeometryError
+        The data cannot be assembled, or leaves a location free.
+    """
+    mech = lay.mech
+    unit = mech.length_unit
+    known: dict[str, tuple[float, float]] = {}
+    near: dict[str, tuple[float, float]] = {}
+    places: dict[str, Placement] = {}
+    for j in mech.joints:
+        places[j.name] = j.place
+    for pt in mech.points:
+        places[pt.name] = pt.place
+    for name in lay.carriers:
+        pl = places.get(name)
+        if pl is None:
+            continue
+        if pl.at is not None:
+            known[name] = pl.at
+        elif pl.near is not None:
+            near[name] = pl.near
+
+    # Path references given as coordinates become synthetic known locations.
+    for ps in lay.paths:
+        for tag, ref in (("through", ps.path.through), ("toward", ps.path.toward)):
+            if ref is not None and ref.xy is not None:
+                known[f"#{ps.joint}.{tag}"] = ref.xy
+
+    def ref_name(ps_joint: str, tag: str, ref: Ref) -> str:
+        return lay.resolve(ref.name) if ref.name is not None else f"#{ps_joint}.{tag}"
+
+    # Scale: largest datum; origin: a drawn ground location (translation invariance).
+    data = [abs(x.value) for x in mech.lengths]
+    pts = list(known.values()) + list(near.values())
+    if pts:
+        arr = np.array(pts, dtype=float)
+        data.append(float(np.max(np.ptp(arr, axis=0))) if len(pts) > 1 else 0.0)
+    for pl in places.values():
+        if pl.distance is not None:
+            data.append(abs(pl.distance))
+        if pl.offset is not None:
+            data.append(math.hypot(*pl.offset))
+    scale = max(data) if data and max(data) > 0 else 1.0
+    grounded = [n for n in lay.on_link.get(mech.ground, ()) if n in known]
+    centre = np.array(known[grounded[0]] if grounded else (pts[0] if pts else (0.0, 0.0)), dtype=float)
+
+    def fmt(v: float) -> str:
+        return f"{to_unit(v, unit):.6g} {unit}"
+
+    # -- equations
+    eqs: list[_Eq] = []
+    for ln in mech.lengths:
+        a, b = lay.resolve(ln.a), lay.resolve(ln.b)
+        eqs.append(_Dist(a, b, ln.value / scale, f"length {ln.a}{ln.b} = {fmt(ln.value)}"))
+    resolved_angles: list[float | None] = []
+    deg = mech.angle_unit == "deg"
+    for k, spec in enumerate(lay.drives):
+        angle = spec.drive.angle
+        if angle is None and drive_angles is not None and k < len(drive_angles):
+            angle = drive_angles[k]
+        resolved_angles.append(angle)
+        if spec.link is None or angle is None or spec.toward is None:
+            continue
+        shown = f"{math.degrees(angle):.6g}°" if deg else f"{angle:.6g} rad"
+        eqs.append(_Dir(spec.pivot, spec.toward, angle, f"drive angle {shown}"))  # type: ignore[arg-type]
+    for ps in lay.paths:
+        t = ref_name(ps.joint, "through", ps.path.through)
+        text = f"{ps.point} on the path of {ps.type.value} joint {ps.joint}"
+        if ps.path.toward is not None:
+            eqs.append(_OnLineToward(ps.point, t, ref_name(ps.joint, "toward", ps.path.toward), text))
+        elif ps.path.angle is not None:
+            a = ps.path.angle
+            eqs.append(_OnLine(ps.point, t, np.array([math.cos(a), math.sin(a)]), text))
+    for name, pl in places.items():
+        if pl.origin is None or pl.toward is None or name not in lay.carriers:
+            continue
+        if pl.offset is not None:
+            u, v = pl.offset
+        else:
+            u, v = (pl.distance or 0.0), 0.0
+        eqs.append(
+            _Rel(name, lay.resolve(pl.origin), lay.resolve(pl.toward), u / scale, v / scale,
+                 f"{name} placed from {pl.origin} toward {pl.toward}")
+        )
+
+    # Every name an equation uses must be a location.
+    problems = [
+        Problem(f"{e.text}: {n} is not a joint or point with a position")
+        for e in eqs
+        for n in e.names
+        if n not in lay.carriers and n not in known
+    ]
+    if problems:
+        raise InputError(problems=problems, source=mech.source)
+
+    scaled_known = {n: (np.asarray(xy, dtype=float) - centre) / scale for n, xy in known.items()}
+
+    # -- drawn data must agree with lengths and drive angles given as well
+    disagree: list[Problem] = []
+    for e in eqs:
+        if all(n in scaled_known for n in e.names):
+            r, _ = e.value([scaled_known[n] for n in e.names])
+            if float(np.max(np.abs(r))) > _AGREE:
+                disagree.append(Problem(_disagreement(e, [scaled_known[n] for n in e.names], scale, fmt)))
+    if disagree:
+        raise InputError(problems=disagree, source=mech.source)
+
+    # -- first guess by closed-form construction
+    guess, notes, gaps = _construct(lay, eqs, scaled_known, near, centre, scale)
+    unknown = [n for n in lay.carriers if n not in scaled_known]
+    col = {n: i for i, n in enumerate(unknown)}
+    x = np.concatenate([guess[n] for n in unknown]) if unknown else np.zeros(0)
+    live = [e for e in eqs if any(n in col for n in e.names)]
+
+    def system(xv: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        nrows = sum(e.rows for e in live)
+        res = np.empty(nrows)
+        jac = np.zeros((nrows, xv.size))
+        row = 0
+        for e in live:
+            pos = [xv[2 * col[n] : 2 * col[n] + 2] if n in col else scaled_known[n] for n in e.names]
+            r, grads = e.value(pos)
+            res[row : row + e.rows] = r
+            for n, g in zip(e.names, grads):
+                if n in col:
+                    jac[row : row + e.rows, 2 * col[n] : 2 * col[n] + 2] += g
+            row += e.rows
+        return res, jac
+
+    res = np.zeros(0)
+    if unknown:
+        x, res, jac = _gauss_newton(system, x)
+        worst = float(np.max(np.abs(res))) if res.size else 0.0
+        if worst > _ACCEPT:
+            raise GeometryError(_no_assembly(mech.label, live, res, gaps, scale, fmt))
+        _check_determined(system, x, jac, unknown, lay)
+
+    positions = {n: tuple(float(c) for c in (p * scale + centre)) for n, p in scaled_known.items()}
+    for n in unknown:
+        p = x[2 * col[n] : 2 * col[n] + 2] * scale + centre
+        positions[n] = (float(p[0]), float(p[1]))
+
+    # Drive angles not given: read from the drawing.
+    for k, spec in enumerate(lay.drives):
+        if resolved_angles[k] is None and spec.link is not None and spec.toward is not None:
+            o, b = positions[spec.pivot], positions[spec.toward]  # type: ignore[index]
+            resolved_angles[k] = math.atan2(b[1] - o[1], b[0] - o[0])
+    _gear_pitch_points(lay, positions)
+    return Drawn(positions, tuple(resolved_angles), scale, tuple(notes))
+
+
+def _construct(
+    lay: Layout,
+    eqs: list[_Eq],
+    known: dict[str, np.ndarray],
+    near: dict[str, tuple[float, float]],
+    centre: np.ndarray,
+    scale: float,
+) -> tuple[dict[str, np.ndarray], list[str], list[str]]:
+    """First guesses: closed-form dyads in dependency order; notes on default branches.
+
+    Returns guesses for every unknown, the branch notes, and gap messages for
+    dyads that could not close (used if Gauss–Newton cannot close them either).
+    """
+    order = {n: i for i, n in enumerate(lay.mech.iter_names())}
+    pos = dict(known)
+    hint = {n: (np.asarray(v, dtype=float) - centre) / scale for n, v in near.items()}
+    notes: list[str] = []
+    gaps: list[str] = []
+    unknown = [n for n in lay.carriers if n not in pos]
+
+    def pick(name: str, candidates: list[tuple[float, float] | None], rule: str) -> np.ndarray:
+        cands = [np.array(c) for c in candidates if c is not None]
+        if name in hint:
+            return min(cands, key=lambda c: float(np.hypot(*(c - hint[name]))))
+        notes.append(f"{name}: {rule} by the default rule (give near to choose the other branch)")
+        return cands[0]
+
+    progress = True
+    while progress:
+        progress = False
+        for n in unknown:
+            if n in pos:
+                continue
+            mine = [e for e in eqs if n in e.names]
+            found = None
+            for e in mine:  # direct placements first
+                others = [m for m in e.names if m != n]
+                if not all(m in pos for m in others):
+                    continue
+                if isinstance(e, _Rel) and e.names[0] == n:
+                    o, t = pos[e.names[1]], pos[e.names[2]]
+                    w = t - o
+                    m = float(np.hypot(*w)) or 1.0
+                    ev = w / m
+                    found = o + e.u * ev + e.v * np.array([-ev[1], ev[0]])
+                    break
+                if isinstance(e, _Dir) and e.names[1] == n:
+                    lengths = [d for d in mine if isinstance(d, _Dist) and set(d.names) == set(e.names)]
+                    if lengths:
+                        found = pos[e.names[0]] + lengths[0].length * np.array(
+                            [math.cos(e.phi), math.sin(e.phi)]
+                        )
+                        break
+            if found is None:
+                circles = [
+                    (pos[[m for m in d.names if m != n][0]], d.length, [m for m in d.names if m != n][0])
+                    for d in mine
+                    if isinstance(d, _Dist) and all(m in pos for m in d.names if m != n)
+                ]
+                lines = [d for d in mine if isinstance(d, (_OnLine, _OnLineToward)) and d.names[0] == n
+                         and all(m in pos for m in d.names[1:])]
+                if len(circles) >= 2:
+                    (c1, r1, n1), (c2, r2, n2) = sorted(circles[:2], key=lambda c: order.get(c[2], 0))
+                    left, gap = circle_circle(tuple(c1), r1, tuple(c2), r2, left=True)
+                    right, _ = circle_circle(tuple(c1), r1, tuple(c2), r2, left=False)
+                    if left is None:
+                        d = float(np.hypot(*(c2 - c1)))
+                        gaps.append(
+                            f"the loop {n1}–{n}–{n2} cannot close: {n1} and {n2} are "
+                            f"{{{d}}} apart but the lengths {n1}{n} and {n}{n2} are {{{r1}}} and "
+                            f"{{{r2}}} (gap {{{gap}}})"
+                        )
+                        found = c1 + r1 * (c2 - c1) / (d or 1.0)
+                    else:
+                        found = pick(n, [left, right], f"left of {n1}→{n2}")
+                elif circles and lines:
+                    c, r, _ = circles[0]
+                    ln = lines[0]
+                    if isinstance(ln, _OnLine):
+                        t, u = pos[ln.names[1]], np.array([ln.n[1], -ln.n[0]])
+                    else:
+                        t, q = pos[ln.names[1]], pos[ln.names[2]]
+                        u = (q - t) / (float(np.hypot(*(q - t))) or 1.0)
+                    fwd, gap = circle_line(tuple(c), r, tuple(t), tuple(u), forward=True)
+                    back, _ = circle_line(tuple(c), r, tuple(t), tuple(u), forward=False)
+                    if fwd is None:
+                        gaps.append(f"{n} cannot reach its path: the path passes {{{gap}}} beyond "
+                                    f"the length {circles[0][2]}{n} = {{{r}}}")
+                        found = t + float((c - t) @ u) * u
+                    else:
+                        found = pick(n, [fwd, back], "the intersection farther along the path")
+            if found is not None:
+                pos[n] = np.asarray(found, dtype=float)
+                progress = True
+
+    # Whatever construction could not reach: near, else a spread-out default.
+    for k, n in enumerate(unknown):
+        if n not in pos:
+            if n in hint:
+                pos[n] = hint[n]
+            else:
+                pos[n] = np.array([0.3 + 0.1 * k, 0.4 - 0.05 * k])
+                notes.append(f"{n}: position found by least squares from a default guess "
+                             "(give near to choose)")
+    return pos, notes, gaps
+
+
+def _gauss_newton(system, x: np.ndarray, max_iter: int = 100) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # noqa: ANN001
+    """Least-squares Gauss–Newton with step halving; returns (x, residual, Jacobian)."""
+    res, jac = system(x)
+    norm = float(np.linalg.norm(res))
+    for _ in range(max_iter):
+        if norm == 0.0 or float(np.max(np.abs(res))) < _CONVERGED * 1e-3:
+            break
+        step = np.linalg.lstsq(jac, -res, rcond=None)[0]
+        t = 1.0
+        while True:
+            x_new = x + t * step
+            res_new, jac_new = system(x_new)
+            norm_new = float(np.linalg.norm(res_new))
+            if norm_new < norm or t < 1e-6:
+                break
+            t *= 0.5
+        if norm_new >= norm and t < 1e-6:
+            break
+        x, res, jac, norm = x_new, res_new, jac_new, norm_new
+        if float(np.max(np.abs(t * step))) < 1e-15:
+            break
+    return x, res, jac
+
+
+def _check_determined(system, x: np.ndarray, jac: np.ndarray, unknown: list[str], lay: Layout) -> None:  # noqa: ANN001
+    """Raise when the equations leave a continuous freedom (not merely a tangent double root)."""
+    n = x.size
+    if jac.shape[0] >= n:
+        s = np.linalg.svd(jac, compute_uv=False)
+        if s[-1] > 1e-8 * max(s[0], 1.0):
+            return
+    _, s, vt = np.linalg.svd(jac)
+    s_full = np.zeros(n)
+    s_full[: s.size] = s
+    null = vt[s_full <= 1e-8 * max(s_full[0] if s.size else 1.0, 1.0)]
+    # A tangent (double) root is determined; a real freedom stays solvable when nudged.
+    free_dirs = []
+    for v in null:
+        nudged, res, _ = _gauss_newton(system, x + 1e-3 * v, max_iter=30)
+        if float(np.max(np.abs(res))) <= _ACCEPT and float(np.linalg.norm(nudged - x)) > 1e-4:
+            free_dirs.append(v)
+    if not free_dirs:
+        return
+    weight = np.zeros(len(unknown))
+    for v in free_dirs:
+        weight = np.maximum(weight, np.hypot(v[0::2], v[1::2]))
+    names = [unknown[i] for i in np.argsort(-weight) if weight[i] > 0.2 * weight.max()]
+    hint = "place one of them with at, give a length that fixes it, or give it a relative placement"
+    undriven = [s for s in lay.drives if s.link is not None and s.drive.angle is None and s.toward in names]
+    if undriven:
+        hint = f"give the drive of {undriven[0].link} an angle (or draw {undriven[0].toward} with at)"
+    listed = ", ".join(names)
+    raise GeometryError(
+        f"the file does not fix where {listed} {'is' if len(names) == 1 else 'are'}: "
+        f"{'it' if len(names) == 1 else 'they'} can still move with everything given",
+        hint=hint,
+    )
+
+
+def _disagreement(e: _Eq, p: list[np.ndarray], scale: float, fmt) -> str:  # noqa: ANN001
+    """``length BC = 150 mm but the drawing gives 148.3 mm`` and the like."""
+    if isinstance(e, _Dist):
+        d = float(np.hypot(*(p[1] - p[0]))) * scale
+        return f"{e.text} but the drawing gives {fmt(d)} (off by {fmt(abs(d - e.length * scale))})"
+    if isinstance(e, _Dir):
+        w = p[1] - p[0]
+        drawn = math.atan2(w[1], w[0])
+        return (f"{e.text} but the drawing gives {math.degrees(drawn):.6g}° "
+                f"(off by {abs(math.degrees(math.remainder(drawn - e.phi, 2 * math.pi))):.3g}°)")
+    r, _ = e.value(p)
+    return f"{e.text}: the drawing is off by {fmt(float(np.hypot(*r)) * scale if r.size == 2 else abs(float(r[0])) * scale)}"
+
+
+def _no_assembly(label: str, eqs: list[_Eq], res: np.ndarray, gaps: list[str], scale: float, fmt) -> str:  # noqa: ANN001
+    """The gap of the closest assembly, in the file's unit."""
+    import re
+
+    def units(text: str) -> str:
+        return re.sub(r"\{([^}]*)\}", lambda m: fmt(float(m.group(1)) * scale), text)
+
+    if gaps:
+        return f"cannot assemble {label}: " + "; ".join(units(g) for g in gaps)
+    row, parts = 0, []
+    for e in eqs:
+        r = res[row : row + e.rows]
+        row += e.rows
+        miss = float(np.hypot(*r)) if r.size == 2 else abs(float(r[0]))
+        if miss > _ACCEPT:
+            parts.append((miss, f"{e.text} misses by {fmt(miss * scale)}"))
+    parts.sort(reverse=True)
+    return f"cannot assemble {label}: in the closest configuration " + "; ".join(p for _, p in parts[:3])
+
+
+def _gear_pitch_points(lay: Layout, positions: dict[str, tuple[float, float]]) -> None:
+    """A gear joint without ``at``: its pitch point from the centres and radii (or teeth·module/2)."""
+    for j in lay.contacts:
+        if j.type is not JointType.GEAR or j.name in positions:
+            continue
+        radii = j.radii
+        if radii is None and j.teeth is not None and j.module is not None:
+            radii = (j.teeth[0] * j.module / 2.0, j.teeth[1] * j.module / 2.0)
+        centres = [gear_centre(lay, lk, positions) for lk in j.links]
+        if radii is None or None in centres:
+            continue
+        c1, c2 = centres
+        d = math.hypot(c2[0] - c1[0], c2[1] - c1[1]) or 1.0  # type: ignore[index]
+        e = ((c2[0] - c1[0]) / d, (c2[1] - c1[1]) / d)  # type: ignore[index]
+        if j.internal and radii[0] > radii[1]:  # the ring is the first gear: pitch point beyond the second
+            positions[j.name] = (c1[0] + radii[0] * e[0], c1[1] + radii[0] * e[1])  # type: ignore[index]
+        elif j.internal:
+            positions[j.name] = (c2[0] - radii[1] * e[0], c2[1] - radii[1] * e[1])  # type: ignore[index]
+        else:
+            positions[j.name] = (c1[0] + radii[0] * e[0], c1[1] + radii[0] * e[1])  # type: ignore[index]
+
+
+def gear_centre(lay: Layout, link: str, positions: dict[str, tuple[float, float]]) -> tuple[float, float] | None:
+    """A gear link's centre: its only revolute joint (None when it has none or several)."""
+    pins = [
+        n for n in lay.on_link.get(link, ())
+        if n in positions and len(lay.carriers.get(n, ())) >= 2
+    ]
+    return positions[pins[0]] if len(pins) == 1 else None

@@ -1,0 +1,256 @@
+"""What the solvers read from a :class:`~mech.model.Mechanism`: named locations and the links carrying them.
+
+A *location* is anything with a position: a revolute joint (its pin centre),
+a slot joint (the pin running in the slot, unless the joint names its
+``point``), a rolling/cam/gear/contact joint (the contact point of the instant
+drawn) and every named point.  A prismatic joint has no location of its own:
+its ``point`` (default: the slider's only other joint) runs on its path.
+
+A location is *carried* by the links it is fixed in: every link of a revolute,
+the pin link of a slot, the link of a point.  A contact point of a higher pair
+is carried by none (it moves along both profiles).
+
+Nothing here needs numpy; it is pure bookkeeping shared by assembly,
+constraints and results.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from mech.errors import InputError, Problem, UnsupportedError, collect
+from mech.model import Drive, Joint, JointType, Mechanism, Path
+
+__all__ = ["DriveSpec", "Layout", "PathSpec", "layout"]
+
+#: Joint types whose location is a contact point of the instant, not fixed in a link.
+CONTACT_TYPES = frozenset({JointType.ROLLING, JointType.CAM, JointType.GEAR, JointType.CONTACT})
+
+
+@dataclass(frozen=True, slots=True)
+class PathSpec:
+    """A prismatic or slot joint: ``point`` of ``slider`` runs on a line fixed in ``guide``."""
+
+    joint: str
+    type: JointType
+    slider: str
+    guide: str
+    point: str
+    path: Path
+
+
+@dataclass(frozen=True, slots=True)
+class DriveSpec:
+    """A drive resolved against the layout.
+
+    Rotary: ``link`` turns relative to ``reference`` (ground unless ``about``
+    joins it to a moving link) about ``pivot``; its angle is the direction
+    ``pivot → toward`` (``toward`` None when the link has no other located
+    point: then the angle is the link's own frame angle).  Slider: ``joint``
+    names a prismatic or slot joint whose point moves along its path.
+    """
+
+    drive: Drive
+    link: str | None = None
+    reference: str | None = None
+    pivot: str | None = None
+    toward: str | None = None
+    joint: str | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Layout:
+    """The located things of a mechanism and who carries them.
+
+    Attributes
+    ----------
+    carriers
+        location name → links it is fixed in (file order); empty for contact points.
+    alias
+        joint name → the location it stands for (a slot joint naming its ``point``).
+    on_link
+        link → its located names, ordered: drive pivot or ground pivot first, then
+        joints in file order, then points.  The first two define the link's frame.
+    paths
+        prismatic and slot joints.
+    contacts
+        rolling, cam, gear and contact joints (velocity-level pairs).
+    drives
+        the file's drives, resolved.
+    """
+
+    mech: Mechanism
+    carriers: dict[str, tuple[str, ...]]
+    alias: dict[str, str]
+    on_link: dict[str, tuple[str, ...]]
+    paths: tuple[PathSpec, ...]
+    contacts: tuple[Joint, ...]
+    drives: tuple[DriveSpec, ...]
+
+    def resolve(self, name: str) -> str:
+        """The location a name stands for (a joint alias or itself)."""
+        return self.alias.get(name, name)
+
+
+def layout(mech: Mechanism) -> Layout:
+    """Read the located things of ``mech``.
+
+    Raises
+    ------
+    UnsupportedError
+        For a screw or spherical pair: the planar solvers cannot model them.
+    InputError
+        For a prismatic joint whose slider point cannot be inferred, a drive
+        on a link with no pivot, and similar gaps, all reported at once.
+    """
+    for j in mech.joints:
+        if not j.type.is_planar:
+            raise UnsupportedError(
+                f"joint {j.name} is a {j.type.value} pair: planar solvers cannot model a "
+                f"{j.type.value} pair; mech dof still counts it",
+                where=j.where,
+            )
+    problems: list[Problem] = []
+    ground = mech.ground
+    carriers: dict[str, tuple[str, ...]] = {}
+    alias: dict[str, str] = {}
+    point_names = {p.name for p in mech.points}
+    for j in mech.joints:
+        if j.type is JointType.REVOLUTE:
+            carriers[j.name] = tuple(j.links)
+        elif j.type is JointType.SLOT:
+            if j.point is not None:
+                alias[j.name] = j.point
+            else:
+                carriers[j.name] = (j.links[0],)
+        elif j.type in CONTACT_TYPES:
+            carriers[j.name] = ()
+    for p in mech.points:
+        carriers[p.name] = (p.link,)
+
+    # Joints of each link in file order, then its points.
+    joint_locs: dict[str, list[str]] = {lk.name: [] for lk in mech.links}
+    point_locs: dict[str, list[str]] = {lk.name: [] for lk in mech.links}
+    for name, links in carriers.items():
+        for lk in links:
+            (point_locs if name in point_names else joint_locs)[lk].append(name)
+
+    paths: list[PathSpec] = []
+    for j in mech.joints:
+        if j.type not in (JointType.PRISMATIC, JointType.SLOT):
+            continue
+        if len(j.links) != 2:
+            problems.append(Problem(f"{j.type.value} joint {j.name} must join exactly two links", j.where))
+            continue
+        slider, guide = j.links
+        if j.path is None:
+            problems.append(
+                Problem(
+                    f"{j.type.value} joint {j.name} has no path",
+                    j.where,
+                    hint="add path: {through: P, angle: a} or path: {through: P, toward: Q}",
+                )
+            )
+            continue
+        if j.type is JointType.SLOT:
+            point = j.point if j.point is not None else j.name
+        elif j.point is not None:
+            point = j.point
+        else:
+            others = joint_locs[slider]
+            if len(others) != 1:
+                choices = ", ".join(others + point_locs[slider]) or "none"
+                problems.append(
+                    Problem(
+                        f"prismatic joint {j.name}: cannot tell which point of {slider} runs on "
+                        f"the path ({slider}'s located points: {choices})",
+                        j.where,
+                        hint="add point: NAME to the joint",
+                    )
+                )
+                continue
+            point = others[0]
+        if point not in carriers:
+            problems.append(Problem(f"{j.type.value} joint {j.name}: point {point} is not a located point", j.where))
+            continue
+        paths.append(PathSpec(j.name, j.type, slider, guide, point, j.path))
+
+    contacts = tuple(j for j in mech.joints if j.type in CONTACT_TYPES)
+    for j in contacts:
+        if len(j.links) != 2:
+            problems.append(Problem(f"{j.type.value} joint {j.name} must join exactly two links", j.where))
+
+    drives: list[DriveSpec] = []
+    for d in mech.drives:
+        spec = _drive_spec(mech, d, carriers, joint_locs, point_locs, problems)
+        if spec is not None:
+            drives.append(spec)
+
+    pivots = {s.link: s.pivot for s in drives if s.link is not None}
+    on_link: dict[str, tuple[str, ...]] = {}
+    for lk in mech.links:
+        names = joint_locs[lk.name] + point_locs[lk.name]
+        first = pivots.get(lk.name)
+        if first is None and lk.name != ground:
+            first = next((n for n in names if ground in carriers[n]), None)
+        if first is not None:
+            names = [first] + [n for n in names if n != first]
+        on_link[lk.name] = tuple(names)
+
+    collect(problems, source=mech.source)
+    return Layout(mech, carriers, alias, on_link, tuple(paths), contacts, tuple(drives))
+
+
+def _drive_spec(
+    mech: Mechanism,
+    d: Drive,
+    carriers: dict[str, tuple[str, ...]],
+    joint_locs: dict[str, list[str]],
+    point_locs: dict[str, list[str]],
+    problems: list[Problem],
+) -> DriveSpec | None:
+    """Resolve one drive: its pivot, reference link and the joint its angle points at."""
+    if d.joint is not None:
+        try:
+            j = mech.joint(d.joint)
+        except KeyError:
+            problems.append(Problem(f"drive: no joint named {d.joint}", d.where))
+            return None
+        if j.type not in (JointType.PRISMATIC, JointType.SLOT):
+            problems.append(
+                Problem(f"drive: joint {d.joint} is a {j.type.value} joint; a slider drive needs a "
+                        "prismatic or slot joint", d.where)
+            )
+            return None
+        return DriveSpec(d, joint=d.joint)
+    if d.link is None:
+        problems.append(Problem("drive: give link (a turning input) or joint (a slider input)", d.where))
+        return None
+    link = d.link
+    if link == mech.ground:
+        problems.append(Problem(f"drive: {link} is the ground link; drive a moving link", d.where))
+        return None
+    if d.about is not None:
+        pivot = d.about
+        if pivot not in carriers or link not in carriers[pivot]:
+            problems.append(
+                Problem(f"drive: about {pivot} must be a revolute joint of {link}", d.where)
+            )
+            return None
+    else:
+        pins = [n for n in joint_locs.get(link, []) if mech.ground in carriers[n]]
+        if len(pins) != 1:
+            problems.append(
+                Problem(
+                    f"drive: {link} has {'no' if not pins else 'more than one'} pivot on "
+                    f"{mech.ground}" + (f" ({', '.join(pins)})" if pins else ""),
+                    d.where,
+                    hint="name the pivot with about: JOINT",
+                )
+            )
+            return None
+        pivot = pins[0]
+    others = [lk for lk in carriers[pivot] if lk != link]
+    reference = mech.ground if mech.ground in others else (others[0] if others else mech.ground)
+    rest = [n for n in joint_locs.get(link, []) + point_locs.get(link, []) if n != pivot]
+    return DriveSpec(d, link=link, reference=reference, pivot=pivot, toward=rest[0] if rest else None)

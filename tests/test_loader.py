@@ -1,0 +1,301 @@
+"""The loader: every kind of bad input gets one located message; good input reads exactly."""
+
+from __future__ import annotations
+
+import math
+import textwrap
+
+import pytest
+
+from mech.errors import InputError
+from mech.loader import load, loads
+from mech.model import JointType
+
+FOUR_BAR = textwrap.dedent(
+    """\
+    name: Four-bar chain ABCD
+    units: {length: mm, angle: deg}
+    ground: frame
+    links: [frame, crank, coupler, rocker]
+    joints:
+      A: {type: revolute, links: [frame, crank], at: [0, 0]}
+      B: {type: revolute, links: [crank, coupler]}
+      C: {type: revolute, links: [coupler, rocker], near: [100, 80]}
+      D: {type: revolute, links: [rocker, frame], at: [150, 0]}
+    lengths: {AB: 40, BC: 150, CD: 80}
+    drive: {link: crank, angle: 60, rpm: 120, direction: cw}
+    points:
+      E: {link: coupler, from: B, toward: C, distance: 50}
+    answers:
+      omega.rocker: 4.8 rad/s
+    """
+)
+
+
+def problems(text: str) -> list[tuple[int, int, str]]:
+    """(line, column, message) of every problem the loader reports for ``text``."""
+    with pytest.raises(InputError) as info:
+        loads(text, path="t.yaml")
+    return [(p.where.line, p.where.column, p.message) for p in info.value.problems]
+
+
+def one_problem(text: str) -> tuple[int, int, str]:
+    found = problems(text)
+    assert len(found) == 1, found
+    return found[0]
+
+
+# -- good input ----------------------------------------------------------------------------
+def test_design_example_reads_in_si():
+    m = loads(FOUR_BAR, path="fb.yaml")
+    assert m.ground == "frame"
+    assert [link.name for link in m.links] == ["frame", "crank", "coupler", "rocker"]
+    assert m.joint("D").place.at == pytest.approx((0.15, 0.0))
+    assert m.joint("C").place.near == pytest.approx((0.1, 0.08))
+    assert {(ln.a, ln.b): ln.value for ln in m.lengths} == pytest.approx(
+        {("A", "B"): 0.04, ("B", "C"): 0.15, ("C", "D"): 0.08}
+    )
+    (drive,) = m.drives
+    assert drive.angle == pytest.approx(math.radians(60))
+    assert drive.omega == pytest.approx(-120 * 2 * math.pi / 60)  # cw is negative
+    assert m.point("E").place.distance == pytest.approx(0.05)
+    (claim,) = m.answers
+    assert (claim.key, claim.value, claim.sense) == ("omega.rocker", pytest.approx(4.8), None)
+
+
+def test_strings_with_units_override_the_file_units():
+    text = FOUR_BAR.replace("AB: 40", 'AB: "4 cm"').replace("angle: 60,", 'angle: "1.0471975511965976 rad",')
+    m = loads(text)
+    assert next(ln.value for ln in m.lengths if ln.a == "A") == pytest.approx(0.04)
+    assert m.drives[0].angle == pytest.approx(math.radians(60))
+
+
+def test_exponent_numbers_are_numbers_not_strings():
+    # PyYAML (YAML 1.1) reads 1e3 as a string; the format means a number.
+    m = loads(FOUR_BAR.replace("BC: 150", "BC: 1.5e2"))
+    assert next(ln.value for ln in m.lengths if ln.a == "B") == pytest.approx(0.15)
+
+
+def test_yaml11_booleans_are_names_where_names_are_expected():
+    text = "links: [frame, no, on]\njoints:\n  A: {type: revolute, links: [frame, no]}\n  B: {type: revolute, links: [no, on]}\n"
+    m = loads(text)
+    assert [link.name for link in m.links] == ["frame", "no", "on"]
+
+
+def test_links_as_mapping_with_kind():
+    text = "links:\n  frame:\n  belt: {kind: flexible, description: a flat belt}\njoints:\n  A: {type: revolute, links: [frame, belt]}\n"
+    m = loads(text)
+    assert m.link("belt").kind == "flexible"
+    assert m.link("frame").is_ground
+
+
+def test_lengths_split_unambiguous_names():
+    text = (
+        "links: [frame, crank, rod]\njoints:\n"
+        "  O2: {type: revolute, links: [frame, crank], at: [0, 0]}\n"
+        "  A: {type: revolute, links: [crank, rod]}\n"
+        "lengths: {O2A: 12}\n"
+    )
+    m = loads(text)
+    assert (m.lengths[0].a, m.lengths[0].b) == ("O2", "A")
+
+
+def test_counting_files_need_no_geometry():
+    # a path is geometry: a file that only asks for the DOF count may leave it out
+    m = loads(
+        "links: [frame, slider, rod]\njoints:\n  P: {type: prismatic, links: [slider, frame]}\n  B: {type: revolute, links: [slider, rod]}\n"
+    )
+    assert m.joint("P").path is None
+
+
+def test_slider_drive_and_drive_list():
+    text = (
+        "links: [frame, slider, rod, crank]\njoints:\n"
+        "  P: {type: prismatic, links: [slider, frame], path: {through: [0, 0], angle: 0}}\n"
+        "  B: {type: revolute, links: [slider, rod]}\n"
+        "  A: {type: revolute, links: [rod, crank]}\n"
+        "  O: {type: revolute, links: [crank, frame], at: [0, 0]}\n"
+        "drive: [{joint: P, speed: 2 m/s}]\n"
+    )
+    m = loads(text)
+    assert m.drives[0].joint == "P" and m.drives[0].speed == pytest.approx(2.0)
+
+
+def test_answers_parse_units_senses_and_tolerances():
+    text = FOUR_BAR.replace(
+        "  omega.rocker: 4.8 rad/s\n",
+        "  tolerance: 5%\n"
+        "  omega.rocker: 10 rpm ccw\n"
+        "  velocity.C: {value: 385 mm/s, tolerance: 1%}\n"
+        "  acceleration.B: {value: 126 m/s², tolerance: 0.5 m/s^2}\n"
+        "  icentre.crank.rocker: [0.1, 0.2]\n"
+        "  icentre.frame.coupler: infinity\n"
+        "  dof: 1\n"
+        "  chain: four-bar\n",
+    )
+    m = loads(text)
+    claims = {c.key: c for c in m.answers}
+    assert m.tolerance.value == pytest.approx(0.05) and m.tolerance.relative
+    assert claims["omega.rocker"].value == pytest.approx(10 * 2 * math.pi / 60)
+    assert claims["omega.rocker"].sense == "ccw"
+    assert claims["velocity.C"].value == pytest.approx(0.385)
+    assert claims["velocity.C"].tolerance.value == pytest.approx(0.01)
+    assert claims["acceleration.B"].tolerance.relative is False
+    assert claims["icentre.crank.rocker"].value == pytest.approx((0.1, 0.2))
+    assert claims["icentre.frame.coupler"].value == "infinity"
+    assert claims["dof"].value == 1
+    assert claims["chain"].value == "four-bar"
+
+
+def test_load_reads_a_file_and_reports_missing_ones(tmp_path):
+    path = tmp_path / "fb.yaml"
+    path.write_text(FOUR_BAR)
+    assert load(path).name == "Four-bar chain ABCD"
+    with pytest.raises(InputError, match="no such file"):
+        load(tmp_path / "missing.yaml")
+    with pytest.raises(InputError, match="folder"):
+        load(tmp_path)
+
+
+# -- bad input: one message each, with line and column -------------------------------------
+BASE = "links: [frame, crank, rod]\njoints:\n  A: {type: revolute, links: [frame, crank], at: [0, 0]}\n  B: {type: revolute, links: [crank, rod]}\n"
+
+
+@pytest.mark.parametrize(
+    ("text", "line", "column", "fragment"),
+    [
+        ("links: [frame, crank\njoints: {}\n", 2, 7, "not valid YAML"),
+        ("links: [frame, crank]\nlinks: [a]\njoints: {}\n", 2, 1, "duplicate key 'links'"),
+        (BASE.replace("at: [0, 0]", "at: [0, 0], at: [1, 1]"), 3, 58, "duplicate key 'at'"),
+        (BASE.replace("[frame, crank], at", "[frame, crankk], at"), 3, 38, "unknown link 'crankk'"),
+        (BASE.replace("links: [crank, rod]", "links: [crank]"), 4, 30, "joins 1 link"),
+        (
+            BASE.replace("type: revolute, links: [crank", "type: revolte, links: [crank"),
+            4,
+            13,
+            "unknown joint type 'revolte'",
+        ),
+        (BASE + "lengths: {AB: 0}\n", 5, 15, "greater than zero"),
+        (BASE + "lengths: {AB: -3}\n", 5, 15, "greater than zero"),
+        (BASE + "lengths: {AB: forty}\n", 5, 15, "must be a number"),
+        (BASE + "lengths: {AB: .nan}\n", 5, 15, "finite"),
+        (BASE + "lengths: {AB: .inf}\n", 5, 15, "finite"),
+        (BASE + 'lengths: {AB: "4 furlong"}\n', 5, 15, "unknown unit 'furlong'"),
+        (BASE + 'lengths: {AB: "4 rad/s"}\n', 5, 15, "must be a length"),
+        (BASE + "units: {length: parsec}\n", 5, 17, "not a unit of length"),
+        (BASE + "lengths: {A-X: 3}\n", 5, 11, "unknown point 'X'"),
+        (BASE + "links2: []\n", 5, 1, "unknown key 'links2'"),
+        (BASE + "drive: {link: crnk, rpm: 60}\n", 5, 15, "unknown link 'crnk'"),
+        (BASE + "drive: {link: crank, rpm: 60, omega: 6}\n", 5, 31, "rpm or omega"),
+        (BASE + "drive: {link: frame, rpm: 60}\n", 5, 15, "cannot turn the ground"),
+        (BASE + "answers: {omega.crank: 5 m/s}\n", 5, 24, "angular velocity"),
+        (BASE + "answers: {omegas.crank: 5}\n", 5, 11, "unknown answer key"),
+        (BASE + "answers: {omega.crunk: 5}\n", 5, 11, "unknown link 'crunk'"),
+        (BASE + "answers: {dof: one}\n", 5, 16, "whole number"),
+        ("links: [a, b]\njoints:\n  A: {type: revolute, links: [a, b]}\n", 1, 8, "no ground link"),
+        (
+            "links: [frame, ground]\njoints:\n  A: {type: revolute, links: [frame, ground]}\n",
+            1,
+            8,
+            "two links could be ground",
+        ),
+        (
+            "ground: base\nlinks: [frame, crank]\njoints:\n  A: {type: revolute, links: [frame, crank]}\n",
+            1,
+            9,
+            "not among the links",
+        ),
+        ("- a\n- b\n", 1, 1, "must be a mapping"),
+        ("just a string\n", 1, 1, "must be a mapping"),
+        ("links: [frame, crank]\n", 1, 1, "no `joints:`"),
+        (BASE.replace("  B: {type: revolute", "  crank: {type: revolute"), 4, 3, "used twice"),
+        (
+            "links: [frame, crank, rod, block]\njoints:\n  A: {type: revolute, links: [frame, crank]}\n"
+            "  B: {type: revolute, links: [crank, rod]}\n  C: {type: revolute, links: [rod, block]}\nlengths: {A-C: 4}\n",
+            6,
+            11,
+            "not on one link",
+        ),
+        (
+            BASE.replace("links: [crank, rod]}", "links: [crank, rod], path: {through: A, angle: 0}}"),
+            4,
+            44,
+            "unknown key 'path' for a revolute",
+        ),
+        (
+            "links: [frame, a, b, c]\njoints:\n  A: {type: cam, links: [frame, a, b]}\n",
+            3,
+            25,
+            "exactly two links",
+        ),
+    ],
+)
+def test_bad_input_is_located(text, line, column, fragment):
+    found = problems(text)
+    assert any(fragment in msg for _, _, msg in found), found
+    first = next((ln, col) for ln, col, msg in found if fragment in msg)
+    assert first == (line, column), found
+
+
+def test_every_problem_in_a_file_is_reported_at_once():
+    text = (
+        BASE.replace("[frame, crank], at", "[frame, crankk], at") + "lengths: {AB: -1}\ndrive: {link: rodd}\n"
+    )
+    found = problems(text)
+    assert len(found) == 3
+    assert [ln for ln, _, _ in found] == sorted(ln for ln, _, _ in found)
+
+
+@pytest.mark.parametrize(
+    ("data", "fragment"),
+    [
+        (b"", "empty"),
+        (b"# only a comment\n\n", "empty"),
+        (b"\x00\x01\x02binary", "binary file"),
+        (b"links: [\xff\xfe]\n", "not UTF-8"),
+    ],
+)
+def test_unreadable_files_are_refused(data, fragment):
+    with pytest.raises(InputError, match=fragment):
+        loads(data, path="x.yaml")
+
+
+def test_alias_bomb_is_refused_not_expanded():
+    bomb = "a: &a [x, x, x, x, x, x, x, x, x, x]\n"
+    for i in range(1, 7):
+        bomb += f"{'abcdefg'[i]}: &{'abcdefg'[i]} [" + ", ".join([f"*{'abcdefg'[i - 1]}"] * 10) + "]\n"
+    with pytest.raises(InputError, match="too many values"):
+        loads(
+            "links: [frame, crank]\njoints: {}\nx:\n" + "".join("  " + ln + "\n" for ln in bomb.splitlines())
+        )
+
+
+def test_python_tags_are_never_constructed(tmp_path):
+    marker = tmp_path / "pwned"
+    # a tagged scalar is read as its raw text; a tagged list is just a list: nothing runs
+    m = loads(BASE + f"name: !!python/name:os.system {marker}\n")
+    assert m.name == f"{marker}"
+    with pytest.raises(InputError, match="single value"):
+        loads(BASE + f"name: !!python/object/apply:os.system ['touch {marker}']\n")
+    assert not marker.exists()
+
+
+def test_error_message_has_file_line_caret_and_hint():
+    with pytest.raises(InputError) as info:
+        loads(BASE.replace("[frame, crank], at", "[frame, crankk], at"), path="hw/p1.yaml")
+    text = info.value.format()
+    assert text.splitlines()[0] == "hw/p1.yaml:3:38: error: joint A names unknown link 'crankk'"
+    assert text.splitlines()[2].index("^") == 4 + 37
+    assert "hint: did you mean 'crank'?" in text
+
+
+def test_joint_types_are_all_accepted():
+    for jtype in JointType:
+        extra = (
+            ", path: {through: [0, 0], angle: 0}" if jtype in (JointType.PRISMATIC, JointType.SLOT) else ""
+        )
+        text = f"links: [frame, a, b]\njoints:\n  J: {{type: {jtype.value}, links: [a, frame]{extra}}}\n  K: {{type: revolute, links: [a, b]}}\n  L: {{type: revolute, links: [b, frame]}}\n"
+        if jtype is JointType.PRISMATIC:
+            text = text.replace("K: {type: revolute", "K: {type: revolute")
+        m = loads(text)
+        assert m.joint("J").type is jtype
