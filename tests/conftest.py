@@ -24,7 +24,7 @@ def run():
     runner = CliRunner()
 
     def _run(*args: str, input: str | None = None):
-        return runner.invoke(cli, list(args), input=input, catch_exceptions=False)
+        return runner.invoke(cli, list(args), input=input, catch_exceptions=False, prog_name="mech")
 
     return _run
 

@@ -14,7 +14,6 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from enum import Enum
-from typing import Union
 
 from mech.errors import Where
 
@@ -264,7 +263,7 @@ class Tolerance:
         return f"{self.value * 100:g}%" if self.relative else f"{self.value:g}"
 
 
-ClaimValue = Union[float, Vec, str, int]
+ClaimValue = float | Vec | str | int
 
 
 @dataclass(frozen=True, slots=True)

@@ -151,7 +151,9 @@ class _Rel(_Eq):
 
 
 # -- assembly ------------------------------------------------------------------------
-def assemble(lay: Layout, *, drive_angles: Sequence[float | None] | None = None) -> Drawn:
+def assemble(
+    lay: Layout, *, drive_angles: Sequence[float | None] | None = None, allow_free: bool = False
+) -> Drawn:
     """Positions of every location in the drawn configuration.
 
     Parameters
@@ -161,6 +163,9 @@ def assemble(lay: Layout, *, drive_angles: Sequence[float | None] | None = None)
     drive_angles
         Per drive, an angle (rad) to use where the file's drive gives none
         (``--angle`` on a file that only draws ground pivots).
+    allow_free
+        Accept a configuration the data leave free (any consistent one, noted):
+        enough for a mobility count, never for an answer.
 
     Raises
     ------
@@ -300,7 +305,11 @@ def assemble(lay: Layout, *, drive_angles: Sequence[float | None] | None = None)
         worst = float(np.max(np.abs(res))) if res.size else 0.0
         if worst > _ACCEPT:
             raise GeometryError(_no_assembly(mech.label, live, res, gaps, scale, fmt))
-        _check_determined(system, x, jac, unknown, lay)
+        if allow_free:
+            if jac.shape[0] < x.size or np.linalg.matrix_rank(jac, tol=1e-8) < x.size:
+                notes.append("the file leaves the configuration free: one consistent configuration used")
+        else:
+            _check_determined(system, x, jac, unknown, lay)
 
     positions = {n: tuple(float(c) for c in (p * scale + centre)) for n, p in scaled_known.items()}
     for n in unknown:

@@ -18,7 +18,11 @@ def stdout() -> Console:
 
     console = Console(highlight=False)
     if not console.is_terminal:
-        console = Console(highlight=False, width=int(os.environ.get("COLUMNS", 120)), color_system=None)
+        width = int(os.environ.get("COLUMNS", 120))
+        return Console(highlight=False, width=width, color_system=None)
+    if os.environ.get("NO_COLOR"):
+        # rich drops colour for NO_COLOR but keeps bold; we promise plain text
+        return Console(highlight=False, color_system=None)
     return console
 
 

@@ -1,16 +1,18 @@
-"""Tables and JSON for ``mech dof`` and ``mech classify``."""
+"""Tables and JSON for ``mech dof`` and ``mech classify``.
+
+rich is imported inside the table functions only, so ``--json`` does not pay for it.
+"""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
-
-from rich.console import Console
-from rich.table import Table
-from rich.text import Text
+from typing import TYPE_CHECKING, Any
 
 from mech.render.console import table_box
 from mech.topology import Topology
+
+if TYPE_CHECKING:  # pragma: no cover
+    from rich.console import Console
 
 
 def topology_dict(t: Topology) -> dict[str, Any]:
@@ -76,6 +78,8 @@ def _classes(classes: dict[str, tuple[str, ...]]) -> str:
 
 def dof_table(results: Sequence[Topology], console: Console) -> None:
     """One table for one or many files: l, j, h, n worked, Grübler, verdict."""
+    from rich.table import Table
+    from rich.text import Text
     table = Table(box=table_box(console), title="Degrees of freedom (Kutzbach)" if len(results) > 1 else None)
     if len(results) > 1:
         table.add_column("file", overflow="fold")
@@ -112,6 +116,8 @@ def dof_table(results: Sequence[Topology], console: Console) -> None:
 
 def classify_tables(t: Topology, console: Console) -> None:
     """``mech classify``: links by class, pairs three ways, then the count."""
+    from rich.table import Table
+    from rich.text import Text
     console.print(Text(t.name, style="bold"))
     links = Table(box=table_box(console), title="Links")
     for col in ("link", "class", "joints", "kind"):

@@ -1,0 +1,20 @@
+"""Kinematics of planar mechanisms: positions, velocities, accelerations, numeric mobility.
+
+The public API::
+
+    from mech.kinematics import solve, mobility, Kinematics, LinkState, Mobility
+    kin = solve(mech, level="acceleration", options=SolveOptions(omega=12.57))
+    kin.positions["C"], kin.velocity("C"), kin.links["rocker"].omega
+
+Modules: :mod:`.geometry` (closed-form primitives), :mod:`.layout` (what the
+file locates), :mod:`.assemble` (the drawn configuration), :mod:`.constraints`
+(Φ, Φ_q, γ in reference-point coordinates), :mod:`.solve` (Newton, velocity,
+acceleration), :mod:`.mobility` (Jacobian rank), :mod:`.result` (frozen results).
+numpy is imported here, never by ``mech`` itself.
+"""
+
+from mech.kinematics.mobility import kutzbach, mobility
+from mech.kinematics.result import Kinematics, LinkState, Mobility
+from mech.kinematics.solve import solve
+
+__all__ = ["Kinematics", "LinkState", "Mobility", "kutzbach", "mobility", "solve"]

@@ -1,0 +1,480 @@
+"""Constraint equations Φ(q, t) = 0 in reference-point coordinates, with Jacobian and γ.
+
+Each moving link ``i`` has coordinates ``q[3i:3i+3] = (x, y, θ)``: the global
+position of its origin (its first located point, a ground pivot where it has
+one) and the angle of its reference line (origin → its next located point),
+so the crank's θ *is* the crank angle.  A point of link ``i`` with local
+coordinates ``s`` is at ``r = R + A(θ) s``.  Ground is a link with ``q = 0``
+appended as index ``n`` so that every row is written once, without cases.
+
+Rows, in this order (Haug, *Computer-Aided Kinematics and Dynamics*, ch. 3;
+Nikravesh, *Computer-Aided Analysis of Mechanical Systems*, ch. 4):
+
+* point coincidence (2 rows): a revolute joint, per extra link;
+  ``r_i(P) − r_j(P) = 0``.  Rolling contact uses the same rows at velocity level.
+* point on line (1 row): ``n_G · (r_S(P) − r_G(T)) = c`` — a prismatic or slot
+  joint's point on its path (``c = 0``); a slider drive (with the path
+  direction for ``n`` and ``c`` the displacement); a cam, contact or gear pair
+  at velocity level (the contact point stays on the common tangent).
+* linear angle rows: ``Σ a_k θ_k = c`` — a prismatic joint's constant relative
+  angle, a rotary drive (``θ_D − θ_ref = φ(t)``), a gear pair with fixed centres
+  on one carrier (``r₁(θ₁ − θ_c) ± r₂(θ₂ − θ_c) = c``).
+
+Velocity-level rows (cam, contact, rolling, gear without a common carrier)
+are the first-order part of the contact condition at the instant drawn: they
+enter velocity solves and the mobility rank but never Newton, and make
+acceleration impossible without curvature data.
+
+Everything is scaled: lengths by ``scale`` (the drawn size), time by
+``1/omega_ref``; index arrays are built once so that a residual, Jacobian or
+γ is a dozen vectorised numpy operations whatever the mechanism.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from mech.errors import Problem, collect
+from mech.kinematics.assemble import Drawn, gear_centre
+from mech.kinematics.layout import Layout
+from mech.model import JointType
+
+__all__ = ["System", "build_system"]
+
+
+@dataclass(eq=False)
+class System:
+    """The compiled constraint system of one mechanism at its drawn configuration.
+
+    Mutable only while being built; the solvers treat it as read-only (drive
+    targets are passed in, never stored).
+
+    Shapes: ``n`` moving links, ``q`` is (3n,), rows ``m``; Jacobians are (m, 3n).
+    """
+
+    links: tuple[str, ...]  # moving links, q order; ground is index n
+    ground: str
+    scale: float  # m
+    centre: np.ndarray  # (2,) m: the global origin of scaled coordinates
+    q0: np.ndarray  # (3n,) drawn configuration, scaled
+    local: dict[str, tuple[int, np.ndarray]]  # location -> (link index, local s (2,)) for one carrier
+    frames: dict[str, str]  # link -> name of its origin location ('' when none)
+    contact_xy: dict[str, np.ndarray]  # contact points of the instant, scaled global
+    # point coincidence rows
+    pc_i: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
+    pc_si: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    pc_j: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
+    pc_sj: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    # point-on-line rows
+    ln_s: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
+    ln_sp: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    ln_g: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
+    ln_t: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    ln_n: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    ln_c: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    # linear angle rows: a (k, n+1) on θ of all links (ground last), constant c
+    ang_a: np.ndarray = field(default_factory=lambda: np.zeros((0, 1)))
+    ang_c: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    # bookkeeping
+    row_names: tuple[str, ...] = ()  # per row: the joint or drive it comes from
+    holonomic: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))  # per row
+    drive_rows: np.ndarray = field(default_factory=lambda: np.zeros(0, int))  # row per drive (file order)
+    path_dirs: dict[str, tuple[int, np.ndarray]] = field(default_factory=dict)  # path joint -> (guide, local u)
+    path_points: dict[str, tuple[int, str]] = field(default_factory=dict)  # path joint -> (slider, point)
+
+    @property
+    def n(self) -> int:
+        return len(self.links)
+
+    @property
+    def m(self) -> int:
+        return 2 * self.pc_i.size + self.ln_s.size + self.ang_c.size
+
+    @property
+    def velocity_only(self) -> tuple[str, ...]:
+        """Joints modelled only at velocity level (cam, contact, rolling, some gears)."""
+        names = [self.row_names[r] for r in np.flatnonzero(~self.holonomic)]
+        return tuple(dict.fromkeys(names))
+
+    # -- kinematic functions (scaled) ------------------------------------------------
+    def _full(self, q: np.ndarray) -> np.ndarray:
+        qf = np.zeros(q.size + 3)
+        qf[:-3] = q
+        return qf
+
+    @staticmethod
+    def _rot(qf: np.ndarray, idx: np.ndarray, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        th = qf[3 * idx + 2]
+        c, sn = np.cos(th), np.sin(th)
+        return c * s[:, 0] - sn * s[:, 1], sn * s[:, 0] + c * s[:, 1]
+
+    def phi(self, q: np.ndarray, c_line: np.ndarray, c_ang: np.ndarray) -> np.ndarray:
+        """Φ(q) (m,) for the given line and angle constants (drive targets inside)."""
+        qf = self._full(q)
+        k = self.pc_i.size
+        out = np.empty(self.m)
+        ax, ay = self._rot(qf, self.pc_i, self.pc_si)
+        bx, by = self._rot(qf, self.pc_j, self.pc_sj)
+        out[0 : 2 * k : 2] = qf[3 * self.pc_i] + ax - qf[3 * self.pc_j] - bx
+        out[1 : 2 * k : 2] = qf[3 * self.pc_i + 1] + ay - qf[3 * self.pc_j + 1] - by
+        r = 2 * k
+        kl = self.ln_s.size
+        if kl:
+            sx, sy = self._rot(qf, self.ln_s, self.ln_sp)
+            tx, ty = self._rot(qf, self.ln_g, self.ln_t)
+            nx, ny = self._rot(qf, self.ln_g, self.ln_n)
+            dx = qf[3 * self.ln_s] + sx - qf[3 * self.ln_g] - tx
+            dy = qf[3 * self.ln_s + 1] + sy - qf[3 * self.ln_g + 1] - ty
+            out[r : r + kl] = nx * dx + ny * dy - c_line
+        r += kl
+        out[r:] = self.ang_a @ qf[2::3] - c_ang
+        return out
+
+    def jacobian(self, q: np.ndarray) -> np.ndarray:
+        """Φ_q (m, 3n)."""
+        qf = self._full(q)
+        n3 = qf.size
+        k = self.pc_i.size
+        jac = np.zeros((self.m, n3))
+        if k:
+            ax, ay = self._rot(qf, self.pc_i, self.pc_si)
+            bx, by = self._rot(qf, self.pc_j, self.pc_sj)
+            rx = np.arange(0, 2 * k, 2)
+            ry = rx + 1
+            i3, j3 = 3 * self.pc_i, 3 * self.pc_j
+            jac[rx, i3] = 1.0
+            jac[ry, i3 + 1] = 1.0
+            jac[rx, i3 + 2] = -ay
+            jac[ry, i3 + 2] = ax
+            jac[rx, j3] = -1.0
+            jac[ry, j3 + 1] = -1.0
+            jac[rx, j3 + 2] = by
+            jac[ry, j3 + 2] = -bx
+        r0 = 2 * k
+        kl = self.ln_s.size
+        if kl:
+            rows = np.arange(r0, r0 + kl)
+            sx, sy = self._rot(qf, self.ln_s, self.ln_sp)
+            tx, ty = self._rot(qf, self.ln_g, self.ln_t)
+            nx, ny = self._rot(qf, self.ln_g, self.ln_n)
+            dx = qf[3 * self.ln_s] + sx - qf[3 * self.ln_g] - tx
+            dy = qf[3 * self.ln_s + 1] + sy - qf[3 * self.ln_g + 1] - ty
+            s3, g3 = 3 * self.ln_s, 3 * self.ln_g
+            jac[rows, s3] = nx
+            jac[rows, s3 + 1] = ny
+            jac[rows, s3 + 2] = -nx * sy + ny * sx
+            jac[rows, g3] = -nx
+            jac[rows, g3 + 1] = -ny
+            jac[rows, g3 + 2] = (-ny * dx + nx * dy) - (-nx * ty + ny * tx)
+        r0 += kl
+        if self.ang_c.size:
+            jac[r0:, 2::3] = self.ang_a
+        return jac[:, :-3]
+
+    def gamma(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
+        """γ (m,) without drive accelerations: Φ_q q̈ = γ + (drive α rows)."""
+        qf, vf = self._full(q), self._full(qd)
+        k = self.pc_i.size
+        out = np.zeros(self.m)
+        if k:
+            ax, ay = self._rot(qf, self.pc_i, self.pc_si)
+            bx, by = self._rot(qf, self.pc_j, self.pc_sj)
+            wi2 = vf[3 * self.pc_i + 2] ** 2
+            wj2 = vf[3 * self.pc_j + 2] ** 2
+            out[0 : 2 * k : 2] = wi2 * ax - wj2 * bx
+            out[1 : 2 * k : 2] = wi2 * ay - wj2 * by
+        kl = self.ln_s.size
+        if kl:
+            r0 = 2 * k
+            sx, sy = self._rot(qf, self.ln_s, self.ln_sp)
+            tx, ty = self._rot(qf, self.ln_g, self.ln_t)
+            nx, ny = self._rot(qf, self.ln_g, self.ln_n)
+            s3, g3 = 3 * self.ln_s, 3 * self.ln_g
+            dx = qf[s3] + sx - qf[g3] - tx
+            dy = qf[s3 + 1] + sy - qf[g3 + 1] - ty
+            ws, wg = vf[s3 + 2], vf[g3 + 2]
+            ddx = vf[s3] - ws * sy - vf[g3] + wg * ty
+            ddy = vf[s3 + 1] + ws * sx - vf[g3 + 1] - wg * tx
+            out[r0 : r0 + kl] = (
+                wg**2 * (nx * dx + ny * dy)
+                - 2.0 * wg * (-ny * ddx + nx * ddy)
+                + ws**2 * (nx * sx + ny * sy)
+                - wg**2 * (nx * tx + ny * ty)
+            )
+        return out
+
+    def point(self, q: np.ndarray, name: str) -> np.ndarray:
+        """Scaled global position (2,) of a location in configuration ``q``."""
+        if name in self.contact_xy:
+            return self.contact_xy[name]
+        i, s = self.local[name]
+        if i == self.n:
+            return s
+        x, y, th = q[3 * i : 3 * i + 3]
+        c, sn = math.cos(th), math.sin(th)
+        return np.array([x + c * s[0] - sn * s[1], y + sn * s[0] + c * s[1]])
+
+
+def build_system(lay: Layout, drawn: Drawn) -> System:
+    """Compile the constraint rows of ``lay`` about its drawn configuration.
+
+    Raises
+    ------
+    InputError
+        A higher pair lacks what its velocity row needs (its contact point or normal).
+    """
+    mech = lay.mech
+    scale = drawn.scale
+    ground = mech.ground
+    links = tuple(lk.name for lk in mech.links if not lk.is_ground)
+    index = {name: i for i, name in enumerate(links)}
+    index[ground] = len(links)
+    pos = drawn.positions
+    ground_pts = [p for p in lay.on_link.get(ground, ()) if p in pos]
+    centre = np.array(pos[ground_pts[0]] if ground_pts else next(iter(pos.values()), (0.0, 0.0)), float)
+
+    def sc(xy: tuple[float, float]) -> np.ndarray:
+        return (np.asarray(xy, float) - centre) / scale
+
+    # -- link frames
+    n = len(links)
+    q0 = np.zeros(3 * n)
+    frames: dict[str, str] = {}
+    drive_link_angle = {
+        spec.link: drawn.drive_angles[k]
+        for k, spec in enumerate(lay.drives)
+        if spec.link is not None and spec.toward is None
+    }
+    slider_dir = {}
+    for ps in lay.paths:
+        slider_dir.setdefault(ps.slider, ps)
+    for name in links:
+        names = [p for p in lay.on_link.get(name, ()) if p in pos]
+        origin = sc(pos[names[0]]) if names else np.zeros(2)
+        theta = None
+        for other in names[1:]:
+            w = sc(pos[other]) - origin
+            if math.hypot(*w) > 1e-9:
+                theta = math.atan2(w[1], w[0])
+                break
+        if theta is None:
+            if name in drive_link_angle and drive_link_angle[name] is not None:
+                theta = drive_link_angle[name]
+            elif name in slider_dir:
+                theta = _path_angle(lay, slider_dir[name], pos)
+            else:
+                theta = 0.0
+        frames[name] = names[0] if names else ""
+        q0[3 * index[name] : 3 * index[name] + 3] = (origin[0], origin[1], theta)
+    frames[ground] = ""
+
+    def to_local(link: str, xy: np.ndarray) -> np.ndarray:
+        i = index[link]
+        if i == n:
+            return xy.copy()
+        x, y, th = q0[3 * i : 3 * i + 3]
+        c, s = math.cos(th), math.sin(th)
+        d = xy - (x, y)
+        return np.array([c * d[0] + s * d[1], -s * d[0] + c * d[1]])
+
+    def dir_local(link: str, angle: float) -> np.ndarray:
+        i = index[link]
+        th = 0.0 if i == n else q0[3 * i + 2]
+        return np.array([math.cos(angle - th), math.sin(angle - th)])
+
+    local: dict[str, tuple[int, np.ndarray]] = {}
+    for name, carriers in lay.carriers.items():
+        if carriers and name in pos:
+            moving = [c for c in carriers if c != ground]
+            carrier = moving[0] if moving else ground
+            local[name] = (index[carrier], to_local(carrier, sc(pos[name])))
+    contact_xy = {j.name: sc(pos[j.name]) for j in lay.contacts if j.name in pos}
+
+    pc: list[tuple[int, np.ndarray, int, np.ndarray, str, bool]] = []
+    ln: list[tuple[int, np.ndarray, int, np.ndarray, np.ndarray, float, str, bool]] = []
+    ang: list[tuple[dict[int, float], float, str, bool]] = []
+    problems: list[Problem] = []
+
+    for j in mech.joints:
+        if j.type is JointType.REVOLUTE and j.name in pos:
+            xy = sc(pos[j.name])
+            first = j.links[0]
+            for other in j.links[1:]:
+                pc.append((index[first], to_local(first, xy), index[other], to_local(other, xy), j.name, True))
+
+    path_dirs: dict[str, tuple[int, np.ndarray]] = {}
+    path_points: dict[str, tuple[int, str]] = {}
+    for ps in lay.paths:
+        through = ps.path.through
+        t_xy = sc(through.xy if through.xy is not None else pos[lay.resolve(through.name)])  # type: ignore[arg-type]
+        a = _path_angle(lay, ps, pos)
+        u = dir_local(ps.guide, a)
+        nloc = np.array([-u[1], u[0]])
+        p_xy = sc(pos[ps.point])
+        ln.append((index[ps.slider], to_local(ps.slider, p_xy), index[ps.guide], to_local(ps.guide, t_xy),
+                   nloc, 0.0, ps.joint, True))
+        path_dirs[ps.joint] = (index[ps.guide], u)
+        path_points[ps.joint] = (index[ps.slider], ps.point)
+        if ps.type is JointType.PRISMATIC:
+            th_s = 0.0 if index[ps.slider] == n else q0[3 * index[ps.slider] + 2]
+            th_g = 0.0 if index[ps.guide] == n else q0[3 * index[ps.guide] + 2]
+            ang.append(({index[ps.slider]: 1.0, index[ps.guide]: -1.0}, th_s - th_g, ps.joint, True))
+
+    for j in lay.contacts:
+        a_link, b_link = j.links
+        holo = _gear_row(lay, j, pos, index, q0, n) if j.type is JointType.GEAR else None
+        if holo is not None:
+            ang.append((holo[0], holo[1], j.name, True))
+            continue
+        if j.name not in pos:
+            problems.append(Problem(f"{j.type.value} joint {j.name} needs at (the contact point of the "
+                                    "instant) for velocities", j.where))
+            continue
+        xy = sc(pos[j.name])
+        if j.type is JointType.ROLLING:
+            pc.append((index[a_link], to_local(a_link, xy), index[b_link], to_local(b_link, xy), j.name, False))
+            continue
+        normal = j.normal
+        if normal is None and j.type is JointType.GEAR:
+            normal = _gear_normal(lay, j, pos)
+        if normal is None:
+            problems.append(Problem(f"{j.type.value} joint {j.name} needs normal (the common normal's "
+                                    "angle) for velocities", j.where))
+            continue
+        u = dir_local(b_link, normal)
+        ln.append((index[a_link], to_local(a_link, xy), index[b_link], to_local(b_link, xy), u, 0.0,
+                   j.name, False))
+    collect(problems, source=mech.source)
+
+    # Drives last, in file order: rotary drives are angle rows, slider drives line rows.
+    drive_at: list[tuple[str, int]] = []
+    for spec in lay.drives:
+        name = f"drive {spec.drive.link or spec.drive.joint}"
+        if spec.link is not None:
+            i, r = index[spec.link], index[spec.reference]  # type: ignore[index]
+            th_r = 0.0 if r == n else q0[3 * r + 2]
+            ang.append(({i: 1.0, r: -1.0}, q0[3 * i + 2] - th_r, name, True))
+            drive_at.append(("ang", len(ang) - 1))
+        else:
+            base = next(x for x in ln if x[6] == spec.joint)
+            u = path_dirs[spec.joint][1]
+            ln.append((base[0], base[1], base[2], base[3], u, 0.0, name, True))
+            drive_at.append(("ln", len(ln) - 1))
+    n_pc, kl = len(pc), len(ln)
+    drive_rows = [2 * n_pc + (k if kind == "ln" else kl + k) for kind, k in drive_at]
+
+    sys_ = System(
+        links=links, ground=ground, scale=scale, centre=centre, q0=q0, local=local,
+        frames=frames, contact_xy=contact_xy,
+    )
+    if pc:
+        sys_.pc_i = np.array([p[0] for p in pc])
+        sys_.pc_si = np.array([p[1] for p in pc])
+        sys_.pc_j = np.array([p[2] for p in pc])
+        sys_.pc_sj = np.array([p[3] for p in pc])
+    if ln:
+        sys_.ln_s = np.array([x[0] for x in ln])
+        sys_.ln_sp = np.array([x[1] for x in ln])
+        sys_.ln_g = np.array([x[2] for x in ln])
+        sys_.ln_t = np.array([x[3] for x in ln])
+        sys_.ln_n = np.array([x[4] for x in ln])
+        sys_.ln_c = np.zeros(len(ln))
+    a = np.zeros((len(ang), n + 1))
+    for row, (coef, _, _, _) in enumerate(ang):
+        for col, v in coef.items():
+            a[row, col] += v
+    sys_.ang_a = a
+    sys_.ang_c = np.array([x[1] for x in ang], float)
+    names: list[str] = []
+    holo_rows: list[bool] = []
+    for p in pc:
+        names += [p[4], p[4]]
+        holo_rows += [p[5], p[5]]
+    names += [x[6] for x in ln] + [x[2] for x in ang]
+    holo_rows += [x[7] for x in ln] + [x[3] for x in ang]
+    sys_.row_names = tuple(names)
+    sys_.holonomic = np.array(holo_rows, bool)
+    sys_.drive_rows = np.array(drive_rows, int)
+    sys_.path_dirs = path_dirs
+    sys_.path_points = path_points
+    # Slider drives: their constant is the drawn displacement along the path.
+    if ln:
+        base_phi = sys_.phi(q0, sys_.ln_c, sys_.ang_c)
+        for r in sys_.drive_rows:
+            if 2 * n_pc <= r < 2 * n_pc + kl:
+                sys_.ln_c[r - 2 * n_pc] = base_phi[r]
+    return sys_
+
+
+def _path_angle(lay: Layout, ps, pos: dict[str, tuple[float, float]]) -> float:  # noqa: ANN001
+    """Global direction (rad) of a path in the drawn configuration."""
+    if ps.path.toward is not None:
+        t = ps.path.through
+        t_xy = t.xy if t.xy is not None else pos[lay.resolve(t.name)]
+        q = ps.path.toward
+        q_xy = q.xy if q.xy is not None else pos[lay.resolve(q.name)]
+        return math.atan2(q_xy[1] - t_xy[1], q_xy[0] - t_xy[0])
+    return float(ps.path.angle or 0.0)
+
+
+def _carrier_of(lay: Layout, link: str, pos: dict[str, tuple[float, float]]) -> dict[str, str]:
+    """Revolute joints of ``link`` with their other link: ``{other_link: joint}``."""
+    out: dict[str, str] = {}
+    for name in lay.on_link.get(link, ()):
+        carriers = lay.carriers.get(name, ())
+        if len(carriers) >= 2 and name in pos:
+            for c in carriers:
+                if c != link:
+                    out.setdefault(c, name)
+    return out
+
+
+def _gear_row(lay, j, pos, index, q0, n) -> tuple[dict[int, float], float] | None:  # noqa: ANN001
+    """A gear pair with both centres pinned to one carrier: ``r₁(θ₁−θc) ± r₂(θ₂−θc) = const``.
+
+    The pitch circles roll on each other relative to the carrier (ground for a
+    fixed-axis pair, the arm of an epicyclic train), which is holonomic: the
+    pair then moves, and accelerates, like any lower pair.  External pairs
+    turn opposite ways (+), internal pairs the same way (−).  Returns None
+    when there is no common carrier or no radii.
+    """
+    g1, g2 = j.links
+    c1, c2 = _carrier_of(lay, g1, pos), _carrier_of(lay, g2, pos)
+    common = [c for c in c1 if c in c2 and c not in (g1, g2)]
+    if not common:
+        return None
+    carrier = common[0]
+    o1, o2 = pos[c1[carrier]], pos[c2[carrier]]
+    radii = j.radii
+    if radii is None and j.teeth is not None and j.module is not None:
+        radii = (j.teeth[0] * j.module / 2.0, j.teeth[1] * j.module / 2.0)
+    internal = j.internal
+    if radii is None:
+        if j.name not in pos:
+            return None
+        p = pos[j.name]
+        r1 = math.hypot(p[0] - o1[0], p[1] - o1[1])
+        r2 = math.hypot(p[0] - o2[0], p[1] - o2[1])
+        d = math.hypot(o2[0] - o1[0], o2[1] - o1[1])
+        internal = internal or abs(abs(r1 - r2) - d) < abs(r1 + r2 - d)
+        radii = (r1, r2)
+    sign = -1.0 if internal else 1.0
+    i1, i2, ic = index[g1], index[g2], index[carrier]
+    coef: dict[int, float] = {}
+    for col, v in ((i1, radii[0]), (i2, sign * radii[1]), (ic, -radii[0] - sign * radii[1])):
+        coef[col] = coef.get(col, 0.0) + v / (max(radii) or 1.0)  # O(1) coefficients
+    theta = {i: (0.0 if i == n else q0[3 * i + 2]) for i in coef}
+    return coef, sum(v * theta[i] for i, v in coef.items())
+
+
+def _gear_normal(lay: Layout, j, pos) -> float | None:  # noqa: ANN001
+    """Line of action of a gear pair: the common tangent turned by the pressure angle."""
+    centres = [gear_centre(lay, lk, pos) for lk in j.links]
+    if None in centres:
+        return None
+    (x1, y1), (x2, y2) = centres  # type: ignore[misc]
+    return math.atan2(y2 - y1, x2 - x1) + math.pi / 2.0 - (j.pressure_angle or 0.0)
+

@@ -1,0 +1,91 @@
+"""Mobility: Kutzbach's count and the true count from the rank of the constraint Jacobian.
+
+Kutzbach's ``3(l − 1) − 2j − h`` only counts pairs; the Jacobian's rank sees
+geometry: the double parallelogram (Kutzbach 0) moves (numeric 1) because one
+of its constraints repeats the others.  The SVD of Φ_q (drive rows left out)
+gives the rank with a tolerance scaled to its largest singular value, and
+its null space says which links can move (free) and which cannot (locked).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mech.errors import InputError
+from mech.kinematics.constraints import System
+from mech.kinematics.result import Mobility
+from mech.model import Mechanism
+
+__all__ = ["kutzbach", "mobility", "numeric_mobility"]
+
+#: singular values below this fraction of the largest count as zero (scaled units)
+RANK_TOL = 1e-9
+
+
+def kutzbach(mech: Mechanism) -> int:
+    """``3(l − 1) − 2j − h``: j counts a joint of k links as k − 1; slot, cam, gear, contact are h."""
+    j = sum(joint.equivalent_binary for joint in mech.joints if not joint.type.is_higher)
+    h = sum(1 for joint in mech.joints if joint.type.is_higher)
+    return 3 * (len(mech.links) - 1) - 2 * j - h
+
+
+def numeric_mobility(mech: Mechanism, system: System, q: np.ndarray, notes: tuple[str, ...] = ()) -> Mobility:
+    """Mobility of ``system`` at ``q`` from the SVD of Φ_q without drive rows."""
+    k = kutzbach(mech)
+    keep = np.ones(system.m, bool)
+    keep[system.drive_rows] = False
+    jac = system.jacobian(q)[keep]
+    ncols = jac.shape[1]
+    if ncols == 0:
+        return Mobility(k, 0, 1.0, (), (), int(jac.shape[0]), notes)
+    if jac.shape[0] == 0:
+        return Mobility(k, ncols, 1.0, system.links, (), 0, notes)
+    _, s, vt = np.linalg.svd(jac)
+    tol = RANK_TOL * s[0] if s.size and s[0] > 0 else RANK_TOL
+    rank = int(np.sum(s > tol))
+    numeric = ncols - rank
+    redundant = jac.shape[0] - rank
+    condition = float(s[0] / s[rank - 1]) if rank else 1.0
+    null = vt[rank:]
+    weight = np.sqrt(np.sum(null**2, axis=0)).reshape(-1, 3).max(axis=1) if null.size else np.zeros(len(system.links))
+    free = tuple(name for name, w in zip(system.links, weight) if w > 1e-6)
+    locked = tuple(name for name, w in zip(system.links, weight) if w <= 1e-6)
+    extra = list(notes)
+    if numeric != k:
+        why = f" ({redundant} redundant constraint{'s' if redundant != 1 else ''})" if redundant else ""
+        extra.append(
+            f"Kutzbach's count gives {k} but the constraint Jacobian's rank gives mobility "
+            f"{numeric}{why} at the drawn configuration"
+        )
+    return Mobility(k, numeric, condition, free, locked, redundant, tuple(extra))
+
+
+def mobility(mech: Mechanism) -> Mobility:
+    """Numeric mobility at the drawn configuration; no drive needed.
+
+    A file whose data leave the configuration free (no drive angle, nothing
+    drawn on the moving links) is assembled in some consistent configuration,
+    which gives the generic rank.
+
+    Raises
+    ------
+    InputError
+        When the file has no geometry (nothing placed by ``at``).
+    GeometryError
+        When it cannot be assembled.
+
+    Examples
+    --------
+    >>> from mech.kinematics import mobility                    # doctest: +SKIP
+    >>> mobility(mech).numeric                                  # doctest: +SKIP
+    1
+    """
+    if not mech.has_geometry:
+        raise InputError(
+            "numeric mobility needs geometry: nothing in the file is placed",
+            hint="place the ground joints with at and give the links' lengths",
+        )
+    from mech.kinematics.solve import compiled
+
+    comp = compiled(mech, None, allow_free=True)
+    return comp.mobility

@@ -1,0 +1,294 @@
+"""Frozen results of a kinematic solve: link states, point queries, mobility.
+
+Everything is SI (m, rad, m/s, rad/s, m/s², rad/s²), angles counter-clockwise
+from +x, angular quantities counter-clockwise positive.  Mappings are
+read-only views and vectors are tuples, so one analysis cannot corrupt what
+another reads.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from mech.errors import InputError
+from mech.model import Drive
+
+__all__ = ["JointGeom", "Kinematics", "LinkState", "Mobility"]
+
+Vec = tuple[float, float]
+
+_LEVELS = ("position", "velocity", "acceleration")
+
+
+@dataclass(frozen=True, slots=True)
+class LinkState:
+    """Position, velocity and acceleration of one rigid link.
+
+    ``origin`` is a point fixed in the link (its ground pivot or first joint),
+    ``angle`` the direction of its reference line (origin → its next joint;
+    a slider's path direction) in [0, 2π).  ``velocity``/``acceleration`` are
+    those of ``origin``; ``omega``/``alpha`` counter-clockwise positive.
+    Fields of a level not solved are None.
+    """
+
+    name: str
+    origin: Vec
+    angle: float
+    velocity: Vec | None = None
+    omega: float | None = None
+    acceleration: Vec | None = None
+    alpha: float | None = None
+
+    def velocity_at(self, point: Vec) -> Vec:
+        """Velocity (m/s) of the point of this link at global ``point`` (m): v_O + ω × r."""
+        if self.velocity is None or self.omega is None:
+            raise InputError(f"velocities of {self.name} were not solved (ask for level='velocity')")
+        rx, ry = point[0] - self.origin[0], point[1] - self.origin[1]
+        return (self.velocity[0] - self.omega * ry, self.velocity[1] + self.omega * rx)
+
+    def acceleration_at(self, point: Vec) -> Vec:
+        """Acceleration (m/s²) of the point of this link at ``point``: a_O + α × r − ω² r."""
+        if self.acceleration is None or self.alpha is None or self.omega is None:
+            raise InputError(
+                f"accelerations of {self.name} were not solved (ask for level='acceleration')"
+            )
+        rx, ry = point[0] - self.origin[0], point[1] - self.origin[1]
+        w2 = self.omega * self.omega
+        return (
+            self.acceleration[0] - self.alpha * ry - w2 * rx,
+            self.acceleration[1] + self.alpha * rx - w2 * ry,
+        )
+
+
+@dataclass(frozen=True, slots=True)
+class Mobility:
+    """How many ways a mechanism can move, counted two ways.
+
+    Attributes
+    ----------
+    kutzbach
+        ``3(l − 1) − 2j − h`` from the file's links and pairs.
+    numeric
+        ``3n − rank Φ_q`` at the drawn configuration (n moving links): the true
+        mobility, which sees what Kutzbach's count misses (a double
+        parallelogram has kutzbach 0 and numeric 1).  None without geometry.
+    condition
+        Largest over smallest non-zero singular value of Φ_q: how far the
+        configuration is from losing a constraint (large: near a toggle).
+    free
+        Moving links that can move with every drive held still... rather, with no
+        drive: the links the null space of Φ_q touches.
+    locked
+        Moving links that cannot move at all (a rigid structure with ground).
+    redundant
+        Constraint equations that repeat others (rows − rank): over-constraint.
+    notes
+        Remarks (a count that disagrees, the configuration used).
+    """
+
+    kutzbach: int
+    numeric: int | None
+    condition: float
+    free: tuple[str, ...] = ()
+    locked: tuple[str, ...] = ()
+    redundant: int = 0
+    notes: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class JointGeom:
+    """What joint queries need about one joint in the analysed configuration.
+
+    ``point`` is the location of the pair (a revolute's pin, a slider's point,
+    a contact point); ``direction`` a unit vector: a path's direction, or a
+    contact's common tangent (normal turned +90°).
+    """
+
+    name: str
+    type: str
+    links: tuple[str, ...]
+    point: str | None = None
+    direction: Vec | None = None
+    radius: float | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Kinematics:
+    """Positions, velocities and accelerations of a mechanism at one instant.
+
+    Build it with :func:`mech.kinematics.solve`.  Points are looked up by
+    name; a link's state gives the velocity of any point fixed in it.
+
+    Attributes
+    ----------
+    mechanism
+        The mechanism's label (name or file).
+    level
+        ``position``, ``velocity`` or ``acceleration``: how far it was solved.
+    positions
+        Every joint with a location and every named point → (x, y), m.
+    links
+        Every link (ground included) → :class:`LinkState`.
+    size
+        The mechanism's characteristic length: largest distance between two
+        joints in this configuration, m.
+    mobility
+        :class:`Mobility` at the drawn configuration.
+    notes
+        Branch choices made by rule, and warnings.
+    drives
+        The drives used, after command-line overrides: ``angle`` filled in
+        from the drawing where the file gave none, ``omega`` signed
+        (counter-clockwise positive), ``alpha`` 0 where not given.
+    carriers
+        Location → the links it is fixed in (empty for a contact point).
+    joints
+        Joint name → :class:`JointGeom`.
+    """
+
+    mechanism: str
+    level: str
+    positions: Mapping[str, Vec]
+    links: Mapping[str, LinkState]
+    size: float
+    mobility: Mobility
+    notes: tuple[str, ...]
+    drives: tuple[Drive, ...]
+    carriers: Mapping[str, tuple[str, ...]]
+    joints: Mapping[str, JointGeom]
+    ground: str
+
+    # -- helpers -----------------------------------------------------------------
+    def _need(self, level: str) -> None:
+        if _LEVELS.index(self.level) < _LEVELS.index(level):
+            raise InputError(f"{level}s were not solved (solve with level={level!r})")
+
+    def _where(self, name: str) -> Vec:
+        try:
+            return self.positions[name]
+        except KeyError:
+            if name in self.joints:
+                j = self.joints[name]
+                raise InputError(
+                    f"joint {name} is a {j.type} joint with no point of its own"
+                    + (f"; its point is {j.point}" if j.point else ""),
+                    hint=f"use sliding({name!r}) for the speed along it",
+                ) from None
+            known = ", ".join(sorted(self.positions))
+            raise InputError(f"no point named {name}", hint=f"known points: {known}") from None
+
+    def _state(self, link: str) -> LinkState:
+        try:
+            return self.links[link]
+        except KeyError:
+            raise InputError(f"no link named {link}", hint=f"links: {', '.join(self.links)}") from None
+
+    def _choose(self, name: str, link: str | None, what: str) -> LinkState:
+        """The link whose point at ``name`` is meant: given, or the unique carrier."""
+        if link is not None:
+            return self._state(link)
+        carriers = self.carriers.get(name, ())
+        if carriers:
+            moving = [c for c in carriers if c != self.ground]
+            return self._state(moving[0] if moving else carriers[0])
+        joint = self.joints.get(name)
+        choices = joint.links if joint else tuple(self.links)
+        raise InputError(
+            f"{name} is a contact point: the {what} of the points of {' and '.join(choices)} "
+            "there differ",
+            hint=f"name the link: link={choices[0]!r} or link={choices[-1]!r}",
+        )
+
+    # -- queries -----------------------------------------------------------------
+    def velocity(self, name: str, link: str | None = None) -> Vec:
+        """Absolute velocity (m/s) of a point.
+
+        ``link`` picks the link whose coincident point is meant: needed only
+        at a contact point of a higher pair (cam, gear, contact, rolling) whose
+        two links move differently there; any link may be named, giving the
+        velocity of that link's point coincident with ``name`` (for a slotted
+        lever, the lever's point under the slider).
+        """
+        self._need("velocity")
+        p = self._where(name)
+        if link is None and not self.carriers.get(name, ()):
+            joint = self.joints.get(name)
+            if joint is not None:  # rolling: both agree
+                va = self._state(joint.links[0]).velocity_at(p)
+                vb = self._state(joint.links[1]).velocity_at(p)
+                if math.hypot(va[0] - vb[0], va[1] - vb[1]) <= 1e-9 * max(math.hypot(*va), math.hypot(*vb), 1e-300):
+                    return va
+        return self._choose(name, link, "velocities").velocity_at(p)
+
+    def acceleration(self, name: str, link: str | None = None) -> Vec:
+        """Absolute acceleration (m/s²) of a point; ``link`` as in :meth:`velocity`."""
+        self._need("acceleration")
+        return self._choose(name, link, "accelerations").acceleration_at(self._where(name))
+
+    def relative_velocity(
+        self, a: str, b: str, *, link_a: str | None = None, link_b: str | None = None
+    ) -> Vec:
+        """``v_a − v_b`` (m/s): the vector **ba** of the velocity polygon ("velocity of a relative to b")."""
+        va, vb = self.velocity(a, link_a), self.velocity(b, link_b)
+        return (va[0] - vb[0], va[1] - vb[1])
+
+    def relative_acceleration(
+        self, a: str, b: str, *, link_a: str | None = None, link_b: str | None = None
+    ) -> Vec:
+        """``a_a − a_b`` (m/s²)."""
+        aa, ab = self.acceleration(a, link_a), self.acceleration(b, link_b)
+        return (aa[0] - ab[0], aa[1] - ab[1])
+
+    def _joint(self, name: str, types: tuple[str, ...], what: str) -> JointGeom:
+        j = self.joints.get(name)
+        if j is None:
+            raise InputError(f"no joint named {name}", hint=f"joints: {', '.join(self.joints)}")
+        if j.type not in types:
+            raise InputError(f"{what} needs a {' or '.join(types)} joint; {name} is {j.type}")
+        return j
+
+    def sliding(self, joint: str) -> float:
+        """Speed (m/s) of sliding at a joint, signed along its direction.
+
+        Prismatic or slot: the slider point's velocity relative to the guide,
+        along the path (``through → toward``, or ``angle``).  Cam, contact or
+        gear: the slip along the common tangent (normal turned +90°), first
+        link relative to the second.
+        """
+        self._need("velocity")
+        j = self._joint(joint, ("prismatic", "slot", "cam", "contact", "gear", "rolling"), "sliding")
+        p = self.positions[j.point]  # type: ignore[index]
+        a, b = j.links
+        va = self._state(a).velocity_at(p)
+        vb = self._state(b).velocity_at(p)
+        u = j.direction or (1.0, 0.0)
+        return (va[0] - vb[0]) * u[0] + (va[1] - vb[1]) * u[1]
+
+    def rubbing(self, joint: str) -> float:
+        """Rubbing velocity (m/s) at a pin: ``|ω_i − ω_j| · radius``.
+
+        For a pin joining more than two links, the largest over all pairs
+        (the pin rubs fastest in the bearing that turns fastest relative to it).
+        """
+        self._need("velocity")
+        j = self._joint(joint, ("revolute",), "rubbing")
+        if j.radius is None:
+            raise InputError(f"joint {joint} has no radius", hint="add radius: (pin radius) to the joint")
+        omegas = [self._state(lk).omega or 0.0 for lk in j.links]
+        return max(abs(a - b) for a in omegas for b in omegas) * j.radius
+
+    def coriolis(self, joint: str) -> Vec:
+        """Coriolis acceleration (m/s²) at a prismatic or slot joint: ``2 ω_guide × v_slide``.
+
+        It is the term by which the slider point's acceleration differs from
+        that of the coincident guide point, beyond the sliding acceleration
+        along the path: ``a_P = a_P' + a_slide·u + 2 ω × v_slide``.
+        """
+        self._need("velocity")
+        j = self._joint(joint, ("prismatic", "slot"), "coriolis")
+        w = self._state(j.links[1]).omega or 0.0
+        s = self.sliding(joint)
+        u = j.direction or (1.0, 0.0)
+        return (-2.0 * w * s * u[1], 2.0 * w * s * u[0])

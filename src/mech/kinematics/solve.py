@@ -1,0 +1,457 @@
+"""Solve a mechanism at one instant: position (Newton), velocity and acceleration (linear).
+
+Stages:
+
+1. **Drawn configuration** (:mod:`.assemble`): the file's own data, at the
+   file's drive angle.  Compiled once per mechanism into a :class:`System` of
+   constraint rows (cached on the mechanism object's identity).
+2. **Position**: when ``--angle`` asks for another angle, the mechanism is
+   *moved* there from the drawn configuration by Newton–Raphson continuation
+   (steps of at most 15°, each predicted with the velocity solution, halved on
+   failure), so it stays on the drawn assembly branch.  It goes the short way
+   round, then the long way if a limit position blocks the short one.
+3. **Velocity**: ``Φ_q q̇ = −Φ_t``.  **Acceleration**: ``Φ_q q̈ = γ``; the
+   Coriolis terms of a slider on a moving guide come out of γ by themselves.
+
+All in scaled units (lengths / size, time × |ω|), so the tolerances are
+relative and a 1 µm linkage behaves like a 1 km one.  One SVD of Φ_q per
+configuration solves both linear systems and measures its condition: above
+1e10 the configuration is singular (a toggle) and the links the null vector
+moves are named; velocities there are never printed.  A slider crank at dead
+centre is *not* singular for a crank drive (the slider stops, the rod's ω
+is finite) and solves normally.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import OrderedDict
+from dataclasses import dataclass, replace
+from types import MappingProxyType
+
+import numpy as np
+
+from mech.errors import GeometryError, InputError, UnsupportedError
+from mech.kinematics.assemble import Drawn, assemble
+from mech.kinematics.constraints import System, build_system
+from mech.kinematics.geometry import wrap_angle
+from mech.kinematics.layout import CONTACT_TYPES, Layout, layout
+from mech.kinematics.mobility import numeric_mobility
+from mech.kinematics.result import JointGeom, Kinematics, LinkState, Mobility
+from mech.model import Drive, JointType, Mechanism
+from mech.options import SolveOptions
+
+__all__ = ["Compiled", "compiled", "solve"]
+
+LEVELS = ("position", "velocity", "acceleration")
+SINGULAR = 1e10  # condition number of Φ_q above which a configuration is singular
+_MAX_STEP = math.radians(15.0)
+_TWO_PI = 2.0 * math.pi
+
+
+@dataclass(frozen=True, slots=True)
+class Compiled:
+    """Everything about a mechanism that does not depend on the asked angle or speed."""
+
+    mech: Mechanism
+    layout: Layout
+    drawn: Drawn
+    system: System
+    mobility: Mobility
+
+
+_CACHE: OrderedDict[tuple, Compiled] = OrderedDict()
+_CACHE_SIZE = 64
+
+
+def compiled(mech: Mechanism, angles: tuple[float | None, ...] | None, *, allow_free: bool = False) -> Compiled:
+    """Layout, drawn configuration, constraint system and mobility of ``mech`` (cached).
+
+    The cache holds the mechanism object itself, so its identity is a safe
+    key while the entry lives; the model is immutable, so entries never go stale.
+    """
+    key = (id(mech), angles, allow_free)
+    hit = _CACHE.get(key)
+    if hit is not None and hit.mech is mech:
+        _CACHE.move_to_end(key)
+        return hit
+    lay = layout(mech)
+    drawn = assemble(lay, drive_angles=angles, allow_free=allow_free)
+    system = build_system(lay, drawn)
+    mob = numeric_mobility(mech, system, system.q0)
+    comp = Compiled(mech, lay, drawn, system, mob)
+    _CACHE[key] = comp
+    if len(_CACHE) > _CACHE_SIZE:
+        _CACHE.popitem(last=False)
+    return comp
+
+
+def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None = None) -> Kinematics:
+    """Positions, and velocities and accelerations up to ``level``, at the drive's angle.
+
+    Parameters
+    ----------
+    mech
+        The mechanism (SI).
+    level
+        ``"position"``, ``"velocity"`` or ``"acceleration"``.
+    options
+        Overrides of the single drive (angle, omega, direction, alpha) and
+        Newton's tolerance (relative to size) and iteration cap.
+
+    Returns
+    -------
+    Kinematics
+        Frozen result: positions (m), link states, point queries.
+
+    Raises
+    ------
+    InputError
+        No drive speed at velocity level ("give rpm or omega (or --rpm)"),
+        drives that do not match the mobility, drawn data that disagree with
+        given lengths, overrides on a file with several drives.
+    GeometryError
+        No assembly (with the gap, in the file's unit), a location the file
+        leaves free, a singular (toggle) configuration, an angle the
+        mechanism cannot reach.
+    UnsupportedError
+        Screw or spherical pairs; acceleration, or moving the mechanism, with
+        a cam, contact, rolling or gear pair known only at the drawn instant.
+
+    Examples
+    --------
+    >>> kin = solve(mech, level="acceleration")                 # doctest: +SKIP
+    >>> kin.links["rocker"].omega                               # doctest: +SKIP
+    -4.8
+    """
+    options = options or SolveOptions()
+    if level not in LEVELS:
+        raise InputError(f"level must be one of {', '.join(LEVELS)}, not {level!r}")
+    lvl = LEVELS.index(level)
+    overrides = any(v is not None for v in (options.angle, options.omega, options.direction, options.alpha))
+    if overrides and len(mech.drives) != 1:
+        raise InputError(
+            f"--angle, --rpm, --direction and --alpha override a single drive; {mech.label} has "
+            f"{len(mech.drives)} drives",
+            hint="give the drives in the file" if mech.drives else "add drive: {link: ..., angle: ..., rpm: ...}",
+        )
+    stage1 = None
+    if options.angle is not None and mech.drives[0].angle is None and mech.drives[0].link is not None:
+        stage1 = (options.angle,)
+    comp = compiled(mech, stage1)
+    sys_, lay, drawn = comp.system, comp.layout, comp.drawn
+    notes = list(drawn.notes) + list(comp.mobility.notes)
+
+    drives = _drives(mech, lay, drawn, options, lvl)
+    n_drives = len(drives)
+    numeric = comp.mobility.numeric
+    targets = [d.angle for d in drives]
+    moved = any(
+        spec.link is not None and abs(wrap_angle(t - a)) > 1e-15  # type: ignore[operator]
+        for spec, t, a in zip(lay.drives, targets, drawn.drive_angles)
+    )
+    if (lvl > 0 or moved) and numeric is not None and n_drives != numeric:
+        more = n_drives > numeric
+        raise InputError(
+            f"{mech.label} has mobility {numeric} (from the constraint Jacobian's rank) but "
+            f"{n_drives} drive{'s' if n_drives != 1 else ''}: "
+            + ("more drives than it can take" if more else f"give a list of {numeric} drives"),
+            hint=("remove a drive" if more else "drive: [{link: ..., rpm: ...}, ...]"),
+        )
+
+    q = sys_.q0
+    if moved:
+        if sys_.velocity_only:
+            raise UnsupportedError(
+                f"cannot move {mech.label} to another angle: {', '.join(sys_.velocity_only)} "
+                "describe only the instant drawn (no profile is given)",
+                hint="analyse the drawn angle, or draw the mechanism at the angle you need",
+            )
+        q = _move(comp, drives, options)
+        shown = [f"{_deg(a)} → {_deg(t)}" for a, t in zip(drawn.drive_angles, targets) if a is not None]
+        notes.append(f"moved from the drawn angle by continuation ({', '.join(shown)}), keeping its branch")
+
+    omega_ref = _omega_ref(drives, drawn.scale)
+    qd = qdd = None
+    if lvl >= 1:
+        jac = sys_.jacobian(q)
+        svd = _svd_checked(comp, jac, q, drives)
+        rhs = np.zeros(sys_.m)
+        rates = [(d.omega if d.link is not None else d.speed / drawn.scale) / omega_ref for d in drives]  # type: ignore[operator]
+        rhs[sys_.drive_rows] = rates
+        qd = _lin_solve(svd, rhs)
+        if lvl >= 2:
+            if sys_.velocity_only:
+                raise UnsupportedError(
+                    f"accelerations need the curvature of the profiles at "
+                    f"{', '.join(sys_.velocity_only)}: the file gives only the instant's contact "
+                    "point and normal (velocities are available)",
+                    hint="solve with level='velocity'",
+                )
+            gamma = sys_.gamma(q, qd)
+            acc = [
+                (d.alpha if d.link is not None else (d.accel or 0.0) / drawn.scale) / omega_ref**2  # type: ignore[operator]
+                for d in drives
+            ]
+            gamma[sys_.drive_rows] += acc
+            qdd = _lin_solve(svd, gamma)
+    return _result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
+
+
+# -- drives ---------------------------------------------------------------------------
+def _drives(mech: Mechanism, lay: Layout, drawn: Drawn, options: SolveOptions, lvl: int) -> tuple[Drive, ...]:
+    """The drives as used: overrides applied, angle from the drawing, omega signed."""
+    out = []
+    for k, (d, spec) in enumerate(zip(mech.drives, lay.drives)):
+        if spec.link is not None:
+            omega = d.omega
+            if options.omega is not None:
+                sign = -1.0 if (options.direction == "cw" or (options.direction is None and (d.omega or 0) < 0)) else 1.0
+                omega = sign * options.omega
+            elif options.direction is not None and omega is not None:
+                omega = abs(omega) * (-1.0 if options.direction == "cw" else 1.0)
+            angle = options.angle if options.angle is not None else drawn.drive_angles[k]
+            if angle is None:
+                raise InputError(f"drive of {d.link}: no angle given and none can be read from the drawing",
+                                 where=d.where, hint="give drive.angle (or --angle)")
+            alpha = options.alpha if options.alpha is not None else (d.alpha or 0.0)
+            if lvl >= 1 and omega is None:
+                raise InputError(f"drive of {d.link} has no speed: give rpm or omega (or --rpm)", where=d.where)
+            out.append(replace(d, angle=float(angle), omega=omega, alpha=alpha))
+        else:
+            if options.angle is not None:
+                raise InputError(f"--angle applies to a turning drive; the drive of {d.joint} is a slider",
+                                 where=d.where)
+            speed = d.speed
+            if options.omega is not None:
+                speed = math.copysign(options.omega, speed if speed is not None else 1.0)
+            if lvl >= 1 and speed is None:
+                raise InputError(f"slider drive of {d.joint} has no speed: give speed (m/s)", where=d.where)
+            out.append(replace(d, speed=speed, accel=d.accel or 0.0))
+    if lvl >= 1 and not out:
+        raise InputError(f"{mech.label} has no drive: give rpm or omega (or --rpm)",
+                         hint="add drive: {link: crank, angle: 60, rpm: 120}")
+    return tuple(out)
+
+
+def _omega_ref(drives: tuple[Drive, ...], scale: float) -> float:
+    """Time scale 1/ω: the fastest drive (a slider's v/size), 1 when nothing moves."""
+    rates = [abs(d.omega) if d.link is not None else abs(d.speed) / scale for d in drives  # type: ignore[arg-type]
+             if (d.omega if d.link is not None else d.speed) is not None]
+    best = max(rates, default=0.0)
+    return best if best > 0 and math.isfinite(best) else 1.0
+
+
+def _deg(a: float) -> str:
+    return f"{math.degrees(a):.6g}°"
+
+
+# -- linear algebra ---------------------------------------------------------------------
+def _svd_checked(comp: Compiled, jac: np.ndarray, q: np.ndarray, drives: tuple[Drive, ...]) -> tuple:
+    """SVD of Φ_q, refusing a singular configuration with the links that lose their guidance."""
+    u, s, vt = np.linalg.svd(jac, full_matrices=False)
+    n = jac.shape[1]
+    if n == 0:
+        return u, s, vt
+    cond = float(s[0] / s[n - 1]) if s[n - 1] > 0 else math.inf
+    if cond > SINGULAR:
+        raise GeometryError(_singular_message(comp, vt[n - 1], cond, drives),
+                            hint="analyse a slightly different angle: velocities here are undetermined")
+    return u, s, vt
+
+
+def _lin_solve(svd: tuple, rhs: np.ndarray) -> np.ndarray:
+    """x = V Σ⁻¹ Uᵀ b: exact for square systems, least squares for consistent redundant rows."""
+    u, s, vt = svd
+    return vt.T @ ((u.T @ rhs) / s)
+
+
+def _singular_message(comp: Compiled, v: np.ndarray, cond: float, drives: tuple[Drive, ...]) -> str:
+    sys_ = comp.system
+    weight = np.abs(v).reshape(-1, 3).max(axis=1)
+    moving = [sys_.links[i] for i in np.argsort(-weight) if weight[i] > 0.2 * weight.max()]
+    where = ", ".join(f"{d.link} at {_deg(d.angle)}" for d in drives if d.link is not None and d.angle is not None)
+    at = f" ({where})" if where else ""
+    if len(moving) == 2:
+        what = f"{moving[0]} and {moving[1]} are in line"
+    elif len(moving) == 1:
+        what = f"{moving[0]} is not held by its joints"
+    else:
+        what = f"{', '.join(moving)} can move with the drive held (links in line)"
+    return (f"singular configuration of {comp.mech.label}{at}: {what} — a toggle or dead-centre "
+            f"position (condition number {cond:.2g})")
+
+
+# -- position: continuation ----------------------------------------------------------------
+def _move(comp: Compiled, drives: tuple[Drive, ...], options: SolveOptions) -> np.ndarray:
+    """Carry the drawn configuration to the drives' target angles, keeping its branch."""
+    sys_, drawn = comp.system, comp.drawn
+    c_line = sys_.ln_c.copy()
+    base_ang = sys_.ang_c.copy()
+    offset = 2 * sys_.pc_i.size + sys_.ln_s.size
+    deltas = np.zeros(len(drives))
+    rows = []
+    for k, (d, a) in enumerate(zip(drives, drawn.drive_angles)):
+        rows.append(sys_.drive_rows[k] - offset)
+        if d.link is not None and a is not None:
+            deltas[k] = wrap_angle(d.angle - a)  # type: ignore[operator]
+    tries = [deltas]
+    if np.count_nonzero(deltas) == 1:
+        k = int(np.flatnonzero(deltas)[0])
+        other = deltas.copy()
+        other[k] -= math.copysign(_TWO_PI, deltas[k])
+        tries.append(other)
+    failure = None
+    for total in tries:
+        q, reached = _continue(sys_, sys_.q0, base_ang, c_line, rows, total, options)
+        if q is not None:
+            return q
+        failure = (failure or reached) if failure is not None else reached
+    raise GeometryError(_unreachable_message(comp, drives, failure))
+
+
+def _continue(sys_: System, q: np.ndarray, base_ang: np.ndarray, c_line: np.ndarray, rows: list[int],
+              total: np.ndarray, options: SolveOptions) -> tuple[np.ndarray | None, float]:
+    """Step the drive angles from 0 to ``total`` (rad); returns (q, 1.0) or (None, fraction reached)."""
+    done, step = 0.0, min(1.0, _MAX_STEP / max(float(np.max(np.abs(total))), 1e-300))
+    rhs_rows = sys_.drive_rows
+    while done < 1.0:
+        h = min(step, 1.0 - done)
+        # predictor: q̇ for a unit rate along the total change
+        jac = sys_.jacobian(q)
+        rhs = np.zeros(sys_.m)
+        rhs[rhs_rows] = total
+        pred = q + h * np.linalg.lstsq(jac, rhs, rcond=None)[0]
+        c_ang = base_ang.copy()
+        c_ang[rows] += (done + h) * total
+        q_new = _newton(sys_, pred, c_line, c_ang, options)
+        if q_new is None:
+            step = h / 2.0
+            if step * float(np.max(np.abs(total))) < 1e-7:
+                return None, done
+            continue
+        q, done = q_new, done + h
+        step = min(step * 2.0, 1.0)
+        step = min(step, _MAX_STEP / max(float(np.max(np.abs(total))), 1e-300))
+    return q, 1.0
+
+
+def _newton(sys_: System, q: np.ndarray, c_line: np.ndarray, c_ang: np.ndarray,
+            options: SolveOptions) -> np.ndarray | None:
+    """Newton–Raphson on Φ(q) = 0 (scaled); None when it does not converge quadratically."""
+    square = sys_.m == q.size
+    prev = math.inf
+    for _ in range(options.max_iter):
+        r = sys_.phi(q, c_line, c_ang)
+        norm = float(np.max(np.abs(r))) if r.size else 0.0
+        if norm <= options.tol:
+            return q
+        if not math.isfinite(norm) or norm > 0.5 * prev and prev < 1e-3:
+            return None
+        prev = norm
+        jac = sys_.jacobian(q)
+        try:
+            dq = np.linalg.solve(jac, -r) if square else np.linalg.lstsq(jac, -r, rcond=None)[0]
+        except np.linalg.LinAlgError:
+            return None
+        if float(np.max(np.abs(dq))) > 1.0:  # more than a mechanism size: lost
+            return None
+        q = q + dq
+    r = sys_.phi(q, c_line, c_ang)
+    return q if float(np.max(np.abs(r))) <= options.tol else None
+
+
+def _unreachable_message(comp: Compiled, drives: tuple[Drive, ...], reached: float | None) -> str:
+    d = next(d for d in drives if d.link is not None)
+    a = comp.drawn.drive_angles[0]
+    limit = ""
+    if reached is not None and a is not None and d.angle is not None:
+        stop = a + reached * wrap_angle(d.angle - a)
+        limit = f"; moving {d.link} from the drawn {_deg(a)} it locks near {_deg(stop)} (a limit position)"
+    return (f"{comp.mech.label} cannot be assembled with {d.link} at {_deg(d.angle)}: the loop cannot "
+            f"close on its drawn branch{limit}")
+
+
+# -- results -----------------------------------------------------------------------------
+def _result(comp: Compiled, level: str, q: np.ndarray, qd: np.ndarray | None, qdd: np.ndarray | None,
+            omega_ref: float, moved: bool, notes: tuple[str, ...], drives: tuple[Drive, ...]) -> Kinematics:
+    sys_, lay, mech = comp.system, comp.layout, comp.mech
+    scale, centre = sys_.scale, sys_.centre
+    v_unit, a_unit = scale * omega_ref, scale * omega_ref**2
+
+    positions: dict[str, tuple[float, float]] = {}
+    for name in lay.carriers:
+        if name in sys_.local or (name in sys_.contact_xy and not moved):
+            p = sys_.point(q, name) * scale + centre
+            positions[name] = (float(p[0]), float(p[1]))
+    for alias, target in lay.alias.items():
+        if target in positions:
+            positions[alias] = positions[target]
+
+    links: dict[str, LinkState] = {}
+    for lk in mech.links:
+        if lk.is_ground:
+            gpts = [positions[n] for n in lay.on_link.get(lk.name, ()) if n in positions]
+            origin = gpts[0] if gpts else (float(centre[0]), float(centre[1]))
+            zero = (0.0, 0.0) if qd is not None else None
+            links[lk.name] = LinkState(lk.name, origin, 0.0, zero, 0.0 if qd is not None else None,
+                                       (0.0, 0.0) if qdd is not None else None, 0.0 if qdd is not None else None)
+            continue
+        i = sys_.links.index(lk.name)
+        x, y, th = q[3 * i : 3 * i + 3]
+        state = LinkState(
+            lk.name,
+            (float(x * scale + centre[0]), float(y * scale + centre[1])),
+            float(th % _TWO_PI),
+        )
+        if qd is not None:
+            state = replace(state, velocity=(float(qd[3 * i] * v_unit), float(qd[3 * i + 1] * v_unit)),
+                            omega=float(qd[3 * i + 2] * omega_ref))
+        if qdd is not None:
+            state = replace(state, acceleration=(float(qdd[3 * i] * a_unit), float(qdd[3 * i + 1] * a_unit)),
+                            alpha=float(qdd[3 * i + 2] * omega_ref**2))
+        links[lk.name] = state
+
+    joints: dict[str, JointGeom] = {}
+    for j in mech.joints:
+        direction = None
+        point: str | None = lay.resolve(j.name) if lay.resolve(j.name) in positions else None
+        if j.name in sys_.path_dirs:
+            g, u = sys_.path_dirs[j.name]
+            th = 0.0 if g == sys_.n else q[3 * g + 2]
+            c, s = math.cos(th), math.sin(th)
+            direction = (float(c * u[0] - s * u[1]), float(s * u[0] + c * u[1]))
+            point = sys_.path_points[j.name][1]
+        elif j.type in CONTACT_TYPES and j.normal is not None:
+            direction = (-math.sin(j.normal), math.cos(j.normal))
+        joints[j.name] = JointGeom(j.name, j.type.value, tuple(j.links), point, direction, j.radius)
+
+    carriers = dict(lay.carriers)
+    for alias, target in lay.alias.items():
+        carriers[alias] = carriers.get(target, ())
+    return Kinematics(
+        mechanism=mech.label,
+        level=level,
+        positions=MappingProxyType(positions),
+        links=MappingProxyType(links),
+        size=_size(positions, lay),
+        mobility=comp.mobility,
+        notes=notes,
+        drives=drives,
+        carriers=MappingProxyType(carriers),
+        joints=MappingProxyType(joints),
+        ground=mech.ground,
+    )
+
+
+def _size(positions: dict[str, tuple[float, float]], lay: Layout) -> float:
+    """Largest distance between two joints (all located points if fewer than two joints)."""
+    joint_names = {j.name for j in lay.mech.joints if j.type is not JointType.PRISMATIC}
+    pts = [p for n, p in positions.items() if n in joint_names]
+    if len(pts) < 2:
+        pts = list(positions.values())
+    if len(pts) < 2:
+        return 0.0
+    a = np.array(pts)
+    d = a[:, None, :] - a[None, :, :]
+    return float(np.sqrt(np.max(np.sum(d * d, axis=-1))))

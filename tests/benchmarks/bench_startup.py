@@ -1,0 +1,57 @@
+"""Cold start of mech, measured in fresh subprocesses; prints a table of medians.
+
+    python tests/benchmarks/bench_startup.py [--repeat 21]
+
+Compares bare Python, ``import mech.cli``, and whole ``mech dof`` / ``mech classify``
+runs on a shipped example, and (for contrast) ``import numpy`` and ``import rich``,
+which ``mech dof`` does not pay for.  Medians, because the machine is shared.
+"""
+
+from __future__ import annotations
+
+import argparse
+import platform
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLE = str(ROOT / "mechanisms" / "four_bar.yaml")
+
+CASES: list[tuple[str, list[str]]] = [
+    ("python -c pass", ["-c", "pass"]),
+    ("import mech.cli", ["-c", "import mech.cli"]),
+    ("mech dof four_bar.yaml", ["-m", "mech", "dof", EXAMPLE]),
+    ("mech dof --json four_bar.yaml", ["-m", "mech", "dof", "--json", EXAMPLE]),
+    ("mech classify four_bar.yaml", ["-m", "mech", "classify", EXAMPLE]),
+    ("import numpy (not paid by dof)", ["-c", "import numpy"]),
+    ("import rich.table (paid by tables)", ["-c", "import rich.table, rich.console"]),
+]
+
+
+def measure(args: list[str], repeat: int) -> list[float]:
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        subprocess.run([sys.executable, *args], check=True, capture_output=True)
+        times.append(time.perf_counter() - start)
+    return times
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--repeat", type=int, default=21)
+    args = parser.parse_args()
+    base = statistics.median(measure(CASES[0][1], args.repeat))
+    print(f"cold start, median of {args.repeat} runs; Python {platform.python_version()}, {platform.machine()}")
+    print(f"{'case':40} {'median ms':>10} {'min ms':>8} {'× bare python':>14}")
+    for label, argv in CASES:
+        t = measure(argv, args.repeat)
+        med = statistics.median(t)
+        print(f"{label:40} {med * 1e3:10.1f} {min(t) * 1e3:8.1f} {med / base:14.2f}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,190 @@
+"""The command line: exit statuses, stderr messages, JSON, plain output, start-up imports."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from mech import __version__
+
+ROOT = Path(__file__).resolve().parent.parent
+FOUR_BAR = str(ROOT / "mechanisms" / "four_bar.yaml")
+BAD = "links: [frame, crank]\njoints:\n  A: {type: revolute, links: [frame, crankk]}\n"
+
+
+def test_version(run):
+    result = run("--version")
+    assert result.exit_code == 0
+    assert result.output.strip() == f"mech {__version__}"
+
+
+def test_every_command_has_help(run):
+    from mech.cli import cli
+
+    for name in cli.commands:
+        result = run(name, "--help")
+        assert result.exit_code == 0, name
+        assert "Usage: mech " + name in result.output
+
+
+def test_dof_prints_the_worked_count(run):
+    result = run("dof", FOUR_BAR)
+    assert result.exit_code == 0
+    assert "n = 3(4 − 1) − 2·4 − 0 = 1" in result.output
+    assert "constrained mechanism" in result.output
+    assert "Grübler" in result.output
+
+
+def test_dof_json_structure(run):
+    result = run("dof", "--json", FOUR_BAR)
+    data = json.loads(result.output)
+    assert data["dof"] == 1 and data["links"] == 4 and data["equivalent_binary_joints"] == 4
+    assert data["higher_pairs"] == 0 and data["kind"] == "constrained" and data["chain"] == "four-bar"
+    assert data["grubler"]["satisfied"] is True
+    assert data["icentres"] == 6
+
+
+def test_bad_file_exits_2_with_location_and_no_traceback(run, write):
+    path = write(BAD)
+    result = run("dof", str(path))
+    assert result.exit_code == 2
+    assert f"{path}:3:38: error: joint A names unknown link 'crankk'" in result.stderr
+    assert "hint: did you mean 'crank'?" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert result.stdout == ""
+
+
+def test_several_files_one_bad_still_counts_the_others(run, write):
+    bad = write(BAD, "bad.yaml")
+    result = run("dof", FOUR_BAR, str(bad), str(ROOT / "mechanisms" / "five_bar.yaml"))
+    assert result.exit_code == 2
+    assert "four_bar.yaml" in result.stdout and "five_bar.yaml" in result.stdout
+    assert "bad.yaml:3:38" in result.stderr
+
+
+def test_several_files_json_has_an_error_entry(run, write):
+    bad = write(BAD, "bad.yaml")
+    result = run("dof", "--json", FOUR_BAR, str(bad))
+    data = json.loads(result.stdout)
+    assert [d.get("dof") for d in data] == [1, None]
+    problem = data[1]["error"]["problems"][0]
+    assert (problem["line"], problem["column"]) == (3, 38)
+
+
+def test_missing_file_exits_2(run, tmp_path):
+    result = run("dof", str(tmp_path / "nope.yaml"))
+    assert result.exit_code == 2
+    assert "no such file" in result.stderr
+
+
+def test_default_file_is_mechanism_yaml(run, tmp_path, monkeypatch):
+    (tmp_path / "mechanism.yaml").write_text(Path(FOUR_BAR).read_text())
+    monkeypatch.chdir(tmp_path)
+    result = run("dof")
+    assert result.exit_code == 0 and "= 1" in result.output
+    result = run("classify")
+    assert result.exit_code == 0
+
+
+def test_dash_reads_standard_input(run):
+    result = run("dof", "-", input=Path(FOUR_BAR).read_text())
+    assert result.exit_code == 0 and "n = 3(4 − 1) − 2·4 − 0 = 1" in result.output
+    result = run("dof", "-", input=BAD)
+    assert result.exit_code == 2 and "<stdin>:3:38" in result.stderr
+
+
+def test_classify_lists_pairs(run):
+    result = run("classify", FOUR_BAR)
+    assert result.exit_code == 0
+    assert "turning" in result.output and "lower" in result.output and "self-closed" in result.output
+    data = json.loads(run("classify", "--json", FOUR_BAR).output)
+    assert {p["joint"] for p in data["pairs"]} == {"A", "B", "C", "D"}
+    assert all(p["counts_in"] == "j" for p in data["pairs"])
+
+
+def test_unknown_option_is_a_usage_error(run):
+    result = run("dof", "--frobnicate", FOUR_BAR)
+    assert result.exit_code == 2
+
+
+def test_schema_is_draft07_and_accepts_every_example(run):
+    jsonschema = pytest.importorskip("jsonschema")
+    import yaml
+
+    schema = json.loads(run("schema").output)
+    jsonschema.Draft7Validator.check_schema(schema)
+    validator = jsonschema.Draft7Validator(schema)
+    for path in sorted((ROOT / "mechanisms").glob("*.yaml")):
+        errors = list(validator.iter_errors(yaml.safe_load(path.read_text())))
+        assert not errors, (path.name, [e.message for e in errors][:3])
+
+
+def test_schema_rejects_an_unknown_key(run):
+    jsonschema = pytest.importorskip("jsonschema")
+    schema = json.loads(run("schema").output)
+    doc = {
+        "links": ["frame", "crank"],
+        "joints": {"A": {"type": "revolute", "links": ["frame", "crank"]}},
+        "linkz": 1,
+    }
+    assert not jsonschema.Draft7Validator(schema).is_valid(doc)
+
+
+def _run_subprocess(*args: str, env: dict[str, str] | None = None, input: str | None = None):
+    return subprocess.run(
+        [sys.executable, *args],
+        capture_output=True,
+        text=True,
+        env={**os.environ, **(env or {})},
+        input=input,
+        check=False,
+    )
+
+
+def test_python_dash_m_mech_works_and_is_plain_when_piped():
+    result = _run_subprocess("-m", "mech", "dof", FOUR_BAR)
+    assert result.returncode == 0, result.stderr
+    assert "\x1b[" not in result.stdout  # no colour codes when not a terminal
+    assert "n = 3(4 − 1) − 2·4 − 0 = 1" in result.stdout
+
+
+def test_no_color_gives_plain_text_even_when_forced_terminal():
+    result = _run_subprocess(
+        "-m", "mech", "dof", FOUR_BAR, env={"NO_COLOR": "1", "FORCE_COLOR": "", "TTY_COMPATIBLE": "1"}
+    )
+    assert result.returncode == 0
+    assert "\x1b[" not in result.stdout
+
+
+def test_dof_does_not_import_numpy():
+    code = (
+        "import sys; from mech.cli import main\n"
+        "try:\n    main(['dof', sys.argv[1]])\nexcept SystemExit:\n    pass\n"
+        "heavy = sorted(m for m in ('numpy', 'scipy') if m in sys.modules)\n"
+        "print('HEAVY=' + ','.join(heavy))\n"
+    )
+    result = _run_subprocess("-c", code, FOUR_BAR)
+    assert "HEAVY=\n" in result.stdout or result.stdout.rstrip().endswith("HEAVY="), (
+        result.stdout + result.stderr
+    )
+
+
+def test_import_mech_and_cli_is_light():
+    code = (
+        "import sys, mech, mech.cli; print(sorted(m for m in ('numpy', 'rich', 'yaml') if m in sys.modules))"
+    )
+    result = _run_subprocess("-c", code)
+    assert result.stdout.strip() == "[]", result.stdout + result.stderr
+
+
+def test_library_use_without_cli():
+    import mech
+
+    m = mech.load(FOUR_BAR)
+    assert mech.dof(m).n == 1
+    assert mech.classify(m).chain == "four-bar"

@@ -1,0 +1,56 @@
+"""cli.md and README.md cannot drift from the commands they describe."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+from pathlib import Path
+
+import click
+import pytest
+
+from mech.cli import cli
+
+ROOT = Path(__file__).resolve().parent.parent
+CLI_MD = (ROOT / "cli.md").read_text(encoding="utf-8")
+README = (ROOT / "README.md").read_text(encoding="utf-8")
+
+
+def section(name: str) -> str:
+    """The text of cli.md from the heading that names ``mech <name>`` to the next heading."""
+    for match in re.finditer(r"^## (.+)$", CLI_MD, flags=re.M):
+        if re.search(rf"\b{name}\b", match.group(1)):
+            rest = CLI_MD[match.end() :]
+            end = re.search(r"^## ", rest, flags=re.M)
+            return rest[: end.start()] if end else rest
+    raise AssertionError(f"cli.md has no section for mech {name}")
+
+
+@pytest.mark.parametrize("name", sorted(cli.commands))
+def test_every_command_and_option_is_documented(name):
+    text = section(name)
+    command = cli.commands[name]
+    for param in command.params:
+        if isinstance(param, click.Option):
+            assert any(opt in text for opt in param.opts), f"cli.md, mech {name}: {param.opts} missing"
+    assert f"`mech {name}`" in CLI_MD or f"mech {name}" in CLI_MD
+
+
+def test_readme_starts_with_the_two_commands_ci_runs():
+    block = re.search(r"```sh\n(.*?)\n```", README, flags=re.S)
+    assert block is not None and README.index(block.group(0)) < 200
+    lines = [ln for ln in block.group(1).splitlines() if ln.strip()]
+    assert len(lines) == 2
+    assert "pip install ." in lines[0] and "mech " in lines[0]
+    assert "pytest" in lines[1]
+    ci = (ROOT / ".ci" / "run").read_text()
+    assert "README.md" in ci
+
+
+def test_readme_commands_mention_shipped_examples():
+    for path in re.findall(r"mechanisms/[\w.]+\.yaml", README + CLI_MD):
+        assert (ROOT / path).exists(), path
+
+
+def test_ci_script_is_valid_bash():
+    subprocess.run(["bash", "-n", str(ROOT / ".ci" / "run")], check=True)
