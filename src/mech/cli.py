@@ -338,6 +338,186 @@ def acceleration(
     )
 
 
+@cli.command()
+@kinematic_options
+@handles_errors
+def icentres(
+    file: str,
+    rpm: float | None,
+    omega: float | None,
+    angle: float | None,
+    direction: str | None,
+    tol: float,
+    unit_system: str,
+    as_json: bool,
+) -> None:
+    """Locate all n(n−1)/2 instantaneous centres at the crank angle.
+
+    Primary I-centres by inspection (pins, sliders, rolling contacts), the
+    rest by the Aronhold-Kennedy theorem, each checked against the velocity
+    solution; then every link's ω by the I-centre method beside the solver's.
+    """
+    from mech.icentres import locate
+    from mech.kinematics import solve
+    from mech.loader import load
+    from mech.options import OutputUnits
+
+    mechanism = load(file)
+    kin = solve(mechanism, level="velocity", options=_solve_options(rpm, omega, angle, direction, tol))
+    result = locate(mechanism, kin)
+    units = OutputUnits.named(unit_system)
+    if as_json:
+        from mech.render.icentres import icentres_dict
+        from mech.render.jsonout import dumps
+
+        click.echo(dumps(icentres_dict(result, units=units, file=file)))
+        return
+    from mech.render.console import stdout
+    from mech.render.icentres import icentres_table
+
+    icentres_table(result, stdout(), units=units)
+
+
+# -- checking answers -----------------------------------------------------------------
+@cli.command(name="check")
+@click.argument("paths", nargs=-1, required=True, type=click.Path(exists=True))
+@click.option(
+    "--answers",
+    "answers",
+    type=click.Path(exists=True),
+    help="A student's answer sheet, or a folder of sheets (one per student) to check a class.",
+)
+@click.option(
+    "-j",
+    "--jobs",
+    type=click.IntRange(min=1),
+    default=None,
+    help="Worker processes (default: one per CPU core; 1: no pool).",
+)
+@click.option("--junit", type=click.Path(dir_okay=False), help="Also write JUnit XML (one testcase per answer).")
+@click.option(
+    "--gradescope", type=click.Path(dir_okay=False), help="Also write a Gradescope autograder results.json."
+)
+@click.option(
+    "--csv", "csv_path", type=click.Path(dir_okay=False), help="Also write a CSV gradebook (student, problem …)."
+)
+@click.option("-q", "--quiet", is_flag=True, help="List only answers that failed or could not be computed.")
+@json_option
+@handles_errors
+def check_command(
+    paths: Sequence[str],
+    answers: str | None,
+    jobs: int | None,
+    junit: str | None,
+    gradescope: str | None,
+    csv_path: str | None,
+    quiet: bool,
+    as_json: bool,
+) -> None:
+    """Check claimed answers against computed ones: files, folders, answer sheets.
+
+    Every file under PATHS (recursively, *.yaml and *.yml) with an `answers`
+    section is analysed, computing only what the answers ask; each answer
+    passes, fails (with the computed value and the error) or is an error (it
+    could not be computed, or the file could not be read).  Exit status 0 when
+    all pass, 1 when any fails or errors, 2 on a usage error.
+    """
+    import os
+
+    from mech.batch import CheckOptions, run
+
+    if gradescope and answers and os.path.isdir(answers):
+        raise click.UsageError(
+            "--gradescope writes one submission's results.json; for a folder of sheets use --csv or --json"
+        )
+    options = CheckOptions(paths=tuple(paths), answers=answers, jobs=jobs)
+    from mech.render.check import progress
+
+    with progress() as (start, advance):
+        report = run(options, on_start=start, on_result=advance)
+    from mech.render import check as render
+
+    outputs = (
+        (junit, render.junit_xml),
+        (gradescope, lambda r: render.dumps(render.gradescope_dict(r)) + "\n"),
+        (csv_path, render.csv_text),
+    )
+    for target, make in outputs:
+        if target:
+            _write(target, make(report))
+    if as_json:
+        click.echo(render.dumps(render.report_dict(report)))
+    else:
+        from mech.render.console import stdout
+
+        render.check_table(report, stdout(), quiet=quiet)
+    sys.exit(report.exit_status)
+
+
+def _write(path: str, text: str) -> None:
+    """Write a report file; a path that cannot be written is bad input (exit 2)."""
+    from mech.errors import InputError, Where
+
+    try:
+        with open(path, "w", encoding="utf-8", newline="") as f:
+            f.write(text)
+    except OSError as exc:
+        raise InputError(f"cannot write {path}: {exc.strerror}", where=Where(path)) from None
+
+
+# -- drawings -------------------------------------------------------------------------
+@cli.command(name="draw")
+@kinematic_options
+@click.option(
+    "-o", "--output", required=True, type=click.Path(dir_okay=False), help="The drawing to write: .svg or .png."
+)
+@click.option("--velocity", is_flag=True, help="Add the velocity polygon (o, a, b …) beside the configuration.")
+@click.option("--acceleration", is_flag=True, help="Add the acceleration polygon with its components.")
+@click.option("--icentres", "with_icentres", is_flag=True, help="Mark the I-centres on the configuration.")
+@click.option("--alpha", type=float, help="Crank angular acceleration in rad/s², counter-clockwise positive.")
+@handles_errors
+def draw_command(
+    file: str,
+    rpm: float | None,
+    omega: float | None,
+    angle: float | None,
+    direction: str | None,
+    tol: float,
+    unit_system: str,
+    as_json: bool,
+    output: str,
+    velocity: bool,
+    acceleration: bool,
+    with_icentres: bool,
+    alpha: float | None,
+) -> None:
+    """Draw the configuration diagram to scale, with polygons and I-centres on request.
+
+    SVG is written by mech itself; PNG needs the optional matplotlib
+    (pip install 'planar-mech[plot]').
+    """
+    from mech.options import OutputUnits
+    from mech.render.draw import draw_file
+
+    if alpha is not None and not math.isfinite(alpha):
+        from mech.errors import InputError
+
+        raise InputError("--alpha must be a finite number")
+    summary = draw_file(
+        file,
+        output,
+        options=_solve_options(rpm, omega, angle, direction, tol, alpha),
+        velocity=velocity,
+        acceleration=acceleration,
+        icentres=with_icentres,
+        units=OutputUnits.named(unit_system),
+    )
+    if as_json:
+        from mech.render.jsonout import dumps
+
+        click.echo(dumps(summary))
+
+
 def main(argv: Sequence[str] | None = None) -> None:
     """Entry point of the ``mech`` console script and ``python -m mech``."""
     cli.main(args=list(argv) if argv is not None else None, prog_name="mech")

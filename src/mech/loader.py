@@ -47,7 +47,7 @@ from mech.model import (
 )
 from mech.units import Dimension, known_units, parse_number, parse_quantity, unit_factor
 
-__all__ = ["load", "loads"]
+__all__ = ["load", "loads", "parse_answers"]
 
 _YamlLoader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
@@ -148,6 +148,34 @@ def loads(text: str | bytes, *, path: str = "<string>") -> Mechanism:
                 hint="save the file as UTF-8",
             ) from None
     return _Reader(text, path).read()
+
+
+def parse_answers(
+    node: yaml.Node, mechanism: Mechanism, *, path: str, source: str | None = None
+) -> tuple[tuple[Claim, ...], Tolerance]:
+    """Read an ``answers`` mapping written outside the mechanism's own file.
+
+    ``mech check --answers SHEET`` reads a student's sheet (problem → answers)
+    and validates each answers mapping exactly as the loader validates a
+    file's own ``answers``: the same key grammar, names checked against
+    ``mechanism``, units against the quantity.  ``node`` is the mapping node
+    PyYAML composed from the sheet; ``path`` and ``source`` are the sheet's,
+    so every problem points into the sheet with a caret.
+
+    Returns the claims and the ``tolerance`` the mapping sets (2% if none).
+
+    Raises
+    ------
+    InputError
+        With every problem in the mapping at once.
+    """
+    reader = _Reader(source or "", path)
+    claims, tolerance = reader.guard(
+        lambda: reader._answers(node, mechanism.links, list(mechanism.joints), list(mechanism.points)),
+        ([], Tolerance(0.02)),
+    )
+    reader.fail()
+    return tuple(claims), tolerance
 
 
 # --------------------------------------------------------------------------------------

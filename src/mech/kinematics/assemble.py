@@ -30,7 +30,7 @@ Errors, all in the file's length unit:
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -41,7 +41,7 @@ from mech.kinematics.layout import Layout
 from mech.model import JointType, Placement, Ref
 from mech.units import to_unit
 
-__all__ = ["Drawn", "assemble"]
+__all__ = ["Drawn", "assemble", "gear_centre", "gear_pitch_points"]
 
 _AGREE = 1e-6  # drawn vs given data: relative to size
 _CONVERGED = 1e-12  # Gauss-Newton residual, relative to size
@@ -69,6 +69,10 @@ class Drawn:
     drive_angles: tuple[float | None, ...]
     scale: float
     notes: tuple[str, ...]
+
+
+#: residual (rows,) and Jacobian (rows, 2·unknowns) of all equations at scaled positions x
+_System = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
 
 
 # -- equations ----------------------------------------------------------------------
@@ -129,6 +133,18 @@ class _OnLineToward(_Eq):
         gp = np.array([-w[1], w[0]]) / m
         gq = np.array([z[1], -z[0]]) / m - c * w / m**3
         return np.array([c / m]), [gp[None, :], (-gp - gq)[None, :], gq[None, :]]
+
+
+class _Same(_Eq):
+    """``p = t``: a slider's synthetic point drawn at its path's ``through``."""
+
+    rows = 2
+
+    def __init__(self, pt: str, t: str, text: str) -> None:
+        self.names, self.text = (pt, t), text
+
+    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
+        return p[0] - p[1], [np.eye(2), -np.eye(2)]
 
 
 class _Rel(_Eq):
@@ -238,6 +254,9 @@ def assemble(
     for ps in lay.paths:
         t = ref_name(ps.joint, "through", ps.path.through)
         text = f"{ps.point} on the path of {ps.type.value} joint {ps.joint}"
+        if ps.point.startswith("#"):
+            eqs.append(_Same(ps.point, t, f"the point of {ps.slider} on the path of {ps.joint}"))
+            continue
         if ps.path.toward is not None:
             eqs.append(_OnLineToward(ps.point, t, ref_name(ps.joint, "toward", ps.path.toward), text))
         elif ps.path.angle is not None:
@@ -251,8 +270,14 @@ def assemble(
         else:
             u, v = (pl.distance or 0.0), 0.0
         eqs.append(
-            _Rel(name, lay.resolve(pl.origin), lay.resolve(pl.toward), u / scale, v / scale,
-                 f"{name} placed from {pl.origin} toward {pl.toward}")
+            _Rel(
+                name,
+                lay.resolve(pl.origin),
+                lay.resolve(pl.toward),
+                u / scale,
+                v / scale,
+                f"{name} placed from {pl.origin} toward {pl.toward}",
+            )
         )
 
     # Every name an equation uses must be a location.
@@ -279,7 +304,8 @@ def assemble(
 
     # -- first guess by closed-form construction
     guess, notes, gaps = _construct(lay, eqs, scaled_known, near, centre, scale)
-    unknown = [n for n in lay.carriers if n not in scaled_known]
+    # Contact points of higher pairs are data of the instant (``at``), never unknowns.
+    unknown = [n for n, c in lay.carriers.items() if c and n not in scaled_known]
     col = {n: i for i, n in enumerate(unknown)}
     x = np.concatenate([guess[n] for n in unknown]) if unknown else np.zeros(0)
     live = [e for e in eqs if any(n in col for n in e.names)]
@@ -293,7 +319,7 @@ def assemble(
             pos = [xv[2 * col[n] : 2 * col[n] + 2] if n in col else scaled_known[n] for n in e.names]
             r, grads = e.value(pos)
             res[row : row + e.rows] = r
-            for n, g in zip(e.names, grads):
+            for n, g in zip(e.names, grads, strict=False):
                 if n in col:
                     jac[row : row + e.rows, 2 * col[n] : 2 * col[n] + 2] += g
             row += e.rows
@@ -303,8 +329,13 @@ def assemble(
     if unknown:
         x, res, jac = _gauss_newton(system, x)
         worst = float(np.max(np.abs(res))) if res.size else 0.0
-        if worst > _ACCEPT:
+        if worst > _AGREE:
             raise GeometryError(_no_assembly(mech.label, live, res, gaps, scale, fmt))
+        if worst > _ACCEPT:  # drawn data rounded to a few decimals: agree to drawing precision
+            notes.append(
+                f"the drawing and the given lengths/angles agree to {fmt(worst * scale)} "
+                f"(within {_AGREE:g} of the size); least-squares positions used"
+            )
         if allow_free:
             if jac.shape[0] < x.size or np.linalg.matrix_rank(jac, tol=1e-8) < x.size:
                 notes.append("the file leaves the configuration free: one consistent configuration used")
@@ -316,12 +347,16 @@ def assemble(
         p = x[2 * col[n] : 2 * col[n] + 2] * scale + centre
         positions[n] = (float(p[0]), float(p[1]))
 
-    # Drive angles not given: read from the drawing.
+    # Drive angles not given: read from the drawing; a disc with only its pivot
+    # (a cam, a gear) has no line to read, and its drawn angle is taken as 0.
     for k, spec in enumerate(lay.drives):
-        if resolved_angles[k] is None and spec.link is not None and spec.toward is not None:
+        if resolved_angles[k] is None and spec.link is not None:
+            if spec.toward is None:
+                resolved_angles[k] = 0.0
+                continue
             o, b = positions[spec.pivot], positions[spec.toward]  # type: ignore[index]
             resolved_angles[k] = math.atan2(b[1] - o[1], b[0] - o[0])
-    _gear_pitch_points(lay, positions)
+    gear_pitch_points(lay, positions)
     return Drawn(positions, tuple(resolved_angles), scale, tuple(notes))
 
 
@@ -343,7 +378,7 @@ def _construct(
     hint = {n: (np.asarray(v, dtype=float) - centre) / scale for n, v in near.items()}
     notes: list[str] = []
     gaps: list[str] = []
-    unknown = [n for n in lay.carriers if n not in pos]
+    unknown = [n for n, c in lay.carriers.items() if c and n not in pos]
 
     def pick(name: str, candidates: list[tuple[float, float] | None], rule: str) -> np.ndarray:
         cands = [np.array(c) for c in candidates if c is not None]
@@ -364,6 +399,9 @@ def _construct(
                 others = [m for m in e.names if m != n]
                 if not all(m in pos for m in others):
                     continue
+                if isinstance(e, _Same) and e.names[0] == n:
+                    found = pos[e.names[1]]
+                    break
                 if isinstance(e, _Rel) and e.names[0] == n:
                     o, t = pos[e.names[1]], pos[e.names[2]]
                     w = t - o
@@ -371,6 +409,19 @@ def _construct(
                     ev = w / m
                     found = o + e.u * ev + e.v * np.array([-ev[1], ev[0]])
                     break
+                if isinstance(e, _OnLineToward) and e.names[2] == n:
+                    # a guide's far end Q: at its length from T, on the ray T → P (the slider's side)
+                    t, p = pos[e.names[1]], pos[e.names[0]]
+                    lengths = [d for d in mine if isinstance(d, _Dist) and set(d.names) == {n, e.names[1]}]
+                    w = p - t
+                    m = float(np.hypot(*w))
+                    if lengths and m > 0:
+                        found = pick(
+                            n,
+                            [tuple(t + lengths[0].length * w / m), tuple(t - lengths[0].length * w / m)],
+                            f"on the ray {e.names[1]}→{e.names[0]}",
+                        )
+                        break
                 if isinstance(e, _Dir) and e.names[1] == n:
                     lengths = [d for d in mine if isinstance(d, _Dist) and set(d.names) == set(e.names)]
                     if lengths:
@@ -380,12 +431,17 @@ def _construct(
                         break
             if found is None:
                 circles = [
-                    (pos[[m for m in d.names if m != n][0]], d.length, [m for m in d.names if m != n][0])
+                    (pos[next(m for m in d.names if m != n)], d.length, next(m for m in d.names if m != n))
                     for d in mine
                     if isinstance(d, _Dist) and all(m in pos for m in d.names if m != n)
                 ]
-                lines = [d for d in mine if isinstance(d, (_OnLine, _OnLineToward)) and d.names[0] == n
-                         and all(m in pos for m in d.names[1:])]
+                lines = [
+                    d
+                    for d in mine
+                    if isinstance(d, (_OnLine, _OnLineToward))
+                    and d.names[0] == n
+                    and all(m in pos for m in d.names[1:])
+                ]
                 if len(circles) >= 2:
                     (c1, r1, n1), (c2, r2, n2) = sorted(circles[:2], key=lambda c: order.get(c[2], 0))
                     left, gap = circle_circle(tuple(c1), r1, tuple(c2), r2, left=True)
@@ -411,8 +467,10 @@ def _construct(
                     fwd, gap = circle_line(tuple(c), r, tuple(t), tuple(u), forward=True)
                     back, _ = circle_line(tuple(c), r, tuple(t), tuple(u), forward=False)
                     if fwd is None:
-                        gaps.append(f"{n} cannot reach its path: the path passes {{{gap}}} beyond "
-                                    f"the length {circles[0][2]}{n} = {{{r}}}")
+                        gaps.append(
+                            f"{n} cannot reach its path: the path passes {{{gap}}} beyond "
+                            f"the length {circles[0][2]}{n} = {{{r}}}"
+                        )
                         found = t + float((c - t) @ u) * u
                     else:
                         found = pick(n, [fwd, back], "the intersection farther along the path")
@@ -427,12 +485,15 @@ def _construct(
                 pos[n] = hint[n]
             else:
                 pos[n] = np.array([0.3 + 0.1 * k, 0.4 - 0.05 * k])
-                notes.append(f"{n}: position found by least squares from a default guess "
-                             "(give near to choose)")
+                notes.append(
+                    f"{n}: position found by least squares from a default guess (give near to choose)"
+                )
     return pos, notes, gaps
 
 
-def _gauss_newton(system, x: np.ndarray, max_iter: int = 100) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # noqa: ANN001
+def _gauss_newton(
+    system: _System, x: np.ndarray, max_iter: int = 100
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Least-squares Gauss–Newton with step halving; returns (x, residual, Jacobian)."""
     res, jac = system(x)
     norm = float(np.linalg.norm(res))
@@ -456,7 +517,9 @@ def _gauss_newton(system, x: np.ndarray, max_iter: int = 100) -> tuple[np.ndarra
     return x, res, jac
 
 
-def _check_determined(system, x: np.ndarray, jac: np.ndarray, unknown: list[str], lay: Layout) -> None:  # noqa: ANN001
+def _check_determined(
+    system: _System, x: np.ndarray, jac: np.ndarray, unknown: list[str], lay: Layout
+) -> None:
     """Raise when the equations leave a continuous freedom (not merely a tangent double root)."""
     n = x.size
     if jac.shape[0] >= n:
@@ -479,7 +542,10 @@ def _check_determined(system, x: np.ndarray, jac: np.ndarray, unknown: list[str]
     for v in free_dirs:
         weight = np.maximum(weight, np.hypot(v[0::2], v[1::2]))
     names = [unknown[i] for i in np.argsort(-weight) if weight[i] > 0.2 * weight.max()]
-    hint = "place one of them with at, give a length that fixes it, or give it a relative placement"
+    hint = (
+        "place one of them with at, give a length that fixes it, or give it a relative placement; "
+        "a mechanism with more degrees of freedom than drives needs one drive per freedom"
+    )
     undriven = [s for s in lay.drives if s.link is not None and s.drive.angle is None and s.toward in names]
     if undriven:
         hint = f"give the drive of {undriven[0].link} an angle (or draw {undriven[0].toward} with at)"
@@ -491,7 +557,7 @@ def _check_determined(system, x: np.ndarray, jac: np.ndarray, unknown: list[str]
     )
 
 
-def _disagreement(e: _Eq, p: list[np.ndarray], scale: float, fmt) -> str:  # noqa: ANN001
+def _disagreement(e: _Eq, p: list[np.ndarray], scale: float, fmt: Callable[[float], str]) -> str:
     """``length BC = 150 mm but the drawing gives 148.3 mm`` and the like."""
     if isinstance(e, _Dist):
         d = float(np.hypot(*(p[1] - p[0]))) * scale
@@ -499,13 +565,17 @@ def _disagreement(e: _Eq, p: list[np.ndarray], scale: float, fmt) -> str:  # noq
     if isinstance(e, _Dir):
         w = p[1] - p[0]
         drawn = math.atan2(w[1], w[0])
-        return (f"{e.text} but the drawing gives {math.degrees(drawn):.6g}° "
-                f"(off by {abs(math.degrees(math.remainder(drawn - e.phi, 2 * math.pi))):.3g}°)")
+        return (
+            f"{e.text} but the drawing gives {math.degrees(drawn):.6g}° "
+            f"(off by {abs(math.degrees(math.remainder(drawn - e.phi, 2 * math.pi))):.3g}°)"
+        )
     r, _ = e.value(p)
     return f"{e.text}: the drawing is off by {fmt(float(np.hypot(*r)) * scale if r.size == 2 else abs(float(r[0])) * scale)}"
 
 
-def _no_assembly(label: str, eqs: list[_Eq], res: np.ndarray, gaps: list[str], scale: float, fmt) -> str:  # noqa: ANN001
+def _no_assembly(
+    label: str, eqs: list[_Eq], res: np.ndarray, gaps: list[str], scale: float, fmt: Callable[[float], str]
+) -> str:
     """The gap of the closest assembly, in the file's unit."""
     import re
 
@@ -525,7 +595,7 @@ def _no_assembly(label: str, eqs: list[_Eq], res: np.ndarray, gaps: list[str], s
     return f"cannot assemble {label}: in the closest configuration " + "; ".join(p for _, p in parts[:3])
 
 
-def _gear_pitch_points(lay: Layout, positions: dict[str, tuple[float, float]]) -> None:
+def gear_pitch_points(lay: Layout, positions: dict[str, tuple[float, float]]) -> None:
     """A gear joint without ``at``: its pitch point from the centres and radii (or teeth·module/2)."""
     for j in lay.contacts:
         if j.type is not JointType.GEAR or j.name in positions:
@@ -547,10 +617,9 @@ def _gear_pitch_points(lay: Layout, positions: dict[str, tuple[float, float]]) -
             positions[j.name] = (c1[0] + radii[0] * e[0], c1[1] + radii[0] * e[1])  # type: ignore[index]
 
 
-def gear_centre(lay: Layout, link: str, positions: dict[str, tuple[float, float]]) -> tuple[float, float] | None:
+def gear_centre(
+    lay: Layout, link: str, positions: dict[str, tuple[float, float]]
+) -> tuple[float, float] | None:
     """A gear link's centre: its only revolute joint (None when it has none or several)."""
-    pins = [
-        n for n in lay.on_link.get(link, ())
-        if n in positions and len(lay.carriers.get(n, ())) >= 2
-    ]
+    pins = [n for n in lay.on_link.get(link, ()) if n in positions and len(lay.carriers.get(n, ())) >= 2]
     return positions[pins[0]] if len(pins) == 1 else None

@@ -39,8 +39,8 @@ import numpy as np
 
 from mech.errors import Problem, collect
 from mech.kinematics.assemble import Drawn, gear_centre
-from mech.kinematics.layout import Layout
-from mech.model import JointType
+from mech.kinematics.layout import Layout, PathSpec
+from mech.model import Joint, JointType
 
 __all__ = ["System", "build_system"]
 
@@ -82,8 +82,17 @@ class System:
     row_names: tuple[str, ...] = ()  # per row: the joint or drive it comes from
     holonomic: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))  # per row
     drive_rows: np.ndarray = field(default_factory=lambda: np.zeros(0, int))  # row per drive (file order)
-    path_dirs: dict[str, tuple[int, np.ndarray]] = field(default_factory=dict)  # path joint -> (guide, local u)
+    path_dirs: dict[str, tuple[int, np.ndarray]] = field(
+        default_factory=dict
+    )  # path joint -> (guide, local u)
     path_points: dict[str, tuple[int, str]] = field(default_factory=dict)  # path joint -> (slider, point)
+    # every location fixed in a link, as arrays for one-shot unscaling of results
+    loc_names: tuple[str, ...] = ()
+    loc_i: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
+    loc_s: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    link_index: dict[str, int] = field(default_factory=dict)
+    joint_names: frozenset[str] = frozenset()  # located joints (for the size)
+    velocity_only: tuple[str, ...] = ()  # joints modelled only at velocity level (cam, contact, rolling …)
 
     @property
     def n(self) -> int:
@@ -92,12 +101,6 @@ class System:
     @property
     def m(self) -> int:
         return 2 * self.pc_i.size + self.ln_s.size + self.ang_c.size
-
-    @property
-    def velocity_only(self) -> tuple[str, ...]:
-        """Joints modelled only at velocity level (cam, contact, rolling, some gears)."""
-        names = [self.row_names[r] for r in np.flatnonzero(~self.holonomic)]
-        return tuple(dict.fromkeys(names))
 
     # -- kinematic functions (scaled) ------------------------------------------------
     def _full(self, q: np.ndarray) -> np.ndarray:
@@ -303,7 +306,9 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
             xy = sc(pos[j.name])
             first = j.links[0]
             for other in j.links[1:]:
-                pc.append((index[first], to_local(first, xy), index[other], to_local(other, xy), j.name, True))
+                pc.append(
+                    (index[first], to_local(first, xy), index[other], to_local(other, xy), j.name, True)
+                )
 
     path_dirs: dict[str, tuple[int, np.ndarray]] = {}
     path_points: dict[str, tuple[int, str]] = {}
@@ -314,8 +319,18 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
         u = dir_local(ps.guide, a)
         nloc = np.array([-u[1], u[0]])
         p_xy = sc(pos[ps.point])
-        ln.append((index[ps.slider], to_local(ps.slider, p_xy), index[ps.guide], to_local(ps.guide, t_xy),
-                   nloc, 0.0, ps.joint, True))
+        ln.append(
+            (
+                index[ps.slider],
+                to_local(ps.slider, p_xy),
+                index[ps.guide],
+                to_local(ps.guide, t_xy),
+                nloc,
+                0.0,
+                ps.joint,
+                True,
+            )
+        )
         path_dirs[ps.joint] = (index[ps.guide], u)
         path_points[ps.joint] = (index[ps.slider], ps.point)
         if ps.type is JointType.PRISMATIC:
@@ -330,23 +345,35 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
             ang.append((holo[0], holo[1], j.name, True))
             continue
         if j.name not in pos:
-            problems.append(Problem(f"{j.type.value} joint {j.name} needs at (the contact point of the "
-                                    "instant) for velocities", j.where))
+            problems.append(
+                Problem(
+                    f"{j.type.value} joint {j.name} needs at (the contact point of the "
+                    "instant) for velocities",
+                    j.where,
+                )
+            )
             continue
         xy = sc(pos[j.name])
         if j.type is JointType.ROLLING:
-            pc.append((index[a_link], to_local(a_link, xy), index[b_link], to_local(b_link, xy), j.name, False))
+            pc.append(
+                (index[a_link], to_local(a_link, xy), index[b_link], to_local(b_link, xy), j.name, False)
+            )
             continue
         normal = j.normal
         if normal is None and j.type is JointType.GEAR:
             normal = _gear_normal(lay, j, pos)
         if normal is None:
-            problems.append(Problem(f"{j.type.value} joint {j.name} needs normal (the common normal's "
-                                    "angle) for velocities", j.where))
+            problems.append(
+                Problem(
+                    f"{j.type.value} joint {j.name} needs normal (the common normal's angle) for velocities",
+                    j.where,
+                )
+            )
             continue
         u = dir_local(b_link, normal)
-        ln.append((index[a_link], to_local(a_link, xy), index[b_link], to_local(b_link, xy), u, 0.0,
-                   j.name, False))
+        ln.append(
+            (index[a_link], to_local(a_link, xy), index[b_link], to_local(b_link, xy), u, 0.0, j.name, False)
+        )
     collect(problems, source=mech.source)
 
     # Drives last, in file order: rotary drives are angle rows, slider drives line rows.
@@ -367,8 +394,14 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     drive_rows = [2 * n_pc + (k if kind == "ln" else kl + k) for kind, k in drive_at]
 
     sys_ = System(
-        links=links, ground=ground, scale=scale, centre=centre, q0=q0, local=local,
-        frames=frames, contact_xy=contact_xy,
+        links=links,
+        ground=ground,
+        scale=scale,
+        centre=centre,
+        q0=q0,
+        local=local,
+        frames=frames,
+        contact_xy=contact_xy,
     )
     if pc:
         sys_.pc_i = np.array([p[0] for p in pc])
@@ -397,9 +430,15 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     holo_rows += [x[7] for x in ln] + [x[3] for x in ang]
     sys_.row_names = tuple(names)
     sys_.holonomic = np.array(holo_rows, bool)
+    sys_.velocity_only = tuple(dict.fromkeys(n for n, h in zip(names, holo_rows, strict=True) if not h))
     sys_.drive_rows = np.array(drive_rows, int)
     sys_.path_dirs = path_dirs
     sys_.path_points = path_points
+    sys_.loc_names = tuple(local)
+    sys_.loc_i = np.array([local[k][0] for k in local], int)
+    sys_.loc_s = np.array([local[k][1] for k in local], float).reshape(-1, 2)
+    sys_.link_index = {name: i for i, name in enumerate(links)}
+    sys_.joint_names = frozenset(j.name for j in mech.joints if j.type is not JointType.PRISMATIC)
     # Slider drives: their constant is the drawn displacement along the path.
     if ln:
         base_phi = sys_.phi(q0, sys_.ln_c, sys_.ang_c)
@@ -409,7 +448,7 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     return sys_
 
 
-def _path_angle(lay: Layout, ps, pos: dict[str, tuple[float, float]]) -> float:  # noqa: ANN001
+def _path_angle(lay: Layout, ps: PathSpec, pos: dict[str, tuple[float, float]]) -> float:
     """Global direction (rad) of a path in the drawn configuration."""
     if ps.path.toward is not None:
         t = ps.path.through
@@ -432,7 +471,14 @@ def _carrier_of(lay: Layout, link: str, pos: dict[str, tuple[float, float]]) -> 
     return out
 
 
-def _gear_row(lay, j, pos, index, q0, n) -> tuple[dict[int, float], float] | None:  # noqa: ANN001
+def _gear_row(
+    lay: Layout,
+    j: Joint,
+    pos: dict[str, tuple[float, float]],
+    index: dict[str, int],
+    q0: np.ndarray,
+    n: int,
+) -> tuple[dict[int, float], float] | None:
     """A gear pair with both centres pinned to one carrier: ``r₁(θ₁−θc) ± r₂(θ₂−θc) = const``.
 
     The pitch circles roll on each other relative to the carrier (ground for a
@@ -470,11 +516,10 @@ def _gear_row(lay, j, pos, index, q0, n) -> tuple[dict[int, float], float] | Non
     return coef, sum(v * theta[i] for i, v in coef.items())
 
 
-def _gear_normal(lay: Layout, j, pos) -> float | None:  # noqa: ANN001
+def _gear_normal(lay: Layout, j: Joint, pos: dict[str, tuple[float, float]]) -> float | None:
     """Line of action of a gear pair: the common tangent turned by the pressure angle."""
     centres = [gear_centre(lay, lk, pos) for lk in j.links]
     if None in centres:
         return None
     (x1, y1), (x2, y2) = centres  # type: ignore[misc]
     return math.atan2(y2 - y1, x2 - x1) + math.pi / 2.0 - (j.pressure_angle or 0.0)
-

@@ -30,6 +30,9 @@ __all__ = [
 Vec = tuple[float, float]
 Hom = tuple[float, float, float]
 
+#: relative slack under which two curves that miss are taken as touching (tangent)
+_TANGENT = 1e-12
+
 
 def cross(a: Vec, b: Vec) -> float:
     """The z component of ``a × b`` (positive when b is counter-clockwise of a)."""
@@ -47,9 +50,7 @@ def wrap_angle(angle: float) -> float:
     return math.pi if a == -math.pi else a
 
 
-def circle_circle(
-    c1: Vec, r1: float, c2: Vec, r2: float, *, left: bool = True
-) -> tuple[Vec | None, float]:
+def circle_circle(c1: Vec, r1: float, c2: Vec, r2: float, *, left: bool = True) -> tuple[Vec | None, float]:
     """Apex of the dyad: the point at ``r1`` from ``c1`` and ``r2`` from ``c2``.
 
     Parameters
@@ -75,11 +76,12 @@ def circle_circle(
     """
     dx, dy = c2[0] - c1[0], c2[1] - c1[1]
     d = math.hypot(dx, dy)
+    slack = _TANGENT * (r1 + r2 + d)  # rounding of a drawn tangency is not a gap
     if d == 0.0:
         return None, abs(r1 - r2)
-    if d > r1 + r2:
+    if d > r1 + r2 + slack:
         return None, d - (r1 + r2)
-    if d < abs(r1 - r2):
+    if d < abs(r1 - r2) - slack:
         return None, abs(r1 - r2) - d
     a = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d)
     h = math.sqrt(max(r1 * r1 - a * a, 0.0))
@@ -88,9 +90,7 @@ def circle_circle(
     return (c1[0] + a * ex - sign * h * ey, c1[1] + a * ey + sign * h * ex), 0.0
 
 
-def circle_line(
-    c: Vec, r: float, p: Vec, u: Vec, *, forward: bool = True
-) -> tuple[Vec | None, float]:
+def circle_line(c: Vec, r: float, p: Vec, u: Vec, *, forward: bool = True) -> tuple[Vec | None, float]:
     """The point at ``r`` from ``c`` on the line through ``p`` along unit ``u``.
 
     ``forward`` picks the intersection farther along ``u`` (the slider-crank
@@ -105,7 +105,7 @@ def circle_line(
     wx, wy = p[0] - c[0], p[1] - c[1]
     along = wx * u[0] + wy * u[1]
     off = cross(u, (wx, wy))  # signed distance of the line from c
-    if abs(off) > r:
+    if abs(off) > r + _TANGENT * (r + abs(off)):
         return None, abs(off) - r
     h = math.sqrt(max(r * r - off * off, 0.0))
     s = -along + (h if forward else -h)

@@ -6,6 +6,9 @@ a slot joint (the pin running in the slot, unless the joint names its
 drawn) and every named point.  A prismatic joint has no location of its own:
 its ``point`` (default: the slider's only other joint) runs on its path.
 
+A slider with no located point at all gets a synthetic one, ``#joint.point``, at
+its path's ``through`` in the drawing (never reported).
+
 A location is *carried* by the links it is fixed in: every link of a revolute,
 the pin link of a slot, the link of a point.  A contact point of a higher pair
 is carried by none (it moves along both profiles).
@@ -18,7 +21,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from mech.errors import InputError, Problem, UnsupportedError, collect
+from mech.errors import Problem, UnsupportedError, collect
 from mech.model import Drive, Joint, JointType, Mechanism, Path
 
 __all__ = ["DriveSpec", "Layout", "PathSpec", "layout"]
@@ -156,6 +159,12 @@ def layout(mech: Mechanism) -> Layout:
             point = j.point if j.point is not None else j.name
         elif j.point is not None:
             point = j.point
+        elif not joint_locs[slider] and not point_locs[slider]:
+            # A slider with no located point of its own (a follower touched only by a cam):
+            # the point of it that lies on the path's ``through`` when drawn.
+            point = f"#{j.name}.point"
+            carriers[point] = (slider,)
+            joint_locs[slider].append(point)
         else:
             others = joint_locs[slider]
             if len(others) != 1:
@@ -171,7 +180,9 @@ def layout(mech: Mechanism) -> Layout:
                 continue
             point = others[0]
         if point not in carriers:
-            problems.append(Problem(f"{j.type.value} joint {j.name}: point {point} is not a located point", j.where))
+            problems.append(
+                Problem(f"{j.type.value} joint {j.name}: point {point} is not a located point", j.where)
+            )
             continue
         paths.append(PathSpec(j.name, j.type, slider, guide, point, j.path))
 
@@ -218,8 +229,11 @@ def _drive_spec(
             return None
         if j.type not in (JointType.PRISMATIC, JointType.SLOT):
             problems.append(
-                Problem(f"drive: joint {d.joint} is a {j.type.value} joint; a slider drive needs a "
-                        "prismatic or slot joint", d.where)
+                Problem(
+                    f"drive: joint {d.joint} is a {j.type.value} joint; a slider drive needs a "
+                    "prismatic or slot joint",
+                    d.where,
+                )
             )
             return None
         return DriveSpec(d, joint=d.joint)
@@ -233,9 +247,7 @@ def _drive_spec(
     if d.about is not None:
         pivot = d.about
         if pivot not in carriers or link not in carriers[pivot]:
-            problems.append(
-                Problem(f"drive: about {pivot} must be a revolute joint of {link}", d.where)
-            )
+            problems.append(Problem(f"drive: about {pivot} must be a revolute joint of {link}", d.where))
             return None
     else:
         pins = [n for n in joint_locs.get(link, []) if mech.ground in carriers[n]]

@@ -47,9 +47,13 @@ def numeric_mobility(mech: Mechanism, system: System, q: np.ndarray, notes: tupl
     redundant = jac.shape[0] - rank
     condition = float(s[0] / s[rank - 1]) if rank else 1.0
     null = vt[rank:]
-    weight = np.sqrt(np.sum(null**2, axis=0)).reshape(-1, 3).max(axis=1) if null.size else np.zeros(len(system.links))
-    free = tuple(name for name, w in zip(system.links, weight) if w > 1e-6)
-    locked = tuple(name for name, w in zip(system.links, weight) if w <= 1e-6)
+    weight = (
+        np.sqrt(np.sum(null**2, axis=0)).reshape(-1, 3).max(axis=1)
+        if null.size
+        else np.zeros(len(system.links))
+    )
+    free = tuple(name for name, w in zip(system.links, weight, strict=False) if w > 1e-6)
+    locked = tuple(name for name, w in zip(system.links, weight, strict=False) if w <= 1e-6)
     extra = list(notes)
     if numeric != k:
         why = f" ({redundant} redundant constraint{'s' if redundant != 1 else ''})" if redundant else ""

@@ -51,9 +51,7 @@ class LinkState:
     def acceleration_at(self, point: Vec) -> Vec:
         """Acceleration (m/s²) of the point of this link at ``point``: a_O + α × r − ω² r."""
         if self.acceleration is None or self.alpha is None or self.omega is None:
-            raise InputError(
-                f"accelerations of {self.name} were not solved (ask for level='acceleration')"
-            )
+            raise InputError(f"accelerations of {self.name} were not solved (ask for level='acceleration')")
         rx, ry = point[0] - self.origin[0], point[1] - self.origin[1]
         w2 = self.omega * self.omega
         return (
@@ -78,8 +76,8 @@ class Mobility:
         Largest over smallest non-zero singular value of Φ_q: how far the
         configuration is from losing a constraint (large: near a toggle).
     free
-        Moving links that can move with every drive held still... rather, with no
-        drive: the links the null space of Φ_q touches.
+        Moving links that can move with no drive held: the links the null
+        space of Φ_q touches.
     locked
         Moving links that cannot move at all (a rigid structure with ground).
     redundant
@@ -101,8 +99,8 @@ class Mobility:
 class JointGeom:
     """What joint queries need about one joint in the analysed configuration.
 
-    ``point`` is the location of the pair (a revolute's pin, a slider's point,
-    a contact point); ``direction`` a unit vector: a path's direction, or a
+    ``point`` names the location of the pair (a revolute's pin, a slider's point,
+    a contact point) and ``at`` is where it is; ``direction`` a unit vector: a path's direction, or a
     contact's common tangent (normal turned +90°).
     """
 
@@ -112,6 +110,7 @@ class JointGeom:
     point: str | None = None
     direction: Vec | None = None
     radius: float | None = None
+    at: Vec | None = None  # where the pair acts in this configuration, m
 
 
 @dataclass(frozen=True, slots=True)
@@ -196,8 +195,7 @@ class Kinematics:
         joint = self.joints.get(name)
         choices = joint.links if joint else tuple(self.links)
         raise InputError(
-            f"{name} is a contact point: the {what} of the points of {' and '.join(choices)} "
-            "there differ",
+            f"{name} is a contact point: the {what} of the points of {' and '.join(choices)} there differ",
             hint=f"name the link: link={choices[0]!r} or link={choices[-1]!r}",
         )
 
@@ -218,7 +216,9 @@ class Kinematics:
             if joint is not None:  # rolling: both agree
                 va = self._state(joint.links[0]).velocity_at(p)
                 vb = self._state(joint.links[1]).velocity_at(p)
-                if math.hypot(va[0] - vb[0], va[1] - vb[1]) <= 1e-9 * max(math.hypot(*va), math.hypot(*vb), 1e-300):
+                spin = max(abs(st.omega or 0.0) for st in self.links.values()) * self.size
+                scale = max(math.hypot(*va), math.hypot(*vb), spin)
+                if math.hypot(va[0] - vb[0], va[1] - vb[1]) <= 1e-9 * scale:
                     return va
         return self._choose(name, link, "velocities").velocity_at(p)
 
@@ -259,7 +259,9 @@ class Kinematics:
         """
         self._need("velocity")
         j = self._joint(joint, ("prismatic", "slot", "cam", "contact", "gear", "rolling"), "sliding")
-        p = self.positions[j.point]  # type: ignore[index]
+        if j.at is None:
+            raise InputError(f"joint {joint} has no contact point in this configuration")
+        p = j.at
         a, b = j.links
         va = self._state(a).velocity_at(p)
         vb = self._state(b).velocity_at(p)

@@ -16,8 +16,8 @@ Stages:
 All in scaled units (lengths / size, time × |ω|), so the tolerances are
 relative and a 1 µm linkage behaves like a 1 km one.  One SVD of Φ_q per
 configuration solves both linear systems and measures its condition: above
-1e10 the configuration is singular (a toggle) and the links the null vector
-moves are named; velocities there are never printed.  A slider crank at dead
+1e6 (see :data:`SINGULAR`) the configuration is singular (a toggle) and the
+links the null vector moves are named; velocities there are never printed.  A slider crank at dead
 centre is *not* singular for a crank drive (the slider stops, the rod's ω
 is finite) and solves normally.
 """
@@ -32,19 +32,24 @@ from types import MappingProxyType
 import numpy as np
 
 from mech.errors import GeometryError, InputError, UnsupportedError
-from mech.kinematics.assemble import Drawn, assemble
+from mech.kinematics.assemble import Drawn, assemble, gear_pitch_points
 from mech.kinematics.constraints import System, build_system
 from mech.kinematics.geometry import wrap_angle
 from mech.kinematics.layout import CONTACT_TYPES, Layout, layout
-from mech.kinematics.mobility import numeric_mobility
+from mech.kinematics.mobility import kutzbach, numeric_mobility
 from mech.kinematics.result import JointGeom, Kinematics, LinkState, Mobility
-from mech.model import Drive, JointType, Mechanism
+from mech.model import Drive, Mechanism
 from mech.options import SolveOptions
 
 __all__ = ["Compiled", "compiled", "solve"]
 
 LEVELS = ("position", "velocity", "acceleration")
-SINGULAR = 1e10  # condition number of Φ_q above which a configuration is singular
+#: Condition number of Φ_q (scaled) above which a configuration is refused as singular.
+#: Positions near a toggle are only as accurate as ε·cond and velocities lose
+#: another factor cond, so velocity errors grow like ε·cond² (measured: 2e-7 at
+#: cond 7e5, 3e-5 at 7e6 on a triple-rocker approaching its limit).  1e6 keeps
+#: answers to about 1e-6 relative; beyond it they would be silently wrong.
+SINGULAR = 1e6
 _MAX_STEP = math.radians(15.0)
 _TWO_PI = 2.0 * math.pi
 
@@ -58,13 +63,16 @@ class Compiled:
     drawn: Drawn
     system: System
     mobility: Mobility
+    singular: bool  # Φ_q with drive rows is singular at the drawn configuration (a toggle drawn)
 
 
 _CACHE: OrderedDict[tuple, Compiled] = OrderedDict()
 _CACHE_SIZE = 64
 
 
-def compiled(mech: Mechanism, angles: tuple[float | None, ...] | None, *, allow_free: bool = False) -> Compiled:
+def compiled(
+    mech: Mechanism, angles: tuple[float | None, ...] | None, *, allow_free: bool = False
+) -> Compiled:
     """Layout, drawn configuration, constraint system and mobility of ``mech`` (cached).
 
     The cache holds the mechanism object itself, so its identity is a safe
@@ -79,7 +87,7 @@ def compiled(mech: Mechanism, angles: tuple[float | None, ...] | None, *, allow_
     drawn = assemble(lay, drive_angles=angles, allow_free=allow_free)
     system = build_system(lay, drawn)
     mob = numeric_mobility(mech, system, system.q0)
-    comp = Compiled(mech, lay, drawn, system, mob)
+    comp = Compiled(mech, lay, drawn, system, mob, _is_singular(system.jacobian(system.q0)))
     _CACHE[key] = comp
     if len(_CACHE) > _CACHE_SIZE:
         _CACHE.popitem(last=False)
@@ -133,12 +141,17 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
         raise InputError(
             f"--angle, --rpm, --direction and --alpha override a single drive; {mech.label} has "
             f"{len(mech.drives)} drives",
-            hint="give the drives in the file" if mech.drives else "add drive: {link: ..., angle: ..., rpm: ...}",
+            hint="give the drives in the file"
+            if mech.drives
+            else "add drive: {link: ..., angle: ..., rpm: ...}",
         )
-    stage1 = None
-    if options.angle is not None and mech.drives[0].angle is None and mech.drives[0].link is not None:
-        stage1 = (options.angle,)
-    comp = compiled(mech, stage1)
+    try:
+        comp = compiled(mech, None)
+    except GeometryError:
+        # A file that draws only the ground pivots and gives no drive angle: --angle supplies it.
+        if options.angle is None or mech.drives[0].angle is not None or mech.drives[0].link is None:
+            raise
+        comp = compiled(mech, (options.angle,))
     sys_, lay, drawn = comp.system, comp.layout, comp.drawn
     notes = list(drawn.notes) + list(comp.mobility.notes)
 
@@ -148,9 +161,12 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
     targets = [d.angle for d in drives]
     moved = any(
         spec.link is not None and abs(wrap_angle(t - a)) > 1e-15  # type: ignore[operator]
-        for spec, t, a in zip(lay.drives, targets, drawn.drive_angles)
+        for spec, t, a in zip(lay.drives, targets, drawn.drive_angles, strict=False)
     )
-    if (lvl > 0 or moved) and numeric is not None and n_drives != numeric:
+    # At a drawn toggle the rank drops and mobility looks one higher: that is the
+    # singularity (reported by the velocity solve), not a missing drive.
+    toggle = comp.singular and n_drives == kutzbach(mech) and numeric is not None and numeric > n_drives
+    if (lvl > 0 or moved) and numeric is not None and n_drives != numeric and not toggle:
         more = n_drives > numeric
         raise InputError(
             f"{mech.label} has mobility {numeric} (from the constraint Jacobian's rank) but "
@@ -168,7 +184,11 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
                 hint="analyse the drawn angle, or draw the mechanism at the angle you need",
             )
         q = _move(comp, drives, options)
-        shown = [f"{_deg(a)} → {_deg(t)}" for a, t in zip(drawn.drive_angles, targets) if a is not None]
+        shown = [
+            f"{_deg(a)} → {_deg(t)}"
+            for a, t in zip(drawn.drive_angles, targets, strict=False)
+            if a is not None
+        ]
         notes.append(f"moved from the drawn angle by continuation ({', '.join(shown)}), keeping its branch")
 
     omega_ref = _omega_ref(drives, drawn.scale)
@@ -179,7 +199,7 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
         rhs = np.zeros(sys_.m)
         rates = [(d.omega if d.link is not None else d.speed / drawn.scale) / omega_ref for d in drives]  # type: ignore[operator]
         rhs[sys_.drive_rows] = rates
-        qd = _lin_solve(svd, rhs)
+        qd = _snap(_lin_solve(svd, rhs))
         if lvl >= 2:
             if sys_.velocity_only:
                 raise UnsupportedError(
@@ -194,7 +214,7 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
                 for d in drives
             ]
             gamma[sys_.drive_rows] += acc
-            qdd = _lin_solve(svd, gamma)
+            qdd = _snap(_lin_solve(svd, gamma))
     return _result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
 
 
@@ -202,26 +222,36 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
 def _drives(mech: Mechanism, lay: Layout, drawn: Drawn, options: SolveOptions, lvl: int) -> tuple[Drive, ...]:
     """The drives as used: overrides applied, angle from the drawing, omega signed."""
     out = []
-    for k, (d, spec) in enumerate(zip(mech.drives, lay.drives)):
+    for k, (d, spec) in enumerate(zip(mech.drives, lay.drives, strict=False)):
         if spec.link is not None:
             omega = d.omega
             if options.omega is not None:
-                sign = -1.0 if (options.direction == "cw" or (options.direction is None and (d.omega or 0) < 0)) else 1.0
+                sign = (
+                    -1.0
+                    if (options.direction == "cw" or (options.direction is None and (d.omega or 0) < 0))
+                    else 1.0
+                )
                 omega = sign * options.omega
             elif options.direction is not None and omega is not None:
                 omega = abs(omega) * (-1.0 if options.direction == "cw" else 1.0)
             angle = options.angle if options.angle is not None else drawn.drive_angles[k]
             if angle is None:
-                raise InputError(f"drive of {d.link}: no angle given and none can be read from the drawing",
-                                 where=d.where, hint="give drive.angle (or --angle)")
+                raise InputError(
+                    f"drive of {d.link}: no angle given and none can be read from the drawing",
+                    where=d.where,
+                    hint="give drive.angle (or --angle)",
+                )
             alpha = options.alpha if options.alpha is not None else (d.alpha or 0.0)
             if lvl >= 1 and omega is None:
-                raise InputError(f"drive of {d.link} has no speed: give rpm or omega (or --rpm)", where=d.where)
+                raise InputError(
+                    f"drive of {d.link} has no speed: give rpm or omega (or --rpm)", where=d.where
+                )
             out.append(replace(d, angle=float(angle), omega=omega, alpha=alpha))
         else:
             if options.angle is not None:
-                raise InputError(f"--angle applies to a turning drive; the drive of {d.joint} is a slider",
-                                 where=d.where)
+                raise InputError(
+                    f"--angle applies to a turning drive; the drive of {d.joint} is a slider", where=d.where
+                )
             speed = d.speed
             if options.omega is not None:
                 speed = math.copysign(options.omega, speed if speed is not None else 1.0)
@@ -229,15 +259,20 @@ def _drives(mech: Mechanism, lay: Layout, drawn: Drawn, options: SolveOptions, l
                 raise InputError(f"slider drive of {d.joint} has no speed: give speed (m/s)", where=d.where)
             out.append(replace(d, speed=speed, accel=d.accel or 0.0))
     if lvl >= 1 and not out:
-        raise InputError(f"{mech.label} has no drive: give rpm or omega (or --rpm)",
-                         hint="add drive: {link: crank, angle: 60, rpm: 120}")
+        raise InputError(
+            f"{mech.label} has no drive: give rpm or omega (or --rpm)",
+            hint="add drive: {link: crank, angle: 60, rpm: 120}",
+        )
     return tuple(out)
 
 
 def _omega_ref(drives: tuple[Drive, ...], scale: float) -> float:
     """Time scale 1/ω: the fastest drive (a slider's v/size), 1 when nothing moves."""
-    rates = [abs(d.omega) if d.link is not None else abs(d.speed) / scale for d in drives  # type: ignore[arg-type]
-             if (d.omega if d.link is not None else d.speed) is not None]
+    rates = [
+        abs(d.omega) if d.link is not None else abs(d.speed) / scale
+        for d in drives  # type: ignore[arg-type]
+        if (d.omega if d.link is not None else d.speed) is not None
+    ]
     best = max(rates, default=0.0)
     return best if best > 0 and math.isfinite(best) else 1.0
 
@@ -249,15 +284,40 @@ def _deg(a: float) -> str:
 # -- linear algebra ---------------------------------------------------------------------
 def _svd_checked(comp: Compiled, jac: np.ndarray, q: np.ndarray, drives: tuple[Drive, ...]) -> tuple:
     """SVD of Φ_q, refusing a singular configuration with the links that lose their guidance."""
-    u, s, vt = np.linalg.svd(jac, full_matrices=False)
     n = jac.shape[1]
+    if jac.shape[0] < n:  # fewer equations than unknowns: pad so that the null vector shows
+        jac = np.vstack([jac, np.zeros((n - jac.shape[0], n))])
+    u, s, vt = np.linalg.svd(jac, full_matrices=False)
     if n == 0:
         return u, s, vt
     cond = float(s[0] / s[n - 1]) if s[n - 1] > 0 else math.inf
     if cond > SINGULAR:
-        raise GeometryError(_singular_message(comp, vt[n - 1], cond, drives),
-                            hint="analyse a slightly different angle: velocities here are undetermined")
+        raise GeometryError(
+            _singular_message(comp, vt[n - 1], cond, drives),
+            hint="analyse a slightly different angle: velocities here are undetermined",
+        )
     return u, s, vt
+
+
+def _is_singular(jac: np.ndarray) -> bool:
+    """True when Φ_q (with drive rows) does not determine q̇: fewer rows or condition above SINGULAR."""
+    m, n = jac.shape
+    if n == 0:
+        return False
+    if m < n:
+        return True
+    s = np.linalg.svd(jac, compute_uv=False)
+    return bool(s[n - 1] <= s[0] / SINGULAR)
+
+
+def _snap(x: np.ndarray) -> np.ndarray:
+    """Round-off (below 1e-13 in scaled units, far under the solve's accuracy) to exact zero.
+
+    A pivot's velocity of 1e-16 m/s would otherwise print with a random
+    direction; the true values there are zero by the constraints.
+    """
+    x[np.abs(x) < 1e-13] = 0.0
+    return x
 
 
 def _lin_solve(svd: tuple, rhs: np.ndarray) -> np.ndarray:
@@ -270,7 +330,9 @@ def _singular_message(comp: Compiled, v: np.ndarray, cond: float, drives: tuple[
     sys_ = comp.system
     weight = np.abs(v).reshape(-1, 3).max(axis=1)
     moving = [sys_.links[i] for i in np.argsort(-weight) if weight[i] > 0.2 * weight.max()]
-    where = ", ".join(f"{d.link} at {_deg(d.angle)}" for d in drives if d.link is not None and d.angle is not None)
+    where = ", ".join(
+        f"{d.link} at {_deg(d.angle)}" for d in drives if d.link is not None and d.angle is not None
+    )
     at = f" ({where})" if where else ""
     if len(moving) == 2:
         what = f"{moving[0]} and {moving[1]} are in line"
@@ -278,8 +340,10 @@ def _singular_message(comp: Compiled, v: np.ndarray, cond: float, drives: tuple[
         what = f"{moving[0]} is not held by its joints"
     else:
         what = f"{', '.join(moving)} can move with the drive held (links in line)"
-    return (f"singular configuration of {comp.mech.label}{at}: {what} — a toggle or dead-centre "
-            f"position (condition number {cond:.2g})")
+    return (
+        f"singular configuration of {comp.mech.label}{at}: {what} — a toggle or dead-centre "
+        f"position (condition number {cond:.2g})"
+    )
 
 
 # -- position: continuation ----------------------------------------------------------------
@@ -291,7 +355,7 @@ def _move(comp: Compiled, drives: tuple[Drive, ...], options: SolveOptions) -> n
     offset = 2 * sys_.pc_i.size + sys_.ln_s.size
     deltas = np.zeros(len(drives))
     rows = []
-    for k, (d, a) in enumerate(zip(drives, drawn.drive_angles)):
+    for k, (d, a) in enumerate(zip(drives, drawn.drive_angles, strict=False)):
         rows.append(sys_.drive_rows[k] - offset)
         if d.link is not None and a is not None:
             deltas[k] = wrap_angle(d.angle - a)  # type: ignore[operator]
@@ -301,17 +365,52 @@ def _move(comp: Compiled, drives: tuple[Drive, ...], options: SolveOptions) -> n
         other = deltas.copy()
         other[k] -= math.copysign(_TWO_PI, deltas[k])
         tries.append(other)
-    failure = None
+    reached = []
     for total in tries:
-        q, reached = _continue(sys_, sys_.q0, base_ang, c_line, rows, total, options)
+        q, fraction = _continue(sys_, sys_.q0, base_ang, c_line, rows, total, options)
         if q is not None:
             return q
-        failure = (failure or reached) if failure is not None else reached
-    raise GeometryError(_unreachable_message(comp, drives, failure))
+        reached.append(fraction)
+    c_ang = base_ang.copy()
+    c_ang[rows] += deltas
+    gap = _closest_gap(comp, c_line, c_ang)
+    raise GeometryError(_unreachable_message(comp, drives, reached[0], gap))
 
 
-def _continue(sys_: System, q: np.ndarray, base_ang: np.ndarray, c_line: np.ndarray, rows: list[int],
-              total: np.ndarray, options: SolveOptions) -> tuple[np.ndarray | None, float]:
+def _closest_gap(comp: Compiled, c_line: np.ndarray, c_ang: np.ndarray) -> str:
+    """The joint left most open by the least-squares closest configuration (file's unit)."""
+    sys_ = comp.system
+    q = sys_.q0.copy()
+    for _ in range(100):
+        r = sys_.phi(q, c_line, c_ang)
+        jac = sys_.jacobian(q)
+        dq = np.linalg.lstsq(jac, -r, rcond=None)[0]
+        t, norm = 1.0, float(np.linalg.norm(r))
+        while t > 1e-6 and float(np.linalg.norm(sys_.phi(q + t * dq, c_line, c_ang))) >= norm:
+            t /= 2
+        if t <= 1e-6:
+            break
+        q = q + t * dq
+    r = sys_.phi(q, c_line, c_ang)
+    k = sys_.pc_i.size
+    miss = np.concatenate([np.hypot(r[0 : 2 * k : 2], r[1 : 2 * k : 2]), np.abs(r[2 * k :])])
+    names = [sys_.row_names[2 * i] for i in range(k)] + list(sys_.row_names[2 * k :])
+    worst = int(np.argmax(miss))
+    from mech.units import to_unit
+
+    unit = comp.mech.length_unit
+    return f"the closest configuration leaves {names[worst]} open by {to_unit(miss[worst] * sys_.scale, unit):.4g} {unit}"
+
+
+def _continue(
+    sys_: System,
+    q: np.ndarray,
+    base_ang: np.ndarray,
+    c_line: np.ndarray,
+    rows: list[int],
+    total: np.ndarray,
+    options: SolveOptions,
+) -> tuple[np.ndarray | None, float]:
     """Step the drive angles from 0 to ``total`` (rad); returns (q, 1.0) or (None, fraction reached)."""
     done, step = 0.0, min(1.0, _MAX_STEP / max(float(np.max(np.abs(total))), 1e-300))
     rhs_rows = sys_.drive_rows
@@ -336,8 +435,9 @@ def _continue(sys_: System, q: np.ndarray, base_ang: np.ndarray, c_line: np.ndar
     return q, 1.0
 
 
-def _newton(sys_: System, q: np.ndarray, c_line: np.ndarray, c_ang: np.ndarray,
-            options: SolveOptions) -> np.ndarray | None:
+def _newton(
+    sys_: System, q: np.ndarray, c_line: np.ndarray, c_ang: np.ndarray, options: SolveOptions
+) -> np.ndarray | None:
     """Newton–Raphson on Φ(q) = 0 (scaled); None when it does not converge quadratically."""
     square = sys_.m == q.size
     prev = math.inf
@@ -346,7 +446,7 @@ def _newton(sys_: System, q: np.ndarray, c_line: np.ndarray, c_ang: np.ndarray,
         norm = float(np.max(np.abs(r))) if r.size else 0.0
         if norm <= options.tol:
             return q
-        if not math.isfinite(norm) or norm > 0.5 * prev and prev < 1e-3:
+        if not math.isfinite(norm) or (norm > 0.5 * prev and prev < 1e-3):
             return None
         prev = norm
         jac = sys_.jacobian(q)
@@ -361,72 +461,105 @@ def _newton(sys_: System, q: np.ndarray, c_line: np.ndarray, c_ang: np.ndarray,
     return q if float(np.max(np.abs(r))) <= options.tol else None
 
 
-def _unreachable_message(comp: Compiled, drives: tuple[Drive, ...], reached: float | None) -> str:
+def _unreachable_message(comp: Compiled, drives: tuple[Drive, ...], reached: float | None, gap: str) -> str:
     d = next(d for d in drives if d.link is not None)
     a = comp.drawn.drive_angles[0]
     limit = ""
     if reached is not None and a is not None and d.angle is not None:
         stop = a + reached * wrap_angle(d.angle - a)
         limit = f"; moving {d.link} from the drawn {_deg(a)} it locks near {_deg(stop)} (a limit position)"
-    return (f"{comp.mech.label} cannot be assembled with {d.link} at {_deg(d.angle)}: the loop cannot "
-            f"close on its drawn branch{limit}")
+    return f"{comp.mech.label} cannot be assembled with {d.link} at {_deg(d.angle)}: {gap}{limit}"
 
 
 # -- results -----------------------------------------------------------------------------
-def _result(comp: Compiled, level: str, q: np.ndarray, qd: np.ndarray | None, qdd: np.ndarray | None,
-            omega_ref: float, moved: bool, notes: tuple[str, ...], drives: tuple[Drive, ...]) -> Kinematics:
+def _result(
+    comp: Compiled,
+    level: str,
+    q: np.ndarray,
+    qd: np.ndarray | None,
+    qdd: np.ndarray | None,
+    omega_ref: float,
+    moved: bool,
+    notes: tuple[str, ...],
+    drives: tuple[Drive, ...],
+) -> Kinematics:
+    """Unscale and package; vectorised, since it runs on every solve of a sweep."""
     sys_, lay, mech = comp.system, comp.layout, comp.mech
     scale, centre = sys_.scale, sys_.centre
     v_unit, a_unit = scale * omega_ref, scale * omega_ref**2
+    cx, cy = float(centre[0]), float(centre[1])
 
-    positions: dict[str, tuple[float, float]] = {}
-    for name in lay.carriers:
-        if name in sys_.local or (name in sys_.contact_xy and not moved):
-            p = sys_.point(q, name) * scale + centre
-            positions[name] = (float(p[0]), float(p[1]))
+    # every located point at once: r = R + A(θ) s, for its carrier (ground appended)
+    qf = np.append(q, (0.0, 0.0, 0.0))
+    idx, loc = sys_.loc_i, sys_.loc_s
+    th = qf[3 * idx + 2]
+    c, sn = np.cos(th), np.sin(th)
+    xs = ((qf[3 * idx] + c * loc[:, 0] - sn * loc[:, 1]) * scale + cx).tolist()
+    ys = ((qf[3 * idx + 1] + sn * loc[:, 0] + c * loc[:, 1]) * scale + cy).tolist()
+    all_pos = dict(zip(sys_.loc_names, zip(xs, ys, strict=True), strict=True))
+    positions = {n: p for n, p in all_pos.items() if not n.startswith("#")}
+    if not moved:
+        for n, p in sys_.contact_xy.items():
+            positions[n] = (float(p[0] * scale + cx), float(p[1] * scale + cy))
+    if lay.contacts:
+        gear_pitch_points(lay, positions)  # a moved gear pair: pitch point from its centres
     for alias, target in lay.alias.items():
         if target in positions:
             positions[alias] = positions[target]
 
+    n = sys_.n
+    qs = q.tolist()
+    vs = (
+        (qd * np.repeat([[v_unit, v_unit, omega_ref]], n, axis=0).ravel()).tolist()
+        if qd is not None
+        else None
+    )
+    acc_units = np.repeat([[a_unit, a_unit, omega_ref**2]], n, axis=0).ravel()
+    as_ = (qdd * acc_units).tolist() if qdd is not None else None
     links: dict[str, LinkState] = {}
+    zero = (0.0, 0.0)
     for lk in mech.links:
         if lk.is_ground:
-            gpts = [positions[n] for n in lay.on_link.get(lk.name, ()) if n in positions]
-            origin = gpts[0] if gpts else (float(centre[0]), float(centre[1]))
-            zero = (0.0, 0.0) if qd is not None else None
-            links[lk.name] = LinkState(lk.name, origin, 0.0, zero, 0.0 if qd is not None else None,
-                                       (0.0, 0.0) if qdd is not None else None, 0.0 if qdd is not None else None)
+            gpts = [positions[p] for p in lay.on_link.get(lk.name, ()) if p in positions]
+            links[lk.name] = LinkState(
+                lk.name,
+                gpts[0] if gpts else (cx, cy),
+                0.0,
+                zero if vs is not None else None,
+                0.0 if vs is not None else None,
+                zero if as_ is not None else None,
+                0.0 if as_ is not None else None,
+            )
             continue
-        i = sys_.links.index(lk.name)
-        x, y, th = q[3 * i : 3 * i + 3]
-        state = LinkState(
+        i = 3 * sys_.link_index[lk.name]
+        links[lk.name] = LinkState(
             lk.name,
-            (float(x * scale + centre[0]), float(y * scale + centre[1])),
-            float(th % _TWO_PI),
+            (qs[i] * scale + cx, qs[i + 1] * scale + cy),
+            qs[i + 2] % _TWO_PI,
+            (vs[i], vs[i + 1]) if vs is not None else None,
+            vs[i + 2] if vs is not None else None,
+            (as_[i], as_[i + 1]) if as_ is not None else None,
+            as_[i + 2] if as_ is not None else None,
         )
-        if qd is not None:
-            state = replace(state, velocity=(float(qd[3 * i] * v_unit), float(qd[3 * i + 1] * v_unit)),
-                            omega=float(qd[3 * i + 2] * omega_ref))
-        if qdd is not None:
-            state = replace(state, acceleration=(float(qdd[3 * i] * a_unit), float(qdd[3 * i + 1] * a_unit)),
-                            alpha=float(qdd[3 * i + 2] * omega_ref**2))
-        links[lk.name] = state
 
     joints: dict[str, JointGeom] = {}
     for j in mech.joints:
         direction = None
-        point: str | None = lay.resolve(j.name) if lay.resolve(j.name) in positions else None
+        point: str | None = lay.resolve(j.name)
         if j.name in sys_.path_dirs:
             g, u = sys_.path_dirs[j.name]
-            th = 0.0 if g == sys_.n else q[3 * g + 2]
-            c, s = math.cos(th), math.sin(th)
-            direction = (float(c * u[0] - s * u[1]), float(s * u[0] + c * u[1]))
+            th_g = 0.0 if g == n else qs[3 * g + 2]
+            c_g, s_g = math.cos(th_g), math.sin(th_g)
+            direction = (c_g * u[0] - s_g * u[1], s_g * u[0] + c_g * u[1])
             point = sys_.path_points[j.name][1]
         elif j.type in CONTACT_TYPES and j.normal is not None:
             direction = (-math.sin(j.normal), math.cos(j.normal))
-        joints[j.name] = JointGeom(j.name, j.type.value, tuple(j.links), point, direction, j.radius)
+        at = positions.get(point) or all_pos.get(point)  # type: ignore[arg-type]
+        if point is not None and (point.startswith("#") or point not in positions):
+            point = None
+        joints[j.name] = JointGeom(j.name, j.type.value, tuple(j.links), point, direction, j.radius, at)
 
-    carriers = dict(lay.carriers)
+    carriers = {n_: c_ for n_, c_ in lay.carriers.items() if not n_.startswith("#")}
     for alias, target in lay.alias.items():
         carriers[alias] = carriers.get(target, ())
     return Kinematics(
@@ -434,7 +567,7 @@ def _result(comp: Compiled, level: str, q: np.ndarray, qd: np.ndarray | None, qd
         level=level,
         positions=MappingProxyType(positions),
         links=MappingProxyType(links),
-        size=_size(positions, lay),
+        size=_size(positions, sys_.joint_names),
         mobility=comp.mobility,
         notes=notes,
         drives=drives,
@@ -444,14 +577,9 @@ def _result(comp: Compiled, level: str, q: np.ndarray, qd: np.ndarray | None, qd
     )
 
 
-def _size(positions: dict[str, tuple[float, float]], lay: Layout) -> float:
+def _size(positions: dict[str, tuple[float, float]], joint_names: frozenset[str]) -> float:
     """Largest distance between two joints (all located points if fewer than two joints)."""
-    joint_names = {j.name for j in lay.mech.joints if j.type is not JointType.PRISMATIC}
     pts = [p for n, p in positions.items() if n in joint_names]
     if len(pts) < 2:
         pts = list(positions.values())
-    if len(pts) < 2:
-        return 0.0
-    a = np.array(pts)
-    d = a[:, None, :] - a[None, :, :]
-    return float(np.sqrt(np.max(np.sum(d * d, axis=-1))))
+    return max((math.dist(a, b) for k, a in enumerate(pts) for b in pts[k + 1 :]), default=0.0)

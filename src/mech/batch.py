@@ -1,0 +1,574 @@
+"""Checking many files at once: folders, answer sheets, parallel processes, one report.
+
+``mech check`` is a thin layer over :func:`run`:
+
+1. :func:`find_problem_files` walks files and folders (recursively, ``*.yaml``
+   and ``*.yml``) into one sorted list.
+2. With ``answers``, :func:`read_sheets` reads one sheet (one student) or a
+   folder of sheets (a class; the student is the sheet's path without its
+   suffix).  A sheet maps a problem — its file stem, file name or ``name`` —
+   to an answers mapping in the same grammar as a file's own ``answers``.
+3. Each problem file is loaded and solved **once**, however many students
+   answered it, and every student's claims are checked against that one
+   solution (:class:`mech.check.Analysis`).  With ``jobs > 1`` problems are
+   spread over a process pool; results are sorted, so the report is the same
+   whatever order they finish in.
+4. :class:`Report` holds every row, counts them and owns the exit status.
+
+A file's exception becomes its row: a malformed problem file, an unreadable
+sheet, a sheet entry that names no problem, each is one error row, and the
+rest of the batch still runs.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from mech.check import ERROR, FAIL, Analysis, FileResult, InternalError, Verdict, check, error_result
+from mech.errors import InputError, MechError, Problem, Where
+from mech.options import SolveOptions
+
+__all__ = [
+    "CheckOptions",
+    "Report",
+    "Sheet",
+    "StudentScore",
+    "find_problem_files",
+    "read_sheets",
+    "run",
+]
+
+SUFFIXES = (".yaml", ".yml")
+
+
+@dataclass(frozen=True, slots=True)
+class CheckOptions:
+    """Everything ``mech check`` was asked, folded into one value.
+
+    Parameters
+    ----------
+    paths
+        Problem files and folders.
+    answers
+        An answer sheet, or a folder of sheets (one per student); None to
+        check the answers the problem files carry.
+    jobs
+        Worker processes; None means one per CPU core, 1 means no pool.
+    solve
+        Solver options (Newton's tolerance); drives come from the files.
+    """
+
+    paths: tuple[str, ...]
+    answers: str | None = None
+    jobs: int | None = None
+    solve: SolveOptions = field(default_factory=SolveOptions)
+
+    def __post_init__(self) -> None:
+        if self.jobs is not None and self.jobs < 1:
+            raise ValueError(f"jobs must be at least 1, not {self.jobs}")
+        if not self.paths:
+            raise ValueError("no files or folders to check")
+
+    @property
+    def workers(self) -> int:
+        return self.jobs if self.jobs is not None else (os.cpu_count() or 1)
+
+
+@dataclass(frozen=True, slots=True)
+class StudentScore:
+    """One student's totals over every problem: the row a gradebook wants."""
+
+    student: str
+    problems: int
+    passed: int
+    failed: int
+    errors: int
+
+    @property
+    def total(self) -> int:
+        return self.passed + self.failed + self.errors
+
+    @property
+    def score(self) -> float:
+        """Fraction of answers that passed (0 with no answers)."""
+        return self.passed / self.total if self.total else 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class Report:
+    """Every row of a batch check, sorted; the counts and the exit status.
+
+    ``results`` holds one :class:`~mech.check.FileResult` per problem file (per
+    student and problem file with answer sheets, plus rows for sheets that
+    could not be used); ``skipped`` the files that carried no answers.
+    """
+
+    results: tuple[FileResult, ...]
+    skipped: tuple[str, ...] = ()
+    students: tuple[str, ...] = ()
+
+    @classmethod
+    def of(cls, results: Iterable[FileResult], *, students: Sequence[str] = ()) -> Report:
+        """A report from results in any order (e.g. gathered from a Dask or Ray cluster)."""
+        rows = list(results)
+        kept = sorted((r for r in rows if not r.skipped), key=lambda r: (r.student or "", r.path))
+        skipped = sorted(r.path for r in rows if r.skipped)
+        return cls(tuple(kept), tuple(skipped), tuple(sorted(students)))
+
+    @property
+    def verdicts(self) -> tuple[Verdict, ...]:
+        return tuple(v for r in self.results for v in r.verdicts)
+
+    @property
+    def passed(self) -> int:
+        return sum(r.passed for r in self.results)
+
+    @property
+    def failed(self) -> int:
+        return sum(r.failed for r in self.results)
+
+    @property
+    def errors(self) -> int:
+        return sum(r.errors for r in self.results)
+
+    @property
+    def total(self) -> int:
+        return sum(r.total for r in self.results)
+
+    @property
+    def files(self) -> int:
+        return len({r.path for r in self.results}) + len(self.skipped)
+
+    @property
+    def exit_status(self) -> int:
+        """0 when every answer passed (and there was at least one), 1 otherwise."""
+        return 0 if self.total and self.passed == self.total else 1
+
+    def scores(self) -> tuple[StudentScore, ...]:
+        """Per-student totals, sorted by student (empty without answer sheets)."""
+        out = []
+        for student in self.students:
+            rows = [r for r in self.results if r.student == student]
+            out.append(
+                StudentScore(
+                    student=student,
+                    problems=len(rows),
+                    passed=sum(r.passed for r in rows),
+                    failed=sum(r.failed for r in rows),
+                    errors=sum(r.errors for r in rows),
+                )
+            )
+        return tuple(out)
+
+
+# -- files ----------------------------------------------------------------------------------
+def find_problem_files(paths: Iterable[str]) -> tuple[str, ...]:
+    """Every ``*.yaml``/``*.yml`` file named or under a named folder, sorted, without repeats.
+
+    Raises
+    ------
+    InputError
+        When a path does not exist, or nothing to check is found.
+    """
+    found: set[str] = set()
+    problems = []
+    for raw in paths:
+        path = Path(raw)
+        if path.is_dir():
+            found.update(
+                str(p)
+                for p in path.rglob("*")
+                if p.suffix in SUFFIXES and p.is_file() and not _hidden(p, path)
+            )
+        elif path.is_file():
+            found.add(str(path))
+        else:
+            problems.append(Problem(f"no such file or folder: {raw}", Where(raw), "check the path"))
+    if problems:
+        raise InputError(problems=problems)
+    if not found:
+        raise InputError(
+            f"no mechanism files (*.yaml, *.yml) in {', '.join(paths)}",
+            hint="name problem files or folders that hold them",
+        )
+    return tuple(sorted(found))
+
+
+def _hidden(path: Path, root: Path) -> bool:
+    return any(part.startswith(".") for part in path.relative_to(root).parts)
+
+
+# -- answer sheets --------------------------------------------------------------------------
+@dataclass(frozen=True, slots=True)
+class Sheet:
+    """One student's answer sheet: problem key → the YAML node of its answers.
+
+    Nodes are kept (not Python values) so that the loader validates them
+    with the same code and locations as a file's own ``answers``.
+    """
+
+    student: str
+    path: str
+    source: str
+    entries: tuple[tuple[str, Any], ...] = ()
+    error: FileResult | None = None
+    keys_at: tuple[tuple[str, Where], ...] = ()  # where each problem key is written
+
+    def where(self, key: str) -> Where:
+        return dict(self.keys_at).get(key, Where(self.path))
+
+
+def read_sheets(path: str) -> tuple[Sheet, ...]:
+    """One sheet (a file) or every sheet under a folder, sorted by student.
+
+    A sheet that cannot be read is returned with its ``error`` row set, so
+    that one bad sheet costs one student one row, not the class its run.
+
+    Raises
+    ------
+    InputError
+        When ``path`` does not exist or a folder holds no sheets.
+    """
+    root = Path(path)
+    if root.is_dir():
+        files = sorted(
+            p for p in root.rglob("*") if p.suffix in SUFFIXES and p.is_file() and not _hidden(p, root)
+        )
+        if not files:
+            raise InputError(f"no answer sheets (*.yaml, *.yml) in {path}", where=Where(path))
+        return tuple(_read_sheet(p, p.relative_to(root).with_suffix("").as_posix()) for p in files)
+    if root.is_file():
+        return (_read_sheet(root, root.stem),)
+    raise InputError(f"no such answer sheet or folder: {path}", where=Where(path), hint="check the path")
+
+
+def _read_sheet(path: Path, student: str) -> Sheet:
+    import yaml
+
+    name = str(path)
+    try:
+        text = path.read_bytes().decode("utf-8-sig")
+    except (OSError, UnicodeDecodeError) as exc:
+        error = InputError(f"cannot read the answer sheet: {exc}", where=Where(name))
+        return Sheet(student, name, "", error=error_result(name, error, student=student))
+    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+    try:
+        root = yaml.compose(text, Loader=loader)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = Where(name, mark.line + 1, mark.column + 1) if mark else Where(name)
+        what = getattr(exc, "problem", None) or "malformed YAML"
+        error = InputError(f"this answer sheet is not valid YAML: {what}", where=where, source=text)
+        return Sheet(student, name, text, error=error_result(name, error, student=student))
+    if not isinstance(root, yaml.MappingNode):
+        error = InputError(
+            "an answer sheet maps problems to answers (`four_bar: {dof: 1, …}`)",
+            where=Where(name, 1, 1),
+            hint="each top-level key is a problem's file name, stem or name",
+        )
+        return Sheet(student, name, text, error=error_result(name, error, student=student))
+    entries: dict[str, Any] = {}
+    keys_at: dict[str, Where] = {}
+    problems = []
+    for knode, vnode in root.value:
+        key = str(knode.value)
+        where = Where(name, knode.start_mark.line + 1, knode.start_mark.column + 1)
+        if key in entries:
+            problems.append(Problem(f"problem {key!r} is answered twice on this sheet", where, "keep one"))
+        elif not isinstance(vnode, yaml.MappingNode):
+            problems.append(
+                Problem(
+                    f"the answers to {key} must be a mapping (`dof: 1` lines)",
+                    where,
+                    "see cli.md § mech check",
+                )
+            )
+        else:
+            entries[key] = vnode
+            keys_at[key] = where
+    if problems:
+        error = InputError(problems=problems, source=text)
+        return Sheet(student, name, text, error=error_result(name, error, student=student))
+    return Sheet(student, name, text, tuple(entries.items()), keys_at=tuple(keys_at.items()))
+
+
+@dataclass(frozen=True, slots=True)
+class _Submission:
+    """What a worker needs of one student's sheet for one problem."""
+
+    student: str
+    sheet: str
+    source: str
+    node: Any  # the matched answers node, or None
+    key: str | None  # the sheet key it was matched by
+    unresolved: tuple[tuple[str, Any], ...]  # entries no file stem matched: maybe a problem's `name`
+
+
+@dataclass(frozen=True, slots=True)
+class _Task:
+    path: str
+    submissions: tuple[_Submission, ...] | None
+    solve: SolveOptions
+
+
+@dataclass(frozen=True, slots=True)
+class _Done:
+    results: tuple[FileResult, ...]
+    used: tuple[tuple[str, str], ...] = ()  # (student, sheet key) matched by a problem's name
+
+
+# -- the worker -----------------------------------------------------------------------------
+def _run_tasks(tasks: Sequence[_Task]) -> list[_Done]:
+    """Check a chunk of problems (one process-pool job)."""
+    return [_run_task(task) for task in tasks]
+
+
+def _run_task(task: _Task) -> _Done:
+    try:
+        return _check_task(task)
+    except Exception as exc:  # a bug: this file's rows say so, the batch goes on
+        error = InternalError.of(exc)
+        rows = [Verdict("file", ERROR, message=str(error))]
+        students = [s.student for s in task.submissions] if task.submissions is not None else [None]
+        return _Done(tuple(FileResult(task.path, verdicts=tuple(rows), student=s) for s in students))
+
+
+def _check_task(task: _Task) -> _Done:
+    from mech.loader import load
+
+    try:
+        mech = load(task.path)
+    except MechError as error:
+        if task.submissions is None:
+            return _Done((error_result(task.path, error),))
+        return _Done(tuple(error_result(task.path, error, student=s.student) for s in task.submissions))
+    if task.submissions is None:
+        if not mech.answers:
+            return _Done((FileResult(task.path, mech.name, skipped=True),))
+        return _Done((FileResult(task.path, mech.name, check(mech, options=task.solve)),))
+    return _check_sheets(task, mech)
+
+
+def _check_sheets(task: _Task, mech: Any) -> _Done:
+    """Every student's claims on one problem, against one shared solution."""
+    from mech.loader import parse_answers
+
+    analysis = Analysis(mech, options=task.solve)
+    teacher = {c.key: c for c in mech.answers}
+    parsed: list[tuple[_Submission, Any]] = []
+    used: list[tuple[str, str]] = []
+    for sub in task.submissions or ():
+        node = sub.node
+        if node is None and mech.name is not None:
+            for k, n in sub.unresolved:
+                if k == mech.name:
+                    node = n
+                    used.append((sub.student, k))
+                    break
+        if node is None:
+            parsed.append((sub, None))
+            continue
+        try:
+            _refuse_tolerance(node, sub)
+            claims, _ = parse_answers(node, mech, path=sub.sheet, source=sub.source)
+        except InputError as error:
+            parsed.append((sub, error))
+            continue
+        parsed.append((sub, claims))
+    analysis.need([c for _, claims in parsed if isinstance(claims, tuple) for c in claims])
+    results = []
+    for sub, claims in parsed:
+        if claims is None:
+            results.append(
+                FileResult(
+                    task.path,
+                    mech.name,
+                    (
+                        Verdict(
+                            "answers",
+                            FAIL,
+                            message="not answered: the sheet has no answers for this problem",
+                            where=Where(sub.sheet),
+                        ),
+                    ),
+                    student=sub.student,
+                )
+            )
+            continue
+        if isinstance(claims, MechError):
+            results.append(error_result(task.path, claims, student=sub.student, name=mech.name))
+            continue
+        # tolerances are the teacher's: per answer from the problem file, else the file's
+        with_tol = tuple(
+            c
+            if c.key not in teacher or teacher[c.key].tolerance is None
+            else _with_tolerance(c, teacher[c.key].tolerance)
+            for c in claims
+        )
+        verdicts = list(check(mech, with_tol, tolerance=mech.tolerance, analysis=analysis))
+        answered = {c.key for c in claims}
+        verdicts += [
+            Verdict(key, FAIL, message="not answered", where=Where(sub.sheet))
+            for key in teacher
+            if key not in answered
+        ]
+        results.append(FileResult(task.path, mech.name, tuple(verdicts), student=sub.student))
+    return _Done(tuple(results), tuple(used))
+
+
+def _with_tolerance(claim: Any, tolerance: Any) -> Any:
+    from dataclasses import replace
+
+    return replace(claim, tolerance=tolerance)
+
+
+def _refuse_tolerance(node: Any, sub: _Submission) -> None:
+    """A sheet may not set its own tolerance: the problem file (the teacher) does."""
+    import yaml
+
+    problems = []
+    for knode, vnode in node.value:
+        spots = [knode] if knode.value == "tolerance" else []
+        if isinstance(vnode, yaml.MappingNode):
+            spots += [k for k, _ in vnode.value if k.value == "tolerance"]
+        problems += [
+            Problem(
+                "an answer sheet cannot set a tolerance",
+                Where(sub.sheet, k.start_mark.line + 1, k.start_mark.column + 1),
+                "tolerances are set in the problem file; write `key: value` only",
+            )
+            for k in spots
+        ]
+    if problems:
+        raise InputError(problems=problems, source=sub.source)
+
+
+# -- the batch ------------------------------------------------------------------------------
+def run(
+    options: CheckOptions,
+    *,
+    on_start: Callable[[int], None] | None = None,
+    on_result: Callable[[FileResult], None] | None = None,
+) -> Report:
+    """Check every problem file under ``options.paths``; see the module docstring.
+
+    ``on_start`` is called once with the number of rows to come (files, times
+    students with sheets) and ``on_result`` with each row as it lands (in
+    completion order), for a progress bar; the returned :class:`Report` is sorted.
+
+    Raises
+    ------
+    InputError
+        For a usage error: a path that does not exist, nothing to check, a
+        sheet folder with no sheets.
+    """
+    files = find_problem_files(options.paths)
+    sheets = read_sheets(options.answers) if options.answers else None
+    tasks, extra = _plan(files, sheets, options.solve)
+    if on_start is not None:
+        on_start(sum(len(t.submissions) if t.submissions is not None else 1 for t in tasks))
+    done = _execute(tasks, options.workers, on_result)
+    results = list(extra)
+    used: set[tuple[str, str]] = set()
+    for d in done:
+        results += d.results
+        used.update(d.used)
+    if sheets is not None:
+        results += _unmatched(sheets, files, used)
+    report = Report.of(results, students=[s.student for s in sheets] if sheets is not None else ())
+    if not report.results:
+        raise InputError(
+            f"no answers to check: none of the {len(files)} file{'s' if len(files) != 1 else ''} has an `answers` section",
+            hint="add answers to the files, or give students' sheets with --answers",
+        )
+    return report
+
+
+def _plan(
+    files: Sequence[str], sheets: Sequence[Sheet] | None, solve: SolveOptions
+) -> tuple[list[_Task], list[FileResult]]:
+    """One task per problem file; with sheets, each task carries every student's answers to it."""
+    if sheets is None:
+        return [_Task(f, None, solve) for f in files], []
+    extra = [s.error for s in sheets if s.error is not None]
+    usable = [s for s in sheets if s.error is None]
+    ids = {f: (Path(f).stem, Path(f).name) for f in files}
+    known = {n for pair in ids.values() for n in pair}
+    tasks = []
+    for f in files:
+        subs = []
+        for s in usable:
+            node = key = None
+            for k, n in s.entries:
+                if k in ids[f]:
+                    node, key = n, k
+                    break
+            unresolved = tuple((k, n) for k, n in s.entries if k not in known)
+            subs.append(_Submission(s.student, s.path, s.source, node, key, unresolved))
+        tasks.append(_Task(f, tuple(subs), solve))
+    return tasks, extra
+
+
+def _unmatched(sheets: Sequence[Sheet], files: Sequence[str], used: set[tuple[str, str]]) -> list[FileResult]:
+    """An error row for every sheet entry that names no problem file."""
+    known = {n for f in files for n in (Path(f).stem, Path(f).name)}
+    out = []
+    for s in sheets:
+        if s.error is not None:
+            continue
+        for key, _ in s.entries:
+            if key in known or (s.student, key) in used:
+                continue
+            where = s.where(key)
+            out.append(
+                FileResult(
+                    s.path,
+                    verdicts=(
+                        Verdict(
+                            key,
+                            ERROR,
+                            message=f"no problem file is named {key!r} (by file name, stem or `name`)",
+                            where=where,
+                        ),
+                    ),
+                    student=s.student,
+                )
+            )
+    return out
+
+
+def _execute(
+    tasks: Sequence[_Task], workers: int, on_result: Callable[[FileResult], None] | None
+) -> list[_Done]:
+    """Run tasks serially (one worker, or too few tasks to pay for a pool) or in a process pool."""
+
+    def landed(done: _Done) -> None:
+        if on_result is not None:
+            for r in done.results:
+                on_result(r)
+
+    if workers <= 1 or len(tasks) < 2:
+        out = []
+        for task in tasks:
+            d = _run_task(task)
+            landed(d)
+            out.append(d)
+        return out
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
+    workers = min(workers, len(tasks))
+    # chunks amortise pickling and process hand-off; several per worker keep the load balanced
+    size = max(1, min(32, len(tasks) // (workers * 8)))
+    chunks = [tasks[i : i + size] for i in range(0, len(tasks), size)]
+    out = []
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        futures = [pool.submit(_run_tasks, chunk) for chunk in chunks]
+        for future in as_completed(futures):
+            for d in future.result():
+                landed(d)
+                out.append(d)
+    return out

@@ -1,0 +1,779 @@
+"""Claimed answers → verdicts: the library behind ``mech check``.
+
+Each claim (a :class:`~mech.model.Claim`, from a file's ``answers`` or from an
+answer sheet) gets one :class:`Verdict`:
+
+* **pass** — the computed value agrees within the tolerance;
+* **fail** — it does not (the verdict carries the computed value, the error
+  and the tolerance it was held to);
+* **error** — the value could not be computed (the mechanism cannot be solved
+  as asked, a ratio's denominator is zero …), with the reason.
+
+Only what the claims ask is computed.  Counts (``dof``, ``links.*``,
+``joints.*``, ``higher_pairs``, ``icentres.count``, ``chain``) use
+:mod:`mech.topology` alone, so checking a folder of DOF exercises never imports
+numpy; ``mobility`` needs the constraint Jacobian's rank; kinematic keys solve
+the mechanism once, at the highest level any claim needs; I-centre keys locate
+the I-centres from that solution.
+
+Tolerances (the textbook convention: an answer is judged against the true
+value, not the other way round):
+
+* relative ``t``: pass when ``|computed − claimed| ≤ t·|computed|``;
+* absolute ``t`` (SI units of the answer): pass when ``|computed − claimed| ≤ t``;
+* a point (``icentre``): the distance between the claimed and the computed
+  point, against ``t·size`` (``size``: the mechanism's largest distance between
+  two joints) or an absolute length;
+* counts and chain names are exact.
+
+A claim of exactly zero cannot meet a relative tolerance of a value that is
+zero only to rounding, so every comparison also passes when the error is below
+1e-6 of the mechanism's own scale for that quantity (its size, its fastest
+link's ω, and their products).
+
+Nothing here prints or imports rich; :mod:`mech.render.check` makes tables,
+JSON, JUnit XML, Gradescope and CSV from the same :class:`Verdict` objects.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from mech.answers import parse_key
+from mech.errors import MechError, Problem, Where
+from mech.model import Claim, Mechanism, Tolerance
+from mech.options import SolveOptions
+from mech.units import Dimension, format_unit, parse_quantity, to_unit
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.kinematics import Kinematics
+    from mech.topology import Topology
+
+__all__ = [
+    "ERROR",
+    "FAIL",
+    "PASS",
+    "Analysis",
+    "FileResult",
+    "InternalError",
+    "Verdict",
+    "check",
+    "check_file",
+    "error_result",
+]
+
+PASS = "pass"
+FAIL = "fail"
+ERROR = "error"
+
+#: Errors below this fraction of the mechanism's own scale are rounding, not a wrong answer.
+NOISE = 1e-6
+
+_LEVELS = ("topology", "mobility", "position", "velocity", "acceleration")
+
+
+@dataclass(frozen=True, slots=True)
+class Verdict:
+    """The verdict on one claimed answer.
+
+    Attributes
+    ----------
+    key
+        The answer key as written (``omega.rocker``); ``file`` for a row that
+        stands for a whole file that could not be read.
+    status
+        ``"pass"``, ``"fail"`` or ``"error"``.
+    claimed
+        The claim as written (``"4.8 rad/s cw"``).
+    computed
+        The value it was compared with, SI: a float (signed where a sense was
+        claimed), an int count, a chain name, a point ``(x, y)``, the string
+        ``"infinity"``, or None when nothing could be computed.
+    unit
+        SI unit of ``computed`` (``"rad/s"``), None for counts and names.
+    error
+        ``|computed − claimed|`` in SI (for a point: the distance between the
+        points), None where it has no meaning.
+    allowed
+        The largest error that passes, SI (the tolerance made absolute).
+    tolerance
+        The tolerance as given (``"2%"``, ``"0.05"`` SI), None for exact keys.
+    message
+        One sentence a student can act on.
+    where
+        Where the claim was written (file or sheet, line, column).
+    """
+
+    key: str
+    status: str
+    claimed: str = ""
+    computed: Any = None
+    unit: str | None = None
+    error: float | None = None
+    allowed: float | None = None
+    tolerance: str | None = None
+    message: str = ""
+    where: Where | None = field(default=None, compare=False)
+
+    @property
+    def passed(self) -> bool:
+        return self.status == PASS
+
+
+@dataclass(frozen=True, slots=True)
+class FileResult:
+    """Every verdict for one problem file (and one student, with answer sheets).
+
+    A file that cannot be read or checked at all is *one* error verdict with
+    key ``file``; its located problems are kept in ``problems`` for JSON.
+    ``skipped`` is True for a file with no answers to check.
+    """
+
+    path: str
+    name: str | None = None
+    verdicts: tuple[Verdict, ...] = ()
+    student: str | None = None
+    problems: tuple[Problem, ...] = ()
+    skipped: bool = False
+
+    @property
+    def passed(self) -> int:
+        return sum(v.status == PASS for v in self.verdicts)
+
+    @property
+    def failed(self) -> int:
+        return sum(v.status == FAIL for v in self.verdicts)
+
+    @property
+    def errors(self) -> int:
+        return sum(v.status == ERROR for v in self.verdicts)
+
+    @property
+    def total(self) -> int:
+        return len(self.verdicts)
+
+    @property
+    def ok(self) -> bool:
+        return self.passed == self.total
+
+
+def error_result(
+    path: str, error: MechError, *, student: str | None = None, name: str | None = None
+) -> FileResult:
+    """A file that could not be checked: one error row carrying the error's problems."""
+    first = error.problems[0] if error.problems else Problem(str(error))
+    more = len(error.problems) - 1
+    message = first.message + (f" (and {more} more problem{'s' if more > 1 else ''})" if more > 0 else "")
+    where = first.where
+    if where is not None and where.line:
+        message = f"{where.line}:{where.column}: {message}"
+    return FileResult(
+        path=path,
+        name=name,
+        verdicts=(Verdict("file", ERROR, message=message, where=where),),
+        student=student,
+        problems=tuple(error.problems),
+    )
+
+
+def check_file(path: str, *, options: SolveOptions | None = None) -> FileResult:
+    """Load one problem file and check the answers it carries.
+
+    The function to map over many machines (Dask ``client.map``, Ray): it
+    takes a path and returns a picklable, frozen result; a file that cannot
+    be read becomes its error row instead of an exception.
+    """
+    from mech.loader import load
+
+    try:
+        mech = load(path)
+    except MechError as error:
+        return error_result(path, error)
+    if not mech.answers:
+        return FileResult(path=path, name=mech.name, skipped=True)
+    return FileResult(path=path, name=mech.name, verdicts=check(mech, options=options))
+
+
+def check(
+    mech: Mechanism,
+    claims: Sequence[Claim] | None = None,
+    *,
+    tolerance: Tolerance | None = None,
+    options: SolveOptions | None = None,
+    analysis: Analysis | None = None,
+) -> tuple[Verdict, ...]:
+    """Verdicts on ``claims`` (default: the file's own answers), in their order.
+
+    Parameters
+    ----------
+    mech
+        The mechanism, as loaded.
+    claims
+        Claims to check; ``mech.answers`` when None.
+    tolerance
+        Default tolerance for claims that give none; the file's when None.
+    options
+        Solver options (Newton's tolerance); drives come from the file.
+    analysis
+        An :class:`Analysis` to reuse, so that several students' claims on one
+        problem share one solve.
+
+    Examples
+    --------
+    >>> from mech.loader import loads
+    >>> m = loads('''
+    ... links: [frame, a, b]
+    ... joints:
+    ...   A: {type: revolute, links: [frame, a]}
+    ...   B: {type: revolute, links: [a, b]}
+    ...   C: {type: revolute, links: [b, frame]}
+    ... answers: {dof: 1}
+    ... ''')
+    >>> [(v.key, v.status, v.computed) for v in check(m)]
+    [('dof', 'fail', 0)]
+    """
+    claims = mech.answers if claims is None else tuple(claims)
+    tolerance = tolerance or mech.tolerance
+    analysis = analysis or Analysis(mech, options=options)
+    analysis.need(claims)
+    return tuple(_verdict(claim, analysis, tolerance) for claim in claims)
+
+
+# -- what is computed, once and only when asked ------------------------------------------
+class Analysis:
+    """The computed side of a check, each piece made on first use and kept.
+
+    A solve that fails is kept as its error, so that every claim needing it
+    gets the same reason without solving again.
+    """
+
+    def __init__(self, mech: Mechanism, *, options: SolveOptions | None = None) -> None:
+        self.mech = mech
+        self.options = options or SolveOptions()
+        self.level = "topology"
+        self._cache: dict[str, Any] = {}
+
+    def need(self, claims: Sequence[Claim]) -> None:
+        """Raise the solve level to the highest any claim needs (before anything is solved)."""
+        for claim in claims:
+            level = parse_key(claim.key).level
+            if level in ("velocity", "acceleration") and _LEVELS.index(level) > _LEVELS.index(self.level):
+                self.level = level
+                # a solve made for a lower level is not enough any more
+                self._cache.pop("kin", None)
+                self._cache.pop("icentres", None)
+
+    def _get(self, name: str, make: Callable[[], Any]) -> Any:
+        if name not in self._cache:
+            try:
+                self._cache[name] = make()
+            except MechError as error:
+                self._cache[name] = error
+            except Exception as exc:  # a bug in an analysis: one file's rows say so, the batch goes on
+                self._cache[name] = InternalError.of(exc)
+        value = self._cache[name]
+        if isinstance(value, (MechError, InternalError)):
+            raise value
+        return value
+
+    @property
+    def topology(self) -> Topology:
+        from mech.topology import classify
+
+        return self._get("topology", lambda: classify(self.mech))
+
+    @property
+    def mobility(self) -> int | None:
+        def make() -> int | None:
+            if "kin" in self._cache and not isinstance(self._cache["kin"], MechError):
+                return self._cache["kin"].mobility.numeric
+            from mech.kinematics import mobility
+
+            return mobility(self.mech).numeric
+
+        return self._get("mobility", make)
+
+    @property
+    def kin(self) -> Kinematics:
+        def make() -> Kinematics:
+            from mech.kinematics import solve
+
+            level = self.level if self.level in ("velocity", "acceleration") else "velocity"
+            return solve(self.mech, level=level, options=self.options)
+
+        return self._get("kin", make)
+
+    @property
+    def icentres(self) -> Any:
+        def make() -> Any:
+            try:
+                from mech.icentres import locate
+            except ImportError as exc:  # the module, or its locate(), is not there
+                if exc.name != "mech.icentres":
+                    raise
+                from mech.errors import UnsupportedError
+
+                raise UnsupportedError("I-centres are not available in this version of mech") from None
+            return locate(self.mech, self.kin)
+
+        return self._get("icentres", make)
+
+    # -- the mechanism's own scales, for the rounding floor ---------------------------------
+    @property
+    def omega_ref(self) -> float:
+        """The fastest link's |ω| (rad/s); for a pure translation, the fastest point's speed / size."""
+        kin = self.kin
+        w = max((abs(s.omega or 0.0) for s in kin.links.values()), default=0.0)
+        if w > 0.0:
+            return w
+        speeds = [math.hypot(*s.velocity) for s in kin.links.values() if s.velocity is not None]
+        return max(speeds, default=0.0) / kin.size if kin.size > 0 else 0.0
+
+    def scale(self, dimension: Dimension | None) -> float:
+        """The mechanism's natural unit of a quantity: size, ω, ω·size, ω²·size, ω²."""
+        if dimension in (None, Dimension.NUMBER):
+            return 1.0
+        size = self.kin.size
+        w = self.omega_ref
+        return {
+            Dimension.LENGTH: size,
+            Dimension.ANGULAR_VELOCITY: w,
+            Dimension.VELOCITY: w * size,
+            Dimension.ACCELERATION: w * w * size,
+            Dimension.ANGULAR_ACCELERATION: w * w,
+        }.get(dimension, 1.0)
+
+
+# -- one claim -------------------------------------------------------------------------------
+def _verdict(claim: Claim, analysis: Analysis, default: Tolerance) -> Verdict:
+    akey = parse_key(claim.key)
+    base = Verdict(claim.key, ERROR, claimed=claim.text or str(claim.value), where=claim.where)
+    try:
+        if akey.is_count or akey.family == "chain":
+            return _count(claim, akey.family, analysis, base)
+        return _KINEMATIC[akey.family](claim, akey.names, analysis, claim.tolerance or default, base)
+    except MechError as error:
+        return _replace(base, status=ERROR, message=f"cannot be computed: {_reason(error)}")
+    except (_Undefined, InternalError) as why:
+        return _replace(base, status=ERROR, message=str(why))
+
+
+class InternalError(Exception):
+    """A bug in mech met while checking: reported as an error row that says it is a bug.
+
+    Not a :class:`MechError` (the input is not at fault) and not swallowed:
+    the row names the exception and where it was raised, the exit status is 1.
+    """
+
+    @classmethod
+    def of(cls, exc: BaseException) -> InternalError:
+        import traceback
+
+        frames = traceback.extract_tb(exc.__traceback__)
+        ours = [f for f in frames if "/mech/" in f.filename.replace("\\", "/")] or frames
+        at = (
+            f" at {'/'.join(ours[-1].filename.replace(chr(92), '/').split('/')[-2:])}:{ours[-1].lineno}"
+            if ours
+            else ""
+        )
+        return cls(f"internal error in mech (a bug, please report it): {type(exc).__name__}: {exc}{at}")
+
+
+class _Undefined(Exception):
+    """The asked quantity does not exist here (a ratio over a link at rest …)."""
+
+
+def _reason(error: MechError) -> str:
+    p = error.problems[0] if error.problems else None
+    text = p.message if p else str(error)
+    if p is not None and p.hint:
+        text += f" ({p.hint})"
+    return text
+
+
+def _replace(v: Verdict, **changes: Any) -> Verdict:
+    from dataclasses import replace
+
+    return replace(v, **changes)
+
+
+# -- counts: topology only (no numpy) ----------------------------------------------------------
+def _normal_chain(name: str) -> str:
+    s = name.strip().lower().replace("_", "-").replace(" ", "-")
+    s = re.sub(r"'s\b", "", s)
+    s = re.sub(r"-(chain|mechanism|linkage)$", "", s)
+    return {"fourbar": "four-bar", "4-bar": "four-bar", "fivebar": "five-bar", "5-bar": "five-bar"}.get(s, s)
+
+
+def _count(claim: Claim, family: str, analysis: Analysis, base: Verdict) -> Verdict:
+    if family == "mobility":
+        computed: Any = analysis.mobility
+        if computed is None:
+            return _replace(base, message="cannot be computed: the file has no geometry for a Jacobian")
+    elif family == "chain":
+        computed = analysis.topology.chain
+        ok = computed is not None and _normal_chain(str(claim.value)) == computed
+        shown = computed if computed is not None else "none of the named chains"
+        return _replace(
+            base,
+            status=PASS if ok else FAIL,
+            computed=computed,
+            message=f"chain is {shown}" if ok else f"the chain is {shown}, not {claim.value}",
+        )
+    else:
+        computed = _topology_count(family, analysis.topology)
+    ok = computed == claim.value
+    return _replace(
+        base,
+        status=PASS if ok else FAIL,
+        computed=computed,
+        error=float(abs(computed - int(claim.value))),
+        allowed=0.0,
+        message=f"{family} = {computed}" if ok else f"{family} is {computed}, not {claim.value}",
+    )
+
+
+def _topology_count(family: str, t: Topology) -> int:
+    c = t.count
+    if family == "dof":
+        return c.n
+    if family == "links.count":
+        return c.l
+    if family.startswith("links."):
+        return len(t.link_classes().get(family.split(".", 1)[1], ()))
+    if family == "joints.count":
+        return c.joints
+    if family == "joints.equivalent_binary":
+        return c.j
+    if family.startswith("joints."):
+        return len(t.joint_classes().get(family.split(".", 1)[1], ()))
+    if family == "higher_pairs":
+        return c.h
+    if family == "icentres.count":
+        return t.icentres
+    raise AssertionError(f"unhandled count key {family}")  # pragma: no cover - parse_key knows them all
+
+
+# -- kinematic quantities --------------------------------------------------------------------
+def _mag(v: tuple[float, float]) -> float:
+    return math.hypot(v[0], v[1])
+
+
+def _show(value: float, claim: Claim, dimension: Dimension, *, sense: bool) -> str:
+    """``value`` (SI) in the unit the claim was written in, with cw/ccw for a signed angular value."""
+    unit = dimension.value
+    try:
+        q = parse_quantity(claim.text)
+        if q.unit:
+            unit = q.unit
+    except (KeyError, ValueError):
+        pass
+    shown = to_unit(abs(value) if sense else value, unit) if unit != "1" else value
+    text = f"{shown:.4g}" + ("" if unit == "1" else f" {format_unit(unit)}")
+    if sense and value != 0.0:
+        text += " ccw" if value > 0 else " cw"
+    return text
+
+
+def _compare(
+    claim: Claim,
+    base: Verdict,
+    computed: float,
+    claimed: float,
+    dimension: Dimension,
+    tolerance: Tolerance,
+    analysis: Analysis,
+    *,
+    sense: bool = False,
+    what: str = "",
+) -> Verdict:
+    """A scalar claim against its computed value: relative to the computed value, or absolute."""
+    err = abs(computed - claimed)
+    allowed = tolerance.value * abs(computed) if tolerance.relative else tolerance.value
+    floor = NOISE * analysis.scale(dimension)
+    shown = _show(computed, claim, dimension, sense=sense)
+    ok = err <= allowed or err <= floor
+    common = {
+        "computed": computed,
+        "unit": dimension.value,
+        "error": err,
+        "allowed": allowed,
+        "tolerance": str(tolerance),
+    }
+    if ok:
+        return _replace(base, status=PASS, message=f"{what}{shown}", **common)
+    slip = (
+        "" if dimension in (Dimension.NUMBER,) or sense else _unit_slip(computed, claimed, claim, tolerance)
+    )
+    if slip:
+        message = f"{what}{shown}{slip}"
+    elif sense and computed * claimed < 0 and abs(computed) > floor:
+        message = f"wrong sense: {what}{shown}, claimed {claim.sense or ('ccw' if claimed > 0 else 'cw')}"
+    elif tolerance.relative and computed != 0.0:
+        message = f"{what}{shown}: off by {err / abs(computed):.1%} (allowed {tolerance})"
+    else:
+        message = f"{what}{shown}: off by {_show(err, claim, dimension, sense=False)} (allowed {tolerance})"
+    return _replace(base, status=FAIL, message=message, **common)
+
+
+_SLIPS = {1e3: "mm", 1e2: "cm"}
+
+
+def _unit_slip(computed: float, claimed: float, claim: Claim, tolerance: Tolerance) -> str:
+    """A hint when a bare claim is the computed value in mm or cm: bare numbers are SI."""
+    if computed == 0.0 or not claim.text or not claim.text.lstrip("[-+ ").replace(".", "", 1)[:1].isdigit():
+        return ""
+    try:
+        if parse_quantity(claim.text.split(",")[0].strip("[] ")).unit is not None:
+            return ""
+    except (KeyError, ValueError):
+        return ""
+    for factor, unit in _SLIPS.items():
+        if abs(claimed - computed * factor) <= max(
+            tolerance.value if tolerance.relative else 0.02, 0.02
+        ) * abs(computed * factor):
+            return f'; the claim looks like {unit}: a bare number is SI (write e.g. "{claimed:g} {unit}")'
+    return ""
+
+
+def _signed_claim(claim: Claim) -> float:
+    v = float(claim.value)  # type: ignore[arg-type]
+    if claim.sense == "cw":
+        return -abs(v)
+    if claim.sense == "ccw":
+        return abs(v)
+    return v
+
+
+def _angular(attr: str, dimension: Dimension) -> Callable[..., Verdict]:
+    """``omega.<link>`` / ``alpha.<link>``: the sign is checked only when the claim says cw or ccw."""
+
+    def run(claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance, base: Verdict) -> Verdict:
+        value = getattr(an.kin.links[names[0]], attr)
+        if claim.sense is not None:
+            return _compare(claim, base, value, _signed_claim(claim), dimension, tol, an, sense=True)
+        return _compare(claim, base, abs(value), abs(float(claim.value)), dimension, tol, an)  # type: ignore[arg-type]
+
+    return run
+
+
+def _vector(level: str) -> Callable[..., Verdict]:
+    """``velocity.<p>[.<q>]`` / ``acceleration.<p>[.<q>]``: magnitudes of absolute or relative vectors."""
+
+    def run(claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance, base: Verdict) -> Verdict:
+        kin = an.kin
+        if level == "velocity":
+            vec = kin.velocity(names[0]) if len(names) == 1 else kin.relative_velocity(names[0], names[1])
+            dimension = Dimension.VELOCITY
+        else:
+            vec = (
+                kin.acceleration(names[0])
+                if len(names) == 1
+                else kin.relative_acceleration(names[0], names[1])
+            )
+            dimension = Dimension.ACCELERATION
+        return _compare(claim, base, _mag(vec), abs(float(claim.value)), dimension, tol, an)  # type: ignore[arg-type]
+
+    return run
+
+
+def _omega_ratio(
+    claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance, base: Verdict
+) -> Verdict:
+    """ω_a/ω_b.  A negative claim says the links turn opposite ways and is checked signed;
+    a positive one is the textbook's velocity ratio, a magnitude."""
+    wa, wb = an.kin.links[names[0]].omega, an.kin.links[names[1]].omega
+    if abs(wb) <= NOISE * an.omega_ref:
+        raise _Undefined(
+            f"cannot be computed: ω of {names[1]} is zero, so ω_{names[0]}/ω_{names[1]} is undefined"
+        )
+    ratio = wa / wb
+    claimed = float(claim.value)  # type: ignore[arg-type]
+    if claimed < 0:
+        return _compare(claim, base, ratio, claimed, Dimension.NUMBER, tol, an, what="ω ratio ")
+    return _compare(claim, base, abs(ratio), claimed, Dimension.NUMBER, tol, an, what="ω ratio ")
+
+
+def _joint_speed(kind: str) -> Callable[..., Verdict]:
+    def run(claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance, base: Verdict) -> Verdict:
+        kin = an.kin
+        if kind == "sliding":
+            value, dimension = abs(kin.sliding(names[0])), Dimension.VELOCITY
+        elif kind == "rubbing":
+            value, dimension = abs(kin.rubbing(names[0])), Dimension.VELOCITY
+        else:
+            value, dimension = _mag(kin.coriolis(names[0])), Dimension.ACCELERATION
+        return _compare(claim, base, value, abs(float(claim.value)), dimension, tol, an)  # type: ignore[arg-type]
+
+    return run
+
+
+def least_speed(mech: Mechanism, kin: Kinematics, link: str) -> float:
+    """The least speed (m/s) of any point on the line through a link's joints.
+
+    For a point ``P(s) = A + s·u`` on the line (``u`` a unit vector along it),
+    ``v(s) = v_A + ω k × (s u) = v_A + ω s u⊥``: the component along the line,
+    ``v_A · u``, is the same for every point (the line is rigid), and the
+    component across it, ``v_A · u⊥ + ω s``, vanishes at ``s = −(v_A · u⊥)/ω``
+    (the foot of the perpendicular from the link's I-centre).  So the least
+    speed is ``|v_A · u|`` for a turning link and ``|v_A|`` for a translating one.
+
+    Raises
+    ------
+    InputError
+        When the link has fewer than two joints with a point, or its joints are
+        not on one line.
+    """
+    from mech.errors import InputError
+
+    names = [j.name for j in mech.joints if link in j.located_on and j.name in kin.positions]
+    if len(names) < 2:
+        raise InputError(
+            f"least_speed needs two joints on {link} to draw its line; it has {len(names)}"
+            + (f" ({', '.join(names)})" if names else "")
+        )
+    a = kin.positions[names[0]]
+    far = max(names[1:], key=lambda n: math.dist(a, kin.positions[n]))
+    b = kin.positions[far]
+    length = math.dist(a, b)
+    if length <= 0.0:
+        raise InputError(f"the joints of {link} coincide: no line through them")
+    u = ((b[0] - a[0]) / length, (b[1] - a[1]) / length)
+    for n in names[1:]:
+        p = kin.positions[n]
+        off = abs((p[0] - a[0]) * u[1] - (p[1] - a[1]) * u[0])
+        if off > 1e-9 * max(kin.size, length):
+            raise InputError(
+                f"the joints of {link} ({', '.join(names)}) are not on one line: least_speed is for a link's line of joints"
+            )
+    va = kin.velocity(names[0], link)
+    omega = kin.links[link].omega or 0.0
+    if abs(omega) * length <= NOISE * max(_mag(va), 1e-300):
+        return _mag(va)
+    return abs(va[0] * u[0] + va[1] * u[1])
+
+
+def _least_speed(
+    claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance, base: Verdict
+) -> Verdict:
+    value = least_speed(an.mech, an.kin, names[0])
+    return _compare(claim, base, value, abs(float(claim.value)), Dimension.VELOCITY, tol, an)  # type: ignore[arg-type]
+
+
+# -- I-centres and distances ------------------------------------------------------------------
+_IC_NAME = re.compile(r"^I(\d)(\d)$")
+
+
+def _ic_links(mech: Mechanism, name: str) -> tuple[str, str] | None:
+    """``I13`` → the links numbered 1 and 3 (ground is 1, the others in file order)."""
+    m = _IC_NAME.match(name)
+    if not m:
+        return None
+    numbered = mech.numbered_links
+    a, b = int(m.group(1)), int(m.group(2))
+    if not (1 <= a <= len(numbered) and 1 <= b <= len(numbered)) or a == b:
+        return None
+    return numbered[a - 1].name, numbered[b - 1].name
+
+
+def _fmt_point(p: tuple[float, float], claim: Claim) -> str:
+    unit = "m"
+    if claim.text.startswith("["):
+        for part in claim.text.strip("[]").split(","):
+            try:
+                q = parse_quantity(part)
+            except (KeyError, ValueError):
+                continue
+            if q.unit:
+                unit = q.unit
+    big = max(abs(p[0]), abs(p[1]))
+    x, y = (c if abs(c) > 1e-9 * big else 0.0 for c in p)  # rounding noise shown as 0
+    return f"({to_unit(x, unit):.4g}, {to_unit(y, unit):.4g}) {unit}"
+
+
+def _direction(ic: Any) -> str:
+    d = getattr(ic, "direction", None)
+    return f" (direction {math.degrees(math.atan2(d[1], d[0])) % 180.0:.1f}°)" if d else ""
+
+
+def _icentre(claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance, base: Verdict) -> Verdict:
+    ic = an.icentres.get(names[0], names[1])
+    size = an.kin.size
+    allowed = tol.value * size if tol.relative else tol.value
+    tol_text = f"{tol} of size {size:.4g} m" if tol.relative else str(tol)
+    common = {"unit": "m", "allowed": allowed, "tolerance": tol_text}
+    if claim.value == "infinity":
+        if ic.at_infinity:
+            return _replace(
+                base, status=PASS, computed="infinity", message="at infinity" + _direction(ic), **common
+            )
+        return _replace(
+            base,
+            status=FAIL,
+            computed=tuple(ic.point),
+            message=f"the I-centre is at {_fmt_point(ic.point, claim)}, not at infinity",
+            **common,
+        )
+    if ic.at_infinity:
+        return _replace(
+            base,
+            status=FAIL,
+            computed="infinity",
+            message="the I-centre is at infinity" + _direction(ic) + ", not at a point",
+            **common,
+        )
+    point = tuple(ic.point)
+    claimed = claim.value
+    err = math.dist(point, claimed)  # type: ignore[arg-type]
+    ok = err <= allowed or err <= NOISE * size
+    shown = _fmt_point(point, claim)  # type: ignore[arg-type]
+    message = (
+        shown if ok else f"the I-centre is at {shown}: {err / size:.1%} of the size away (allowed {tol_text})"
+    )
+    if not ok:
+        far = max(point, key=abs)
+        near = claimed[point.index(far)]  # type: ignore[index]
+        message += _unit_slip(far, near, claim, Tolerance(0.02))
+    return _replace(base, status=PASS if ok else FAIL, computed=point, error=err, message=message, **common)
+
+
+def _distance(claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance, base: Verdict) -> Verdict:
+    points = []
+    for name in names:
+        if name in an.kin.positions:
+            points.append(an.kin.positions[name])
+            continue
+        pair = _ic_links(an.mech, name)
+        if pair is None:  # the loader lets through only points and I-centre names
+            raise _Undefined(f"cannot be computed: {name} is neither a point nor an I-centre")
+        ic = an.icentres.get(*pair)
+        if ic.at_infinity:
+            return _replace(
+                base,
+                status=FAIL,
+                computed=math.inf,
+                unit="m",
+                message=f"{name} is at infinity{_direction(ic)}: the distance is infinite",
+            )
+        points.append(tuple(ic.point))
+    value = math.dist(points[0], points[1])
+    return _compare(claim, base, value, abs(float(claim.value)), Dimension.LENGTH, tol, an)  # type: ignore[arg-type]
+
+
+_KINEMATIC: dict[str, Callable[..., Verdict]] = {
+    "velocity": _vector("velocity"),
+    "acceleration": _vector("acceleration"),
+    "omega": _angular("omega", Dimension.ANGULAR_VELOCITY),
+    "alpha": _angular("alpha", Dimension.ANGULAR_ACCELERATION),
+    "omega_ratio": _omega_ratio,
+    "sliding": _joint_speed("sliding"),
+    "rubbing": _joint_speed("rubbing"),
+    "coriolis": _joint_speed("coriolis"),
+    "least_speed": _least_speed,
+    "icentre": _icentre,
+    "distance": _distance,
+}

@@ -1,0 +1,142 @@
+"""Sweep plots and animations (matplotlib, the optional ``plot`` extra).
+
+The sweep itself (solving at every crank angle) is not done here: these
+functions take arrays — crank angles, the quantities against them, the dead
+centres and frames of positions — so that they can be tested on synthetic
+data and reused by any command that produces a sweep.
+
+Output is deterministic for given data: Agg backend, fixed DPI, DejaVu Sans,
+no PNG metadata; GIF frames are painted by the same figure code as the
+configuration diagram (:mod:`mech.draw.config`), so an animation looks like
+the still drawing.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from mech.draw.raster import DPI, use_matplotlib
+
+__all__ = ["Series", "animate", "extremes", "sweep_plot"]
+
+Vec = tuple[float, float]
+
+
+@dataclass(frozen=True, slots=True)
+class Series:
+    """One quantity against crank angle: ``label`` (``v_C``), ``unit`` (``m/s``), ``values``.
+
+    NaN marks an angle where the quantity is undefined (a toggle): the line is
+    broken there rather than joined across.
+    """
+
+    label: str
+    unit: str
+    values: Sequence[float]
+
+
+def extremes(angles: Sequence[float], values: Sequence[float]) -> tuple[tuple[float, float], tuple[float, float]]:
+    """((angle, value) of the maximum, (angle, value) of the minimum), ignoring NaN."""
+    pairs = [(a, v) for a, v in zip(angles, values, strict=True) if not math.isnan(v)]
+    if not pairs:
+        raise ValueError("no finite values to find extremes of")
+    hi = max(pairs, key=lambda p: p[1])
+    lo = min(pairs, key=lambda p: p[1])
+    return hi, lo
+
+
+def sweep_plot(
+    path: str | Path,
+    angles: Sequence[float],
+    series: Sequence[Series],
+    *,
+    dead_centres: Sequence[float] = (),
+    mark_extremes: bool = True,
+    title: str = "",
+    xlabel: str = "crank angle θ (°)",
+) -> None:
+    """Plot quantities against crank angle (degrees) into a PNG, one panel per unit.
+
+    Series sharing a unit share a panel (v_B and v_C together, ω's apart).
+    Dead centres are dashed vertical lines labelled "dead centre"; the largest
+    and smallest value of each series is marked and annotated with its angle.
+    """
+    use_matplotlib()
+    from matplotlib.figure import Figure as MplFigure
+
+    groups: dict[str, list[Series]] = {}
+    for s in series:
+        if len(s.values) != len(angles):
+            raise ValueError(f"{s.label}: {len(s.values)} values for {len(angles)} angles")
+        groups.setdefault(s.unit, []).append(s)
+    n = max(len(groups), 1)
+    fig = MplFigure(figsize=(7.0, 2.4 * n + 0.6), dpi=DPI)
+    axes = fig.subplots(n, 1, sharex=True, squeeze=False)[:, 0]
+    colours = ("#1f4e9c", "#b8461b", "#2e7d32", "#7b3f98", "#a0761a", "#00838f")
+    for ax, (unit, members) in zip(axes, groups.items(), strict=False):
+        for k, s in enumerate(members):
+            colour = colours[k % len(colours)]
+            ax.plot(angles, s.values, color=colour, lw=1.4, label=s.label)
+            if mark_extremes:
+                (ah, vh), (al, vl) = extremes(angles, s.values)
+                for a, v, word, va in ((ah, vh, "max", "bottom"), (al, vl, "min", "top")):
+                    ax.plot([a], [v], marker="o", ms=4, color=colour)
+                    ax.annotate(f"{word} {v:.4g} at {a:.0f}°", (a, v), textcoords="offset points",
+                                xytext=(4, 4 if va == "bottom" else -4), va=va, fontsize=7, color=colour)
+        for d in dead_centres:
+            ax.axvline(d, color="#777777", lw=0.8, ls="--")
+        ax.set_ylabel(unit)
+        ax.grid(True, color="#dddddd", lw=0.5)
+        ax.axhline(0, color="#999999", lw=0.6)
+        ax.legend(loc="upper right", fontsize=8, frameon=False)
+    if dead_centres:
+        top = axes[0]
+        for d in dead_centres:
+            top.annotate("dead centre", (d, 1.0), xycoords=("data", "axes fraction"), xytext=(2, -10),
+                         textcoords="offset points", fontsize=7, color="#555555", rotation=90, va="top")
+    lo, hi = min(angles), max(angles)
+    axes[-1].set_xlim(lo, hi)
+    if hi - lo >= 180:
+        axes[-1].set_xticks([lo + 30 * k for k in range(int((hi - lo) // 30) + 1)])
+    axes[-1].set_xlabel(xlabel)
+    if title:
+        fig.suptitle(title, fontsize=10, fontweight="bold")
+    fig.tight_layout()
+    fig.savefig(str(path), format="png", dpi=DPI, facecolor="white", metadata={"Software": None})
+
+
+def animate(
+    path: str | Path,
+    mech: Any,
+    kin: Any,
+    frames: Sequence[Mapping[str, Vec]],
+    *,
+    fps: int = 24,
+    dpi: int = 100,
+) -> None:
+    """An animated GIF of the mechanism over a cycle, one frame per set of positions.
+
+    ``kin`` is one solve of the mechanism (it tells which points each link
+    carries and how the guides lie); ``frames`` are the positions at each
+    step of the sweep.  All frames share one window and scale, fitted to every
+    frame, so the mechanism moves and the paper does not.
+    """
+    use_matplotlib()
+    from PIL import Image
+
+    from mech.draw.config import configuration, fit_view
+    from mech.draw.raster import render_rgb
+
+    if not frames:
+        raise ValueError("no frames to animate")
+    view = fit_view([p for frame in frames for p in frame.values()])
+    images = []
+    for frame in frames:
+        fig = configuration(mech, kin, positions=frame, view=view, title=getattr(mech, "label", ""))
+        images.append(Image.fromarray(render_rgb(fig, dpi=dpi)).convert("P", palette=Image.Palette.ADAPTIVE))
+    images[0].save(str(path), save_all=True, append_images=images[1:], duration=round(1000 / fps), loop=0,
+                   optimize=False, disposal=2)

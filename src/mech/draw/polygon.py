@@ -1,0 +1,438 @@
+"""Velocity and acceleration polygons, built and labelled as the lecture notes build them.
+
+The velocity diagram starts from a pole **o** (every fixed point has zero
+velocity, so all ground pivots are drawn there: "O1 and O2 are fixed points…
+so they are taken as single point (o1, o2)").  Each point P of the mechanism
+has its image **p** at the tip of v_P; the vector **op** is P's absolute
+velocity, and for two points A, B of one link the vector **ab** is the
+velocity of B relative to A — perpendicular to AB.  The images of a link's
+points form a figure similar to the link (the velocity image), which is why a
+ternary link's image is a triangle.
+
+Two more kinds of image appear where the notes need them: the point of a
+moving guide under a slider (the slotted lever's point under the block,
+labelled a₄ when the lever is link 4, link numbers counting ground as 1), whose
+vector **a₄a** is the sliding velocity along the slot; and the two points of
+a higher pair's contact (c₂ on link 2, c₃ on link 3), whose vector is the slip.
+
+The acceleration diagram is the same construction with accelerations (images
+primed: o′, a′, b′ …), and each relative acceleration drawn as the notes
+draw it: its normal (centripetal) component ω²·AB toward A, then its
+tangential component α·AB, thin; the resultant thick.  At a slider on a
+moving guide the components are the Coriolis term 2ωv and the sliding
+acceleration along the path.
+
+:func:`velocity_polygon` and :func:`acceleration_polygon` return the data
+(images and vectors, SI); :func:`polygon_figure` draws it to a round scale.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from mech.draw.config import display_name, link_colours, link_members
+from mech.draw.scene import (
+    INK,
+    Circle,
+    Figure,
+    Item,
+    Page,
+    Style,
+    Text,
+    Transform,
+    arrow,
+    bbox,
+    best_spot,
+    fmt,
+    nice_scale,
+    place_label,
+    scale_bar,
+    text_box,
+)
+from mech.model import JointType, Mechanism
+from mech.options import OutputUnits
+from mech.units import unit_factor
+
+__all__ = ["Image", "PolygonData", "Vector", "acceleration_polygon", "polygon_figure", "velocity_polygon"]
+
+Vec = tuple[float, float]
+
+_SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+PRIME = "′"
+MARGIN = 12.0
+TITLE_H = 9.0
+
+
+@dataclass(frozen=True, slots=True)
+class Image:
+    """A point of the polygon: ``label`` as printed, the mechanism ``point`` and ``link`` it images."""
+
+    key: str
+    label: str
+    point: str | None
+    link: str | None
+    value: Vec
+
+
+@dataclass(frozen=True, slots=True)
+class Vector:
+    """One drawn vector ``start → end`` (image keys), SI ``value``.
+
+    ``kind``: ``absolute`` (from the pole), ``relative`` (two points of one
+    link), ``sliding`` (slider relative to its guide), ``slip`` (at a higher
+    pair), or a component of a relative acceleration: ``normal``,
+    ``tangential``, ``coriolis``, ``along`` (sliding acceleration).
+    Components have an empty ``name`` and are not labelled.
+    """
+
+    name: str
+    start: str
+    end: str
+    kind: str
+    link: str | None
+    value: Vec
+
+
+@dataclass(frozen=True, slots=True)
+class PolygonData:
+    """A velocity (``kind='velocity'``, m/s) or acceleration (m/s²) polygon: images and vectors.
+
+    Image values are vectors from the pole; component vectors may end at
+    construction points (keys starting with ``~``) which are not images.
+    """
+
+    kind: str
+    pole: str
+    images: tuple[Image, ...]
+    vectors: tuple[Vector, ...]
+    construction: Mapping[str, Vec]
+
+    def image(self, key: str) -> Image:
+        for im in self.images:
+            if im.key == key:
+                return im
+        raise KeyError(key)
+
+    def vector(self, name: str) -> Vector:
+        for v in self.vectors:
+            if v.name == name:
+                return v
+        raise KeyError(name)
+
+    def at(self, key: str) -> Vec:
+        """The polygon point of an image or construction key (the pole is ``o``)."""
+        if key == "o":
+            return (0.0, 0.0)
+        if key in self.construction:
+            return self.construction[key]
+        return self.image(key).value
+
+
+def _numbers(mech: Mechanism) -> dict[str, int]:
+    """Link numbers as the notes use them: ground 1, the others in file order."""
+    return {link.name: i + 1 for i, link in enumerate(mech.numbered_links)}
+
+
+def velocity_polygon(mech: Mechanism, kin: Any) -> PolygonData:
+    """The velocity polygon of ``mech`` at the instant solved in ``kin`` (velocity level or more)."""
+    return _build(mech, kin, "velocity")
+
+
+def acceleration_polygon(mech: Mechanism, kin: Any) -> PolygonData:
+    """The acceleration polygon, with normal/tangential (and Coriolis) components drawn."""
+    return _build(mech, kin, "acceleration")
+
+
+def _build(mech: Mechanism, kin: Any, kind: str) -> PolygonData:
+    acc = kind == "acceleration"
+    mark = PRIME if acc else ""
+    numbers = _numbers(mech)
+    ground = mech.ground
+    pos = kin.positions
+
+    def value(name: str, link: str | None = None) -> Vec:
+        v = kin.acceleration(name, link) if acc else kin.velocity(name, link)
+        return (float(v[0]), float(v[1]))
+
+    members = link_members(mech, kin)
+    ground_names = [n for n in members[ground] if n in pos]
+    pole_names = [display_name(n, lower=True) + mark for n in ground_names] or ["o" + mark]
+    pole_label = ", ".join(pole_names)
+
+    # images: fixed points, coincident points of moving guides, contact points per link
+    images: dict[str, Image] = {}
+    order: list[str] = []
+    link_keys: dict[str, list[str]] = {link.name: [] for link in mech.links}
+    guided = {}
+    for j in mech.joints:
+        geom = kin.joints.get(j.name)
+        if j.type in (JointType.PRISMATIC, JointType.SLOT) and geom is not None and j.links[1] != ground:
+            guided[(geom.point, j.links[1])] = j
+    for link in mech.links:
+        for name in members[link.name]:
+            if name in ground_names:
+                key = "o"
+            elif (name, link.name) in guided:
+                key = f"{name}@{link.name}"
+                if key not in images:
+                    images[key] = Image(key, display_name(name, lower=True) + str(numbers[link.name]).translate(_SUB)
+                                        + mark, name, link.name, value(name, link.name))
+                    order.append(key)
+            else:
+                key = name
+                if key not in images:
+                    images[key] = Image(key, display_name(name, lower=True) + mark, name, link.name, value(name))
+                    order.append(key)
+            if key not in link_keys[link.name]:
+                link_keys[link.name].append(key)
+    contacts = [j for j in mech.joints if j.type in (JointType.CAM, JointType.GEAR, JointType.CONTACT,
+                                                       JointType.ROLLING) and j.name in pos]
+    for j in contacts:
+        for link in j.links:
+            if link == ground:
+                continue
+            key = f"{j.name}@{link}"
+            short = j.name if len(j.name) <= 2 else j.name[0]
+            if short.lower() in {display_name(n, lower=True) for n in pos if n != j.name}:
+                short = j.name  # "c" is taken by a point C: keep the full name
+            images[key] = Image(key, display_name(short, lower=True) + str(numbers[link]).translate(_SUB) + mark,
+                                j.name, link, value(j.name, link))
+            order.append(key)
+            link_keys[link].append(key)
+
+    rank = _ranks(link_keys, order)
+    vectors: list[Vector] = []
+    construction: dict[str, Vec] = {}
+
+    def label(key: str) -> str:
+        return pole_names[0] if key == "o" else images[key].label
+
+    # absolute vectors, from the pole (named after the fixed point of the same link, if any)
+    for key in order:
+        im = images[key]
+        if math.hypot(*im.value) == 0 and not acc:
+            continue
+        start_label, via = pole_names[0], None
+        for link, keys in link_keys.items():
+            if key in keys and "o" in keys and link != ground:
+                g = next(n for n in members[link] if n in ground_names)
+                start_label, via = display_name(g, lower=True) + mark, link
+                break
+        vectors.append(Vector(start_label + im.label, "o", key, "absolute", via, im.value))
+        if acc and via is not None:
+            _components(kin, via, _fixed_point(members[via], ground_names), im.point, "o", key, (0.0, 0.0),
+                        im.value, vectors, construction)
+
+    # relative vectors: between moving points of one link
+    for link in mech.moving_links:
+        keys = [k for k in link_keys[link.name] if k != "o"]
+        edges = _edges(keys, images, pos)
+        if "o" in link_keys[link.name] and len(keys) >= 2 and len(edges) == 1 and _collinear(
+            [pos[images[k].point] for k in keys if images[k].point in pos]  # type: ignore[index]
+            + [pos[n] for n in members[link.name] if n in ground_names]
+        ):
+            edges = []  # a lever through its pivot: the absolute vectors already lie along it
+        for a, b in edges:
+            if rank[a] > rank[b] or (rank[a] == rank[b] and order.index(a) > order.index(b)):
+                a, b = b, a
+            va, vb = images[a].value, images[b].value
+            rel = (vb[0] - va[0], vb[1] - va[1])
+            vectors.append(Vector(label(a) + label(b), a, b, "relative", link.name, rel))
+            if acc:
+                _components(kin, link.name, images[a].point, images[b].point, a, b, va, rel, vectors,
+                                construction)
+
+    # sliding along moving guides, slip at higher pairs
+    for (point, guide), j in guided.items():
+        a, b = f"{point}@{guide}", point
+        if a in images and b in images:
+            va, vb = images[a].value, images[b].value
+            rel = (vb[0] - va[0], vb[1] - va[1])
+            vectors.append(Vector(label(a) + label(b), a, b, "sliding", j.links[0], rel))
+            if acc:
+                cor = kin.coriolis(j.name)
+                mid = f"~{j.name}"
+                construction[mid] = (va[0] + cor[0], va[1] + cor[1])
+                vectors.append(Vector("", a, mid, "coriolis", guide, (cor[0], cor[1])))
+                vectors.append(Vector("", mid, b, "along", j.links[0], (rel[0] - cor[0], rel[1] - cor[1])))
+    for j in contacts:
+        keys = [f"{j.name}@{link}" for link in j.links if link != ground]
+        if len(keys) == 2:
+            va, vb = images[keys[0]].value, images[keys[1]].value
+            vectors.append(Vector(label(keys[0]) + label(keys[1]), keys[0], keys[1], "slip", None,
+                                  (vb[0] - va[0], vb[1] - va[1])))
+    return PolygonData(kind, pole_label, tuple(images[k] for k in order), tuple(vectors), construction)
+
+
+def _collinear(points: list[Vec]) -> bool:
+    if len(points) < 3:
+        return True
+    (x0, y0), (x1, y1) = max(((p, q) for p in points for q in points), key=lambda pq: math.dist(*pq))
+    L = math.hypot(x1 - x0, y1 - y0) or 1.0
+    return max(abs((p[0] - x0) * (y1 - y0) - (p[1] - y0) * (x1 - x0)) / L for p in points) < 1e-6 * L
+
+
+def _fixed_point(names: list[str], ground_names: list[str]) -> str:
+    return next(n for n in names if n in ground_names)
+
+
+def _components(kin: Any, link: str, p: str | None, q: str | None, a: str, b: str, start: Vec, rel: Vec,
+                vectors: list[Vector], construction: dict[str, Vec]) -> None:
+    """Split a relative acceleration of two points of ``link`` into normal and tangential parts."""
+    state = kin.links.get(link)
+    if state is None or state.omega is None or state.alpha is None or p is None or q is None:
+        return
+    rp, rq = kin.positions[p], kin.positions[q]
+    rx, ry = rq[0] - rp[0], rq[1] - rp[1]
+    w2 = state.omega * state.omega
+    normal = (-w2 * rx, -w2 * ry)
+    tangential = (-state.alpha * ry, state.alpha * rx)
+    if math.hypot(*normal) < 1e-9 * max(math.hypot(*rel), 1e-300) or math.hypot(*tangential) < 1e-9 * max(
+        math.hypot(*rel), 1e-300
+    ):
+        return
+    mid = f"~{a}>{b}"
+    construction[mid] = (start[0] + normal[0], start[1] + normal[1])
+    vectors.append(Vector("", a, mid, "normal", link, normal))
+    vectors.append(Vector("", mid, b, "tangential", link, tangential))
+
+
+def _ranks(link_keys: Mapping[str, list[str]], order: list[str]) -> dict[str, int]:
+    """Hops from the pole through shared links: the order in which the notes find the points."""
+    rank = {"o": 0}
+    frontier = ["o"]
+    while frontier:
+        nxt = []
+        for key in frontier:
+            for keys in link_keys.values():
+                if key in keys:
+                    for k in keys:
+                        if k not in rank:
+                            rank[k] = rank[key] + 1
+                            nxt.append(k)
+        frontier = nxt
+    for k in order:
+        rank.setdefault(k, len(order))
+    return rank
+
+
+def _edges(keys: list[str], images: Mapping[str, Image], pos: Mapping[str, Vec]) -> list[tuple[str, str]]:
+    """Pairs of a link's moving points to join: the one pair, a link's outline, or a line's steps."""
+    if len(keys) < 2:
+        return []
+    if len(keys) == 2:
+        return [(keys[0], keys[1])]
+    pts = {k: pos[images[k].point] for k in keys if images[k].point in pos}  # type: ignore[index]
+    if len(pts) != len(keys):
+        return list(itertools.pairwise(keys))
+    cx = sum(p[0] for p in pts.values()) / len(pts)
+    cy = sum(p[1] for p in pts.values()) / len(pts)
+    # collinear: join neighbours along the line; otherwise the outline in angular order
+    (x0, y0), (x1, y1) = max(((pts[a], pts[b]) for a in keys for b in keys), key=lambda pq: math.dist(*pq))
+    L = math.hypot(x1 - x0, y1 - y0) or 1.0
+    off = max(abs((p[0] - x0) * (y1 - y0) - (p[1] - y0) * (x1 - x0)) / L for p in pts.values())
+    if off < 1e-6 * L:  # a bar with points on its line: one vector end to end, the others on it
+        along = sorted(keys, key=lambda k: (pts[k][0] - x0) * (x1 - x0) + (pts[k][1] - y0) * (y1 - y0))
+        return [(along[0], along[-1])]
+    ring = sorted(keys, key=lambda k: math.atan2(pts[k][1] - cy, pts[k][0] - cx))
+    return [(ring[i], ring[(i + 1) % len(ring)]) for i in range(len(ring))]
+
+
+# -- drawing ------------------------------------------------------------------------------
+def polygon_figure(mech: Mechanism, data: PolygonData, *, room: Vec = (90.0, 90.0),
+                   scale: float | None = None, units: OutputUnits | None = None) -> Figure:
+    """The polygon drawn to a round scale, with its scale bar and the value of each vector.
+
+    Returns a :class:`Figure` in page mm.  Vector shafts carry ``class="vector"``
+    and ``data-name`` (``ab``), components ``class="component"``.
+    """
+    acc = data.kind == "acceleration"
+    units = units or OutputUnits()
+    unit = units.acceleration if acc else units.velocity
+    factor = unit_factor(unit)[1]  # SI per shown unit
+    unit = unit.replace("^2", "²")
+    colours = link_colours(mech)
+    pts: list[Vec] = [(0.0, 0.0)] + [im.value for im in data.images] + list(data.construction.values())
+    x0, y0, x1, y1 = bbox(pts)
+    w, h = max(x1 - x0, 1e-300), max(y1 - y0, 1e-300)
+    if scale is None:
+        scale = nice_scale(w, room[0]) if w / room[0] >= h / room[1] else nice_scale(h, room[1])
+    tr = Transform(scale, (x0, y1), (MARGIN, TITLE_H + MARGIN))
+    pw, ph = tr.length(w), tr.length(h)
+    tiny = 1e-9 * max((math.hypot(*p) for p in pts), default=1.0)
+    named = [v for v in data.vectors if v.name and math.hypot(*v.value) > tiny]
+    table_rows = len(named)
+    width = max(2 * MARGIN + pw + 10.0, 62.0)  # labels may stand out to the right
+    list_h = 4.0 * table_rows + 4
+    height = TITLE_H + 2 * MARGIN + ph + 10 + list_h
+    page = Page(width, height)
+    title = "Acceleration diagram" if acc else "Velocity diagram"
+    page.add(Text((MARGIN - 6, 5.5), title, 3.4, "start", bold=True, cls="title"))
+
+    def at(key: str) -> Vec:
+        return tr(data.at(key))
+
+    comps: list[Item] = []
+    main: list[Item] = []
+    labelled: list[tuple[Vector, str]] = []
+    for v in data.vectors:
+        colour = colours.get(v.link, INK) if v.link else "#444444"
+        if math.hypot(*v.value) <= tiny:
+            continue  # a zero vector (no slip at a pitch point): nothing to draw or list
+        if not v.name:
+            comps.extend(arrow(at(v.start), at(v.end), colour, 0.25, cls="component", head=1.6, dash=(1.2, 0.8)))
+            continue
+        width_mm = 0.55 if v.kind != "absolute" or v.link else 0.4
+        main.extend(arrow(at(v.start), at(v.end), colour, width_mm, cls="vector", name=v.name))
+        labelled.append((v, colour))
+    drawn: list[Item] = comps + main
+
+    # image points and their labels (images at one place share a label: "a, d")
+    spots: dict[tuple[int, int], tuple[Vec, list[str]]] = {}
+    for key, lab in [("o", data.pole)] + [(im.key, im.label) for im in data.images]:
+        q = at(key)
+        k = (round(q[0] * 2), round(q[1] * 2))
+        entry = spots.setdefault(k, (q, []))
+        if lab not in entry[1]:
+            entry[1].append(lab)
+    for q, _ in spots.values():
+        drawn.append(Circle(q, 0.7, Style(INK, 0.2, fill=INK), "image"))
+    c = tr(((x0 + x1) / 2, (y0 + y1) / 2))
+    for q, labs in spots.values():
+        dx, dy = q[0] - c[0], q[1] - c[1]
+        n = math.hypot(dx, dy)
+        prefer = (dx / n, dy / n) if n > 1 else (-0.7, 0.7)
+        drawn.append(place_label(q, ", ".join(labs), 3.2, prefer, drawn, italic=True, bold=True, cls="image-label"))
+
+    # vector names beside their shafts, where they collide least
+    for v, colour in labelled:
+        p0, p1 = at(v.start), at(v.end)
+        n = math.dist(p0, p1)
+        if n < 3:
+            continue
+        ux, uy = (p1[0] - p0[0]) / n, (p1[1] - p0[1]) / n
+        hw, hh = text_box(v.name, 2.9)
+        off = 1.2 + abs(ux) * hh + abs(uy) * hw
+        cands = []
+        for t, bonus in ((0.5, 0.3), (0.4, 0.2), (0.6, 0.2), (0.3, 0.1), (0.7, 0.1)):
+            m = (p0[0] + (p1[0] - p0[0]) * t, p0[1] + (p1[1] - p0[1]) * t)
+            for side, sb in ((1, 0.05), (-1, 0.0)):
+                cands.append(((m[0] + uy * off * side, m[1] - ux * off * side), bonus + sb))
+        spot = best_spot(cands, v.name, 2.9, drawn)
+        drawn.append(Text(spot, v.name, 2.9, "middle", colour, italic=True, bold=True, cls="vector-label"))
+    page.extend(drawn)
+
+    y = TITLE_H + 2 * MARGIN + ph
+    page.extend(scale_bar((MARGIN - 6, y), scale / factor, unit))
+    y += 7
+    for v in named:
+        mag = math.hypot(*v.value) / factor
+        what = {"sliding": "  (sliding)", "slip": "  (slip)"}.get(v.kind, "")
+        page.add(Text((MARGIN - 6, y), f"{v.name} = {fmt(mag)} {unit}{what}", 2.7, "start", "#333333",
+                      cls="value"))
+        y += 4.0
+    return page.figure(title)

@@ -1,0 +1,301 @@
+"""The geometry of one instant, and the I-centres (or lines) it gives by inspection.
+
+Kennedy's construction needs only the geometry at the instant: where the pins
+are, which way each slider's path runs, where each higher pair touches and
+along which normal.  :class:`Instant` holds exactly that, in metres, so the
+whole construction is a pure function of it and can be tested with geometry
+built by hand; :func:`instant_of` reads it from a mechanism and its solved
+positions.
+
+The inspection rules (lecture notes 002, §6.4; Khurmi & Gupta, *Theory of
+Machines*, §6.6):
+
+* a pin is the I-centre of the links it joins — a ternary pin gives three;
+* a slider on a straight path: the I-centre lies at infinity perpendicular to
+  the path, whether the guide is the frame or a moving link;
+* pure rolling: the point of contact;
+* a cam, gear or other point contact: the I-centre lies *somewhere on the
+  common normal* — a line, not a point; Kennedy finishes it;
+* a pin in a straight slot: on the normal to the slot through the pin centre.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Literal
+
+from mech.icentres.homogeneous import Frame, Hom, ideal, line_along, unit
+from mech.model import JointType, Mechanism
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.kinematics import Kinematics
+
+__all__ = ["Contact", "Fact", "Instant", "Pin", "Slide", "facts", "instant_of"]
+
+Vec = tuple[float, float]
+
+#: Accuracy assumed for a solved position, relative to the mechanism's size:
+#: the solver's default Newton tolerance.  It seeds the error estimates that
+#: decide whether two Kennedy lines are too close to coincident to meet.
+POSITION_NOISE = 1e-12
+
+
+@dataclass(frozen=True, slots=True)
+class Pin:
+    """A revolute joint at ``at`` (m) joining ``links`` (two or more)."""
+
+    joint: str
+    links: tuple[str, ...]
+    at: Vec
+
+
+@dataclass(frozen=True, slots=True)
+class Slide:
+    """A straight path: ``slider`` slides along unit ``direction`` fixed in ``guide``.
+
+    ``slot`` is True for a pin in a slot (``at`` is then the pin centre and
+    the pin may also turn); False for a prismatic pair (no relative turning).
+    """
+
+    joint: str
+    slider: str
+    guide: str
+    direction: Vec
+    at: Vec | None = None
+    slot: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class Contact:
+    """A higher pair touching at ``at`` (m): rolling, or sliding along a common normal.
+
+    ``normal`` is the common normal's unit direction (None for pure rolling,
+    whose I-centre is the contact point itself).
+    """
+
+    joint: str
+    type: str
+    links: tuple[str, str]
+    at: Vec
+    normal: Vec | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Instant:
+    """Everything Kennedy needs about one instant of a mechanism (metres).
+
+    Attributes
+    ----------
+    links
+        Link names in I-centre numbering order: ground first (= 1), then the
+        others in file order.
+    frame
+        The mechanism's centre and size, which turn metres into size units.
+    pins, slides, contacts
+        The pairs, as located at the instant.
+    """
+
+    links: tuple[str, ...]
+    frame: Frame
+    pins: tuple[Pin, ...] = ()
+    slides: tuple[Slide, ...] = ()
+    contacts: tuple[Contact, ...] = ()
+
+    def number(self, link: str) -> int:
+        """The link's I-centre number (ground = 1)."""
+        return self.links.index(link) + 1
+
+
+@dataclass(frozen=True, slots=True)
+class Fact:
+    """What inspection says about one pair of links.
+
+    ``pair`` are 0-based link indices (i < j); ``hom`` is a unit point or line
+    in size units; ``kind`` says which; ``label`` how it was found ("pin B",
+    "normal at contact"); ``err`` an estimate of its error (chordal, size
+    units) that later steps propagate.
+    """
+
+    pair: tuple[int, int]
+    kind: Literal["point", "line"]
+    hom: Hom
+    label: str
+    primary: bool
+    err: float = POSITION_NOISE
+    xy: Vec | None = None  # the exact position (m) of a finite point, to report it unrounded
+
+
+def _pair(i: int, j: int) -> tuple[int, int]:
+    return (i, j) if i < j else (j, i)
+
+
+def facts(instant: Instant) -> tuple[Fact, ...]:
+    """The inspection rules applied to every pair of the instant.
+
+    Returns points (pins, sliders at infinity, rolling contacts) and lines
+    (common normals of cams, gears and contacts; normals to slots), in file
+    order.
+
+    Examples
+    --------
+    >>> inst = Instant(("frame", "crank"), Frame((0.0, 0.0), 1.0), pins=(Pin("A", ("frame", "crank"), (0.0, 0.0)),))
+    >>> facts(inst)[0].label
+    'pin A'
+    """
+    index = {name: k for k, name in enumerate(instant.links)}
+    f = instant.frame
+    out: list[Fact] = []
+    for pin in instant.pins:
+        ids = [index[lk] for lk in pin.links]
+        for a in range(len(ids)):
+            for b in range(a + 1, len(ids)):
+                if ids[a] != ids[b]:
+                    out.append(
+                        Fact(_pair(ids[a], ids[b]), "point", unit(f.hom(pin.at)), f"pin {pin.joint}", True,
+                             xy=pin.at)
+                    )
+    for s in instant.slides:
+        pair = _pair(index[s.slider], index[s.guide])
+        ux, uy = s.direction
+        if not s.slot:
+            # Perpendicular to the path, at infinity: the slider translates relative to the guide.
+            out.append(
+                Fact(pair, "point", unit(ideal((-uy, ux))), f"slider {s.joint}: ⟂ path at infinity", True)
+            )
+        elif s.at is not None:
+            normal = line_along(f.hom(s.at), (-uy, ux))
+            out.append(Fact(pair, "line", unit(normal), f"normal to slot {s.joint}", False))
+    for c in instant.contacts:
+        pair = _pair(index[c.links[0]], index[c.links[1]])
+        if c.normal is None:
+            out.append(Fact(pair, "point", unit(f.hom(c.at)), f"rolling contact {c.joint}", True, xy=c.at))
+        else:
+            out.append(Fact(pair, "line", unit(line_along(f.hom(c.at), c.normal)), f"normal at {c.joint}", False))
+    return tuple(out)
+
+
+# -- reading an instant from a solved mechanism -------------------------------------------
+def _angle(a: float) -> Vec:
+    return (math.cos(a), math.sin(a))
+
+
+def _unit2(v: Vec) -> Vec | None:
+    n = math.hypot(v[0], v[1])
+    return None if n == 0.0 else (v[0] / n, v[1] / n)
+
+
+def _centre(positions: Sequence[Vec]) -> Vec:
+    if not positions:
+        return (0.0, 0.0)
+    return (
+        math.fsum(p[0] for p in positions) / len(positions),
+        math.fsum(p[1] for p in positions) / len(positions),
+    )
+
+
+def instant_of(mech: Mechanism, kin: Kinematics) -> Instant:
+    """The geometry of ``mech`` at the instant ``kin`` was solved for.
+
+    Pin and contact positions come from ``kin.positions``; a path's direction
+    and a contact's common tangent from ``kin.joints`` (the solver turns a path
+    on a moving guide with its guide), falling back to the file's ``angle`` or
+    ``normal`` as drawn.
+
+    Parameters
+    ----------
+    mech
+        The mechanism.
+    kin
+        A solve of it at any level (positions suffice).
+    """
+    positions: Mapping[str, Vec] = kin.positions
+    joints = getattr(kin, "joints", {}) or {}
+    links = tuple(lk.name for lk in mech.numbered_links)
+    located = [p for name, p in positions.items() if name in {j.name for j in mech.joints}] or list(
+        positions.values()
+    )
+    frame = Frame(_centre(located), kin.size if kin.size > 0 else 1.0)
+    pins: list[Pin] = []
+    slides: list[Slide] = []
+    contacts: list[Contact] = []
+    for j in mech.joints:
+        geom = joints.get(j.name)
+        where = geom.point if geom is not None and geom.point else j.name
+        at = positions.get(where)
+        if j.type is JointType.REVOLUTE:
+            if at is not None:
+                pins.append(Pin(j.name, tuple(j.links), at))
+        elif j.type in (JointType.PRISMATIC, JointType.SLOT):
+            u = geom.direction if geom is not None and geom.direction is not None else None
+            if u is None and j.path is not None:
+                u = _path_direction(j.path, positions)
+            if u is None:
+                continue
+            slides.append(Slide(j.name, j.links[0], j.links[1], u, at, slot=j.type is JointType.SLOT))
+        elif j.type in (JointType.ROLLING, JointType.CAM, JointType.GEAR, JointType.CONTACT):
+            if at is None and j.place.at is not None:
+                at = j.place.at
+            if at is None:
+                continue
+            a, b = j.links[0], j.links[1]
+            if j.type is JointType.ROLLING:
+                contacts.append(Contact(j.name, j.type.value, (a, b), at))
+                continue
+            normal: Vec | None = None
+            if geom is not None and geom.direction is not None:
+                tx, ty = geom.direction  # the common tangent: the normal turned +90°
+                normal = (ty, -tx)
+            elif j.normal is not None:
+                normal = _angle(j.normal)
+            elif j.type is JointType.GEAR:
+                normal = _line_of_action(mech, j.links, j.pressure_angle or 0.0, positions)
+            if normal is None:
+                # A gear with no line of action: its pitch point is where the pitch circles roll.
+                contacts.append(Contact(j.name, j.type.value, (a, b), at))
+            else:
+                contacts.append(Contact(j.name, j.type.value, (a, b), at, normal))
+    return Instant(links, frame, tuple(pins), tuple(slides), tuple(contacts))
+
+
+def _line_of_action(
+    mech: Mechanism, links: Sequence[str], pressure_angle: float, positions: Mapping[str, Vec]
+) -> Vec | None:
+    """A gear pair's common normal: the common tangent of the pitch circles turned by the pressure angle.
+
+    Each gear's centre is its only pin; without both centres there is no line
+    of action to draw (the pitch point is then taken as a rolling contact).
+    """
+    centres = []
+    for lk in links:
+        pins = [j.name for j in mech.joints_of(lk) if j.type is JointType.REVOLUTE and j.name in positions]
+        if len(pins) != 1:
+            return None
+        centres.append(positions[pins[0]])
+    (x1, y1), (x2, y2) = centres
+    if (x1, y1) == (x2, y2):
+        return None
+    return _angle(math.atan2(y2 - y1, x2 - x1) + math.pi / 2.0 - pressure_angle)
+
+
+def _path_direction(path: object, positions: Mapping[str, Vec]) -> Vec | None:
+    """A path's direction from the file (``toward`` a point, or its ``angle``) as drawn."""
+    through = getattr(path, "through", None)
+    toward = getattr(path, "toward", None)
+    angle = getattr(path, "angle", None)
+
+    def where(ref: object) -> Vec | None:
+        if ref is None:
+            return None
+        if getattr(ref, "xy", None) is not None:
+            return ref.xy  # type: ignore[attr-defined,no-any-return]
+        return positions.get(getattr(ref, "name", None) or "")
+
+    if toward is not None:
+        p, q = where(through), where(toward)
+        if p is not None and q is not None:
+            return _unit2((q[0] - p[0], q[1] - p[1]))
+    if angle is not None:
+        return _angle(angle)
+    return None

@@ -1,0 +1,362 @@
+"""Tables and JSON for ``mech position``, ``mech velocity`` and ``mech acceleration``.
+
+Grouped as a student works the problem: links (θ, ω, α), points (position,
+velocity, acceleration), relative motion along each link (the velocity
+polygon's **ab**, the acceleration polygon's normal and tangential parts),
+sliders and slots (sliding velocity, Coriolis), rubbing at pins, then notes.
+Both the table and the JSON are made from the same rows, so they cannot
+disagree.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from typing import Any
+
+from mech.errors import InputError
+from mech.kinematics import Kinematics
+from mech.options import OutputUnits
+from mech.units import format_unit, to_unit
+
+__all__ = ["kinematics_json", "kinematics_table"]
+
+_LEVELS = ("position", "velocity", "acceleration")
+
+
+def _at_least(kin: Kinematics, level: str) -> bool:
+    return _LEVELS.index(kin.level) >= _LEVELS.index(level)
+
+
+def _sense(w: float | None) -> str | None:
+    if w is None:
+        return None
+    return "ccw" if w > 0 else "cw" if w < 0 else None
+
+
+def _dir(v: tuple[float, float]) -> float | None:
+    """Direction in degrees [0, 360), or None for a zero vector."""
+    if v[0] == 0.0 and v[1] == 0.0:
+        return None
+    return math.degrees(math.atan2(v[1], v[0])) % 360.0
+
+
+def _point_rows(kin: Kinematics) -> Iterator[tuple[str, str | None]]:
+    """(point, link) for every reported point: a contact point once per link when they differ."""
+    for name in kin.positions:
+        if not _at_least(kin, "velocity"):
+            yield name, None
+            continue
+        try:
+            kin.velocity(name)
+            yield name, None
+        except InputError:
+            joint = kin.joints.get(name)
+            for link in joint.links if joint else ():
+                yield name, link
+
+
+def _link_pairs(kin: Kinematics) -> Iterator[tuple[str, str, str]]:
+    """(link, from point, to point): each moving link's first point to each of its others."""
+    on_link: dict[str, list[str]] = {}
+    for name, carriers in kin.carriers.items():
+        if name in kin.positions:
+            for lk in carriers:
+                on_link.setdefault(lk, []).append(name)
+    for lk, state in kin.links.items():
+        if lk == kin.ground:
+            continue
+        names = on_link.get(lk, [])
+        # start from the link's origin point (its ground pivot where it has one)
+        names.sort(key=lambda n: math.dist(kin.positions[n], state.origin) > 1e-12 * max(kin.size, 1e-300))
+        for other in names[1:]:
+            yield lk, names[0], other
+
+
+def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
+    """The solve as a plain JSON-able dict, numbers in ``units``.
+
+    Structure (keys present at every level; values of levels not solved are null)::
+
+        {
+          "mechanism": str, "level": "position" | "velocity" | "acceleration",
+          "units": {"length", "velocity", "acceleration", "angle",
+                    "angular_velocity", "angular_acceleration"},   # unit names used below
+          "size": float,                                  # largest joint distance [length]
+          "drives": [{"link" | "joint": str, "angle": float [angle] | null,
+                      "omega": float [angular_velocity, ccw +] | null, "sense": "cw" | "ccw" | null,
+                      "alpha": float | null, "speed": float [velocity] | null}],
+          "links": {name: {"origin": [x, y], "angle": float, "omega": float | null,
+                           "sense": "cw" | "ccw" | null, "alpha": float | null}},
+          "points": [{"point": str, "link": str | null,   # link: the contact point's link
+                      "position": [x, y], "velocity": [vx, vy] | null, "speed": float | null,
+                      "direction": float [angle] | null,
+                      "acceleration": [ax, ay] | null, "acceleration_magnitude": float | null}],
+          "relative": [{"link": str, "from": A, "to": B, "label": "ab",   # v_B − v_A
+                        "velocity": [vx, vy], "speed": float,
+                        "normal": float | null, "tangential": float | null}],  # ω²·AB, α·AB
+          "sliders": [{"joint": str, "type": str, "slider": str, "guide": str,
+                       "sliding": float [velocity, signed along the path],
+                       "coriolis": [ax, ay] | null, "coriolis_magnitude": float | null}],
+          "rubbing": [{"joint": str, "radius": float [length], "rubbing": float [velocity]}],
+          "mobility": {"kutzbach": int, "numeric": int | null, "redundant": int,
+                       "condition": float, "free": [str], "locked": [str]},
+          "notes": [str]
+        }
+    """
+    L, V, A = units.length, units.velocity, units.acceleration
+    W, AL, ANG = units.angular_velocity, units.angular_acceleration, units.angle
+
+    def vec(v: tuple[float, float] | None, unit: str) -> list[float] | None:
+        return None if v is None else [to_unit(v[0], unit), to_unit(v[1], unit)]
+
+    def num(x: float | None, unit: str) -> float | None:
+        return None if x is None else to_unit(x, unit)
+
+    has_v, has_a = _at_least(kin, "velocity"), _at_least(kin, "acceleration")
+    drives = []
+    for d in kin.drives:
+        entry: dict[str, Any] = {"link": d.link} if d.link is not None else {"joint": d.joint}
+        entry.update(
+            angle=num(d.angle, ANG) if d.link is not None else None,
+            omega=num(d.omega, W),
+            sense=_sense(d.omega),
+            alpha=num(d.alpha, AL),
+            speed=num(d.speed, V),
+        )
+        drives.append(entry)
+
+    links = {
+        name: {
+            "origin": vec(s.origin, L),
+            "angle": to_unit(s.angle, ANG),
+            "omega": num(s.omega, W),
+            "sense": _sense(s.omega),
+            "alpha": num(s.alpha, AL),
+        }
+        for name, s in kin.links.items()
+    }
+
+    points = []
+    for name, link in _point_rows(kin):
+        v = kin.velocity(name, link) if has_v else None
+        a = kin.acceleration(name, link) if has_a else None
+        points.append(
+            {
+                "point": name,
+                "link": link,
+                "position": vec(kin.positions[name], L),
+                "velocity": vec(v, V),
+                "speed": num(math.hypot(*v), V) if v is not None else None,
+                "direction": _dir(v) if v is not None else None,
+                "acceleration": vec(a, A),
+                "acceleration_magnitude": num(math.hypot(*a), A) if a is not None else None,
+            }
+        )
+
+    relative = []
+    if has_v:
+        for lk, p, q in _link_pairs(kin):
+            state = kin.links[lk]
+            v = kin.relative_velocity(q, p, link_a=lk, link_b=lk)
+            r = math.dist(kin.positions[p], kin.positions[q])
+            relative.append(
+                {
+                    "link": lk,
+                    "from": p,
+                    "to": q,
+                    "label": f"{p}{q}".lower(),
+                    "velocity": vec(v, V),
+                    "speed": to_unit(math.hypot(*v), V),
+                    "normal": to_unit((state.omega or 0.0) ** 2 * r, A) if has_a else None,
+                    "tangential": to_unit(abs(state.alpha or 0.0) * r, A) if has_a else None,
+                }
+            )
+
+    sliders, rubbing = [], []
+    if has_v:
+        for name, j in kin.joints.items():
+            if j.type in ("prismatic", "slot"):
+                cor = kin.coriolis(name) if has_a else None
+                sliders.append(
+                    {
+                        "joint": name,
+                        "type": j.type,
+                        "slider": j.links[0],
+                        "guide": j.links[1],
+                        "sliding": to_unit(kin.sliding(name), V),
+                        "coriolis": vec(cor, A),
+                        "coriolis_magnitude": num(math.hypot(*cor), A) if cor is not None else None,
+                    }
+                )
+            elif j.type == "revolute" and j.radius is not None:
+                rubbing.append(
+                    {"joint": name, "radius": to_unit(j.radius, L), "rubbing": to_unit(kin.rubbing(name), V)}
+                )
+
+    m = kin.mobility
+    return {
+        "mechanism": kin.mechanism,
+        "level": kin.level,
+        "units": {
+            "length": L,
+            "velocity": V,
+            "acceleration": A,
+            "angle": ANG,
+            "angular_velocity": W,
+            "angular_acceleration": AL,
+        },
+        "size": to_unit(kin.size, L),
+        "drives": drives,
+        "links": links,
+        "points": points,
+        "relative": relative,
+        "sliders": sliders,
+        "rubbing": rubbing,
+        "mobility": {
+            "kutzbach": m.kutzbach,
+            "numeric": m.numeric,
+            "redundant": m.redundant,
+            "condition": m.condition,
+            "free": list(m.free),
+            "locked": list(m.locked),
+        },
+        "notes": list(kin.notes),
+    }
+
+
+def _g(x: float | None, digits: int = 5) -> str:
+    """A number for a table: ``digits`` significant figures, ``—`` for none, no ``-0``."""
+    if x is None:
+        return "—"
+    if x == 0 or abs(x) < 1e-300:
+        return "0"
+    mag = abs(x)
+    if 1e-3 <= mag < 1e7:  # fixed notation: 473740, 0.0452, 9.2042
+        decimals = max(0, digits - 1 - math.floor(math.log10(mag)))
+        s = f"{x:.{decimals}f}"
+    else:
+        s = f"{x:.{digits}g}"
+    return "0" if s.lstrip("-").strip("0.") == "" else s
+
+
+def _col(table: Any, header: str, justify: str = "left") -> None:
+    """A column whose numbers fold onto a second line rather than being cut to ``…``."""
+    table.add_column(header, justify=justify, overflow="fold")
+
+
+_LEVEL_TITLES = {"position": "positions", "velocity": "velocities", "acceleration": "accelerations"}
+
+
+def kinematics_table(kin: Kinematics, console: Any, *, units: OutputUnits) -> None:
+    """Print the solve as rich tables on ``console`` (numbers in ``units``)."""
+    from rich.table import Table
+
+    from mech.render.console import table_box
+
+    data = kinematics_json(kin, units=units)
+    u = {k: format_unit(v) for k, v in data["units"].items()}
+    box = table_box(console)
+
+    console.print(f"[bold]{kin.mechanism}[/bold] — {_LEVEL_TITLES[kin.level]}")
+    for d in data["drives"]:
+        if "link" in d:
+            parts = [f"drive {d['link']}"]
+            if d["angle"] is not None:
+                parts.append(f"at {_g(d['angle'])} {u['angle']}")
+            if d["omega"] is not None:
+                parts.append(f"ω = {_g(abs(d['omega']))} {u['angular_velocity']} {d['sense'] or ''}".rstrip())
+            if d["alpha"]:
+                parts.append(f"α = {_g(d['alpha'])} {u['angular_acceleration']}")
+        else:
+            parts = [f"drive {d['joint']}"]
+            if d["speed"] is not None:
+                parts.append(f"v = {_g(d['speed'])} {u['velocity']}")
+        console.print(", ".join(parts))
+
+    has_v, has_a = _at_least(kin, "velocity"), _at_least(kin, "acceleration")
+
+    t = Table(title="Links", box=box, title_justify="left")
+    _col(t, "link")
+    _col(t, f"θ ({u['angle']})", justify="right")
+    if has_v:
+        _col(t, f"ω ({u['angular_velocity']})", justify="right")
+        _col(t, "sense")
+    if has_a:
+        _col(t, f"α ({u['angular_acceleration']})", justify="right")
+    for name, s in data["links"].items():
+        if name == kin.ground:
+            continue
+        row = [name, _g(s["angle"])]
+        if has_v:
+            row += [_g(abs(s["omega"])), s["sense"] or "—"]
+        if has_a:
+            row += [_g(s["alpha"])]
+        t.add_row(*row)
+    console.print(t)
+
+    t = Table(title="Points", box=box, title_justify="left")
+    _col(t, "point")
+    _col(t, f"x ({u['length']})", justify="right")
+    _col(t, f"y ({u['length']})", justify="right")
+    if has_v:
+        for col in (f"|v| ({u['velocity']})", f"dir ({u['angle']})", "vx", "vy"):
+            _col(t, col, justify="right")
+    if has_a:
+        for col in (f"|a| ({u['acceleration']})", f"dir ({u['angle']})", "ax", "ay"):
+            _col(t, col, justify="right")
+    for p in data["points"]:
+        label = p["point"] if p["link"] is None else f"{p['point']} (on {p['link']})"
+        row = [label, _g(p["position"][0]), _g(p["position"][1])]
+        if has_v:
+            row += [_g(p["speed"]), _g(p["direction"], 4), _g(p["velocity"][0]), _g(p["velocity"][1])]
+        if has_a:
+            a = p["acceleration"]
+            row += [_g(p["acceleration_magnitude"]), _g(_dir(tuple(a)), 4), _g(a[0]), _g(a[1])]
+        t.add_row(*row)
+    console.print(t)
+
+    if data["relative"]:
+        t = Table(title="Relative motion along links (velocity polygon)", box=box, title_justify="left")
+        for col in ("link", "vector", f"|v| ({u['velocity']})", f"dir ({u['angle']})"):
+            _col(t, col, justify="left" if col in ("link", "vector") else "right")
+        if has_a:
+            _col(t, f"normal ω²r ({u['acceleration']})", justify="right")
+            _col(t, f"tangential αr ({u['acceleration']})", justify="right")
+        for r in data["relative"]:
+            row = [
+                r["link"],
+                f"{r['label']} (v{r['to']}{r['from']})",
+                _g(r["speed"]),
+                _g(_dir(tuple(r["velocity"])), 4),
+            ]
+            if has_a:
+                row += [_g(r["normal"]), _g(r["tangential"])]
+            t.add_row(*row)
+        console.print(t)
+
+    if data["sliders"]:
+        t = Table(title="Sliders and slots", box=box, title_justify="left")
+        for col in ("joint", "slider on guide", f"sliding ({u['velocity']})"):
+            _col(t, col, justify="right" if "sliding" in col else "left")
+        if has_a:
+            _col(t, f"Coriolis 2ωv ({u['acceleration']})", justify="right")
+            _col(t, f"dir ({u['angle']})", justify="right")
+        for s in data["sliders"]:
+            row = [s["joint"], f"{s['slider']} on {s['guide']}", _g(s["sliding"])]
+            if has_a:
+                row += [_g(s["coriolis_magnitude"]), _g(_dir(tuple(s["coriolis"])), 4)]
+            t.add_row(*row)
+        console.print(t)
+
+    if data["rubbing"]:
+        t = Table(title="Rubbing at pins", box=box, title_justify="left")
+        _col(t, "joint")
+        _col(t, f"radius ({u['length']})", justify="right")
+        _col(t, f"rubbing ({u['velocity']})", justify="right")
+        for r in data["rubbing"]:
+            t.add_row(r["joint"], _g(r["radius"]), _g(r["rubbing"]))
+        console.print(t)
+
+    for note in data["notes"]:
+        console.print(f"note: {note}", highlight=False)

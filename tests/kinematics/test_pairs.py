@@ -1,0 +1,321 @@
+"""Other pairs and drives: multi-drive, redundant chains, cams, gears, rolling, errors."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from conftest import build, four_bar, slider_crank
+from mech.errors import GeometryError, InputError, UnsupportedError
+from mech.kinematics import mobility, solve
+from mech.options import SolveOptions
+
+
+def five_bar(drives):
+    return build(
+        ["frame", "left", "l2", "l3", "right"],
+        {
+            "A": {"links": ["frame", "left"], "at": (0, 0)},
+            "B": {"links": ["left", "l2"]},
+            "C": {"links": ["l2", "l3"]},
+            "D": {"links": ["l3", "right"]},
+            "E": {"links": ["right", "frame"], "at": (0.2, 0)},
+        },
+        lengths={"A-B": 0.05, "B-C": 0.15, "C-D": 0.15, "D-E": 0.05},
+        drive=drives,
+    )
+
+
+def test_five_bar_takes_two_drives():
+    drives = [
+        {"link": "left", "angle": math.radians(80), "omega": 2.0},
+        {"link": "right", "angle": math.radians(100), "omega": -1.0},
+    ]
+    kin = solve(five_bar(drives), "acceleration")
+    B = np.array([0.05 * math.cos(math.radians(80)), 0.05 * math.sin(math.radians(80))])
+    D = np.array([0.2 + 0.05 * math.cos(math.radians(100)), 0.05 * math.sin(math.radians(100))])
+    assert kin.positions["B"] == pytest.approx(tuple(B), abs=1e-14)
+    assert kin.positions["D"] == pytest.approx(tuple(D), abs=1e-14)
+    C = np.array(kin.positions["C"])
+    # C's velocity from both sides: v_B + ω2 k×BC = v_D + ω3 k×DC
+    v_from_b = np.array(kin.velocity("B")) + kin.links["l2"].omega * np.array([-(C - B)[1], (C - B)[0]])
+    assert kin.velocity("C") == pytest.approx(tuple(v_from_b), abs=1e-12)
+    assert kin.links["right"].omega == pytest.approx(-1.0)
+    assert kin.mobility.numeric == 2 and kin.mobility.kutzbach == 2
+
+
+def test_too_few_or_too_many_drives_are_input_errors():
+    with pytest.raises(GeometryError, match="does not fix where") as err:  # positions undetermined
+        solve(five_bar([{"link": "left", "angle": 1.0, "omega": 1.0}]))
+    assert "one drive per freedom" in (err.value.hint or "")
+    drawn = solve(
+        five_bar(
+            [{"link": "left", "angle": 1.0, "omega": 1.0}, {"link": "right", "angle": 2.0, "omega": 1.0}]
+        ),
+        "position",
+    )
+    fixed = build(
+        ["frame", "left", "l2", "l3", "right"],
+        {
+            n: {"links": list(j), "at": drawn.positions[n]}
+            for n, j in {
+                "A": ("frame", "left"),
+                "B": ("left", "l2"),
+                "C": ("l2", "l3"),
+                "D": ("l3", "right"),
+                "E": ("right", "frame"),
+            }.items()
+        },
+        drive={"link": "left", "omega": 1.0},
+    )
+    with pytest.raises(InputError, match=r"mobility 2 .* 1 drive: give a list of 2 drives"):
+        solve(fixed)
+    m = four_bar()
+    extra = build(
+        [lk.name for lk in m.links],
+        {
+            "A": {"links": ["frame", "crank"], "at": (0, 0)},
+            "B": {"links": ["crank", "coupler"]},
+            "C": {"links": ["coupler", "rocker"]},
+            "D": {"links": ["rocker", "frame"], "at": (0.15, 0)},
+        },
+        lengths={"A-B": 0.04, "B-C": 0.15, "C-D": 0.08},
+        drive=[{"link": "crank", "angle": 1.0, "omega": 1.0}, {"link": "rocker", "omega": 1.0}],
+    )
+    with pytest.raises(InputError, match="more drives than it can take"):
+        solve(extra)
+
+
+def double_parallelogram():
+    th = math.radians(60)
+    B = (0.05 * math.cos(th), 0.05 * math.sin(th))
+    return build(
+        ["frame", "crank", "coupler", "r1", "r2"],
+        {
+            "A": {"links": ["frame", "crank"], "at": (0, 0)},
+            "B": {"links": ["crank", "coupler"], "at": B},
+            "C": {"links": ["coupler", "r1"], "at": (B[0] + 0.1, B[1])},
+            "D": {"links": ["r1", "frame"], "at": (0.1, 0)},
+            "F": {"links": ["coupler", "r2"], "at": (B[0] + 0.2, B[1])},
+            "E": {"links": ["r2", "frame"], "at": (0.2, 0)},
+        },
+        drive={"link": "crank", "omega": 3.0},
+    )
+
+
+def test_double_parallelogram_moves_though_kutzbach_says_zero():
+    m = double_parallelogram()
+    mob = mobility(m)
+    assert (mob.kutzbach, mob.numeric, mob.redundant) == (0, 1, 1)
+    assert any("Kutzbach's count gives 0" in n for n in mob.notes)
+    kin = solve(m, "acceleration", SolveOptions(angle=math.radians(100)))
+    # every rocker turns with the crank; the coupler translates
+    assert kin.links["r2"].omega == pytest.approx(3.0, rel=1e-10)
+    assert kin.links["coupler"].omega == pytest.approx(0.0, abs=1e-12)
+    assert kin.positions["F"][0] == pytest.approx(0.2 + 0.05 * math.cos(math.radians(100)), abs=1e-13)
+
+
+def test_structure_is_locked():
+    m = build(
+        ["frame", "a", "b"],
+        {
+            "A": {"links": ["frame", "a"], "at": (0, 0)},
+            "B": {"links": ["a", "b"], "at": (0.05, 0.05)},
+            "C": {"links": ["b", "frame"], "at": (0.1, 0)},
+        },
+    )
+    mob = mobility(m)
+    assert mob.numeric == 0 and mob.kutzbach == 0
+    assert mob.locked == ("a", "b") and mob.free == ()
+
+
+def test_mobility_without_drive_or_angle_uses_some_configuration():
+    m = build(
+        ["frame", "crank", "coupler", "rocker"],
+        {
+            "A": {"links": ["frame", "crank"], "at": (0, 0)},
+            "B": {"links": ["crank", "coupler"]},
+            "C": {"links": ["coupler", "rocker"]},
+            "D": {"links": ["rocker", "frame"], "at": (0.15, 0)},
+        },
+        lengths={"A-B": 0.04, "B-C": 0.15, "C-D": 0.08},
+    )
+    assert mobility(m).numeric == 1
+
+
+def test_mobility_needs_geometry():
+    m = build(["frame", "a"], {"A": {"links": ["frame", "a"]}})
+    with pytest.raises(InputError, match="needs geometry"):
+        mobility(m)
+
+
+def cam_follower(normal=0.5235987755982988):  # 30°
+    return build(
+        ["frame", "cam", "follower"],
+        {
+            "O": {"links": ["frame", "cam"], "at": (0, 0)},
+            "Q": {"links": ["follower", "frame"], "at": (0.1, 0.08)},
+            "K": {"type": "cam", "links": ["cam", "follower"], "at": (0.03, 0.04), "normal": normal},
+        },
+        drive={"link": "cam", "omega": 10.0},
+    )
+
+
+def test_cam_follower_velocity_from_the_common_normal():
+    n_ang = math.radians(30)
+    kin = solve(cam_follower(n_ang), "velocity")
+    n = np.array([math.cos(n_ang), math.sin(n_ang)])
+    P, O_, Q = np.array([0.03, 0.04]), np.zeros(2), np.array([0.1, 0.08])
+    cross = lambda a, b: a[0] * b[1] - a[1] * b[0]  # noqa: E731
+    # n·v_cam(P) = n·v_follower(P)  →  ω_f = ω_c (P−O)×n / (P−Q)×n
+    w_f = 10.0 * cross(P - O_, n) / cross(P - Q, n)
+    assert kin.links["follower"].omega == pytest.approx(w_f, rel=1e-10)
+    assert kin.mobility.numeric == 1 and kin.mobility.kutzbach == 1
+    with pytest.raises(InputError, match="contact point") as err:
+        kin.velocity("K")
+    assert "link='cam'" in (err.value.hint or "")
+    vc, vf = np.array(kin.velocity("K", link="cam")), np.array(kin.velocity("K", link="follower"))
+    assert float(n @ (vc - vf)) == pytest.approx(0.0, abs=1e-12)
+    slip = kin.sliding("K")
+    assert slip == pytest.approx(float(np.array([-n[1], n[0]]) @ (vc - vf)), rel=1e-12)
+
+
+def test_cam_acceleration_and_moving_are_refused():
+    with pytest.raises(UnsupportedError, match="curvature"):
+        solve(cam_follower(), "acceleration")
+    with pytest.raises(UnsupportedError, match="only the instant drawn"):
+        solve(cam_follower(), "velocity", SolveOptions(angle=1.0))
+
+
+def test_cam_without_normal_says_what_to_add():
+    m = build(
+        ["frame", "cam", "follower"],
+        {
+            "O": {"links": ["frame", "cam"], "at": (0, 0)},
+            "Q": {"links": ["follower", "frame"], "at": (0.1, 0.08)},
+            "K": {"type": "cam", "links": ["cam", "follower"], "at": (0.03, 0.04)},
+        },
+        drive={"link": "cam", "omega": 10.0},
+    )
+    with pytest.raises(InputError, match="needs normal"):
+        solve(m)
+
+
+def test_fixed_axis_gears_turn_in_inverse_ratio_and_accelerate():
+    m = build(
+        ["frame", "g1", "g2"],
+        {
+            "O1": {"links": ["frame", "g1"], "at": (0, 0)},
+            "O2": {"links": ["frame", "g2"], "at": (0.3, 0)},
+            "M": {"type": "gear", "links": ["g1", "g2"], "radii": (0.1, 0.2)},
+        },
+        drive={"link": "g1", "omega": 12.0, "alpha": 2.0},
+    )
+    kin = solve(m, "acceleration", SolveOptions(angle=1.0))
+    assert kin.links["g2"].omega == pytest.approx(-6.0, rel=1e-12)
+    assert kin.links["g2"].alpha == pytest.approx(-1.0, rel=1e-12)
+    assert kin.positions["M"] == pytest.approx((0.1, 0.0))
+
+
+def test_epicyclic_train_follows_willis():
+    rs, rp, rr = 0.1, 0.2, 0.5
+    m = build(
+        ["frame", "sun", "arm", "planet"],
+        {
+            "O": {"links": ["frame", "sun", "arm"], "at": (0, 0)},
+            "P": {"links": ["arm", "planet"], "at": (rs + rp, 0)},
+            "SP": {"type": "gear", "links": ["sun", "planet"], "radii": (rs, rp)},
+            "RP": {"type": "gear", "links": ["frame", "planet"], "radii": (rr, rp), "internal": True},
+        },
+        drive={"link": "sun", "omega": 10.0},
+    )
+    kin = solve(m, "acceleration")
+    w_arm = 10.0 * rs / (rs + rr)  # ring fixed
+    assert kin.links["arm"].omega == pytest.approx(w_arm, rel=1e-12)
+    # (ω_p − ω_a) / (ω_s − ω_a) = −r_s / r_p
+    assert kin.links["planet"].omega - w_arm == pytest.approx(-(10.0 - w_arm) * rs / rp, rel=1e-12)
+
+
+def test_rolling_wheel_on_ground_driven_by_its_axle():
+    R = 0.05
+    m = build(
+        ["frame", "block", "wheel"],
+        {
+            "P": {
+                "type": "prismatic",
+                "links": ["block", "frame"],
+                "path": {"through": (0, R), "angle": 0.0},
+            },
+            "W": {"links": ["block", "wheel"], "at": (0, R)},
+            "K": {"type": "rolling", "links": ["wheel", "frame"], "at": (0, 0)},
+        },
+        drive={"joint": "P", "speed": 2.0},
+    )
+    kin = solve(m, "velocity")
+    assert kin.links["wheel"].omega == pytest.approx(-2.0 / R, rel=1e-12)  # rolling right: clockwise
+    assert kin.velocity("K") == pytest.approx((0.0, 0.0), abs=1e-12)  # both links agree at a rolling contact
+    assert kin.mobility.redundant == 1 and kin.mobility.numeric == 1
+
+
+def test_rubbing_velocity_uses_the_pin_radius():
+    m = build(
+        ["frame", "crank", "coupler", "rocker"],
+        {
+            "A": {"links": ["frame", "crank"], "at": (0, 0), "radius": 0.01},
+            "B": {"links": ["crank", "coupler"], "radius": 0.005},
+            "C": {"links": ["coupler", "rocker"]},
+            "D": {"links": ["rocker", "frame"], "at": (0.15, 0)},
+        },
+        lengths={"A-B": 0.04, "B-C": 0.15, "C-D": 0.08},
+        drive={"link": "crank", "angle": 1.0, "omega": -8.0},
+    )
+    kin = solve(m)
+    assert kin.rubbing("A") == pytest.approx(8.0 * 0.01)
+    assert kin.rubbing("B") == pytest.approx(abs(-8.0 - kin.links["coupler"].omega) * 0.005)
+    with pytest.raises(InputError, match="no radius"):
+        kin.rubbing("C")
+
+
+def test_spherical_pair_is_unsupported():
+    m = build(
+        ["frame", "a"],
+        {"A": {"type": "spherical", "links": ["frame", "a"], "at": (0, 0)}},
+        drive={"link": "a", "omega": 1.0},
+    )
+    with pytest.raises(
+        UnsupportedError, match="planar solvers cannot model a spherical pair; mech dof still counts it"
+    ):
+        solve(m)
+
+
+def test_missing_speed_and_misused_options():
+    with pytest.raises(InputError, match=r"give rpm or omega \(or --rpm\)"):
+        solve(four_bar(omega=None), "velocity")
+    assert solve(four_bar(omega=None), "position").links["rocker"].omega is None
+    two = five_bar(
+        [{"link": "left", "angle": 1.0, "omega": 1.0}, {"link": "right", "angle": 2.0, "omega": 1.0}]
+    )
+    with pytest.raises(InputError, match="override a single drive"):
+        solve(two, options=SolveOptions(omega=3.0))
+    with pytest.raises(InputError, match="level must be"):
+        solve(four_bar(), "jerk")
+
+
+def test_result_is_frozen_and_queries_name_their_choices():
+    kin = solve(four_bar(), "velocity")
+    with pytest.raises(AttributeError):
+        kin.size = 2.0  # type: ignore[misc]
+    with pytest.raises(TypeError):
+        kin.positions["C"] = (0.0, 0.0)  # type: ignore[index]
+    with pytest.raises(InputError, match="no point named Z"):
+        kin.velocity("Z")
+    with pytest.raises(InputError, match="accelerations were not solved"):
+        kin.acceleration("C")
+    assert kin.drives[0].omega == pytest.approx(-4 * math.pi)
+
+
+def test_override_of_direction_and_speed_is_recorded_in_drives():
+    kin = solve(slider_crank(omega=10.0), options=SolveOptions(omega=5.0, direction="cw"))
+    assert kin.drives[0].omega == -5.0

@@ -1,0 +1,154 @@
+"""Slider crank (in-line and offset) and crank with slotted lever, against hand closed forms."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from conftest import slider_crank, slotted_lever
+from mech.kinematics import solve
+from mech.options import SolveOptions
+
+
+def slider_closed_form(r, rod, e, th, w, al=0.0):
+    """x_B = r cosθ + √(l² − (e − r sinθ)²); rod angle φ from sinφ = (e − r sinθ)/l.
+
+    With l the rod length, differentiating r sinθ + l sinφ = e and x = r cosθ + l cosφ:
+    ω₃ = −r ω cosθ / (l cosφ), v = −r ω sinθ − l ω₃ sinφ,
+    α₃ = (r ω² sinθ − r α cosθ + l ω₃² sinφ) / (l cosφ),
+    a = −r α sinθ − r ω² cosθ − l α₃ sinφ − l ω₃² cosφ.
+    """
+    s = (e - r * math.sin(th)) / rod
+    phi = math.asin(s)
+    x = r * math.cos(th) + rod * math.cos(phi)
+    w3 = -r * w * math.cos(th) / (rod * math.cos(phi))
+    v = -r * w * math.sin(th) - rod * w3 * math.sin(phi)
+    a3 = (r * w * w * math.sin(th) - r * al * math.cos(th) + rod * w3 * w3 * math.sin(phi)) / (
+        rod * math.cos(phi)
+    )
+    a = (
+        -r * al * math.sin(th)
+        - r * w * w * math.cos(th)
+        - rod * a3 * math.sin(phi)
+        - rod * w3 * w3 * math.cos(phi)
+    )
+    return x, w3, v, a3, a
+
+
+@pytest.mark.parametrize("e", [0.0, 0.03, -0.05])
+@pytest.mark.parametrize("deg", [0.0, 30.0, 45.0, 90.0, 135.0, 180.0, 250.0, 300.0])
+def test_slider_crank_matches_closed_form(deg, e):
+    th = math.radians(deg)
+    kin = solve(slider_crank(e=e, angle=th, omega=20 * math.pi, alpha=-5.0), "acceleration")
+    x, w3, v, a3, a = slider_closed_form(0.1, 0.4, e, th, 20 * math.pi, -5.0)
+    assert kin.positions["B"] == pytest.approx((x, e), abs=1e-14)
+    assert kin.links["rod"].omega == pytest.approx(w3, rel=1e-10, abs=1e-11)
+    assert kin.velocity("B") == pytest.approx((v, 0.0), rel=1e-10, abs=1e-11)
+    assert kin.sliding("P") == pytest.approx(v, rel=1e-10, abs=1e-11)
+    assert kin.links["rod"].alpha == pytest.approx(a3, rel=1e-9, abs=1e-8)
+    assert kin.acceleration("B") == pytest.approx((a, 0.0), rel=1e-9, abs=1e-8)
+    assert kin.coriolis("P") == (0.0, 0.0)  # a fixed guide has none
+
+
+def test_dead_centres_solve_with_slider_at_rest():
+    for th in (0.0, math.pi):
+        kin = solve(slider_crank(angle=th), "acceleration")
+        assert kin.velocity("B") == pytest.approx((0.0, 0.0), abs=1e-12)  # 2πn·r ≈ 6 m/s scale
+        # ω₃ = −rω cosθ / rod: finite, not singular
+        assert kin.links["rod"].omega == pytest.approx(-0.1 * 20 * math.pi * math.cos(th) / 0.4, rel=1e-12)
+        _x, _, _, _, a = slider_closed_form(0.1, 0.4, 0.0, th, 20 * math.pi)
+        assert kin.acceleration("B")[0] == pytest.approx(a, rel=1e-12)
+
+
+def test_crank_a_million_times_shorter_than_rod():
+    r, rod = 1e-7, 0.1
+    th = math.radians(40)
+    kin = solve(slider_crank(r=r, rod=rod, angle=th, omega=100.0), "acceleration")
+    x, w3, v, _a3, a = slider_closed_form(r, rod, 0.0, th, 100.0)
+    assert kin.positions["B"][0] == pytest.approx(x, rel=1e-14)
+    assert kin.velocity("B")[0] == pytest.approx(v, rel=1e-8)
+    assert kin.links["rod"].omega == pytest.approx(w3, rel=1e-8)
+    assert kin.acceleration("B")[0] == pytest.approx(a, rel=1e-8)
+
+
+def test_coupler_point_velocity_by_ratio_ac_over_ab():
+    # The lesson: ac = ab × AC/AB for a point C on the rod.
+    m = slider_crank(points={"C": {"link": "rod", "from": "A", "toward": "B", "distance": 0.1}})
+    kin = solve(m)
+    ab = np.array(kin.relative_velocity("B", "A"))
+    ac = np.array(kin.relative_velocity("C", "A"))
+    assert ac == pytest.approx(ab * 0.1 / 0.4, rel=1e-12)
+
+
+def test_slotted_lever_velocities_and_coriolis_match_hand_closed_form():
+    r, d, w = 0.12, 0.3, 20 * math.pi  # the lesson's 600 rpm, O2A = 12 cm
+    for deg in (0.0, 60.0, 150.0, 230.0, 300.0):
+        th = math.radians(deg)
+        kin = solve(slotted_lever(r=r, d=d, angle=th, omega=w), "acceleration")
+        A = np.array([r * math.cos(th), r * math.sin(th)])
+        O1 = np.array([0.0, -d])
+        rho_v = A - O1
+        rho = np.hypot(*rho_v)
+        e = rho_v / rho
+        perp = np.array([-e[1], e[0]])
+        vA = w * np.array([-A[1], A[0]])
+        aA = -w * w * A
+        w_lever = float(vA @ perp) / rho  # the block's velocity across the lever
+        v_slide = float(vA @ e)  # ... and along it
+        # a_A = α×ρ − ω²ρ + a_s e + 2ω v_s e⊥ → across the lever: a_A·e⊥ = αρ + 2ω v_s
+        al_lever = (float(aA @ perp) - 2 * w_lever * v_slide) / rho
+        a_slide = float(aA @ e) + w_lever**2 * rho
+        assert kin.links["lever"].omega == pytest.approx(w_lever, rel=1e-10)
+        assert kin.sliding("S") == pytest.approx(v_slide, rel=1e-10, abs=1e-12)
+        cor = 2 * w_lever * v_slide * perp
+        assert kin.coriolis("S") == pytest.approx(tuple(cor), rel=1e-9, abs=1e-9)
+        assert abs(np.hypot(*kin.coriolis("S"))) == pytest.approx(2 * abs(w_lever * v_slide), rel=1e-9)
+        assert kin.links["lever"].alpha == pytest.approx(al_lever, rel=1e-9, abs=1e-9)
+        # The block's point A and the lever's coincident point differ by the sliding and Coriolis terms.
+        a_block = np.array(kin.acceleration("A"))
+        a_lever = np.array(kin.acceleration("A", link="lever"))
+        assert a_block - a_lever == pytest.approx(tuple(a_slide * e + cor), rel=1e-9, abs=1e-8)
+        v_lever = np.array(kin.velocity("A", link="lever"))
+        assert np.array(kin.velocity("A")) - v_lever == pytest.approx(tuple(v_slide * e), abs=1e-10)
+
+
+def test_slotted_lever_lesson_example():
+    # Example 3.1: 600 rpm ccw, O2A = 12 cm: v_A = 7.54 m/s (the lesson rounds to 7.53).
+    kin = solve(slotted_lever(angle=math.radians(60)), "velocity")
+    assert math.hypot(*kin.velocity("A")) == pytest.approx(20 * math.pi * 0.12, rel=1e-12)
+    assert kin.links["lever"].omega > 0  # ccw crank drives the lever ccw here
+
+
+def test_slider_speed_option_and_direction_flip():
+    m = slider_crank(angle=1.0, omega=10.0)
+    base = solve(m).velocity("B")[0]
+    flipped = solve(m, options=SolveOptions(direction="cw")).velocity("B")[0]
+    faster = solve(m, options=SolveOptions(omega=30.0)).velocity("B")[0]
+    assert flipped == pytest.approx(-base, rel=1e-12)
+    assert faster == pytest.approx(3 * base, rel=1e-12)
+
+
+def test_pin_in_slot_moves_the_lever_like_the_sliding_block():
+    from conftest import build
+
+    th = math.radians(50)
+    block = solve(slotted_lever(angle=th), "acceleration")
+    slot = build(
+        ["frame", "crank", "lever"],
+        {
+            "O2": {"links": ["frame", "crank"], "at": (0.0, 0.0)},
+            "A": {"type": "slot", "links": ["crank", "lever"], "path": {"through": "O1", "toward": "B"}},
+            "O1": {"links": ["lever", "frame"], "at": (0.0, -0.3)},
+        },
+        lengths={"O2-A": 0.12, "O1-B": 0.6},
+        drive={"link": "crank", "angle": th, "omega": 20 * math.pi},
+        points={"B": {"link": "lever"}},
+    )
+    kin = solve(slot, "acceleration")
+    assert kin.mobility.kutzbach == 1 and kin.mobility.numeric == 1
+    assert kin.links["lever"].omega == pytest.approx(block.links["lever"].omega, rel=1e-12)
+    assert kin.links["lever"].alpha == pytest.approx(block.links["lever"].alpha, rel=1e-10)
+    assert kin.sliding("A") == pytest.approx(block.sliding("S"), rel=1e-12)
+    assert kin.coriolis("A") == pytest.approx(block.coriolis("S"), rel=1e-10)

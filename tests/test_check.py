@@ -1,0 +1,503 @@
+"""``mech check``: verdicts, tolerances, batches, answer sheets, report formats, exit codes.
+
+Reference values come from closed forms worked here, never from the code under
+test.  The main fixture is an in-line slider crank with the crank at 90°:
+
+* crank OA = r = 0.1 m, rod AB = l = 0.3 m, ω = 10 rad/s ccw; A = (0, r),
+  B = (√(l² − r²), 0) on the x axis.
+* v_A = ω × OA = (−ω r, 0): 1.0 m/s.  B moves along x, and A's velocity is
+  along x too, so the rod translates: ω_rod = 0 and v_B = v_A, |v_B| = 1.0 m/s;
+  the sliding speed at the piston's joint is 1.0 m/s.
+* Every point of the translating rod moves at 1.0 m/s: least_speed.rod = 1.0.
+  The crank turns about O, which lies on its line: least_speed.crank = 0.
+* I-centre frame–rod: on the line OA (x = 0) and on the normal to the path at
+  B (x = x_B): parallel lines, so it is at infinity.
+* Kutzbach: l = 4, j = 4 (3 revolute + 1 prismatic), h = 0 → n = 1; every link takes
+  two joints (the piston B and P, the frame O and P): four binary links.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+from xml.etree import ElementTree as ET
+
+import pytest
+
+from mech.batch import CheckOptions, Report, run
+from mech.check import ERROR, FAIL, PASS, check, check_file
+from mech.loader import loads
+
+R, L, W = 0.1, 0.3, 10.0
+XB = math.sqrt(L * L - R * R)
+
+SLIDER = """\
+name: {name}
+units: {{length: m, angle: deg}}
+links: [frame, crank, rod, piston]
+joints:
+  O: {{type: revolute, links: [frame, crank], at: [0, 0]}}
+  A: {{type: revolute, links: [crank, rod]}}
+  B: {{type: revolute, links: [rod, piston], near: [0.3, 0]}}
+  P: {{type: prismatic, links: [piston, frame], path: {{through: [0, 0], angle: 0}}}}
+lengths: {{OA: 0.1, AB: 0.3}}
+drive: {{link: crank, angle: 90, omega: 10, direction: ccw}}
+"""
+
+DOF_ONLY = """\
+name: {name}
+links: [frame, crank, coupler, rocker]
+joints:
+  A: {{type: revolute, links: [frame, crank]}}
+  B: {{type: revolute, links: [crank, coupler]}}
+  C: {{type: revolute, links: [coupler, rocker]}}
+  D: {{type: revolute, links: [rocker, frame]}}
+"""
+
+
+def problem(answers: str, *, name: str = "slider crank at 90 deg", body: str = SLIDER) -> str:
+    """A problem file: the mechanism plus an ``answers`` block (YAML lines, unindented)."""
+    return body.format(name=name) + "answers:\n" + textwrap.indent(textwrap.dedent(answers), "  ")
+
+
+def verdicts(text: str) -> dict[str, tuple[str, str]]:
+    return {v.key: (v.status, v.message) for v in check(loads(text))}
+
+
+# -- single verdicts ----------------------------------------------------------------------------
+def test_right_answers_pass() -> None:
+    got = verdicts(
+        problem(
+            """\
+            dof: 1
+            links.count: 4
+            links.binary: 4
+            links.singular: 0
+            joints.count: 4
+            joints.equivalent_binary: 4
+            higher_pairs: 0
+            icentres.count: 6
+            chain: slider crank
+            velocity.A: 1.0 m/s
+            velocity.B: 1000 mm/s
+            velocity.B.A: 0
+            omega.crank: 10 rad/s ccw
+            omega.rod: 0 rad/s
+            sliding.P: 1.0
+            least_speed.rod: 1.0 m/s
+            least_speed.crank: 0
+            icentre.frame.rod: infinity
+            distance.O.B: 0.28284 m
+            """
+        )
+    )
+    assert {k: s for k, (s, _) in got.items()} == dict.fromkeys(got, PASS), got
+
+
+def test_wrong_answers_fail_with_the_computed_value() -> None:
+    got = verdicts(
+        problem(
+            """\
+            dof: 2
+            chain: four-bar
+            velocity.B: 1.1 m/s
+            omega.crank: 10 rad/s cw
+            icentre.frame.rod: [0.1, 0.2]
+            """
+        )
+    )
+    assert all(s == FAIL for s, _ in got.values()), got
+    assert got["dof"][1] == "dof is 1, not 2"
+    assert "slider-crank" in got["chain"][1]
+    assert "1 m/s" in got["velocity.B"][1] and "off by 10.0%" in got["velocity.B"][1]
+    assert "wrong sense" in got["omega.crank"][1]
+    assert "at infinity" in got["icentre.frame.rod"][1]
+
+
+def test_a_point_claimed_where_the_icentre_is_finite_and_infinity_claimed_for_a_point() -> None:
+    # I-centre frame-crank is the pin O = (0, 0); crank-rod is the pin A = (0, r)
+    got = verdicts(
+        problem(
+            """\
+            icentre.frame.crank: infinity
+            icentre.crank.rod: ["0 mm", "100 mm"]
+            """
+        )
+    )
+    assert got["icentre.frame.crank"][0] == FAIL and "not at infinity" in got["icentre.frame.crank"][1]
+    assert got["icentre.crank.rod"][0] == PASS
+
+
+def test_a_bare_length_in_mm_gets_a_hint() -> None:
+    status, message = verdicts(problem("distance.O.A: 100\n"))["distance.O.A"]
+    assert status == FAIL and "looks like mm" in message
+
+
+def test_sense_is_checked_only_when_claimed() -> None:
+    got = verdicts(problem("omega.crank: 10\nalpha.crank: 0\n"))
+    assert got["omega.crank"][0] == PASS
+    got = verdicts(problem("omega.crank: 10 rad/s ccw\n"))
+    assert got["omega.crank"][0] == PASS
+
+
+@pytest.mark.parametrize(
+    ("claimed", "tolerance", "status"),
+    [
+        (1.019, None, PASS),  # 1.9% of the computed 1.0 m/s, default 2%
+        (1.021, None, FAIL),
+        (0.981, None, PASS),
+        (1.04, "5%", PASS),
+        (1.06, "5%", FAIL),
+        (1.04, "0.05 m/s", PASS),
+        (1.06, "0.05 m/s", FAIL),
+    ],
+)
+def test_tolerance_is_relative_to_the_computed_value_or_absolute(
+    claimed: float, tolerance: str | None, status: str
+) -> None:
+    value = f"{{value: {claimed} m/s, tolerance: {tolerance}}}" if tolerance else f"{claimed} m/s"
+    assert verdicts(problem(f"velocity.A: {value}\n"))["velocity.A"][0] == status
+
+
+def test_file_tolerance_applies_to_every_answer() -> None:
+    got = verdicts(problem("tolerance: 10%\nvelocity.A: 1.08\nvelocity.B: 1.12\n"))
+    assert got["velocity.A"][0] == PASS and got["velocity.B"][0] == FAIL
+
+
+def test_icentre_tolerance_is_a_fraction_of_the_size() -> None:
+    # size = largest joint distance = |OB| = 0.2828 m; 2% of it is 5.7 mm; I(crank, rod) = A = (0, 0.1)
+    got = verdicts(problem('icentre.crank.rod: [0.004, 0.1]\nicentre.frame.crank: ["8 mm", 0]\n'))
+    assert got["icentre.crank.rod"][0] == PASS
+    assert got["icentre.frame.crank"][0] == FAIL
+
+
+def test_omega_ratio_of_a_link_at_rest_is_an_error() -> None:
+    status, message = verdicts(problem("omega_ratio.crank.rod: 1\n"))["omega_ratio.crank.rod"]
+    assert status == ERROR and "zero" in message
+
+
+def test_a_quantity_that_cannot_be_computed_is_an_error_with_the_reason() -> None:
+    # no drive speed: velocities cannot be had, counts still can
+    text = problem("dof: 1\nvelocity.A: 1\n").replace(", omega: 10, direction: ccw", "")
+    got = verdicts(text)
+    assert got["dof"][0] == PASS
+    assert got["velocity.A"][0] == ERROR and got["velocity.A"][1].startswith("cannot be computed")
+
+
+def test_least_speed_matches_a_brute_force_search_along_the_line() -> None:
+    """A turning coupler: sample the line densely with v = v_O + ω × r, no closed form used."""
+    from mech import load
+    from mech.check import least_speed
+    from mech.kinematics import solve
+
+    root = Path(__file__).resolve().parent.parent
+    mech = load(root / "mechanisms" / "four_bar.yaml")
+    kin = solve(mech, level="velocity")
+    state = kin.links["coupler"]
+    b, c = kin.positions["B"], kin.positions["C"]
+    speeds = []
+    for i in range(-40001, 40002):
+        s = i / 4000.0  # from −10 to +10 link lengths
+        p = (b[0] + s * (c[0] - b[0]), b[1] + s * (c[1] - b[1]))
+        speeds.append(math.hypot(*state.velocity_at(p)))
+    assert least_speed(mech, kin, "coupler") == pytest.approx(min(speeds), rel=1e-6, abs=1e-9)
+
+
+# -- files and batches -------------------------------------------------------------------------
+def test_a_malformed_file_is_one_error_row(tmp_path: Path) -> None:
+    bad_yaml = tmp_path / "bad.yaml"
+    bad_yaml.write_text("links: [frame, crank\n")
+    unknown_key = tmp_path / "key.yaml"
+    unknown_key.write_text(problem("omega.rodd: 1\nvelocity.Q: 2\n"))
+    wrong_unit = tmp_path / "unit.yaml"
+    wrong_unit.write_text(problem("omega.rod: 4 m/s\n"))
+    for path in (bad_yaml, unknown_key, wrong_unit):
+        result = check_file(str(path))
+        assert [v.status for v in result.verdicts] == [ERROR], result
+        assert result.verdicts[0].key == "file"
+    assert len(check_file(str(unknown_key)).problems) == 2  # both problems kept for JSON
+
+
+def make_homework(folder: Path, n: int, corrupt: int | None = None) -> dict[str, dict[str, str]]:
+    """n problem files with right, wrong and uncomputable answers; the expected verdicts by file."""
+    folder.mkdir(parents=True, exist_ok=True)
+    expected: dict[str, dict[str, str]] = {}
+    for i in range(n):
+        path = folder / f"p{i:03d}.yaml"
+        if i == corrupt:
+            path.write_text("links: [frame\njoints: {\n")
+            expected[str(path)] = {"file": ERROR}
+        elif i % 3 == 0:
+            path.write_text(problem("dof: 1\njoints.count: 5\n", body=DOF_ONLY, name=f"dof {i}"))
+            expected[str(path)] = {"dof": PASS, "joints.count": FAIL}
+        elif i % 3 == 1:
+            path.write_text(problem("velocity.B: 1.0 m/s\nomega.rod: 1 rad/s\n", name=f"slider {i}"))
+            expected[str(path)] = {"velocity.B": PASS, "omega.rod": FAIL}
+        else:
+            path.write_text(problem("icentres.count: 6\nvelocity.A: 1\n", body=DOF_ONLY, name=f"dof {i}"))
+            expected[str(path)] = {"icentres.count": PASS, "velocity.A": ERROR}
+    return expected
+
+
+def observed(report: Report) -> dict[str, dict[str, str]]:
+    return {r.path: {v.key: v.status for v in r.verdicts} for r in report.results}
+
+
+def test_a_homework_set_gives_exactly_the_expected_verdicts(tmp_path: Path) -> None:
+    expected = make_homework(tmp_path / "hw", 12, corrupt=5)
+    report = run(CheckOptions((str(tmp_path / "hw"),), jobs=1))
+    assert observed(report) == expected
+    # 4 + 4 + 3 passes; 4 + 4 fails; 3 uncomputable + 1 corrupt file
+    assert (report.passed, report.failed, report.errors) == (11, 8, 4)
+    assert report.exit_status == 1
+
+
+def test_one_corrupt_file_in_a_hundred_leaves_99_verdicts_and_one_error_row(tmp_path: Path) -> None:
+    expected = make_homework(tmp_path / "hw", 100, corrupt=42)
+    report = run(CheckOptions((str(tmp_path / "hw"),), jobs=2))
+    assert len(report.results) == 100
+    file_rows = [r for r in report.results if r.verdicts[0].key == "file"]
+    assert [r.path for r in file_rows] == [str(tmp_path / "hw" / "p042.yaml")]
+    assert sum(1 for r in report.results if r.verdicts[0].key != "file") == 99
+    assert observed(report) == expected
+
+
+def test_two_jobs_give_the_same_report_as_one(tmp_path: Path) -> None:
+    make_homework(tmp_path / "hw", 30, corrupt=7)
+    one = run(CheckOptions((str(tmp_path / "hw"),), jobs=1))
+    two = run(CheckOptions((str(tmp_path / "hw"),), jobs=2))
+    assert one == two
+    assert [r.path for r in two.results] == sorted(r.path for r in two.results)
+
+
+def test_files_without_answers_are_skipped_and_counted(tmp_path: Path) -> None:
+    (tmp_path / "a.yaml").write_text(DOF_ONLY.format(name="no answers"))
+    (tmp_path / "b.yml").write_text(problem("dof: 1\n", body=DOF_ONLY, name="b"))
+    report = run(CheckOptions((str(tmp_path),), jobs=1))
+    assert report.skipped == (str(tmp_path / "a.yaml"),)
+    assert report.passed == 1 and report.exit_status == 0
+
+
+def test_count_only_checks_never_import_numpy(tmp_path: Path) -> None:
+    make_homework(tmp_path / "hw", 3)
+    for p in (tmp_path / "hw").glob("*.yaml"):
+        if "velocity" in p.read_text():
+            p.unlink()
+    code = (
+        "import sys\n"
+        "from mech.batch import CheckOptions, run\n"
+        "from mech.render.check import report_dict\n"
+        f"r = run(CheckOptions(({str(tmp_path / 'hw')!r},), jobs=1))\n"
+        "report_dict(r)\n"
+        "assert r.total > 0, r\n"
+        "print('numpy' in sys.modules)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+
+
+# -- answer sheets ---------------------------------------------------------------------------
+@pytest.fixture
+def classroom(tmp_path: Path) -> Path:
+    problems = tmp_path / "problems"
+    problems.mkdir()
+    (problems / "p1.yaml").write_text(SLIDER.format(name="Slider crank") + "answers:\n  velocity.B: 0\n")
+    (problems / "p2.yaml").write_text(DOF_ONLY.format(name="Four-bar count"))
+    sheets = tmp_path / "sheets"
+    sheets.mkdir()
+    # alice: all right; p2 found by the problem's name
+    (sheets / "alice.yaml").write_text(
+        'p1: {velocity.B: "1 m/s", omega.crank: 10 rad/s ccw}\n"Four-bar count": {dof: 1}\n'
+    )
+    # bob: p1's velocity wrong, omega.crank extra and right, p2 missing, a problem that does not exist
+    (bob := sheets / "bob.yaml").write_text(
+        "p1.yaml:\n  velocity.B: 2 m/s\n  omega.crank: 10\np9: {dof: 1}\n"
+    )
+    # carol: an unknown key and a tolerance of her own
+    (sheets / "carol.yaml").write_text("p1: {velocity.Z: 1}\np2: {dof: 1, tolerance: 50%}\n")
+    # dave: not YAML
+    (sheets / "dave.yaml").write_text("p1: [\n")
+    assert bob.exists()
+    return tmp_path
+
+
+def test_a_folder_of_sheets_scores_each_student(classroom: Path) -> None:
+    report = run(CheckOptions((str(classroom / "problems"),), answers=str(classroom / "sheets"), jobs=1))
+    scores = {s.student: (s.passed, s.failed, s.errors) for s in report.scores()}
+    # alice: p1 velocity.B + omega.crank, p2 dof
+    assert scores["alice"] == (3, 0, 0)
+    # bob: p1 velocity.B fails, omega.crank passes; p2 not answered (fail); p9 names no problem (error)
+    assert scores["bob"] == (1, 2, 1)
+    # carol: p1 unknown point (error row), p2 tolerance refused (error row)
+    assert scores["carol"] == (0, 0, 2)
+    # dave: one error row for the unreadable sheet
+    assert scores["dave"] == (0, 0, 1)
+    assert report.students == ("alice", "bob", "carol", "dave")
+
+
+def test_a_single_sheet_checks_one_students_answers(classroom: Path) -> None:
+    report = run(
+        CheckOptions((str(classroom / "problems"),), answers=str(classroom / "sheets" / "alice.yaml"))
+    )
+    assert report.students == ("alice",)
+    assert report.exit_status == 0 and report.passed == 3
+
+
+def test_sheet_problems_point_into_the_sheet(classroom: Path) -> None:
+    report = run(CheckOptions((str(classroom / "problems"),), answers=str(classroom / "sheets"), jobs=1))
+    carol = next(r for r in report.results if r.student == "carol" and r.path.endswith("p1.yaml"))
+    assert carol.problems[0].where.path.endswith("carol.yaml")
+    assert carol.problems[0].where.line == 1
+    assert "velocity.Z" in carol.verdicts[0].message
+
+
+# -- report formats ---------------------------------------------------------------------------
+@pytest.fixture
+def report(tmp_path: Path) -> Report:
+    make_homework(tmp_path / "hw", 6, corrupt=4)
+    return run(CheckOptions((str(tmp_path / "hw"),), jobs=1))
+
+
+def test_junit_xml_has_the_junit_structure(report: Report) -> None:
+    from mech.render.check import junit_xml
+
+    root = ET.fromstring(junit_xml(report))
+    assert root.tag == "testsuites"
+    assert int(root.get("tests")) == report.total
+    assert int(root.get("failures")) == report.failed and int(root.get("errors")) == report.errors
+    suites = root.findall("testsuite")
+    assert len(suites) == len(report.results)
+    for suite, result in zip(suites, report.results, strict=True):
+        assert suite.get("name") == result.path
+        cases = suite.findall("testcase")
+        assert int(suite.get("tests")) == len(cases) == result.total
+        assert int(suite.get("failures")) == sum(len(c.findall("failure")) for c in cases) == result.failed
+        assert int(suite.get("errors")) == sum(len(c.findall("error")) for c in cases) == result.errors
+        for case, v in zip(cases, result.verdicts, strict=True):
+            assert case.get("name") == v.key and case.get("classname")
+            for child in case:
+                assert child.tag in ("failure", "error") and child.get("message") and child.get("type")
+    corrupt = next(s for s in suites if s.get("name").endswith("p004.yaml"))
+    assert corrupt.find("testcase/error").get("type") == "FileError"
+
+
+def test_gradescope_results_follow_the_autograder_spec(report: Report) -> None:
+    from mech.render.check import gradescope_dict
+
+    data = json.loads(json.dumps(gradescope_dict(report)))
+    assert data["score"] == report.passed
+    assert len(data["tests"]) == report.total
+    for t in data["tests"]:
+        assert set(t) >= {"name", "score", "max_score", "status", "output"}
+        assert t["status"] in ("passed", "failed")
+        assert t["max_score"] == 1.0 and t["score"] == (1.0 if t["status"] == "passed" else 0.0)
+    assert sum(t["score"] for t in data["tests"]) == data["score"]
+
+
+def test_csv_has_one_row_per_student_and_problem(classroom: Path) -> None:
+    from mech.render.check import csv_text
+
+    report = run(CheckOptions((str(classroom / "problems"),), answers=str(classroom / "sheets"), jobs=1))
+    rows = list(csv.DictReader(io.StringIO(csv_text(report))))
+    assert list(rows[0]) == ["student", "problem", "passed", "total", "score"]
+    alice = [r for r in rows if r["student"] == "alice"]
+    assert [(Path(r["problem"]).name, r["passed"], r["total"], r["score"]) for r in alice] == [
+        ("p1.yaml", "2", "2", "100.0"),
+        ("p2.yaml", "1", "1", "100.0"),
+    ]
+
+
+def test_json_report_counts_and_answers(report: Report) -> None:
+    from mech.render.check import report_dict
+
+    data = json.loads(json.dumps(report_dict(report)))
+    assert data["summary"]["passed"] == report.passed and data["summary"]["exit_status"] == 1
+    bad = next(r for r in data["results"] if r["file"].endswith("p004.yaml"))
+    assert bad["answers"][0]["status"] == "error" and bad["error"]["problems"][0]["line"] >= 1
+
+
+# -- the command line -------------------------------------------------------------------------
+def test_cli_exit_0_when_all_pass(run, tmp_path: Path) -> None:
+    (tmp_path / "a.yaml").write_text(problem("dof: 1\nvelocity.A: 1 m/s\n"))
+    result = run("check", str(tmp_path))
+    assert result.exit_code == 0, result.output
+    assert "2 passed, 0 failed, 0 errors in 1 file" in result.output
+
+
+def test_cli_exit_1_on_a_failure_or_error(run, tmp_path: Path) -> None:
+    make_homework(tmp_path / "hw", 4, corrupt=3)
+    result = run("check", "-j", "1", str(tmp_path / "hw"))
+    assert result.exit_code == 1
+    assert "failed" in result.output and "error" in result.output
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ("check",),
+        ("check", "no/such/folder"),
+        ("check", "--jobs", "0", "."),
+    ],
+)
+def test_cli_exit_2_on_usage_errors(run, args: tuple[str, ...]) -> None:
+    assert run(*args).exit_code == 2
+
+
+def test_cli_exit_2_when_there_is_nothing_to_check(run, tmp_path: Path) -> None:
+    (tmp_path / "a.yaml").write_text(DOF_ONLY.format(name="x"))
+    result = run("check", str(tmp_path))
+    assert result.exit_code == 2 and "no answers to check" in result.stderr
+
+
+def test_cli_refuses_gradescope_for_a_class(run, classroom: Path, tmp_path: Path) -> None:
+    result = run(
+        "check", str(classroom / "problems"), "--answers", str(classroom / "sheets"), "--gradescope", "r.json"
+    )
+    assert result.exit_code == 2
+
+
+def test_cli_writes_every_format(run, classroom: Path, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    out.mkdir()
+    result = run(
+        "check",
+        str(classroom / "problems"),
+        "--answers",
+        str(classroom / "sheets"),
+        "--junit",
+        str(out / "junit.xml"),
+        "--csv",
+        str(out / "grades.csv"),
+        "--json",
+    )
+    assert result.exit_code == 1
+    data = json.loads(result.stdout)
+    assert [s["student"] for s in data["students"]] == ["alice", "bob", "carol", "dave"]
+    assert ET.parse(out / "junit.xml").getroot().tag == "testsuites"
+    assert (out / "grades.csv").read_text().startswith("student,problem,passed,total,score")
+
+
+def test_cli_table_for_a_class_has_one_row_per_student(run, classroom: Path) -> None:
+    result = run("check", str(classroom / "problems"), "--answers", str(classroom / "sheets"))
+    lines = [
+        ln for ln in result.output.splitlines() if ln.strip().startswith(("alice", "bob", "carol", "dave"))
+    ]
+    assert len(lines) == 4 and "100%" in lines[0]
+
+
+def test_mech_check_in_a_subprocess(tmp_path: Path) -> None:
+    make_homework(tmp_path / "hw", 3)
+    proc = subprocess.run(
+        [sys.executable, "-m", "mech", "check", "--jobs", "2", str(tmp_path / "hw")],
+        capture_output=True,
+        text=True,
+    )
+    assert proc.returncode == 1, proc.stderr
+    assert proc.stdout.rstrip().endswith("3 passed, 2 failed, 1 error in 3 files")
+    assert proc.stderr == ""  # no progress bar when stderr is not a terminal
