@@ -501,3 +501,34 @@ def test_mech_check_in_a_subprocess(tmp_path: Path) -> None:
     assert proc.returncode == 1, proc.stderr
     assert proc.stdout.rstrip().endswith("3 passed, 2 failed, 1 error in 3 files")
     assert proc.stderr == ""  # no progress bar when stderr is not a terminal
+
+
+def test_cli_quiet_lists_only_what_went_wrong(run, tmp_path: Path) -> None:
+    (tmp_path / "a.yaml").write_text(problem("dof: 1\nvelocity.A: 2 m/s\n"))
+    result = run("check", "-q", str(tmp_path))
+    assert "velocity.A" in result.output and "dof" not in result.output.replace("dof = ", "")
+    assert "1 passed, 1 failed" in result.output
+
+
+def test_cli_gradescope_for_one_sheet(run, classroom: Path, tmp_path: Path) -> None:
+    out = tmp_path / "results.json"
+    sheet = classroom / "sheets" / "bob.yaml"
+    result = run("check", str(classroom / "problems"), "--answers", str(sheet), "--gradescope", str(out))
+    assert result.exit_code == 1
+    data = json.loads(out.read_text())
+    assert data["score"] == 1.0 and len(data["tests"]) == 4
+
+
+def test_progress_bar_only_on_a_terminal_for_large_sets() -> None:
+    from rich.console import Console
+
+    from mech.render.check import progress
+
+    for terminal, total, shown in ((True, 50, True), (True, 5, False), (False, 50, False)):
+        buffer = io.StringIO()
+        console = Console(file=buffer, force_terminal=terminal, width=80)
+        with progress(console) as (start, advance):
+            start(total)
+            for _ in range(total):
+                advance(None)
+        assert bool(buffer.getvalue()) is shown, (terminal, total)

@@ -188,3 +188,19 @@ def test_library_use_without_cli():
     m = mech.load(FOUR_BAR)
     assert mech.dof(m).n == 1
     assert mech.classify(m).chain == "four-bar"
+
+
+def test_dof_mobility_sees_what_kutzbach_misses(run):
+    # The double parallelogram: Kutzbach counts 0, yet it moves (one redundant constraint).
+    path = str(ROOT / "mechanisms" / "double_parallelogram.yaml")
+    data = json.loads(run("dof", "--mobility", "--json", path).output)
+    assert data["dof"] == 0
+    assert data["mobility"]["value"] == 1
+    result = run("dof", "--mobility", path)
+    assert "numeric mobility 1" in result.output and "it moves" in result.output
+
+
+def test_dof_mobility_without_geometry_says_why(run):
+    result = run("dof", "--mobility", str(ROOT / "mechanisms" / "four_bar_dof.yaml"))
+    assert result.exit_code == 0
+    assert "not computed" in result.output

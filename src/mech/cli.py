@@ -125,10 +125,10 @@ def dof(files: Sequence[str], mobility: bool, as_json: bool) -> None:
 
         console = stdout()
         dof_table(results, console)
-        for t in results:
-            if mobility:
-                m = mobilities[t.path]
-                console.print(f"  {t.path}: numeric mobility {m['text']}")
+        if mobility:
+            for t in results:
+                where = "" if len(results) == 1 else f"{t.path}: "
+                console.print(f"  {where}numeric mobility {mobilities[t.path]['text']}", soft_wrap=True)
     if errors:
         sys.exit(ExitStatus.BAD_INPUT)
 

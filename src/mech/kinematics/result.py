@@ -94,6 +94,18 @@ class Mobility:
     redundant: int = 0
     notes: tuple[str, ...] = ()
 
+    def describe(self) -> str:
+        """One line for reports: the numeric mobility and why it differs from Kutzbach's."""
+        if self.numeric is None:
+            return "not computed (the file has no geometry)"
+        text = f"{self.numeric} (3n − rank Φq)"
+        if self.numeric == self.kutzbach:
+            return text + ", as Kutzbach's count"
+        if self.numeric > self.kutzbach:
+            why = f"{self.redundant} redundant constraint(s)" if self.redundant else "special geometry"
+            return text + f"; Kutzbach's {self.kutzbach} misses {why}: it moves"
+        return text + f"; below Kutzbach's {self.kutzbach}: singular here (condition {self.condition:.3g})"
+
 
 @dataclass(frozen=True, slots=True)
 class JointGeom:

@@ -1,0 +1,255 @@
+"""Drawings: well-formed SVG, the expected elements, polygons to their stated scale."""
+
+from __future__ import annotations
+
+import math
+import re
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+
+from mech.draw import draw, save
+from mech.draw.polygon import acceleration_polygon, velocity_polygon
+from mech.draw.scene import nice_scale
+from mech.draw.svg import to_svg
+from mech.kinematics import solve
+from mech.loader import load
+from mech.model import JointType
+
+ROOT = Path(__file__).resolve().parent.parent
+MECHANISMS = ROOT / "mechanisms"
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def kinematic_examples() -> list[Path]:
+    """Shipped examples with a drive and geometry: the ones that can be drawn."""
+    out = []
+    for path in sorted(MECHANISMS.glob("*.yaml")):
+        m = load(path)
+        if m.drives and m.has_geometry:
+            out.append(path)
+    return out
+
+
+def _solve(path: Path, level: str = "acceleration"):
+    m = load(path)
+    return m, solve(m, level=level)
+
+
+def _parse(svg: str) -> ET.Element:
+    return ET.fromstring(svg.encode("utf-8"))
+
+
+def _panel_scales(root: ET.Element) -> list[float]:
+    """The numbers of the "1 cm = X unit" captions, in panel order."""
+    out = []
+    for t in root.iter(f"{SVG}text"):
+        if t.get("class") == "scale":
+            out.append(float(re.match(r"1 cm = ([0-9.]+)", t.text or "").group(1)))
+    return out
+
+
+def _vectors(root: ET.Element) -> dict[str, float]:
+    """data-name → length (mm) of every polygon vector shaft."""
+    out = {}
+    for line in root.iter(f"{SVG}line"):
+        if line.get("class") == "vector":
+            x1, y1, x2, y2 = (float(line.get(k)) for k in ("x1", "y1", "x2", "y2"))
+            out[line.get("data-name")] = math.hypot(x2 - x1, y2 - y1)
+    return out
+
+
+# -- well-formed and complete ------------------------------------------------------------
+@pytest.mark.parametrize("path", kinematic_examples(), ids=lambda p: p.stem)
+def test_every_kinematic_example_draws_well_formed_svg(path):
+    m = load(path)
+    try:
+        kin = solve(m, level="acceleration")
+        acc = True
+    except Exception:
+        kin = solve(m, level="velocity")
+        acc = False
+    root = _parse(to_svg(draw(m, kin, velocity=True, acceleration=acc)))
+    assert root.tag == f"{SVG}svg"
+    assert root.get("width").endswith("mm")
+    pins = [c.get("data-name") for c in root.iter(f"{SVG}circle") if c.get("class") == "pin"]
+    revolutes = [j.name for j in m.joints if j.type is JointType.REVOLUTE and j.name in kin.positions]
+    assert sorted(pins) == sorted(revolutes)
+    labels = {t.text for t in root.iter(f"{SVG}text") if t.get("class") == "label"}
+    assert len(labels) >= len(revolutes)
+    assert _vectors(root), "the velocity polygon has vectors"
+
+
+def test_four_bar_svg_has_pins_labels_ground_and_vectors():
+    m, kin = _solve(MECHANISMS / "four_bar.yaml", "velocity")
+    root = _parse(to_svg(draw(m, kin, velocity=True)))
+    circles = [c for c in root.iter(f"{SVG}circle") if c.get("class") == "pin"]
+    assert len(circles) == 4
+    labels = {t.text for t in root.iter(f"{SVG}text") if t.get("class") == "label"}
+    assert labels == {"A", "B", "C", "D"}
+    assert sum(1 for p in root.iter(f"{SVG}polygon") if p.get("class") == "ground-pivot") == 2
+    assert set(_vectors(root)) == {"ab", "bc", "dc"}
+    images = {t.text for t in root.iter(f"{SVG}text") if t.get("class") == "image-label"}
+    assert images == {"a, d", "b", "c"}
+
+
+def test_svg_is_deterministic():
+    m, kin = _solve(MECHANISMS / "slider_crank.yaml", "velocity")
+    assert to_svg(draw(m, kin, velocity=True)) == to_svg(draw(m, kin, velocity=True))
+
+
+def test_subscripts_as_the_notes_write_them():
+    m, kin = _solve(MECHANISMS / "watt_six_bar.yaml", "velocity")
+    root = _parse(to_svg(draw(m, kin, velocity=True)))
+    labels = {t.text for t in root.iter(f"{SVG}text") if t.get("class") == "label"}
+    assert {"O₂", "O₄", "O₆"} <= labels
+    assert "o₄c" in _vectors(root)
+
+
+# -- to scale -------------------------------------------------------------------------------
+@pytest.mark.parametrize(
+    ("name", "expected"),
+    [
+        ("four_bar.yaml", {"ab": ("B",), "dc": ("C",), "bc": ("C", "B")}),
+        ("slider_crank.yaml", {"oa": ("A",), "ob": ("B",), "od": ("D",), "ab": ("B", "A")}),
+    ],
+)
+def test_velocity_polygon_lengths_match_velocities_at_stated_scale(name, expected):
+    m, kin = _solve(MECHANISMS / name, "velocity")
+    root = _parse(to_svg(draw(m, kin, velocity=True)))
+    scale = _panel_scales(root)[1]  # configuration first, then the velocity polygon
+    lengths = _vectors(root)
+    for vector, points in expected.items():
+        v = kin.velocity(points[0]) if len(points) == 1 else kin.relative_velocity(*points)
+        measured = lengths[vector] / 10 * scale  # mm → cm → m/s
+        assert measured == pytest.approx(math.hypot(*v), rel=2e-3, abs=0.01 * scale), vector
+
+
+def test_velocity_polygon_of_slotted_lever_shows_sliding_velocity():
+    m, kin = _solve(MECHANISMS / "crank_slotted_lever_quick_return.yaml", "velocity")
+    data = velocity_polygon(m, kin)
+    sliding = [v for v in data.vectors if v.kind == "sliding"]
+    assert len(sliding) == 1
+    assert math.hypot(*sliding[0].value) == pytest.approx(abs(kin.sliding("slot")), rel=1e-9)
+    assert sliding[0].name == "a₄a"  # the lever (link 4)'s point under A, to A
+
+
+def test_acceleration_polygon_components_add_up_and_match_scale():
+    m, kin = _solve(MECHANISMS / "four_bar.yaml", "acceleration")
+    data = acceleration_polygon(m, kin)
+    bc = data.vector("b′c′")
+    rel = kin.relative_acceleration("C", "B")
+    assert bc.value == pytest.approx(rel, rel=1e-9)
+    parts = [v for v in data.vectors if v.kind in ("normal", "tangential") and v.link == "coupler"]
+    assert len(parts) == 2
+    total = (sum(p.value[0] for p in parts), sum(p.value[1] for p in parts))
+    assert total == pytest.approx(rel, rel=1e-9)
+    normal = next(p for p in parts if p.kind == "normal")
+    w = kin.links["coupler"].omega
+    assert math.hypot(*normal.value) == pytest.approx(w * w * math.dist(kin.positions["B"], kin.positions["C"]))
+    root = _parse(to_svg(draw(m, kin, acceleration=True)))
+    scale = _panel_scales(root)[1]
+    assert _vectors(root)["d′c′"] / 10 * scale == pytest.approx(math.hypot(*kin.acceleration("C")), rel=2e-3)
+
+
+def test_coriolis_component_drawn_at_a_slider_on_a_moving_guide():
+    m, kin = _solve(MECHANISMS / "whitworth_quick_return.yaml", "acceleration")
+    data = acceleration_polygon(m, kin)
+    cor = next(v for v in data.vectors if v.kind == "coriolis")
+    assert cor.value == pytest.approx(kin.coriolis("slot"), rel=1e-9)
+
+
+@pytest.mark.parametrize("extent", [1e-6, 0.0123, 0.5, 3.0, 47.0, 1e5])
+def test_nice_scale_is_round_and_fits(extent):
+    s = nice_scale(extent, 100.0)
+    mantissa = s / 10 ** math.floor(math.log10(s))
+    assert any(math.isclose(mantissa, m) for m in (1, 2, 2.5, 5))
+    assert extent / s * 10 <= 100.0 + 1e-9  # fits in 100 mm
+    assert extent / s * 10 > 100.0 / 2.5 - 1e-9  # and is not needlessly small
+
+
+# -- I-centres ------------------------------------------------------------------------------
+def _centre(name, point=None, direction=None):
+    return SimpleNamespace(name=name, point=point, direction=direction, at_infinity=point is None)
+
+
+def test_icentres_drawn_as_points_and_arrows_to_infinity():
+    m, kin = _solve(MECHANISMS / "slider_crank.yaml", "velocity")
+    centres = [
+        _centre("I12", kin.positions["O"]),
+        _centre("I23", kin.positions["A"]),
+        _centre("I14", None, (0.0, 1.0)),
+    ]
+    root = _parse(to_svg(draw(m, kin, icentres=centres)))
+    marks = [c.get("data-name") for c in root.iter(f"{SVG}circle") if c.get("class") == "icentre"]
+    assert sorted(marks) == ["I12", "I23"]
+    texts = [t.text for t in root.iter(f"{SVG}text") if t.get("class") == "icentre-label"]
+    assert "I14 → ∞" in texts
+    arrows = [ln for ln in root.iter(f"{SVG}line") if ln.get("class") == "icentre-arrow"]
+    assert len(arrows) == 1
+    (x1, y1, x2, y2) = (float(arrows[0].get(k)) for k in ("x1", "y1", "x2", "y2"))
+    assert abs(x2 - x1) < 1e-6 and y2 < y1  # points up the page, the way (0, 1) goes
+
+
+def test_icentres_from_the_locator_overlay():
+    from mech.icentres import locate
+
+    m, kin = _solve(MECHANISMS / "four_bar.yaml", "velocity")
+    ic = locate(m, kin)
+    root = _parse(to_svg(draw(m, kin, icentres=ic.centres)))
+    texts = " ".join(t.text for t in root.iter(f"{SVG}text") if t.get("class") == "icentre-label")
+    for name in ("I12", "I13", "I14", "I23", "I24", "I34"):
+        assert name in texts
+
+
+# -- command line ------------------------------------------------------------------------
+def test_cli_draw_writes_svg(run, tmp_path):
+    out = tmp_path / "fb.svg"
+    result = run("draw", str(MECHANISMS / "four_bar.yaml"), "-o", str(out), "--velocity", "--icentres")
+    assert result.exit_code == 0, result.output
+    root = _parse(out.read_text(encoding="utf-8"))
+    assert _vectors(root)
+
+
+def test_cli_draw_json_summary_states_scales(run, tmp_path):
+    out = tmp_path / "sc.svg"
+    result = run("draw", str(MECHANISMS / "slider_crank.yaml"), "-o", str(out), "--velocity", "--json",
+                 "--units", "mm")
+    assert result.exit_code == 0
+    assert '"1 cm = 500 mm/s"' in result.stdout
+
+
+def test_cli_draw_refuses_unknown_format(run, tmp_path):
+    result = run("draw", str(MECHANISMS / "four_bar.yaml"), "-o", str(tmp_path / "x.pdf"))
+    assert result.exit_code == 2
+    assert "name the output .svg or .png" in result.stderr
+
+
+def test_cli_draw_png_without_matplotlib_says_how_to_install(run, tmp_path, monkeypatch):
+    monkeypatch.setitem(sys.modules, "matplotlib", None)  # import matplotlib now raises ImportError
+    result = run("draw", str(MECHANISMS / "four_bar.yaml"), "-o", str(tmp_path / "x.png"))
+    assert result.exit_code == 2
+    assert "pip install 'planar-mech[plot]'" in result.stderr
+    assert not (tmp_path / "x.png").exists()
+
+
+@pytest.mark.parametrize("command", ["dof", "check"])
+def test_dof_and_check_never_import_drawing_code(command):
+    code = (
+        "import sys; from mech.cli import main\n"
+        f"try:\n    main([{command!r}, sys.argv[1]])\nexcept SystemExit:\n    pass\n"
+        "print('LOADED=' + ','.join(sorted(m for m in sys.modules if m == 'matplotlib' or m.startswith('mech.draw'))))\n"
+    )
+    result = subprocess.run([sys.executable, "-c", code, str(MECHANISMS / "four_bar.yaml")],
+                            capture_output=True, text=True, cwd=ROOT, timeout=120)
+    assert "LOADED=\n" in result.stdout, result.stdout + result.stderr
+
+
+def test_save_by_extension(tmp_path):
+    m, kin = _solve(MECHANISMS / "four_bar.yaml", "position")
+    save(draw(m, kin), tmp_path / "a.svg")
+    assert (tmp_path / "a.svg").read_text(encoding="utf-8").startswith("<?xml")

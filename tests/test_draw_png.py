@@ -1,0 +1,118 @@
+"""PNG output compared with stored references, and the sweep plots (matplotlib: the plot extra).
+
+The references in tests/data were rendered by mech itself (``python
+tests/test_draw_png.py`` rewrites them after an intended change).  The
+comparison is of downsampled grayscale images, with a tolerance that
+anti-aliasing or a freetype version cannot break but a moved link can.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("matplotlib")
+PIL_Image = pytest.importorskip("PIL.Image")
+
+import numpy as np  # noqa: E402
+
+from mech.draw import draw  # noqa: E402
+from mech.draw.plot import Series, animate, extremes, sweep_plot  # noqa: E402
+from mech.draw.raster import to_png  # noqa: E402
+from mech.kinematics import solve  # noqa: E402
+from mech.loader import load  # noqa: E402
+from mech.options import SolveOptions  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+DATA = Path(__file__).resolve().parent / "data"
+DPI = 60
+TOLERANCE = 0.02  # mean absolute difference of 4×4-averaged grayscale, 0..1
+CASES = {"four_bar": ("four_bar.yaml", True), "slider_crank": ("slider_crank.yaml", True)}
+
+
+def _figure(name: str, angle: float | None = None):
+    file, velocity = CASES[name]
+    m = load(ROOT / "mechanisms" / file)
+    options = SolveOptions(angle=None if angle is None else math.radians(angle))
+    kin = solve(m, level="velocity", options=options)
+    return draw(m, kin, velocity=velocity)
+
+
+def _gray(path: Path) -> np.ndarray:
+    img = np.asarray(PIL_Image.open(path).convert("L"), dtype=float) / 255.0
+    h, w = (img.shape[0] // 4) * 4, (img.shape[1] // 4) * 4
+    return img[:h, :w].reshape(h // 4, 4, w // 4, 4).mean(axis=(1, 3))
+
+
+def _difference(a: Path, b: Path) -> float:
+    ga, gb = _gray(a), _gray(b)
+    assert ga.shape == gb.shape, f"image sizes differ: {ga.shape} vs {gb.shape}"
+    return float(np.abs(ga - gb).mean())
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_png_matches_reference(name, tmp_path):
+    out = tmp_path / f"{name}.png"
+    to_png(_figure(name), str(out), dpi=DPI)
+    assert _difference(out, DATA / f"draw_{name}.png") < TOLERANCE
+
+
+def test_png_comparison_sees_a_moved_crank(tmp_path):
+    out = tmp_path / "moved.png"
+    to_png(_figure("four_bar", angle=75.0), str(out), dpi=DPI)
+    try:
+        diff = _difference(out, DATA / "draw_four_bar.png")
+    except AssertionError:
+        return  # a different size is a difference too
+    assert diff > TOLERANCE / 4  # the tolerance is not so loose that anything passes
+
+
+def test_png_has_no_timestamp(tmp_path):
+    a, b = tmp_path / "a.png", tmp_path / "b.png"
+    fig = _figure("four_bar")
+    to_png(fig, str(a), dpi=DPI)
+    to_png(fig, str(b), dpi=DPI)
+    assert a.read_bytes() == b.read_bytes()
+
+
+# -- sweep plots and animation (synthetic data) -------------------------------------------
+def test_extremes_ignore_nan():
+    angles = [0, 90, 180, 270]
+    assert extremes(angles, [1.0, float("nan"), 3.0, -2.0]) == ((180, 3.0), (270, -2.0))
+
+
+def test_sweep_plot_writes_png(tmp_path):
+    angles = list(range(0, 361, 5))
+    series = [
+        Series("v_B", "m/s", [math.sin(math.radians(a)) for a in angles]),
+        Series("v_C", "m/s", [0.5 * math.cos(math.radians(a)) for a in angles]),
+        Series("ω_rod", "rad/s", [2 * math.sin(math.radians(2 * a)) for a in angles]),
+    ]
+    out = tmp_path / "sweep.png"
+    sweep_plot(out, angles, series, dead_centres=[0, 180], title="synthetic")
+    img = PIL_Image.open(out)
+    assert img.size[0] > 500 and img.size[1] > 500  # two panels: m/s and rad/s
+
+
+def test_sweep_plot_rejects_mismatched_lengths(tmp_path):
+    with pytest.raises(ValueError, match="values for"):
+        sweep_plot(tmp_path / "x.png", [0, 1, 2], [Series("v", "m/s", [1.0, 2.0])])
+
+
+def test_animate_writes_one_gif_frame_per_position_set(tmp_path):
+    m = load(ROOT / "mechanisms" / "four_bar.yaml")
+    frames = [solve(m, level="position", options=SolveOptions(angle=math.radians(a))).positions
+              for a in (60, 150, 240, 330)]
+    kin = solve(m, level="position")
+    out = tmp_path / "four_bar.gif"
+    animate(out, m, kin, frames, fps=10, dpi=40)
+    gif = PIL_Image.open(out)
+    assert gif.n_frames == 4
+
+
+if __name__ == "__main__":  # regenerate the references after an intended change
+    DATA.mkdir(exist_ok=True)
+    for case in CASES:
+        to_png(_figure(case), str(DATA / f"draw_{case}.png"), dpi=DPI)
