@@ -33,6 +33,19 @@ class ExitStatus(IntEnum):
 
 
 def _report_error(error: MechError) -> None:
+    """Print every problem of ``error`` to stderr, with the offending line when it has one.
+
+    Errors found after loading (a length that cannot close a loop) carry a
+    location but not the text; the file is read again here to show the line.
+    """
+    if error.source is None:
+        path = next((p.where.path for p in error.problems if p.where and p.where.line), None)
+        if path and path != "<stdin>":
+            try:
+                with open(path, encoding="utf-8") as f:
+                    error.source = f.read()
+            except (OSError, UnicodeDecodeError):
+                pass
     click.echo(error.format(), err=True)
 
 

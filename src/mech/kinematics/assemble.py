@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mech.errors import GeometryError, InputError, Problem
+from mech.errors import GeometryError, InputError, Problem, Where
 from mech.kinematics.geometry import circle_circle, circle_line
 from mech.kinematics.layout import Layout
 from mech.model import JointType, Placement, Ref
@@ -191,6 +191,13 @@ def assemble(
         The data cannot be assembled, or leaves a location free.
     """
     mech = lay.mech
+    if not mech.has_geometry:
+        raise InputError(
+            "positions need geometry: nothing in the file is placed",
+            where=Where(mech.path),
+            hint="place the ground joints with at: [x, y] and give the links' lengths "
+            "(mech dof and mech classify need neither)",
+        )
     unit = mech.length_unit
     known: dict[str, tuple[float, float]] = {}
     near: dict[str, tuple[float, float]] = {}
@@ -550,9 +557,11 @@ def _check_determined(
     if undriven:
         hint = f"give the drive of {undriven[0].link} an angle (or draw {undriven[0].toward} with at)"
     listed = ", ".join(names)
+    first = next((x for x in (*lay.mech.joints, *lay.mech.points) if x.name in names), None)
     raise GeometryError(
         f"the file does not fix where {listed} {'is' if len(names) == 1 else 'are'}: "
         f"{'it' if len(names) == 1 else 'they'} can still move with everything given",
+        where=first.where if first is not None else Where(lay.mech.path),
         hint=hint,
     )
 
