@@ -2,13 +2,14 @@
 
 The references in tests/data were rendered by mech itself (``python
 tests/test_draw_png.py`` rewrites them after an intended change).  The
-comparison is of downsampled grayscale images, with a tolerance that
+comparison is of 8×8-block-averaged grayscale images, with a tolerance that
 anti-aliasing or a freetype version cannot break but a moved link can.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -28,7 +29,10 @@ from mech.options import SolveOptions  # noqa: E402
 ROOT = Path(__file__).resolve().parent.parent
 DATA = Path(__file__).resolve().parent / "data"
 DPI = 60
-TOLERANCE = 0.02  # mean absolute difference of 4×4-averaged grayscale, 0..1
+# Mean absolute difference of 8×8-averaged grayscale (0..1).  Measured at 60 dpi: every label
+# moved by 0.7 px (a different font rasteriser at worst) gives 0.0024; the velocity polygon's
+# vectors missing give 0.0040.  Geometry is ours and exact, so only glyphs can differ by machine.
+TOLERANCE = 0.003
 CASES = {"four_bar": ("four_bar.yaml", True), "slider_crank": ("slider_crank.yaml", True)}
 
 
@@ -42,8 +46,8 @@ def _figure(name: str, angle: float | None = None):
 
 def _gray(path: Path) -> np.ndarray:
     img = np.asarray(PIL_Image.open(path).convert("L"), dtype=float) / 255.0
-    h, w = (img.shape[0] // 4) * 4, (img.shape[1] // 4) * 4
-    return img[:h, :w].reshape(h // 4, 4, w // 4, 4).mean(axis=(1, 3))
+    h, w = (img.shape[0] // 8) * 8, (img.shape[1] // 8) * 8
+    return img[:h, :w].reshape(h // 8, 8, w // 8, 8).mean(axis=(1, 3))
 
 
 def _difference(a: Path, b: Path) -> float:
@@ -59,14 +63,14 @@ def test_png_matches_reference(name, tmp_path):
     assert _difference(out, DATA / f"draw_{name}.png") < TOLERANCE
 
 
-def test_png_comparison_sees_a_moved_crank(tmp_path):
-    out = tmp_path / "moved.png"
-    to_png(_figure("four_bar", angle=75.0), str(out), dpi=DPI)
-    try:
-        diff = _difference(out, DATA / "draw_four_bar.png")
-    except AssertionError:
-        return  # a different size is a difference too
-    assert diff > TOLERANCE / 4  # the tolerance is not so loose that anything passes
+def test_png_comparison_sees_a_missing_polygon(tmp_path):
+    fig = _figure("four_bar")
+    polygon = {"vector", "arrowhead", "image", "image-label", "vector-label"}
+    without = replace(fig, items=tuple(i for i in fig.items if getattr(i, "cls", "") not in polygon))
+    out = tmp_path / "without.png"
+    to_png(without, str(out), dpi=DPI)
+    # the tolerance is not so loose that a drawing missing its vectors passes
+    assert _difference(out, DATA / "draw_four_bar.png") > TOLERANCE
 
 
 def test_png_has_no_timestamp(tmp_path):

@@ -43,7 +43,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from mech.answers import parse_key
+from mech.answers import parse_icentre_name, parse_key
 from mech.errors import MechError, Problem, Where
 from mech.model import Claim, Mechanism, Tolerance
 from mech.options import SolveOptions
@@ -665,17 +665,14 @@ def _least_speed(
 
 
 # -- I-centres and distances ------------------------------------------------------------------
-_IC_NAME = re.compile(r"^I(\d)(\d)$")
-
-
 def _ic_links(mech: Mechanism, name: str) -> tuple[str, str] | None:
     """``I13`` → the links numbered 1 and 3 (ground is 1, the others in file order)."""
-    m = _IC_NAME.match(name)
-    if not m:
+    numbers = parse_icentre_name(name)
+    if numbers is None:
         return None
     numbered = mech.numbered_links
-    a, b = int(m.group(1)), int(m.group(2))
-    if not (1 <= a <= len(numbered) and 1 <= b <= len(numbered)) or a == b:
+    a, b = numbers
+    if not (1 <= a <= len(numbered) and 1 <= b <= len(numbered)):
         return None
     return numbered[a - 1].name, numbered[b - 1].name
 

@@ -28,7 +28,7 @@ from typing import Any
 
 import yaml
 
-from mech.answers import parse_key
+from mech.answers import icentre_name, parse_key
 from mech.errors import InputError, Problem, Where
 from mech.model import (
     Claim,
@@ -1070,11 +1070,7 @@ class _Reader:
         joint_names = {j.name for j in joints}
         point_names = joint_names | {p.name for p in points}
         n = len(links)
-        ic_names = (
-            {f"I{a}{b}" for a in range(1, n + 1) for b in range(a + 1, n + 1)}
-            if n < 10
-            else {f"I{a}.{b}" for a in range(1, n + 1) for b in range(a + 1, n + 1)}
-        )
+        ic_names = {icentre_name(a, b) for a in range(1, n + 1) for b in range(a + 1, n + 1)}
         kinds = {
             "link": link_names,
             "joint": joint_names,

@@ -32,6 +32,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from mech.answers import icentre_name
 from mech.icentres.homogeneous import Hom, join, meet, norm, unit
 from mech.icentres.inspection import Fact
 
@@ -71,8 +72,7 @@ class Line:
 
 def name(i: int, j: int) -> str:
     """Textbook name of the I-centre of 0-based links i and j: ``I13`` (or ``I1,12`` past 9)."""
-    a, b = sorted((i + 1, j + 1))
-    return f"I{a}{b}" if b < 10 else f"I{a},{b}"
+    return icentre_name(i + 1, j + 1)
 
 
 def _key(i: int, j: int) -> tuple[int, int]:
@@ -148,9 +148,7 @@ def kennedy(n: int, facts: Sequence[Fact]) -> Result:
                 q = norm(line)
                 if q == 0.0:
                     continue
-                candidates.append(
-                    Line(unit(line), f"{name(*a.pair)}–{name(*b.pair)}", (a.err + b.err) / q)
-                )
+                candidates.append(Line(unit(line), f"{name(*a.pair)}–{name(*b.pair)}", (a.err + b.err) / q))
             best = _best_meet(candidates)
             if best is None:
                 if len(candidates) >= 2:
