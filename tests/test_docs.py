@@ -54,3 +54,10 @@ def test_readme_commands_mention_shipped_examples():
 
 def test_ci_script_is_valid_bash():
     subprocess.run(["bash", "-n", str(ROOT / ".ci" / "run")], check=True)
+
+
+def test_readme_python_example_runs(monkeypatch):
+    code = re.search(r"## From Python.*?```python\n(.*?)```", README, flags=re.S)
+    assert code is not None
+    monkeypatch.chdir(ROOT)
+    exec(compile(code.group(1), "README.md", "exec"), {})

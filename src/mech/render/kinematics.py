@@ -245,6 +245,11 @@ def _col(table: Any, header: str, justify: str = "left") -> None:
     table.add_column(header, justify=justify, overflow="fold")
 
 
+def _point_label(p: dict[str, Any]) -> str:
+    """``C``, or ``C (on coupler)`` where coincident points of two links differ."""
+    return p["point"] if p["link"] is None else f"{p['point']} (on {p['link']})"
+
+
 _LEVEL_TITLES = {"position": "positions", "velocity": "velocities", "acceleration": "accelerations"}
 
 
@@ -295,26 +300,43 @@ def kinematics_table(kin: Kinematics, console: Any, *, units: OutputUnits) -> No
         t.add_row(*row)
     console.print(t)
 
+    # Positions with velocities, then accelerations in a table of their own: one table with
+    # both is wider than a terminal.
     t = Table(title="Points", box=box, title_justify="left")
     _col(t, "point")
     _col(t, f"x ({u['length']})", justify="right")
     _col(t, f"y ({u['length']})", justify="right")
     if has_v:
-        for col in (f"|v| ({u['velocity']})", f"dir ({u['angle']})", "vx", "vy"):
-            _col(t, col, justify="right")
-    if has_a:
-        for col in (f"|a| ({u['acceleration']})", f"dir ({u['angle']})", "ax", "ay"):
+        for col in (
+            f"|v| ({u['velocity']})",
+            f"dir ({u['angle']})",
+            f"vx ({u['velocity']})",
+            f"vy ({u['velocity']})",
+        ):
             _col(t, col, justify="right")
     for p in data["points"]:
-        label = p["point"] if p["link"] is None else f"{p['point']} (on {p['link']})"
-        row = [label, _g(p["position"][0]), _g(p["position"][1])]
+        row = [_point_label(p), _g(p["position"][0]), _g(p["position"][1])]
         if has_v:
             row += [_g(p["speed"]), _g(p["direction"], 4), _g(p["velocity"][0]), _g(p["velocity"][1])]
-        if has_a:
-            a = p["acceleration"]
-            row += [_g(p["acceleration_magnitude"]), _g(_dir(tuple(a)), 4), _g(a[0]), _g(a[1])]
         t.add_row(*row)
     console.print(t)
+
+    if has_a:
+        t = Table(title="Point accelerations", box=box, title_justify="left")
+        _col(t, "point")
+        for col in (
+            f"|a| ({u['acceleration']})",
+            f"dir ({u['angle']})",
+            f"ax ({u['acceleration']})",
+            f"ay ({u['acceleration']})",
+        ):
+            _col(t, col, justify="right")
+        for p in data["points"]:
+            a = p["acceleration"]
+            t.add_row(
+                _point_label(p), _g(p["acceleration_magnitude"]), _g(_dir(tuple(a)), 4), _g(a[0]), _g(a[1])
+            )
+        console.print(t)
 
     if data["relative"]:
         t = Table(title="Relative motion along links (velocity polygon)", box=box, title_justify="left")
