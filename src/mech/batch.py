@@ -559,16 +559,47 @@ def _execute(
             out.append(d)
         return out
     from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures.process import BrokenProcessPool
 
     workers = min(workers, len(tasks))
     # chunks amortise pickling and process hand-off; several per worker keep the load balanced
     size = max(1, min(32, len(tasks) // (workers * 8)))
     chunks = [tasks[i : i + size] for i in range(0, len(tasks), size)]
     out = []
+    lost: list[_Task] = []
     with ProcessPoolExecutor(max_workers=workers) as pool:
-        futures = [pool.submit(_run_tasks, chunk) for chunk in chunks]
+        futures = {pool.submit(_run_tasks, chunk): chunk for chunk in chunks}
         for future in as_completed(futures):
-            for d in future.result():
+            try:
+                done = future.result()
+            except BrokenProcessPool:
+                lost.extend(futures[future])  # a worker died: these files get a second chance below
+                continue
+            for d in done:
                 landed(d)
                 out.append(d)
+    for task in lost:
+        d = _run_isolated(task)
+        landed(d)
+        out.append(d)
     return out
+
+
+def _run_isolated(task: _Task) -> _Done:
+    """Check one file in a process of its own, so that a crash there is that file's error row.
+
+    Used only after a worker died (the interpreter itself crashed on some file): every
+    file of the lost chunks is checked again alone, and the one that crashes again is
+    reported, while the others get their verdicts.
+    """
+    from concurrent.futures import ProcessPoolExecutor
+    from concurrent.futures.process import BrokenProcessPool
+
+    try:
+        with ProcessPoolExecutor(max_workers=1) as pool:
+            return pool.submit(_run_task, task).result()
+    except BrokenProcessPool:
+        message = "mech crashed while checking this file (a bug in mech or its YAML parser: please report it)"
+        rows = (Verdict("file", ERROR, message=message),)
+        students = [s.student for s in task.submissions] if task.submissions is not None else [None]
+        return _Done(tuple(FileResult(task.path, verdicts=rows, student=st) for st in students))

@@ -258,7 +258,8 @@ def _solve_options(
         raise InputError("--angle must be a finite number of degrees")
     try:
         return SolveOptions(
-            angle=None if angle is None else math.radians(angle),
+            # reduce in degrees, where it is exact, before converting (1e300° is 0°)
+            angle=None if angle is None else math.radians(math.fmod(angle, 360.0)),
             omega=speed,
             direction=direction,
             alpha=alpha,
@@ -389,6 +390,103 @@ def icentres(
     from mech.render.icentres import icentres_table
 
     icentres_table(result, stdout(), units=units)
+
+
+@cli.command(name="sweep")
+@kinematic_options
+@click.option("--from", "start", type=float, default=0.0, show_default=True, help="First crank angle, degrees.")
+@click.option("--to", "stop", type=float, default=360.0, show_default=True, help="Last crank angle, degrees.")
+@click.option(
+    "--steps", type=click.IntRange(min=1, max=10_000_000), default=360, show_default=True, help="Steps (angles − 1)."
+)
+@click.option(
+    "--level",
+    type=click.Choice(["position", "velocity", "acceleration"]),
+    default=None,
+    help="How far to solve (default: velocity with a drive speed, else position).",
+)
+@click.option(
+    "--quantity",
+    "quantities",
+    multiple=True,
+    help="A quantity to report (repeatable): omega.rocker, velocity.B, displacement.P … (default: all).",
+)
+@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), help="Write the series as CSV.")
+@click.option(
+    "--method",
+    type=click.Choice(["auto", "closed", "newton"]),
+    default="auto",
+    show_default=True,
+    help="Closed-form dyads where the chain decomposes (auto), only them, or Newton with --tol.",
+)
+@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Plot the quantities to a PNG (needs matplotlib).")
+@click.option("--animate", "gif_path", type=click.Path(dir_okay=False), help="Animate the cycle to a GIF (needs matplotlib).")
+@handles_errors
+def sweep_command(
+    file: str,
+    rpm: float | None,
+    omega: float | None,
+    angle: float | None,
+    direction: str | None,
+    tol: float,
+    unit_system: str,
+    as_json: bool,
+    start: float,
+    stop: float,
+    steps: int,
+    level: str | None,
+    quantities: tuple[str, ...],
+    csv_path: str | None,
+    method: str,
+    plot_path: str | None,
+    gif_path: str | None,
+) -> None:
+    """Solve over a range of crank angles: gaps, toggles, dead centres, extremes, time ratio.
+
+    Each step continues the last one's assembly branch.  Extremes and dead
+    centres are refined between steps, not read off the grid; for a
+    quick-return mechanism the time ratio of the strokes is given.
+    """
+    from mech.errors import InputError
+
+    if angle is not None:
+        raise InputError("--angle does not apply to a sweep", hint="give the range with --from and --to")
+    if not (math.isfinite(start) and math.isfinite(stop)) or start == stop:
+        raise InputError("--from and --to must be two different finite angles (degrees)")
+    if plot_path or gif_path:
+        from mech.draw.raster import use_matplotlib
+
+        use_matplotlib()  # fail before solving when the plot extra is missing
+    import numpy as np
+
+    from mech.kinematics import sweep
+    from mech.loader import load
+    from mech.options import OutputUnits
+
+    options = _solve_options(rpm, omega, None, direction, tol).with_(method=method)
+    mechanism = load(file)
+    if level is None:
+        has_speed = omega is not None or rpm is not None or any(d.omega is not None for d in mechanism.drives)
+        level = "velocity" if has_speed else "position"
+    angles = np.radians(np.linspace(start, stop, steps + 1))
+    result = sweep(mechanism, angles, level=level, options=options, quantities=quantities or None)
+    units = OutputUnits.named(unit_system)
+    from mech.render import sweep as render
+
+    if csv_path:
+        _write(csv_path, render.sweep_csv(result, units=units, quantities=quantities))
+    if plot_path:
+        render.sweep_plot_file(plot_path, result, units=units, quantities=quantities)
+    if gif_path:
+        render.sweep_animation_file(gif_path, mechanism, result)
+    if as_json:
+        from mech.render.jsonout import dumps
+
+        click.echo(dumps(render.sweep_json(result, units=units, file=file, series=quantities)))
+        return
+    from mech.render.console import stdout
+
+    render.sweep_table(result, stdout(), units=units)
 
 
 # -- checking answers -----------------------------------------------------------------

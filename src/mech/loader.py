@@ -45,7 +45,14 @@ from mech.model import (
     Tolerance,
     Vec,
 )
-from mech.units import Dimension, known_units, parse_number, parse_quantity, unit_factor
+from mech.units import (
+    MAGNITUDE_RANGE,
+    Dimension,
+    known_units,
+    parse_number,
+    parse_quantity,
+    unit_factor,
+)
 
 __all__ = ["load", "loads", "parse_answers"]
 
@@ -79,6 +86,7 @@ _JOINT_KEYS: dict[JointType, tuple[str, ...]] = {
 _COMMON_JOINT_KEYS = ("type", "links", "closure", "description", *_PLACE_KEYS)
 _NAME = re.compile(r"^[^\s.\-\[\]{},:#]+$")
 _MAX_NODES = 200_000  # an alias bomb is refused, not expanded
+_MAX_DEPTH = 64  # deeper nesting is refused before libyaml's recursive composer sees it
 
 _PLAIN_NULLS = {"", "~", "null", "Null", "NULL"}
 _TRUE = {"true", "True", "TRUE", "yes", "Yes", "YES", "on", "On", "ON"}
@@ -223,6 +231,7 @@ class _Reader:
                 hint="a mechanism needs at least `links:` and `joints:` (see mechanisms/)",
             )
         try:
+            self._check_depth()
             root = yaml.compose(self.text, Loader=_YamlLoader)
         except yaml.MarkedYAMLError as exc:
             mark = exc.problem_mark or exc.context_mark
@@ -234,7 +243,7 @@ class _Reader:
             raise InputError(
                 f"this is not valid YAML: {what}",
                 where=where,
-                hint="check indentation, colons and brackets near this place",
+                hint=self._yaml_hint(where),
                 source=self.text,
             ) from None
         except yaml.YAMLError as exc:
@@ -244,13 +253,45 @@ class _Reader:
         self._check_size(root)
         if not isinstance(root, yaml.MappingNode):
             raise InputError(
-                f"a mechanism file must be a mapping of keys (links:, joints: …), not a {_kind(root)}",
+                f"a mechanism file must be a mapping of keys (links:, joints: …), not {_kind(root)}",
                 where=self.where(root),
                 hint="start with `links: [...]` and `joints: {...}`",
                 source=self.text,
             )
         top = self.mapping(root, "the file", allowed=_TOP_KEYS)
         return self._mechanism(root, top)
+
+    def _yaml_hint(self, where: Where) -> str:
+        """What to look for at a YAML syntax error; tabs get a hint of their own."""
+        lines = self.text.splitlines()
+        nearby = lines[max(where.line - 2, 0) : where.line] if where.line else lines
+        if any("\t" in line for line in nearby):
+            return "YAML indents with spaces, never tabs: replace the tabs with spaces"
+        return "check indentation, colons and brackets near this place"
+
+    def _check_depth(self) -> None:
+        """Refuse absurd nesting before composing: libyaml's composer recurses in C and
+        would crash the interpreter (not raise) on tens of thousands of nested brackets.
+
+        The event stream is flat, so counting depth on it is safe; it is only read
+        when the text has enough brackets or dashes to nest deeply at all.
+        """
+        text = self.text
+        if text.count("[") + text.count("{") + text.count("- ") < 4 * _MAX_DEPTH:
+            return
+        depth = 0
+        for event in yaml.parse(text, Loader=_YamlLoader):
+            if isinstance(event, (yaml.SequenceStartEvent, yaml.MappingStartEvent)):
+                depth += 1
+                if depth > _MAX_DEPTH:
+                    mark = event.start_mark
+                    raise InputError(
+                        f"the file nests lists or mappings more than {_MAX_DEPTH} deep",
+                        where=Where(self.path, mark.line + 1, mark.column + 1),
+                        hint="a mechanism file nests three or four levels; look for runaway brackets",
+                    )
+            elif isinstance(event, (yaml.SequenceEndEvent, yaml.MappingEndEvent)):
+                depth -= 1
 
     def _check_size(self, root: yaml.Node) -> None:
         seen = 0
@@ -360,12 +401,12 @@ class _Reader:
     ) -> dict[str, tuple[yaml.Node, yaml.Node]]:
         """A mapping node as ``{key: (key node, value node)}``; duplicates and unknown keys reported."""
         if not isinstance(node, yaml.MappingNode):
-            raise self.problem(node, f"{what} must be a mapping (`key: value` lines), not a {_kind(node)}")
+            raise self.problem(node, f"{what} must be a mapping (`key: value` lines), not {_kind(node)}")
         out: dict[str, tuple[yaml.Node, yaml.Node]] = {}
         allowed_set = set(allowed) if allowed is not None else None
         for knode, vnode in node.value:
             if not isinstance(knode, yaml.ScalarNode):
-                self.problem(knode, f"a key in {what} must be a plain name, not a {_kind(knode)}")
+                self.problem(knode, f"a key in {what} must be a plain name, not {_kind(knode)}")
                 continue
             key = knode.value
             if key == "<<":
@@ -387,12 +428,12 @@ class _Reader:
 
     def sequence(self, node: yaml.Node, what: str) -> list[yaml.Node]:
         if not isinstance(node, yaml.SequenceNode):
-            raise self.problem(node, f"{what} must be a list, not a {_kind(node)}")
+            raise self.problem(node, f"{what} must be a list, not {_kind(node)}")
         return list(node.value)
 
     def scalar(self, node: yaml.Node, what: str) -> str:
         if not isinstance(node, yaml.ScalarNode):
-            raise self.problem(node, f"{what} must be a single value, not a {_kind(node)}")
+            raise self.problem(node, f"{what} must be a single value, not {_kind(node)}")
         return node.value
 
     def text_value(self, node: yaml.Node) -> str:
@@ -431,15 +472,15 @@ class _Reader:
                 f"unknown unit {exc.args[0]!r} in {what}",
                 f"{dimension.label} units: {', '.join(known_units(dimension))}",
             ) from None
-        except ValueError:
+        except ValueError as exc:
             nonfinite = raw.strip().lower().lstrip("+-") in (".nan", "nan", ".inf", "inf", "infinity")
-            raise self.problem(
-                node,
-                f"{what} must be a finite number, not {raw!r}"
-                if nonfinite
-                else f"{what} must be a number, not {raw!r}",
-                f'e.g. 40 or "40 mm" ({dimension.label})',
-            ) from None
+            if nonfinite:
+                message = f"{what} must be a finite number, not {raw!r}"
+            elif "overflows" in str(exc):
+                message = f"{what} is too large: {raw} overflows in SI units"
+            else:
+                message = f"{what} must be a number, not {raw!r}"
+            raise self.problem(node, message, f'e.g. 40 or "40 mm" ({dimension.label})') from None
         if q.sense is not None:
             raise self.problem(node, f"{what} cannot carry a sense ({q.sense})")
         if q.dimension is None:
@@ -447,13 +488,26 @@ class _Reader:
         elif q.dimension is not dimension:
             raise self.problem(
                 node,
-                f"{what} must be a {dimension.label}, but {q.unit!r} is a unit of {q.dimension.label}",
+                f"{what} must be {_a(dimension.label)}, but {q.unit!r} is a unit of {q.dimension.label}",
                 f"{dimension.label} units: {', '.join(known_units(dimension))}",
             )
         else:
             value = q.value
         if positive and not value > 0:
             raise self.problem(node, f"{what} must be greater than zero, not {raw}")
+        return self.in_range(node, what, value, dimension)
+
+    def in_range(self, node: yaml.Node, what: str, value: float, dimension: Dimension | None) -> float:
+        """Refuse magnitudes no mechanism has, before they overflow or underflow the solvers."""
+        low, high = MAGNITUDE_RANGE
+        if value != 0.0 and not (low <= abs(value) <= high):
+            unit = f" {dimension.value}" if dimension not in (None, Dimension.NUMBER) else ""
+            raise self.problem(
+                node,
+                f"{what} is {value:g}{unit} in SI units, outside the range mech works in "
+                f"({low:g} to {high:g})",
+                "check the number and its unit",
+            )
         return value
 
     def _default_factor(self, dimension: Dimension) -> float:
@@ -535,7 +589,7 @@ class _Reader:
         else:
             raise self.problem(
                 node,
-                f"links must be a list of names or a mapping, not a {_kind(node)}",
+                f"links must be a list of names or a mapping, not {_kind(node)}",
                 "e.g. `links: [frame, crank, coupler, rocker]`",
             )
         if not out and not self.problems:
@@ -1037,7 +1091,7 @@ class _Reader:
             raise self.problem(
                 node, f"{key} must not be negative", "give the sense with `direction: cw` or `ccw`"
             )
-        return value, q.sense
+        return self.in_range(node, key, value, Dimension.ANGULAR_VELOCITY), q.sense
 
     def _signed(self, node: yaml.Node, key: str, dimension: Dimension) -> float:
         """A signed value, counter-clockwise positive; ``"5 rad/s^2 cw"`` is −5."""
@@ -1050,13 +1104,14 @@ class _Reader:
             ) from None
         if q.dimension not in (None, dimension):
             raise self.problem(
-                node, f"{key} must be a {dimension.label}, but {q.unit!r} is a unit of {q.dimension.label}"
+                node, f"{key} must be {_a(dimension.label)}, but {q.unit!r} is a unit of {q.dimension.label}"
             )  # type: ignore[union-attr]
+        value = self.in_range(node, key, q.value, dimension)
         if q.sense == "cw":
-            return -abs(q.value)
+            return -abs(value)
         if q.sense == "ccw":
-            return abs(q.value)
-        return q.value
+            return abs(value)
+        return value
 
     def _answers(
         self, node: yaml.Node, links: tuple[Link, ...], joints: list[Joint], points: list[Point]
@@ -1105,6 +1160,12 @@ class _Reader:
                 raise self.problem(
                     knode, f"answer {key} names unknown {label} {name!r}", _did_you_mean(name, kinds[kind])
                 )
+        if akey.family in ("icentre", "omega_ratio", "distance") and len(set(akey.names)) < 2:
+            raise self.problem(
+                knode,
+                f"answer {key} names {akey.names[0]!r} twice",
+                f"{akey.family} relates two different names",
+            )
         tolerance = None
         value_node = vnode
         if isinstance(vnode, yaml.MappingNode):
@@ -1153,9 +1214,10 @@ class _Reader:
         if q.dimension is not None and q.dimension is not dimension:
             raise self.problem(
                 value_node,
-                f"answer {key} is a {dimension.label}, but {q.unit!r} is a unit of {q.dimension.label}",
+                f"answer {key} is {_a(dimension.label)}, but {q.unit!r} is a unit of {q.dimension.label}",
                 f"{dimension.label} units: {', '.join(known_units(dimension)) or 'none (a plain number)'}",
             )
+        self.in_range(value_node, f"answer {key}", q.value, dimension)
         if q.sense is not None and dimension not in (
             Dimension.ANGULAR_VELOCITY,
             Dimension.ANGULAR_ACCELERATION,
@@ -1205,7 +1267,7 @@ class _Reader:
             ) from None
         if q.dimension is not None and dimension is not None and q.dimension is not dimension:
             raise self.problem(
-                node, f"tolerance {raw!r} is a {q.dimension.label}, but the answer is a {dimension.label}"
+                node, f"tolerance {raw!r} is {_a(q.dimension.label)}, but the answer is {_a(dimension.label)}"
             )
         if q.value < 0:
             raise self.problem(node, "a tolerance cannot be negative")
@@ -1229,15 +1291,21 @@ def _is_null(node: yaml.Node | None) -> bool:
 
 
 def _kind(node: yaml.Node | None) -> str:
+    """What a node is, with its article, for messages: ``a list``, ``an empty value``."""
     if isinstance(node, yaml.MappingNode):
-        return "mapping"
+        return "a mapping"
     if isinstance(node, yaml.SequenceNode):
-        return "list"
+        return "a list"
     if isinstance(node, yaml.ScalarNode):
         if _is_null(node):
-            return "empty value"
-        return f"single value ({node.value!r})" if len(node.value) < 40 else "single value"
+            return "an empty value"
+        return f"a single value ({node.value!r})" if len(node.value) < 40 else "a single value"
     return "nothing"
+
+
+def _a(noun: str) -> str:
+    """``an angular velocity``, ``a length``."""
+    return ("an " if noun[:1] in "aeiou" else "a ") + noun
 
 
 def _text(node: yaml.Node) -> str:

@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
+from mech.units import MAGNITUDE_RANGE
+
 __all__ = ["OutputUnits", "SolveOptions"]
 
 
@@ -33,6 +35,11 @@ class SolveOptions:
         about 1e-9 relative accuracy in velocities at ordinary conditioning.
     max_iter
         Cap on Newton iterations per solve.
+    method
+        ``"auto"`` (closed-form dyads where the chain decomposes, Newton
+        otherwise), ``"closed"`` (dyads or an error) or ``"newton"`` (always
+        the general solver, with ``tol``).  The closed form is exact to
+        rounding, so ``tol`` matters only where Newton runs.
     """
 
     angle: float | None = None
@@ -41,12 +48,15 @@ class SolveOptions:
     alpha: float | None = None
     tol: float = 1e-12
     max_iter: int = 50
+    method: str = "auto"
 
     def __post_init__(self) -> None:
         if self.direction not in (None, "cw", "ccw"):
             raise ValueError(f"direction must be 'cw' or 'ccw', not {self.direction!r}")
         if not (0.0 < self.tol < 1.0) or not math.isfinite(self.tol):
             raise ValueError(f"tol must be between 0 and 1, not {self.tol!r}")
+        if self.method not in ("auto", "closed", "newton"):
+            raise ValueError(f"method must be 'auto', 'closed' or 'newton', not {self.method!r}")
         if self.max_iter < 1:
             raise ValueError("max_iter must be at least 1")
         for name in ("angle", "omega", "alpha"):
@@ -55,6 +65,11 @@ class SolveOptions:
                 raise ValueError(f"{name} must be finite")
         if self.omega is not None and self.omega < 0:
             raise ValueError("omega is a magnitude; give the sense with direction")
+        low, high = MAGNITUDE_RANGE
+        for name in ("omega", "alpha"):
+            v = getattr(self, name)
+            if v is not None and v != 0.0 and not low <= abs(v) <= high:
+                raise ValueError(f"{name} = {v:g} (SI) is outside the range mech works in ({low:g} to {high:g})")
 
     def with_(self, **changes: object) -> SolveOptions:
         """A copy with some fields changed (options are immutable)."""

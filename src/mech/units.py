@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from enum import Enum
 
 __all__ = [
+    "MAGNITUDE_RANGE",
     "Dimension",
     "Quantity",
     "format_unit",
@@ -21,6 +22,12 @@ __all__ = [
     "to_unit",
     "unit_factor",
 ]
+
+
+#: Magnitudes a file may give, in SI units: wider than any machine (a micro-hinge of
+#: 1 µm to a crane of 1 km, speeds from 1e-6 to 1e6 rpm) and narrow enough that squares
+#: and products of them (ω²r, r⁴ in a determinant) stay finite and normal in floating point.
+MAGNITUDE_RANGE = (1e-30, 1e30)
 
 
 class Dimension(str, Enum):
@@ -187,7 +194,12 @@ def parse_quantity(text: str) -> Quantity:
     unit = m.group(2)
     if not unit:
         return Quantity(value, None, None, sense)
-    dimension, factor = unit_factor(unit)
+    try:
+        dimension, factor = unit_factor(unit)
+    except KeyError:
+        raise KeyError(unit.strip()) from None  # name the unit as written, not as normalised
+    if not math.isfinite(value * factor):
+        raise ValueError(f"{text!r} is too large: it overflows in SI units")
     return Quantity(value * factor, dimension, _normalise_unit(unit), sense)
 
 
