@@ -102,16 +102,22 @@ def save(figure: Figure, path: str | Path) -> None:
     """Write a figure as SVG or PNG, chosen by the file's extension."""
     path = Path(path)
     suffix = path.suffix.lower()
-    if suffix == ".svg":
-        from mech.draw.svg import to_svg
-
-        path.write_text(to_svg(figure), encoding="utf-8")
-    elif suffix == ".png":
-        from mech.draw.raster import to_png
-
-        to_png(figure, str(path))
-    else:
+    if suffix not in (".svg", ".png"):
         raise InputError(
             f"cannot write a drawing as {suffix or 'a file without an extension'}: {path}",
             hint="name the output .svg or .png",
         )
+    try:
+        if suffix == ".svg":
+            from mech.draw.svg import to_svg
+
+            path.write_text(to_svg(figure), encoding="utf-8")
+        else:
+            from mech.draw.raster import to_png
+
+            to_png(figure, str(path))
+    except OSError as exc:
+        raise InputError(
+            f"cannot write {path}: {exc.strerror or exc}",
+            hint="check that the folder exists and can be written",
+        ) from None

@@ -38,7 +38,8 @@ def _dir(v: tuple[float, float]) -> float | None:
     """Direction in degrees [0, 360), or None for a zero vector."""
     if v[0] == 0.0 and v[1] == 0.0:
         return None
-    return math.degrees(math.atan2(v[1], v[0])) % 360.0
+    d = math.degrees(math.atan2(v[1], v[0])) % 360.0
+    return 0.0 if d >= 360.0 else d  # -1e-15° would round to 360.0
 
 
 def _point_rows(kin: Kinematics) -> Iterator[tuple[str, str | None]]:
