@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
-from conftest import MECHANISMS
+MECHANISMS = Path(__file__).resolve().parents[2] / "mechanisms"
+
 
 FOUR_BAR = str(MECHANISMS / "four_bar.yaml")
 SLIDER = str(MECHANISMS / "slider_crank.yaml")

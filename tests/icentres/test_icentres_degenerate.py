@@ -3,14 +3,16 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import pytest
 
-from conftest import MECHANISMS
 from mech.icentres import locate
 from mech.kinematics import solve
 from mech.loader import load
 from mech.options import SolveOptions
+
+MECHANISMS = Path(__file__).resolve().parents[2] / "mechanisms"
 
 
 def clean(ic) -> None:

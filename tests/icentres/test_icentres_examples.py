@@ -4,15 +4,23 @@ from __future__ import annotations
 
 import itertools
 import math
+from pathlib import Path
 
 import pytest
 
-from conftest import MECHANISMS, example_files
 from mech.errors import MechError
 from mech.icentres import ICentres, locate
 from mech.kinematics import solve
 from mech.loader import load
 from mech.options import SolveOptions
+
+MECHANISMS = Path(__file__).resolve().parents[2] / "mechanisms"
+
+
+def example_files() -> list[Path]:
+    """Every shipped example mechanism."""
+    return sorted(MECHANISMS.glob("*.yaml"))
+
 
 REL = 1e-9  # agreement with the velocity field / hand derivations, relative to size
 
@@ -76,9 +84,13 @@ def test_four_bar_six_centres_with_i13_i24_from_hand_lines():
     p = kin.positions
     assert ic.count == 6 and ic.formula == "N = n(n − 1)/2 = 4·3/2 = 6"
     # I13 (frame, coupler): crank line AB extended meets rocker line DC extended.
-    assert ic.named("I13").point == pytest.approx(line_intersection(p["A"], p["B"], p["D"], p["C"]), abs=REL * kin.size)
+    assert ic.named("I13").point == pytest.approx(
+        line_intersection(p["A"], p["B"], p["D"], p["C"]), abs=REL * kin.size
+    )
     # I24 (crank, rocker): ground line AD meets coupler line BC.
-    assert ic.named("I24").point == pytest.approx(line_intersection(p["A"], p["D"], p["B"], p["C"]), abs=REL * kin.size)
+    assert ic.named("I24").point == pytest.approx(
+        line_intersection(p["A"], p["D"], p["B"], p["C"]), abs=REL * kin.size
+    )
     assert ic.get("frame", "coupler") is ic.named("I13") and ic.by_number(3, 1) is ic.named("I13")
     assert ic.named("I13").method == "Kennedy: I12–I23 ∩ I14–I34" and not ic.named("I13").primary
     assert ic.named("I12").method == "pin A" and ic.named("I12").primary
@@ -158,7 +170,9 @@ def test_pin_in_slot_centre_on_the_normal_to_the_slot(write):
     kin = solve(mech, level="velocity")
     ic = locate(mech, kin)
     # Normal to the slot through A meets O1O2 (x = 0) at y = |O1A|²/A_y.
-    assert ic.get("crank", "lever").point == pytest.approx((0.0, (ax**2 + ay**2) / ay * 1e-3), abs=REL * kin.size)
+    assert ic.get("crank", "lever").point == pytest.approx(
+        (0.0, (ax**2 + ay**2) / ay * 1e-3), abs=REL * kin.size
+    )
     assert ic.get("crank", "lever").method == "Kennedy: normal to slot A ∩ I12–I13"
     assert_laws(ic, kin)
 
@@ -173,7 +187,9 @@ def test_cam_and_follower_file():
     assert_laws(ic, kin)
 
 
-@pytest.mark.parametrize("name", ["watt_six_bar.yaml", "stephenson_six_bar.yaml", "whitworth_quick_return.yaml"])
+@pytest.mark.parametrize(
+    "name", ["watt_six_bar.yaml", "stephenson_six_bar.yaml", "whitworth_quick_return.yaml"]
+)
 def test_six_link_chains_give_15_that_agree_with_the_velocity_field(name):
     ic, kin = located(name)
     assert ic.count == 15 and ic.formula.endswith("6·5/2 = 15")

@@ -73,7 +73,10 @@ def test_folded_four_bar_lines_coincide_and_kennedy_says_so():
     """All four pins on one line: both Kennedy lines of I13 are that line (no information)."""
     inst = four_bar_instant((0.0, 0.0), (1.0, 0.0), (3.0, 0.0), (2.0, 0.0))
     result = kennedy(4, facts(inst))
-    assert result.missing == {(0, 2): "Kennedy's lines coincide here", (1, 3): "Kennedy's lines coincide here"}
+    assert result.missing == {
+        (0, 2): "Kennedy's lines coincide here",
+        (1, 3): "Kennedy's lines coincide here",
+    }
     ic = from_instant(inst)
     assert not ic.named("I13").found
     assert "coincide" in ic.named("I13").method
@@ -146,8 +149,12 @@ def test_a_wrong_centre_is_a_loud_bug_not_a_printed_answer():
     from mech.icentres import ICentreDisagreement
 
     inst = four_bar_instant((0.0, 0.0), (0.2, 0.4), (1.1, 0.7), (1.0, 0.0))
-    wrong = {"frame": Rotating(0.0), "crank": Rotating(1.0), "coupler": Rotating(0.5, (0.3, 0.3)),
-             "rocker": Rotating(2.0, (1.0, 0.0))}
+    wrong = {
+        "frame": Rotating(0.0),
+        "crank": Rotating(1.0),
+        "coupler": Rotating(0.5, (0.3, 0.3)),
+        "rocker": Rotating(2.0, (1.0, 0.0)),
+    }
     with pytest.raises(ICentreDisagreement, match="velocity field"):
         from_instant(inst, wrong)
 

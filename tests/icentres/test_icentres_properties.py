@@ -76,7 +76,11 @@ def test_random_four_bars_obey_kennedy_and_share_velocity_at_each_centre(a, b, c
     assert ic.count == 6
 
     def hom(centre):
-        v = (centre.point[0] / size, centre.point[1] / size, 1.0) if centre.point else (*centre.direction, 0.0)
+        v = (
+            (centre.point[0] / size, centre.point[1] / size, 1.0)
+            if centre.point
+            else (*centre.direction, 0.0)
+        )
         n = math.hypot(*v)
         return [x / n for x in v]
 

@@ -6,8 +6,8 @@ import math
 
 import numpy as np
 import pytest
+from builders import build, four_bar, slider_crank
 
-from conftest import build, four_bar, slider_crank
 from mech.errors import GeometryError, InputError, UnsupportedError
 from mech.kinematics import mobility, solve
 from mech.options import SolveOptions

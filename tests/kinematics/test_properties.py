@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 
 import pytest
+from builders import four_bar, slider_crank
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from conftest import four_bar, slider_crank
 from mech.errors import GeometryError
 from mech.kinematics import solve
 

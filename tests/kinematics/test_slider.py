@@ -6,8 +6,8 @@ import math
 
 import numpy as np
 import pytest
+from builders import slider_crank, slotted_lever
 
-from conftest import slider_crank, slotted_lever
 from mech.kinematics import solve
 from mech.options import SolveOptions
 
@@ -131,7 +131,7 @@ def test_slider_speed_option_and_direction_flip():
 
 
 def test_pin_in_slot_moves_the_lever_like_the_sliding_block():
-    from conftest import build
+    from builders import build
 
     th = math.radians(50)
     block = solve(slotted_lever(angle=th), "acceleration")

@@ -38,7 +38,7 @@ import numpy as np
 from mech.errors import GeometryError, InputError, Problem, Where
 from mech.kinematics.geometry import circle_circle, circle_line
 from mech.kinematics.layout import Layout
-from mech.model import JointType, Placement, Ref
+from mech.model import Joint, JointType, Placement, Ref
 from mech.units import to_unit
 
 __all__ = ["Drawn", "assemble", "gear_centre", "gear_pitch_points"]
@@ -81,6 +81,7 @@ class _Eq:
 
     names: tuple[str, ...] = ()
     rows = 1
+    where: Where | None = None  # the line of the file that set this equation, for messages
 
     def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
         """Residual (rows,) and its gradient (rows, 2) for each name."""
@@ -107,6 +108,11 @@ class _Dir(_Eq):
 
     def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
         return np.array([self.n @ (p[1] - p[0])]), [-self.n[None, :], self.n[None, :]]
+
+    def forward(self, p: Sequence[np.ndarray]) -> bool:
+        """True when ``b`` is on the ray itself, not on its opposite half (angle + 180°)."""
+        w = p[1] - p[0]
+        return bool(w[0] * math.cos(self.phi) + w[1] * math.sin(self.phi) >= 0.0)
 
 
 class _OnLine(_Eq):
@@ -198,6 +204,7 @@ def assemble(
             hint="place the ground joints with at: [x, y] and give the links' lengths "
             "(mech dof and mech classify need neither)",
         )
+    _check_contacts(lay)
     unit = mech.length_unit
     known: dict[str, tuple[float, float]] = {}
     near: dict[str, tuple[float, float]] = {}
@@ -247,6 +254,7 @@ def assemble(
     for ln in mech.lengths:
         a, b = lay.resolve(ln.a), lay.resolve(ln.b)
         eqs.append(_Dist(a, b, ln.value / scale, f"length {ln.a}{ln.b} = {fmt(ln.value)}"))
+        eqs[-1].where = ln.where
     resolved_angles: list[float | None] = []
     deg = mech.angle_unit == "deg"
     for k, spec in enumerate(lay.drives):
@@ -258,17 +266,22 @@ def assemble(
             continue
         shown = f"{math.degrees(angle):.6g}°" if deg else f"{angle:.6g} rad"
         eqs.append(_Dir(spec.pivot, spec.toward, angle, f"drive angle {shown}"))  # type: ignore[arg-type]
+        eqs[-1].where = spec.drive.where
     for ps in lay.paths:
+        path_where = mech.joint(ps.joint).where
         t = ref_name(ps.joint, "through", ps.path.through)
         text = f"{ps.point} on the path of {ps.type.value} joint {ps.joint}"
         if ps.point.startswith("#"):
             eqs.append(_Same(ps.point, t, f"the point of {ps.slider} on the path of {ps.joint}"))
+            eqs[-1].where = path_where
             continue
         if ps.path.toward is not None:
             eqs.append(_OnLineToward(ps.point, t, ref_name(ps.joint, "toward", ps.path.toward), text))
+            eqs[-1].where = path_where
         elif ps.path.angle is not None:
             a = ps.path.angle
             eqs.append(_OnLine(ps.point, t, np.array([math.cos(a), math.sin(a)]), text))
+            eqs[-1].where = path_where
     for name, pl in places.items():
         if pl.origin is None or pl.toward is None or name not in lay.carriers:
             continue
@@ -286,6 +299,7 @@ def assemble(
                 f"{name} placed from {pl.origin} toward {pl.toward}",
             )
         )
+        eqs[-1].where = next((x.where for x in (*mech.joints, *mech.points) if x.name == name), None)
 
     # Every name an equation uses must be a location.
     problems = [
@@ -301,11 +315,13 @@ def assemble(
 
     # -- drawn data must agree with lengths and drive angles given as well
     disagree: list[Problem] = []
+    agree_hint = "make the drawing and the numbers agree, or give only one of them (`at` on a moving joint means drawn here)"
     for e in eqs:
         if all(n in scaled_known for n in e.names):
-            r, _ = e.value([scaled_known[n] for n in e.names])
-            if float(np.max(np.abs(r))) > _AGREE:
-                disagree.append(Problem(_disagreement(e, [scaled_known[n] for n in e.names], scale, fmt)))
+            p = [scaled_known[n] for n in e.names]
+            r, _ = e.value(p)
+            if float(np.max(np.abs(r))) > _AGREE or (isinstance(e, _Dir) and not e.forward(p)):
+                disagree.append(Problem(_disagreement(e, p, scale, fmt), e.where, agree_hint))
     if disagree:
         raise InputError(problems=disagree, source=mech.source)
 
@@ -337,7 +353,11 @@ def assemble(
         x, res, jac = _gauss_newton(system, x)
         worst = float(np.max(np.abs(res))) if res.size else 0.0
         if worst > _AGREE:
-            raise GeometryError(_no_assembly(mech.label, live, res, gaps, scale, fmt))
+            raise GeometryError(
+                _no_assembly(mech.label, live, res, gaps, scale, fmt),
+                where=_worst_where(live, res) or (lay.drives[0].drive.where if lay.drives else None),
+                hint="check the lengths; a rocker or a slider has limits: try another crank angle (--angle)",
+            )
         if worst > _ACCEPT:  # drawn data rounded to a few decimals: agree to drawing precision
             notes.append(
                 f"the drawing and the given lengths/angles agree to {fmt(worst * scale)} "
@@ -353,6 +373,16 @@ def assemble(
     for n in unknown:
         p = x[2 * col[n] : 2 * col[n] + 2] * scale + centre
         positions[n] = (float(p[0]), float(p[1]))
+    for e in eqs:  # a drive's equation holds on the whole line: the point must be on the ray
+        if isinstance(e, _Dir):
+            p = [(np.asarray(positions[n]) - centre) / scale for n in e.names]
+            if not e.forward(p):
+                raise GeometryError(
+                    _disagreement(e, p, scale, fmt),
+                    where=e.where,
+                    hint="give near: on the driven link's other joint, on the side the crank points to",
+                )
+    _check_gears(lay, positions, fmt)
 
     # Drive angles not given: read from the drawing; a disc with only its pivot
     # (a cam, a gear) has no line to read, and its drawn angle is taken as 0.
@@ -582,6 +612,18 @@ def _disagreement(e: _Eq, p: list[np.ndarray], scale: float, fmt: Callable[[floa
     return f"{e.text}: the drawing is off by {fmt(float(np.hypot(*r)) * scale if r.size == 2 else abs(float(r[0])) * scale)}"
 
 
+def _worst_where(eqs: list[_Eq], res: np.ndarray) -> Where | None:
+    """Where the equation that misses most was written (for a located message)."""
+    row, best, where = 0, -1.0, None
+    for e in eqs:
+        r = res[row : row + e.rows]
+        row += e.rows
+        miss = float(np.max(np.abs(r))) if r.size else 0.0
+        if miss > best and e.where is not None:
+            best, where = miss, e.where
+    return where
+
+
 def _no_assembly(
     label: str, eqs: list[_Eq], res: np.ndarray, gaps: list[str], scale: float, fmt: Callable[[float], str]
 ) -> str:
@@ -604,14 +646,75 @@ def _no_assembly(
     return f"cannot assemble {label}: in the closest configuration " + "; ".join(p for _, p in parts[:3])
 
 
+def _check_contacts(lay: Layout) -> None:
+    """Higher pairs describe the drawn instant: they need their contact point.
+
+    A gear may instead give pitch radii (or teeth and module): its pitch point
+    then follows from the centres.
+    """
+    problems = []
+    for j in lay.contacts:
+        if j.place.at is not None or (j.type is JointType.GEAR and _pitch_radii(j) is not None):
+            continue
+        extra = " or `radii` (or `teeth` with `module`)" if j.type is JointType.GEAR else ""
+        problems.append(
+            Problem(
+                f"{j.type.value} joint {j.name} has no contact point: positions and velocities need it",
+                j.where,
+                f"give `at: [x, y]`, the contact point in the drawn configuration{extra}, "
+                "and `normal`, the common normal's angle",
+            )
+        )
+    if problems:
+        raise InputError(problems=problems, source=lay.mech.source)
+
+
+def _check_gears(lay: Layout, positions: dict[str, tuple[float, float]], fmt: Callable[[float], str]) -> None:
+    """Gears whose pitch radii are given must have their centres that far apart.
+
+    External gears: centre distance r1 + r2; internal (a ring): |r1 − r2|.  A file
+    that says otherwise describes gears that cannot mesh, and every velocity
+    computed from it would be wrong.
+    """
+    problems = []
+    for j in lay.contacts:
+        radii = _pitch_radii(j)
+        if j.type is not JointType.GEAR or radii is None:
+            continue
+        c1, c2 = (gear_centre(lay, lk, positions) for lk in j.links)
+        if c1 is None or c2 is None:
+            continue
+        d = math.hypot(c2[0] - c1[0], c2[1] - c1[1])
+        want = abs(radii[0] - radii[1]) if j.internal else radii[0] + radii[1]
+        if abs(d - want) > _AGREE * max(want, d):
+            kind = "internal (|r1 − r2|)" if j.internal else "external (r1 + r2)"
+            problems.append(
+                Problem(
+                    f"gear {j.name}: pitch radii {fmt(radii[0])} and {fmt(radii[1])} need centres "
+                    f"{fmt(want)} apart ({kind}), but they are {fmt(d)} apart",
+                    j.where,
+                    "correct the radii, the teeth and module, or the positions of the gear centres",
+                )
+            )
+    if problems:
+        raise InputError(problems=problems, source=lay.mech.source)
+
+
+def _pitch_radii(j: Joint) -> tuple[float, float] | None:
+    """A gear's pitch radii: given, or teeth·module/2."""
+    if j.radii is not None:
+        return j.radii
+    if j.teeth is not None and j.module is not None:
+        return (j.teeth[0] * j.module / 2.0, j.teeth[1] * j.module / 2.0)
+    return None
+
+
 def gear_pitch_points(lay: Layout, positions: dict[str, tuple[float, float]]) -> None:
     """A gear joint without ``at``: its pitch point from the centres and radii (or teeth·module/2)."""
     for j in lay.contacts:
         if j.type is not JointType.GEAR or j.name in positions:
             continue
-        radii = j.radii
-        if radii is None and j.teeth is not None and j.module is not None:
-            radii = (j.teeth[0] * j.module / 2.0, j.teeth[1] * j.module / 2.0)
+        radii = _pitch_radii(j)
         centres = [gear_centre(lay, lk, positions) for lk in j.links]
         if radii is None or None in centres:
             continue

@@ -9,8 +9,6 @@ from __future__ import annotations
 import math
 from typing import Any
 
-import pytest
-
 from mech.model import Drive, Joint, JointType, Length, Link, Mechanism, Path, Placement, Point, Ref
 
 
@@ -142,11 +140,6 @@ def slider_crank(
         drive={"link": "crank", "angle": angle, "omega": omega, "alpha": alpha},
         points=points,
     )
-
-
-@pytest.fixture
-def fourbar() -> Mechanism:
-    return four_bar()
 
 
 def slotted_lever(

@@ -1,0 +1,263 @@
+"""Sweeps: extremes, dead centres, toggles and time ratios against closed forms derived here.
+
+The references are the textbook's geometry, worked in this file (not taken
+from mech): the slider's travel from the collinear crank-and-rod triangles,
+the rocker's extreme angles from the law of cosines, the limit of a crank
+that cannot turn fully from |BD| = b + c, and extremes of speeds by mpmath
+root-finding on the derivative of the closed-form velocity (30 digits).
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+import pytest
+from builders import four_bar, slider_crank
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from mech.errors import InputError, UnsupportedError
+from mech.kinematics import sweep
+from mech.options import SolveOptions
+
+FAST = settings(max_examples=15, deadline=None)
+FULL = np.radians(np.linspace(0.0, 360.0, 361))
+
+
+# -- closed forms ------------------------------------------------------------------------------
+def slider_x(r, rod, e, th):
+    """Slider on y = e: x = r cosθ + √(rod² − (e − r sinθ)²) (the slider ahead of the crank)."""
+    return r * mpmath.cos(th) + mpmath.sqrt(rod**2 - (e - r * mpmath.sin(th)) ** 2)
+
+
+def slider_dead_centres(r, rod, e):
+    """Outer: O, A, B in line with A between, sin ψ = e/(rod + r); inner: crank opposite, sin ψ = e/(rod − r)."""
+    outer = math.asin(e / (rod + r))
+    inner = math.pi + math.asin(e / (rod - r))
+    return outer, inner, math.sqrt((rod + r) ** 2 - e**2), math.sqrt((rod - r) ** 2 - e**2)
+
+
+def rocker_angle(a, b, c, d, th):
+    """Direction D→C of the rocker (C above the line of the B–D diagonal, the drawn branch)."""
+    bx, by = a * mpmath.cos(th), a * mpmath.sin(th)
+    dx, dy = d - bx, -by
+    f = mpmath.sqrt(dx**2 + dy**2)
+    # apex C left of B→D at distances b from B and c from D
+    t = (b**2 - c**2 + f**2) / (2 * f)
+    h = mpmath.sqrt(b**2 - t**2)
+    cx = bx + t * dx / f - h * dy / f
+    cy = by + t * dy / f + h * dx / f
+    return mpmath.atan2(cy, cx - d)
+
+
+def speed_extreme(f, guess):
+    """(θ, f(θ)) where f'(θ) = 0 near ``guess``: mpmath root of the derivative, 30 digits."""
+    with mpmath.workdps(30):
+        th = mpmath.findroot(lambda t: mpmath.diff(f, t), guess)
+        return float(th), float(f(th))
+
+
+# -- slider crank ---------------------------------------------------------------------------------
+@pytest.mark.parametrize("e", [0.0, 0.03, -0.05])
+def test_slider_crank_travel_dead_centres_and_time_ratio(e):
+    r, rod = 0.1, 0.4
+    s = sweep(slider_crank(r=r, rod=rod, e=e, omega=10.0), FULL, level="acceleration")
+    outer, inner, x_max, x_min = slider_dead_centres(r, rod, e)
+    ext = {x.quantity: x for x in s.extremes}
+    # displacement is measured from the path's through point (0, e) along +x
+    d = ext["displacement.P"]
+    assert d.max_value == pytest.approx(x_max, rel=1e-12)
+    assert d.min_value == pytest.approx(x_min, rel=1e-12)
+    angles = sorted(x.angle % (2 * math.pi) for x in s.dead_centres if x.subject == "P")
+    assert angles == pytest.approx(sorted([outer % (2 * math.pi), inner]), abs=1e-12)
+    beta = (inner - outer) % (2 * math.pi)
+    ratio = max(beta, 2 * math.pi - beta) / min(beta, 2 * math.pi - beta)
+    if e == 0.0:
+        assert s.time_ratio.ratio == pytest.approx(1.0, abs=1e-12)
+    else:
+        assert s.time_ratio.ratio == pytest.approx(ratio, rel=1e-12)
+
+
+def test_slider_crank_peak_speed_matches_the_closed_form():
+    r, rod, e, w = 0.1, 0.4, 0.02, 10.0
+    s = sweep(slider_crank(r=r, rod=rod, e=e, omega=w), FULL, level="velocity", quantities=["sliding.P"])
+    (x,) = s.extremes
+    v = lambda th: w * mpmath.diff(lambda t: slider_x(r, rod, e, t), th)  # noqa: E731
+    th_max, v_max = speed_extreme(v, x.max_angle)
+    th_min, v_min = speed_extreme(v, x.min_angle)
+    assert x.max_value == pytest.approx(v_max, rel=1e-11)
+    assert x.min_value == pytest.approx(v_min, rel=1e-11)
+    assert x.max_angle == pytest.approx(th_max, abs=1e-6)
+    assert x.min_angle == pytest.approx(th_min, abs=1e-6)
+
+
+def test_coarse_steps_still_give_exact_extremes():
+    """Refinement does not depend on the grid: 12 steps give what 3,600 give."""
+    m = slider_crank(r=0.1, rod=0.4, e=0.02, omega=10.0)
+    coarse = sweep(m, np.radians(np.linspace(0, 360, 13)), level="velocity", quantities=["sliding.P"])
+    fine = sweep(m, np.radians(np.linspace(0, 360, 3601)), level="velocity", quantities=["sliding.P"])
+    assert coarse.extremes[0].max_value == pytest.approx(fine.extremes[0].max_value, rel=1e-12)
+
+
+# -- four-bar ------------------------------------------------------------------------------------
+def test_four_bar_rocker_extremes_and_dead_centres_match_the_law_of_cosines():
+    a, b, c, d = 0.04, 0.15, 0.08, 0.15
+    s = sweep(four_bar(a, b, c, d, omega=-4 * math.pi), FULL, level="acceleration")
+    ext = {x.quantity: x for x in s.extremes}
+
+    def rocker_at_collinear(span):  # AC = b ± a: the angle ADC, rocker direction π − ADC (C above)
+        return math.pi - math.acos((c * c + d * d - span * span) / (2 * c * d))
+
+    hi, lo = rocker_at_collinear(b + a), rocker_at_collinear(b - a)
+    rk = ext["angle.rocker"]
+    assert rk.max_value % (2 * math.pi) == pytest.approx(max(hi, lo), rel=1e-12)
+    assert rk.min_value % (2 * math.pi) == pytest.approx(min(hi, lo), rel=1e-12)
+    # dead centres: crank along AC (extended) or against it (folded)
+    dac = lambda span: math.acos((span * span + d * d - c * c) / (2 * span * d))  # noqa: E731
+    expected = sorted([dac(b + a), (dac(b - a) + math.pi) % (2 * math.pi)])
+    got = sorted(x.angle for x in s.dead_centres if x.subject == "rocker")
+    assert got == pytest.approx(expected, abs=1e-12)
+    beta = expected[1] - expected[0]
+    assert s.time_ratio.ratio == pytest.approx(max(beta, 2 * math.pi - beta) / min(beta, 2 * math.pi - beta), rel=1e-12)
+    # the rocker's fastest turn, against mpmath on the closed-form angle
+    w = -4 * math.pi
+    om = ext["omega.rocker"]
+    f = lambda th: w * mpmath.diff(lambda t: rocker_angle(a, b, c, d, t), th)  # noqa: E731
+    assert om.max_value == pytest.approx(speed_extreme(f, om.max_angle)[1], rel=1e-11)
+    assert om.min_value == pytest.approx(speed_extreme(f, om.min_angle)[1], rel=1e-11)
+
+
+def test_crank_that_cannot_turn_reports_the_gap_and_its_toggles():
+    a, b, c, d = 0.1, 0.1, 0.05, 0.15  # |BD| reaches b + c = 0.15 before the crank comes round
+    s = sweep(four_bar(a, b, c, d, angle=math.radians(30), omega=1.0), FULL, level="velocity")
+    limit = math.acos((a * a + d * d - (b + c) ** 2) / (2 * a * d))
+    assert len(s.gaps) == 1
+    g = s.gaps[0]
+    assert g.start == pytest.approx(limit, abs=1e-12)
+    assert g.end == pytest.approx(2 * math.pi - limit, abs=1e-12)
+    assert [t.angle for t in s.toggles] == pytest.approx([limit, 2 * math.pi - limit], abs=1e-12)
+    assert "coupler and rocker in line" in g.what
+    inside = (limit < FULL) & (2 * math.pi - limit > FULL)
+    assert not s.assembled[inside].any() and s.assembled[~inside].all()
+    assert np.isnan(s.positions[inside]).all()
+
+
+# -- stability at the extremes ----------------------------------------------------------------------
+@FAST
+@given(eps=st.sampled_from([1e-9, -1e-9, 3e-10]), e=st.sampled_from([0.0, 0.02]))
+def test_sweep_within_a_nanoradian_of_a_dead_centre(eps, e):
+    r, rod, w = 0.1, 0.4, 10.0
+    outer, inner, *_ = slider_dead_centres(r, rod, e)
+    phi = np.array([outer - 0.01, outer + eps, inner + eps, inner + 0.01])
+    s = sweep(slider_crank(r=r, rod=rod, e=e, omega=w), phi, level="velocity")
+    v = s.series("sliding.P")
+    for k in (1, 2):
+        exact = float(w * mpmath.diff(lambda t: slider_x(r, rod, e, t), mpmath.mpf(phi[k])))
+        assert v[k] == pytest.approx(exact, abs=1e-12 * r * w)
+    assert s.max_condition < 10
+
+
+@FAST
+@given(eps=st.sampled_from([1e-9, 1e-7, 1e-5]))
+def test_sweep_within_a_nanoradian_of_a_toggle_is_accurate_or_refused(eps):
+    a, b, c, d = 0.1, 0.1, 0.05, 0.15
+    limit = math.acos((a * a + d * d - (b + c) ** 2) / (2 * a * d))
+    phi = np.array([limit - 0.1, limit - eps])
+    s = sweep(four_bar(a, b, c, d, angle=math.radians(30), omega=1.0), phi, level="velocity")
+    assert s.assembled.all()
+    with mpmath.workdps(40):
+        th = mpmath.mpf(phi[1])
+        exact_w = float(mpmath.diff(lambda t: rocker_angle(a, b, c, d, t), th))
+        exact_ang = float(rocker_angle(a, b, c, d, th))
+    cond = s.condition[1]
+    assert math.remainder(s.series("angle.rocker")[1] - exact_ang, 2 * math.pi) == pytest.approx(0, abs=1e-7)
+    w = s.series("omega.rocker")[1]
+    if math.isnan(w):
+        assert cond > 1e5  # refused, and said so
+        assert any("toggle" in n for n in s.notes)
+    else:
+        # the stated accuracy: about 2e-16·cond² relative (velocity rows lose cond, positions another)
+        assert w == pytest.approx(exact_w, rel=max(1e-12, 1e-15 * cond * cond))
+        assert w == pytest.approx(exact_w, rel=1e-6)
+
+
+@FAST
+@given(ratio=st.sampled_from([1e-6, 1e6]))
+def test_extreme_link_ratios(ratio):
+    """A crank 1e-6 of the frame, or a rod 1e6 times the crank: travel still 2r to 1e-9 of the size."""
+    if ratio < 1:
+        r, rod = 1e-6, 1.0
+    else:
+        r, rod = 1.0, 1e6
+    s = sweep(slider_crank(r=r, rod=rod, omega=3.0), FULL, level="velocity", quantities=["displacement.P", "sliding.P"])
+    d = s.extremes[0]
+    assert d.max_value - d.min_value == pytest.approx(2 * r, abs=1e-9 * (r + rod))
+    v = s.extremes[1]
+    # the peak speed of a very long rod tends to r·ω at θ = 90° (simple harmonic motion)
+    assert v.max_value == pytest.approx(3.0 * r, rel=5 * r / rod + 1e-9)
+
+
+@FAST
+@given(rpm=st.floats(min_value=1e-6, max_value=1e6))
+def test_series_scale_with_speed_over_twelve_decades(rpm):
+    w = rpm * 2 * math.pi / 60
+    ref = sweep(four_bar(omega=1.0), FULL, level="acceleration", analyse=False)
+    s = sweep(four_bar(omega=w), FULL, level="acceleration", analyse=False)
+    np.testing.assert_allclose(s.omegas, w * ref.omegas, rtol=1e-12, atol=1e-14 * w)
+    np.testing.assert_allclose(s.accelerations, w * w * ref.accelerations, rtol=1e-12, atol=1e-13 * w * w)
+
+
+@FAST
+@given(offset=st.sampled_from([1e6, -1e6]))
+def test_millimetre_links_a_thousand_kilometres_out(offset):
+    # The file's D = offset + 15 mm is itself rounded to 1.2e-10 m (the ulp at 1e6 m): the frame
+    # the data describe is (offset + d) − offset, exactly, and that is the reference.
+    d = (offset + 0.015) - offset
+    ref = sweep(four_bar(0.004, 0.015, 0.008, d, omega=2.0), FULL, level="acceleration")
+    s = sweep(four_bar(0.004, 0.015, 0.008, 0.015, omega=2.0, origin=(offset, offset)), FULL, level="acceleration")
+    # Positions are as good as a double at 1e6 m allows.  Rates keep about 1e-7 of their scale:
+    # the drawn configuration passes through absolute coordinates once (assemble → build_system),
+    # which rounds the 4 mm crank's end to 1.2e-10 m, i.e. 3e-8 of its length.
+    np.testing.assert_allclose(s.positions - offset, ref.positions, atol=3e-10)
+    vs, as_ = np.nanmax(np.abs(ref.velocities)), np.nanmax(np.abs(ref.accelerations))
+    np.testing.assert_allclose(s.velocities, ref.velocities, rtol=0, atol=1e-7 * vs)
+    np.testing.assert_allclose(s.accelerations, ref.accelerations, rtol=0, atol=1e-7 * as_)
+    assert [e.angle for e in s.dead_centres] == pytest.approx([e.angle for e in ref.dead_centres], abs=1e-7)
+
+
+# -- API --------------------------------------------------------------------------------------------
+def test_results_are_frozen_and_read_only():
+    s = sweep(four_bar(), FULL)
+    with pytest.raises(ValueError):
+        s.positions[0, 0, 0] = 1.0
+    with pytest.raises(AttributeError):
+        s.level = "position"  # type: ignore[misc]
+
+
+def test_newton_sweep_warm_starts_and_agrees_with_the_closed_form():
+    phi = np.radians(np.linspace(0, 360, 73))
+    m = four_bar(omega=-4 * math.pi)
+    fast = sweep(m, phi, level="acceleration")
+    slow = sweep(m, phi, level="acceleration", options=SolveOptions(method="newton"))
+    assert slow.method == "newton" and fast.method == "closed form"
+    np.testing.assert_allclose(slow.positions, fast.positions, atol=1e-12)
+    np.testing.assert_allclose(slow.accelerations, fast.accelerations, rtol=1e-9, atol=1e-9)
+    assert [e.angle for e in slow.dead_centres] == pytest.approx([e.angle for e in fast.dead_centres], abs=1e-9)
+
+
+def test_sweep_refuses_what_it_cannot_do():
+    with pytest.raises(InputError, match="sets the crank angle"):
+        sweep(four_bar(), FULL, options=SolveOptions(angle=1.0))
+    with pytest.raises(InputError, match="no speed"):
+        sweep(four_bar(omega=None), FULL, level="velocity")
+    with pytest.raises(InputError, match="unknown quantity"):
+        sweep(four_bar(), FULL, quantities=["speed.C"])
+    slider_driven = slider_crank()
+    from dataclasses import replace
+
+    from mech.model import Drive
+
+    with pytest.raises(UnsupportedError, match="one crank"):
+        sweep(replace(slider_driven, drives=(Drive(joint="P", speed=1.0),)), FULL)
