@@ -217,14 +217,13 @@ def test_millimetre_links_a_thousand_kilometres_out(offset):
     d = (offset + 0.015) - offset
     ref = sweep(four_bar(0.004, 0.015, 0.008, d, omega=2.0), FULL, level="acceleration")
     s = sweep(four_bar(0.004, 0.015, 0.008, 0.015, omega=2.0, origin=(offset, offset)), FULL, level="acceleration")
-    # Positions are as good as a double at 1e6 m allows.  Rates keep about 1e-7 of their scale:
-    # the drawn configuration passes through absolute coordinates once (assemble → build_system),
-    # which rounds the 4 mm crank's end to 1.2e-10 m, i.e. 3e-8 of its length.
+    # Positions are as good as a double at 1e6 m allows (ulp 1.2e-10 m); rates do not see the
+    # offset at all: the solver works relative to a ground pivot from assembly on.
     np.testing.assert_allclose(s.positions - offset, ref.positions, atol=3e-10)
     vs, as_ = np.nanmax(np.abs(ref.velocities)), np.nanmax(np.abs(ref.accelerations))
-    np.testing.assert_allclose(s.velocities, ref.velocities, rtol=0, atol=1e-7 * vs)
-    np.testing.assert_allclose(s.accelerations, ref.accelerations, rtol=0, atol=1e-7 * as_)
-    assert [e.angle for e in s.dead_centres] == pytest.approx([e.angle for e in ref.dead_centres], abs=1e-7)
+    np.testing.assert_allclose(s.velocities, ref.velocities, rtol=0, atol=1e-12 * vs)
+    np.testing.assert_allclose(s.accelerations, ref.accelerations, rtol=0, atol=1e-12 * as_)
+    assert [e.angle for e in s.dead_centres] == pytest.approx([e.angle for e in ref.dead_centres], abs=1e-12)
 
 
 # -- API --------------------------------------------------------------------------------------------

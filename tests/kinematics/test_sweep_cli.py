@@ -47,3 +47,24 @@ def test_sweep_reports_a_gap(run):
     assert result.exit_code == 0
     assert "cannot be assembled from 27.58" in result.output
     assert "toggle at" in result.output
+
+
+def test_plot_without_matplotlib_is_exit_2_before_solving(run, monkeypatch, tmp_path):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "matplotlib", None)  # as if the plot extra were not installed
+    result = run("sweep", FOUR_BAR, "--plot", str(tmp_path / "p.png"))
+    assert result.exit_code == 2
+    assert "matplotlib" in result.stderr
+    assert not (tmp_path / "p.png").exists()
+
+
+def test_plot_and_animation_are_written(run, tmp_path):
+    import pytest
+
+    pytest.importorskip("matplotlib")
+    png, gif = tmp_path / "p.png", tmp_path / "a.gif"
+    result = run("sweep", FOUR_BAR, "--steps", "24", "--quantity", "omega.rocker", "--plot", str(png), "--animate", str(gif))
+    assert result.exit_code == 0, result.output
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert gif.read_bytes()[:6] in (b"GIF89a", b"GIF87a")

@@ -69,6 +69,8 @@ class Drawn:
     drive_angles: tuple[float | None, ...]
     scale: float
     notes: tuple[str, ...]
+    centre: tuple[float, float] = (0.0, 0.0)
+    relative: dict[str, tuple[float, float]] | None = None  # positions − centre, never rounded through absolute
 
 
 #: residual (rows,) and Jacobian (rows, 2·unknowns) of all equations at scaled positions x
@@ -370,8 +372,14 @@ def assemble(
             _check_determined(system, x, jac, unknown, lay)
 
     positions = {n: tuple(float(c) for c in (p * scale + centre)) for n, p in scaled_known.items()}
+    # Relative to the centre (a ground pivot) as well: far from the origin, absolute coordinates
+    # round a millimetre link's end to the ulp there (1.2e-4 m at 1e12 m), so the constraint
+    # system is built from these instead.
+    relative = {n: (float(p[0] * scale), float(p[1] * scale)) for n, p in scaled_known.items()}
     for n in unknown:
-        p = x[2 * col[n] : 2 * col[n] + 2] * scale + centre
+        rel = x[2 * col[n] : 2 * col[n] + 2] * scale
+        relative[n] = (float(rel[0]), float(rel[1]))
+        p = rel + centre
         positions[n] = (float(p[0]), float(p[1]))
     for e in eqs:  # a drive's equation holds on the whole line: the point must be on the ray
         if isinstance(e, _Dir):
@@ -394,7 +402,10 @@ def assemble(
             o, b = positions[spec.pivot], positions[spec.toward]  # type: ignore[index]
             resolved_angles[k] = math.atan2(b[1] - o[1], b[0] - o[0])
     gear_pitch_points(lay, positions)
-    return Drawn(positions, tuple(resolved_angles), scale, tuple(notes))
+    cx, cy = float(centre[0]), float(centre[1])
+    for n, xy in positions.items():
+        relative.setdefault(n, (xy[0] - cx, xy[1] - cy))
+    return Drawn(positions, tuple(resolved_angles), scale, tuple(notes), (cx, cy), relative)
 
 
 def _construct(

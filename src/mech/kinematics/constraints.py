@@ -238,9 +238,18 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     pos = drawn.positions
     ground_pts = [p for p in lay.on_link.get(ground, ()) if p in pos]
     centre = np.array(pos[ground_pts[0]] if ground_pts else next(iter(pos.values()), (0.0, 0.0)), float)
+    relative = drawn.relative
+    if relative is not None:
+        centre = np.array(drawn.centre, float)
 
     def sc(xy: tuple[float, float]) -> np.ndarray:
         return (np.asarray(xy, float) - centre) / scale
+
+    def scn(name: str) -> np.ndarray:
+        """A drawn location, scaled, from the assembler's relative coordinates when it has them."""
+        if relative is not None and name in relative:
+            return np.asarray(relative[name], float) / scale
+        return sc(pos[name])
 
     # -- link frames
     n = len(links)
@@ -256,10 +265,10 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
         slider_dir.setdefault(ps.slider, ps)
     for name in links:
         names = [p for p in lay.on_link.get(name, ()) if p in pos]
-        origin = sc(pos[names[0]]) if names else np.zeros(2)
+        origin = scn(names[0]) if names else np.zeros(2)
         theta = None
         for other in names[1:]:
-            w = sc(pos[other]) - origin
+            w = scn(other) - origin
             if math.hypot(*w) > 1e-9:
                 theta = math.atan2(w[1], w[0])
                 break
@@ -293,8 +302,8 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
         if carriers and name in pos:
             moving = [c for c in carriers if c != ground]
             carrier = moving[0] if moving else ground
-            local[name] = (index[carrier], to_local(carrier, sc(pos[name])))
-    contact_xy = {j.name: sc(pos[j.name]) for j in lay.contacts if j.name in pos}
+            local[name] = (index[carrier], to_local(carrier, scn(name)))
+    contact_xy = {j.name: scn(j.name) for j in lay.contacts if j.name in pos}
 
     pc: list[tuple[int, np.ndarray, int, np.ndarray, str, bool]] = []
     ln: list[tuple[int, np.ndarray, int, np.ndarray, np.ndarray, float, str, bool]] = []
@@ -303,7 +312,7 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
 
     for j in mech.joints:
         if j.type is JointType.REVOLUTE and j.name in pos:
-            xy = sc(pos[j.name])
+            xy = scn(j.name)
             first = j.links[0]
             for other in j.links[1:]:
                 pc.append(
@@ -314,11 +323,11 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     path_points: dict[str, tuple[int, str]] = {}
     for ps in lay.paths:
         through = ps.path.through
-        t_xy = sc(through.xy if through.xy is not None else pos[lay.resolve(through.name)])  # type: ignore[arg-type]
+        t_xy = sc(through.xy) if through.xy is not None else scn(lay.resolve(through.name))  # type: ignore[arg-type]
         a = _path_angle(lay, ps, pos)
         u = dir_local(ps.guide, a)
         nloc = np.array([-u[1], u[0]])
-        p_xy = sc(pos[ps.point])
+        p_xy = scn(ps.point)
         ln.append(
             (
                 index[ps.slider],
@@ -353,7 +362,7 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
                 )
             )
             continue
-        xy = sc(pos[j.name])
+        xy = scn(j.name)
         if j.type is JointType.ROLLING:
             pc.append(
                 (index[a_link], to_local(a_link, xy), index[b_link], to_local(b_link, xy), j.name, False)

@@ -26,8 +26,10 @@ from __future__ import annotations
 
 import math
 from collections import OrderedDict
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, replace
 from types import MappingProxyType
+from typing import Any
 
 import numpy as np
 
@@ -41,7 +43,7 @@ from mech.kinematics.result import JointGeom, Kinematics, LinkState, Mobility
 from mech.model import Drive, Mechanism
 from mech.options import SolveOptions
 
-__all__ = ["Compiled", "compiled", "solve"]
+__all__ = ["Compiled", "closed_form", "compiled", "continuation", "solve"]
 
 LEVELS = ("position", "velocity", "acceleration")
 #: Condition number of Φ_q (scaled) above which a configuration is refused as singular.
@@ -176,6 +178,14 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
         )
 
     q = sys_.q0
+    omega_ref = _omega_ref(drives, drawn.scale)
+    if options.method == "closed" or (moved and options.method == "auto"):
+        fast = _closed_form(comp, drives, lvl, omega_ref, options)
+        if fast is not None:
+            q, qd, qdd, note = fast
+            if moved:
+                notes.append(note)
+            return _result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
     if moved:
         if sys_.velocity_only:
             raise UnsupportedError(
@@ -191,7 +201,15 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
         ]
         notes.append(f"moved from the drawn angle by continuation ({', '.join(shown)}), keeping its branch")
 
-    omega_ref = _omega_ref(drives, drawn.scale)
+    qd, qdd = _rates(comp, q, drives, lvl, omega_ref)
+    return _result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
+
+
+def _rates(
+    comp: Compiled, q: np.ndarray, drives: tuple[Drive, ...], lvl: int, omega_ref: float
+) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """q̇ and q̈ (scaled) at ``q`` by the linear solves Φ_q q̇ = −Φ_t, Φ_q q̈ = γ (None above ``lvl``)."""
+    sys_, drawn = comp.system, comp.drawn
     qd = qdd = None
     if lvl >= 1:
         jac = sys_.jacobian(q)
@@ -215,7 +233,144 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
             ]
             gamma[sys_.drive_rows] += acc
             qdd = _snap(_lin_solve(svd, gamma))
-    return _result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
+    return qd, qdd
+
+
+def continuation(
+    mech: Mechanism, angles: Sequence[float], level: str, options: SolveOptions
+) -> Iterator[Kinematics | None]:
+    """Newton continuation along ``angles`` (rad) of the single crank: one result per angle.
+
+    The first angle is reached from the drawn configuration as :func:`solve`
+    does; each later one is warm-started from the previous solution with the
+    predictor ``q + q̇·Δθ`` (step halving on failure), so the branch is the
+    one the previous step was on.  A step that cannot be reached (a limit
+    position) yields None, and so do all after it: continuation cannot jump.
+    A singular step (a toggle) yields positions only.
+    """
+    lvl = LEVELS.index(level)
+    comp = compiled(mech, None)
+    sys_, lay, drawn = comp.system, comp.layout, comp.drawn
+    base = options.with_(angle=float(angles[0]) if len(angles) else None, method="newton")
+    drives = _drives(mech, lay, drawn, base, lvl)
+    omega_ref = _omega_ref(drives, drawn.scale)
+    offset = 2 * sys_.pc_i.size + sys_.ln_s.size
+    rows = [sys_.drive_rows[0] - offset]
+    ci = 3 * sys_.link_index[drives[0].link] + 2  # type: ignore[index]
+    q: np.ndarray | None = None
+    prev = 0.0
+    for k, phi in enumerate(angles):
+        here = tuple(replace(d, angle=float(phi)) for d in drives)
+        if k == 0:
+            try:
+                q = _move(comp, here, base)
+            except GeometryError:
+                q = None
+        elif q is not None:
+            c_ang = sys_.ang_c.copy()
+            c_ang[rows] += q[ci] - sys_.q0[ci]  # the drive row's change so far (no 2π ambiguity)
+            q, _ = _continue(sys_, q, c_ang, sys_.ln_c, rows, np.array([float(phi) - prev]), base)
+        if q is None:
+            yield None
+            continue
+        prev = float(phi)
+        try:
+            qd, qdd = _rates(comp, q, here, lvl, omega_ref)
+            yield _result(comp, level, q, qd, qdd, omega_ref, True, (), here)
+        except GeometryError:
+            yield _result(comp, "position", q, None, None, omega_ref, True, ("singular",), here)
+
+
+# -- closed form ----------------------------------------------------------------------
+
+
+def _closed_form(
+    comp: Compiled, drives: tuple[Drive, ...], lvl: int, omega_ref: float, options: SolveOptions
+) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None, str] | None:
+    """q, q̇, q̈ (scaled) from the dyad program, or None to let Newton solve (and explain).
+
+    None when the chain does not decompose, when the target angle cannot be
+    reached from the drawn one by turning the crank (a gap in between: the
+    closed form would land on a configuration the mechanism cannot move to),
+    when a dyad cannot close, or near a toggle.  With ``method="closed"`` the
+    first of these is an error instead.
+    """
+    from mech.kinematics.dyads import ACCURATE_COND, SLACK, program, reachable
+
+    prog = program(comp)
+    if prog is None:
+        if options.method == "closed":
+            raise UnsupportedError(
+                f"{comp.mech.label} does not decompose into dyads driven by one crank",
+                hint="use method 'auto' or 'newton' (the general solver)",
+            )
+        return None
+    d = drives[0]
+    phi = d.angle if d.angle is not None else prog.drawn_angle
+    if not reachable(prog, phi):
+        return None
+    w = d.omega or 0.0
+    al = d.alpha or 0.0
+    try:
+        out = prog.raw(phi, w, al, level=lvl)
+    except ZeroDivisionError:  # no closure, or exactly in line: Newton explains
+        return None
+    parts = prog.split(out, lvl)
+    if min(parts["disc"], default=1.0) < -SLACK:
+        return None  # Newton reports the gap, in the file's unit
+    sines = [abs(x) for x in parts["sin"]]
+    if lvl >= 1 and sines and min(sines) * ACCURATE_COND < 1.0:
+        k = sines.index(min(sines))
+        cond = 1.0 / min(sines) if min(sines) > 0 else math.inf
+        raise GeometryError(
+            f"singular configuration of {comp.mech.label} ({d.link} at {_deg(phi)}): "
+            f"{prog.dyads[k][2]} — a toggle or dead-centre position (condition number {cond:.2g}; "
+            f"velocities here would be good only to about {min(2e-16 * cond * cond, 1.0):.0e})",
+            hint="analyse a slightly different angle: velocities here are undetermined",
+        )
+    sys_ = comp.system
+    n, scale = sys_.n, sys_.scale
+    q = np.empty(3 * n)
+    q[0::3] = np.asarray(parts["lx"]) / scale
+    q[1::3] = np.asarray(parts["ly"]) / scale
+    q[2::3] = parts["lt"]
+    qd = qdd = None
+    if lvl >= 1:
+        qd = np.empty(3 * n)
+        qd[0::3] = np.asarray(parts["lvx"]) / (scale * omega_ref)
+        qd[1::3] = np.asarray(parts["lvy"]) / (scale * omega_ref)
+        qd[2::3] = np.asarray(parts["lw"]) / omega_ref
+        qd = _snap(qd)
+    if lvl >= 2:
+        qdd = np.empty(3 * n)
+        qdd[0::3] = np.asarray(parts["lax"]) / (scale * omega_ref**2)
+        qdd[1::3] = np.asarray(parts["lay"]) / (scale * omega_ref**2)
+        qdd[2::3] = np.asarray(parts["lal"]) / omega_ref**2
+        qdd = _snap(qdd)
+    kinds = ", ".join(dict.fromkeys(k for k, _, _ in prog.dyads)) or "crank only"
+    note = (
+        f"moved from the drawn angle ({_deg(prog.drawn_angle)} → {_deg(phi)}) keeping its branch, "
+        f"in closed form (dyads: {kinds})"
+    )
+    return q, qd, qdd, note
+
+
+def closed_form(mech: Mechanism) -> Any:
+    """The compiled closed-form (dyad) program of ``mech``, or None when it does not decompose.
+
+    The lean single-solve path: ``closed_form(m).state(phi, omega, alpha)``
+    returns a :class:`~mech.kinematics.dyads.FastState` of flat tuples in a
+    few microseconds (no notes, no checks beyond closure; use :func:`solve`
+    for the full, explained result).
+
+    Examples
+    --------
+    >>> prog = closed_form(mech)                                 # doctest: +SKIP
+    >>> prog.state(math.radians(60), -4 * math.pi).omega         # doctest: +SKIP
+    """
+    from mech.kinematics.dyads import program
+
+    return program(compiled(mech, None))
 
 
 # -- drives ---------------------------------------------------------------------------

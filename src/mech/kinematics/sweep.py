@@ -1,0 +1,957 @@
+"""Sweeps over the crank's cycle: series, gaps, toggles, dead centres, extremes, time ratio.
+
+:func:`sweep` solves a single-crank mechanism at every angle of an array.
+Where the chain decomposes into dyads (:mod:`.dyads`) the whole array is one
+vectorised evaluation of the closed form — a 3,600-step four-bar sweep takes
+about a millisecond — and every refinement (an extreme, a dead centre, the
+edge of a gap) evaluates the same closed form at a few angles at once.
+Anything else is swept by Newton continuation: each step starts from the
+last one's solution moved by the predictor ``q + q̇·Δθ``, so the assembly
+branch stays the drawn one.
+
+Rules the results keep:
+
+* **No silent branch jumps.**  The closed form keeps the drawn assembly
+  (the sign of each dyad); where a dyad cannot close the steps are *not
+  assembled* (NaN, ``assembled`` False) and the range is reported as a
+  :class:`Gap` with how far the loop is from closing.  The gap's edges are
+  toggles (links in line), located by bisection to rounding.  A Newton
+  sweep that meets a limit stops there and says so.
+* **Singular steps are not reported as numbers.**  Where the dyad
+  condition number exceeds :data:`~mech.kinematics.dyads.ACCURATE_COND`
+  (1e5, within about 1e-10 rad of a toggle: rates there are good to less
+  than 1e-6), velocities and accelerations are NaN and a note says how
+  many; the largest condition met is reported.  Newton sweeps use the
+  solver's own :data:`~mech.kinematics.solve.SINGULAR`.
+* **Extremes and dead centres are refined**, not read off the grid: the
+  closed form is evaluated on a fine sub-grid round each candidate, zooming
+  in 16× per round until the bracket is at rounding, so an extreme value is
+  exact to about 1e-15 relative and its angle to about 1e-8 rad (the top of
+  a smooth maximum is flat: value changes only as Δθ²); a dead centre's
+  angle, a root, is found to about 1e-15 rad.
+
+The quick-return time ratio is the crank angle of the slow stroke over that
+of the fast one, between the two dead centres of the output (the last slider
+on a fixed guide, else the last link pivoted on the frame), over a full,
+gap-free revolution (Khurmi & Gupta, *Theory of Machines*, ch. 5, the crank
+and slotted lever: cutting / return = (360° − β)/β, β the crank angle of the
+return stroke).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from mech.errors import GeometryError, InputError, UnsupportedError
+from mech.kinematics.dyads import ACCURATE_COND, SLACK, DyadProgram, numpy_namespace, program
+from mech.kinematics.result import Kinematics
+from mech.kinematics.solve import SINGULAR, Compiled, compiled, continuation, solve
+from mech.model import JointType, Mechanism
+from mech.options import SolveOptions
+
+__all__ = ["Event", "Extreme", "Gap", "Sweep", "TimeRatio", "sweep"]
+
+LEVELS = ("position", "velocity", "acceleration")
+_TWO_PI = 2.0 * math.pi
+
+
+@dataclass(frozen=True, slots=True)
+class Gap:
+    """Drive angles ``start``–``end`` (rad) where the mechanism cannot be assembled.
+
+    ``miss`` is how far the loop is from closing at worst (m), ``what`` the
+    dyad that fails (which links cannot reach).
+    """
+
+    start: float
+    end: float
+    miss: float
+    what: str
+
+
+@dataclass(frozen=True, slots=True)
+class Event:
+    """A located event: a toggle (``kind="toggle"``) or a dead centre (``"dead centre"``).
+
+    ``angle`` is the drive angle (rad); ``subject`` the output or the links in
+    line; ``value`` the output's position there (slider displacement, m, or
+    link angle, rad), None for a toggle.
+    """
+
+    kind: str
+    angle: float
+    subject: str
+    value: float | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Extreme:
+    """Largest and smallest value of one quantity over the sweep, with the drive angles (rad)."""
+
+    quantity: str
+    unit: str
+    max_angle: float
+    max_value: float
+    min_angle: float
+    min_value: float
+
+
+@dataclass(frozen=True, slots=True)
+class TimeRatio:
+    """Quick return: crank angles (rad) of the slow and fast strokes of ``output`` and their ratio."""
+
+    output: str
+    slow: float
+    fast: float
+
+    @property
+    def ratio(self) -> float:
+        """Slow stroke over fast stroke (cutting / return for a shaper), ≥ 1."""
+        return self.slow / self.fast
+
+
+def _frozen(a: np.ndarray | None) -> np.ndarray | None:
+    if a is not None:
+        a.flags.writeable = False
+    return a
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """A mechanism solved over an array of drive angles.  Arrays are read-only.
+
+    Attributes
+    ----------
+    mechanism, level, method
+        The mechanism's label, the level solved, ``"closed form"`` or ``"newton"``.
+    drive
+        The driving link; ``omega``/``alpha`` its speed (rad/s, ccw +; None
+        at position level without a speed) and angular acceleration.
+    angles
+        (N,) drive angles, rad, in the order swept.
+    points
+        Names of the points, in the order of the second axis of ``positions``.
+    positions, velocities, accelerations
+        (N, P, 2) arrays, m, m/s, m/s² (None above the level); NaN where not
+        assembled (and velocities, accelerations NaN where singular).
+    links
+        Moving links; ``link_angles`` (N, L) rad, unwrapped along the sweep;
+        ``omegas``, ``alphas`` (N, L) rad/s, rad/s².
+    slides
+        Prismatic and slot joints; ``displacement`` (N, S) the slider point's
+        position along its path from the path's ``through`` point, m;
+        ``sliding`` (N, S) its speed along the path relative to the guide, m/s.
+    assembled
+        (N,) bool.
+    condition
+        (N,) the largest dyad condition number at each step (Newton: of Φ_q).
+    gaps, toggles, dead_centres, extremes, time_ratio, notes
+        What the sweep found (see the classes).
+    """
+
+    mechanism: str
+    level: str
+    method: str
+    drive: str
+    omega: float | None
+    alpha: float
+    angles: np.ndarray
+    points: tuple[str, ...]
+    positions: np.ndarray
+    velocities: np.ndarray | None
+    accelerations: np.ndarray | None
+    links: tuple[str, ...]
+    link_angles: np.ndarray
+    omegas: np.ndarray | None
+    alphas: np.ndarray | None
+    slides: tuple[str, ...]
+    displacement: np.ndarray
+    sliding: np.ndarray | None
+    assembled: np.ndarray
+    condition: np.ndarray
+    gaps: tuple[Gap, ...]
+    toggles: tuple[Event, ...]
+    dead_centres: tuple[Event, ...]
+    extremes: tuple[Extreme, ...]
+    time_ratio: TimeRatio | None
+    notes: tuple[str, ...]
+
+    def series(self, quantity: str) -> np.ndarray:
+        """The (N,) values of one quantity (see :func:`quantity_unit` for the keys)."""
+        return _series(self, quantity)
+
+    @property
+    def max_condition(self) -> float:
+        """The largest condition number met at an assembled step."""
+        c = self.condition[self.assembled]
+        return float(np.max(c)) if c.size else math.nan
+
+
+# -- quantities -------------------------------------------------------------------------------
+_UNITS = {
+    "angle": "rad",
+    "omega": "rad/s",
+    "alpha": "rad/s^2",
+    "velocity": "m/s",
+    "acceleration": "m/s^2",
+    "position": "m",
+    "displacement": "m",
+    "sliding": "m/s",
+}
+_NEEDS = {"omega": 1, "velocity": 1, "sliding": 1, "alpha": 2, "acceleration": 2}
+
+
+def quantity_unit(quantity: str) -> str:
+    """SI unit of a quantity key.
+
+    Keys: ``angle.<link>``, ``omega.<link>``, ``alpha.<link>`` (signed, ccw +);
+    ``velocity.<point>``, ``acceleration.<point>`` (magnitudes) or with
+    ``.x``/``.y`` (components); ``position.<point>.x|y``;
+    ``displacement.<joint>`` and ``sliding.<joint>`` (a slider along its path).
+    """
+    return _UNITS[quantity.split(".", 1)[0]]
+
+
+def _check_quantity(sw_points: Sequence[str], links: Sequence[str], slides: Sequence[str], key: str, lvl: int) -> None:
+    parts = key.split(".")
+    kind = parts[0]
+    if kind not in _UNITS or len(parts) < 2:
+        raise InputError(
+            f"unknown quantity {key!r}",
+            hint="angle.LINK, omega.LINK, alpha.LINK, velocity.POINT[.x|.y], acceleration.POINT[.x|.y], "
+            "position.POINT.x|y, displacement.JOINT, sliding.JOINT",
+        )
+    if _NEEDS.get(kind, 0) > lvl:
+        raise InputError(f"{key} needs level {LEVELS[_NEEDS[kind]]} (give --level {LEVELS[_NEEDS[kind]]})")
+    name = parts[1]
+    pool = {"angle": links, "omega": links, "alpha": links, "displacement": slides, "sliding": slides}.get(
+        kind, sw_points
+    )
+    if name not in pool:
+        raise InputError(f"{key}: no {'link' if kind in ('angle', 'omega', 'alpha') else 'joint' if kind in ('displacement', 'sliding') else 'point'} named {name}", hint=f"choose from {', '.join(pool)}")
+    comp = parts[2] if len(parts) > 2 else None
+    if comp not in (None, "x", "y") or (kind == "position" and comp is None) or (len(parts) > 3):
+        raise InputError(f"{key}: a component is .x or .y" + (" (position needs one)" if kind == "position" else ""))
+
+
+def _pick(arrays: dict[str, Any], names: dict[str, tuple[str, ...]], key: str) -> np.ndarray:
+    """A quantity from arrays shaped (..., P, 2) / (..., L) / (..., S)."""
+    parts = key.split(".")
+    kind, name = parts[0], parts[1]
+    comp = parts[2] if len(parts) > 2 else None
+    if kind in ("angle", "omega", "alpha"):
+        arr = arrays[{"angle": "link_angles", "omega": "omegas", "alpha": "alphas"}[kind]]
+        return arr[..., names["links"].index(name)]
+    if kind in ("displacement", "sliding"):
+        return arrays[kind][..., names["slides"].index(name)]
+    arr = arrays[{"position": "positions", "velocity": "velocities", "acceleration": "accelerations"}[kind]]
+    v = arr[..., names["points"].index(name), :]
+    if comp == "x":
+        return v[..., 0]
+    if comp == "y":
+        return v[..., 1]
+    return np.hypot(v[..., 0], v[..., 1])
+
+
+def _series(sw: Sweep, key: str) -> np.ndarray:
+    _check_quantity(sw.points, sw.links, sw.slides, key, LEVELS.index(sw.level))
+    arrays = {
+        "link_angles": sw.link_angles,
+        "omegas": sw.omegas,
+        "alphas": sw.alphas,
+        "displacement": sw.displacement,
+        "sliding": sw.sliding,
+        "positions": sw.positions,
+        "velocities": sw.velocities,
+        "accelerations": sw.accelerations,
+    }
+    return _pick(arrays, {"links": sw.links, "slides": sw.slides, "points": sw.points}, key)
+
+
+def default_quantities(points: Sequence[str], links: Sequence[str], slides: Sequence[str], lvl: int, drive: str) -> list[str]:
+    """What a sweep reports extremes of when none are asked: per level, the textbook quantities."""
+    out = [f"displacement.{s}" for s in slides]
+    out += [f"angle.{lk}" for lk in links if lk != drive]
+    if lvl >= 1:
+        out += [f"omega.{lk}" for lk in links if lk != drive]
+        out += [f"velocity.{p}" for p in points]
+        out += [f"sliding.{s}" for s in slides]
+    if lvl >= 2:
+        out += [f"alpha.{lk}" for lk in links if lk != drive]
+        out += [f"acceleration.{p}" for p in points]
+    return out
+
+
+# -- evaluation backends ------------------------------------------------------------------------
+class _Closed:
+    """Evaluate the dyad program at any array of angles, with everything a sweep derives."""
+
+    method = "closed form"
+
+    def __init__(self, comp: Compiled, prog: DyadProgram, omega: float, alpha: float, lvl: int) -> None:
+        self.comp, self.prog, self.omega, self.alpha, self.lvl = comp, prog, omega, alpha, lvl
+        sys_ = comp.system
+        lay = comp.layout
+        self.points = tuple(p for p in prog.points if not p.startswith("#"))
+        self._pidx = np.array([prog.points.index(p) for p in self.points], int)
+        self.links = prog.links
+        self.slides = tuple(ps.joint for ps in lay.paths)
+        scale = sys_.scale
+        # per slide: guide index (n = ground), local through (m) and u, slider point index
+        self._slide = []
+        for k, ps in enumerate(lay.paths):
+            g, u = sys_.path_dirs[ps.joint]
+            self._slide.append((g, sys_.ln_t[k] * scale, np.asarray(u, float), prog.points.index(ps.point)))
+
+    def evaluate(self, phi: np.ndarray) -> dict[str, np.ndarray]:
+        """Every array a sweep needs at angles ``phi`` (any shape)."""
+        prog, lvl = self.prog, self.lvl
+        shape = np.shape(phi)
+        with np.errstate(all="ignore"):  # a dyad that cannot close or a toggle: masked below, never used
+            out = prog.raw(np.asarray(phi, float), self.omega, self.alpha, level=lvl, xp=numpy_namespace())
+        parts = prog.split(out, lvl)
+
+        def stack(seq: tuple) -> np.ndarray:
+            """(…, K) from K outputs, some of them constants (a ground point)."""
+            arr = np.empty((*shape, len(seq)))
+            for k, v in enumerate(seq):
+                arr[..., k] = v
+            return arr
+
+        nd = len(prog.dyads)
+        res: dict[str, np.ndarray] = {}
+        disc = stack(parts["disc"]) if nd else np.ones((*shape, 1))
+        sins = np.abs(stack(parts["sin"])) if nd else np.ones((*shape, 1))
+        res["disc"] = disc
+        res["miss"] = stack(parts["miss"]) if nd else np.zeros((*shape, 1))
+        res["assembled"] = np.all(disc >= -SLACK, axis=-1)
+        with np.errstate(divide="ignore"):
+            res["condition"] = 1.0 / np.min(sins, axis=-1)
+        cx, cy = prog.centre
+        px = stack(parts["px"]) + cx
+        py = stack(parts["py"]) + cy
+        res["positions"] = np.stack([px, py], axis=-1)
+        lt = stack(parts["lt"])
+        lx, ly = stack(parts["lx"]), stack(parts["ly"])
+        res["link_angles"] = lt
+        res["displacement"] = self._slides(lx, ly, lt, px - cx, py - cy, None)
+        if lvl >= 1:
+            res["velocities"] = np.stack([stack(parts["pvx"]), stack(parts["pvy"])], axis=-1)
+            res["omegas"] = stack(parts["lw"])
+            res["sliding"] = self._slides(
+                lx, ly, lt, px - cx, py - cy, (stack(parts["lvx"]), stack(parts["lvy"]), res["omegas"], res["velocities"])
+            )
+        if lvl >= 2:
+            res["accelerations"] = np.stack([stack(parts["pax"]), stack(parts["pay"])], axis=-1)
+            res["alphas"] = stack(parts["lal"])
+        return res
+
+    def _slides(self, lx: np.ndarray, ly: np.ndarray, lt: np.ndarray, px: np.ndarray, py: np.ndarray, vel: Any) -> np.ndarray:
+        """Slider displacement along its path (vel None) or sliding speed relative to the guide."""
+        cols = []
+        n = len(self.links)
+        for g, t_l, u_l, p in self._slide:
+            if g == n:
+                c, s = np.ones_like(px[..., 0]), np.zeros_like(px[..., 0])
+                gx = gy = np.zeros_like(px[..., 0])
+            else:
+                c, s = np.cos(lt[..., g]), np.sin(lt[..., g])
+                gx, gy = lx[..., g], ly[..., g]
+            ux, uy = c * u_l[0] - s * u_l[1], s * u_l[0] + c * u_l[1]
+            if vel is None:
+                tx = gx + c * t_l[0] - s * t_l[1]
+                ty = gy + s * t_l[0] + c * t_l[1]
+                cols.append((px[..., p] - tx) * ux + (py[..., p] - ty) * uy)
+            else:
+                lvx, lvy, lw, pv = vel
+                if g == n:
+                    rel_x, rel_y = pv[..., p, 0], pv[..., p, 1]
+                else:
+                    rx, ry = px[..., p] - gx, py[..., p] - gy
+                    rel_x = pv[..., p, 0] - (lvx[..., g] - lw[..., g] * ry)
+                    rel_y = pv[..., p, 1] - (lvy[..., g] + lw[..., g] * rx)
+                cols.append(rel_x * ux + rel_y * uy)
+        if not cols:
+            return np.zeros((*px.shape[:-1], 0))
+        return np.stack(cols, axis=-1)
+
+
+class _Newton:
+    """Newton continuation, step by step: the fallback for chains that do not decompose."""
+
+    method = "newton"
+
+    def __init__(self, mech: Mechanism, comp: Compiled, options: SolveOptions, omega: float, alpha: float, lvl: int) -> None:
+        self.mech, self.comp, self.lvl = mech, comp, lvl
+        self.options = options.with_(
+            omega=abs(omega), direction="ccw" if omega >= 0 else "cw", alpha=alpha, method="newton"
+        )
+        self.links = comp.system.links
+        self.slides = tuple(ps.joint for ps in comp.layout.paths)
+        self.points = tuple(p for p in comp.system.loc_names if not p.startswith("#"))
+
+    def series(self, phi: np.ndarray) -> list[dict[str, Any] | None]:
+        """Warm-started continuation along ``phi`` (see :func:`~mech.kinematics.solve.continuation`)."""
+        return [None if k is None else self._arrays(k) for k in continuation(self.mech, list(phi), LEVELS[self.lvl], self.options)]
+
+    def _arrays(self, kin: Kinematics) -> dict[str, Any]:
+        lay = self.comp.layout
+        singular = kin.level != LEVELS[self.lvl]
+        res: dict[str, Any] = {
+            "positions": np.array([kin.positions[p] for p in self.points]),
+            "link_angles": np.array([kin.links[lk].angle for lk in self.links]),
+            "condition": math.inf if singular else 1.0,
+        }
+        disp, slid = [], []
+        for ps in lay.paths:
+            j = kin.joints[ps.joint]
+            u = j.direction or (1.0, 0.0)
+            at = j.at or (0.0, 0.0)
+            through = ps.path.through
+            t = through.xy if through.xy is not None else kin.positions[lay.resolve(through.name)]  # type: ignore[index]
+            disp.append((at[0] - t[0]) * u[0] + (at[1] - t[1]) * u[1] if ps.guide == self.mech.ground else math.nan)
+            if self.lvl >= 1 and not singular:
+                slid.append(kin.sliding(ps.joint))
+        res["displacement"] = np.array(disp)
+        nan_p = np.full((len(self.points), 2), np.nan)
+        nan_l = np.full(len(self.links), np.nan)
+        if self.lvl >= 1:
+            res["velocities"] = nan_p if singular else np.array([kin.velocity(p) for p in self.points])
+            res["omegas"] = nan_l if singular else np.array([kin.links[lk].omega for lk in self.links])
+            res["sliding"] = np.full(len(self.slides), np.nan) if singular else np.array(slid)
+        if self.lvl >= 2:
+            res["accelerations"] = nan_p if singular else np.array([kin.acceleration(p) for p in self.points])
+            res["alphas"] = nan_l if singular else np.array([kin.links[lk].alpha for lk in self.links])
+        return res
+
+    def evaluate(self, phi: np.ndarray) -> dict[str, np.ndarray]:
+        """Independent solves at any angles (refinement): each continued from the drawn configuration."""
+        flat = np.asarray(phi, float).ravel()
+        rows: list[dict[str, Any] | None] = []
+        for p in flat:
+            try:
+                kin = solve(self.mech, LEVELS[self.lvl], self.options.with_(angle=float(p)))
+                rows.append(self._arrays(kin))
+            except GeometryError:
+                rows.append(None)
+        return _stack_rows(rows, np.shape(phi))
+
+
+def _stack_rows(rows: list[dict[str, Any] | None], shape: tuple[int, ...]) -> dict[str, np.ndarray]:
+    """Per-step dicts of arrays → one dict of (shape, …) arrays, NaN where a step is None."""
+    template = next((r for r in rows if r is not None), None)
+    if template is None:
+        raise GeometryError("the mechanism cannot be moved to any angle asked")
+    res: dict[str, np.ndarray] = {}
+    for key, val in template.items():
+        arr = np.full((len(rows), *np.shape(val)), np.nan)
+        for k, r in enumerate(rows):
+            if r is not None:
+                arr[k] = r[key]
+        res[key] = arr.reshape(*shape, *np.shape(val))
+    ok = np.array([r is not None for r in rows]).reshape(shape)
+    res["assembled"] = ok
+    res["condition"] = np.where(ok, res["condition"], np.nan)
+    res["disc"] = np.where(ok, 1.0, -1.0)[..., None]
+    res["miss"] = np.full((*shape, 1), np.nan)
+    return res
+
+
+# -- refinement ----------------------------------------------------------------------------------
+def _zoom(fn: Callable[[np.ndarray], np.ndarray], lo: np.ndarray, hi: np.ndarray, mode: str, rounds: int = 14, m: int = 33) -> tuple[np.ndarray, np.ndarray]:
+    """Refine K brackets at once: maxima, minima (``mode``) or sign changes (``"root"``).
+
+    Each round evaluates ``fn`` on an (K, m) sub-grid of every bracket and
+    keeps the two sub-steps round the best point (or the sign change), so a
+    bracket shrinks 16× per round: 14 rounds take it from a sweep step to
+    rounding.  Returns (angles, values) at the refined points.
+    """
+    lo, hi = lo.astype(float).copy(), hi.astype(float).copy()
+    k = np.arange(lo.size)
+    t = np.linspace(0.0, 1.0, m)
+    for _ in range(rounds):
+        grid = lo[:, None] + (hi - lo)[:, None] * t[None, :]
+        vals = fn(grid)
+        if mode == "root":
+            s = np.sign(vals)
+            change = (s[:, :-1] * s[:, 1:]) <= 0
+            j = np.where(change.any(axis=1), np.argmax(change, axis=1), m // 2 - 1)
+            lo, hi = grid[k, j], grid[k, j + 1]
+        else:
+            v = np.where(np.isnan(vals), -np.inf if mode == "max" else np.inf, vals)
+            j = np.argmax(v, axis=1) if mode == "max" else np.argmin(v, axis=1)
+            jl, jh = np.maximum(j - 1, 0), np.minimum(j + 1, m - 1)
+            lo, hi = grid[k, jl], grid[k, jh]
+        # a root to rounding; a maximum only to 1e-11 rad: its value is then exact (it moves as Δθ²)
+        if np.all(hi - lo <= (4e-16 if mode == "root" else 1e-11) * np.maximum(np.abs(lo), 1.0)):
+            break
+    mid = 0.5 * (lo + hi)
+    if mode == "root":
+        return mid, fn(mid[:, None])[:, 0]
+    grid = lo[:, None] + (hi - lo)[:, None] * t[None, :]
+    vals = fn(grid)
+    v = np.where(np.isnan(vals), -np.inf if mode == "max" else np.inf, vals)
+    j = np.argmax(v, axis=1) if mode == "max" else np.argmin(v, axis=1)
+    return grid[k, j], vals[k, j]
+
+
+# -- the sweep -------------------------------------------------------------------------------
+def sweep(
+    mech: Mechanism,
+    angles: Sequence[float] | np.ndarray | None = None,
+    *,
+    level: str = "velocity",
+    options: SolveOptions | None = None,
+    quantities: Sequence[str] | None = None,
+    analyse: bool = True,
+) -> Sweep:
+    """Solve ``mech`` at every drive angle of ``angles`` and find what happens over the range.
+
+    Parameters
+    ----------
+    mech
+        A mechanism with one turning drive about a ground pivot.
+    angles
+        Drive angles, rad, swept in the order given (default: 0 to 2π in 1°
+        steps, 361 angles).
+    level
+        ``"position"``, ``"velocity"`` or ``"acceleration"``; velocity and
+        above need a drive speed (file, or ``options.omega``).
+    options
+        Speed, sense and α of the drive; ``method`` (``auto``: closed form
+        where the chain decomposes; ``newton``: per-step continuation with
+        ``tol``); ``angle`` must not be given (the sweep sets it).
+    quantities
+        Keys whose extremes to report (:func:`quantity_unit`); default: every
+        link's angle, ω, α, every point's speed and acceleration, every
+        slider's displacement and sliding speed, as the level allows.
+    analyse
+        False: the series only (no toggles, dead centres, extremes, time
+        ratio) — the bare vectorised solve, for timing or when only arrays
+        are wanted; gaps are still marked by ``assembled``.
+
+    Returns
+    -------
+    Sweep
+        Frozen, with read-only arrays.
+
+    Raises
+    ------
+    InputError
+        No speed at velocity level, an unknown quantity, ``options.angle`` given.
+    UnsupportedError
+        Not one turning drive (a slider drive, several drives), or pairs known
+        only at the drawn instant (cam, contact): they cannot be moved.
+    GeometryError
+        The mechanism cannot be assembled as drawn, or at none of the angles.
+
+    Examples
+    --------
+    >>> s = sweep(mech, np.radians(np.arange(0, 360.5, 0.5)), level="acceleration")  # doctest: +SKIP
+    >>> [(math.degrees(e.angle), e.subject) for e in s.dead_centres]                  # doctest: +SKIP
+    [(0.0, 'P'), (180.0, 'P')]
+    """
+    options = options or SolveOptions()
+    if level not in LEVELS:
+        raise InputError(f"level must be one of {', '.join(LEVELS)}, not {level!r}")
+    if options.angle is not None:
+        raise InputError("a sweep sets the crank angle itself", hint="give the range (--from, --to) instead of --angle")
+    lvl = LEVELS.index(level)
+    if len(mech.drives) != 1 or mech.drives[0].link is None:
+        raise UnsupportedError(
+            f"a sweep turns one crank; {mech.label} has "
+            + ("a slider drive" if mech.drives and mech.drives[0].joint else f"{len(mech.drives)} drives"),
+            hint="give one drive: {link: crank, angle: …, rpm: …}",
+        )
+    base = solve(mech, "position", options.with_(omega=None, direction=None, alpha=None))  # validates, assembles
+    comp = compiled(mech, None)
+    if comp.system.velocity_only:
+        raise UnsupportedError(
+            f"cannot sweep {mech.label}: {', '.join(comp.system.velocity_only)} describe only the instant drawn "
+            "(no profile is given)",
+        )
+    drive = base.drives[0]
+    omega = _drive_omega(mech, options)
+    if lvl >= 1 and omega is None:
+        raise InputError(f"drive of {drive.link} has no speed: give rpm or omega (or --rpm)", where=drive.where)
+    alpha = options.alpha if options.alpha is not None else (mech.drives[0].alpha or 0.0)
+    w_int = omega if omega else 1.0  # velocities are needed for dead centres even at position level
+    lvl_int = max(lvl, 1)
+    phi = np.radians(np.arange(0.0, 360.5, 1.0)) if angles is None else np.asarray(angles, float).ravel()
+    if phi.size == 0 or not np.all(np.isfinite(phi)):
+        raise InputError("the sweep needs at least one finite angle")
+
+    prog = program(comp) if options.method != "newton" else None
+    if options.method == "closed" and prog is None:
+        raise UnsupportedError(f"{mech.label} does not decompose into dyads driven by one crank", hint="use method auto")
+    notes: list[str] = list(comp.drawn.notes)
+    if prog is not None:
+        backend: Any = _Closed(comp, prog, w_int, alpha, lvl_int)
+        data = backend.evaluate(phi)
+        notes.append("closed form: " + "; ".join(prog.steps))
+    else:
+        backend = _Newton(mech, comp, options, w_int, alpha, lvl_int)
+        data = _newton_series(backend, phi, notes)
+
+    ok = data["assembled"]
+    cond = np.where(ok, data["condition"], np.nan)
+    singular = ok & (cond > (ACCURATE_COND if prog is not None else SINGULAR))
+    for key in ("positions", "link_angles", "displacement"):
+        data[key] = np.where(_expand(ok, data[key]), data[key], np.nan)
+    for key in ("velocities", "omegas", "sliding", "accelerations", "alphas"):
+        if key in data:
+            data[key] = np.where(_expand(ok & ~singular, data[key]), data[key], np.nan)
+    if np.any(singular):
+        notes.append(
+            f"{int(np.sum(singular))} step(s) next to a toggle (condition number above "
+            f"{ACCURATE_COND if prog is not None else SINGULAR:.0e}): velocities and accelerations there "
+            "would be good to less than 1e-6 and are not reported"
+        )
+    data["link_angles"] = _unwrap(data["link_angles"], ok)
+
+    names = {"points": backend.points, "links": backend.links, "slides": backend.slides}
+    keys = list(quantities) if quantities else default_quantities(backend.points, backend.links, backend.slides, lvl, drive.link or "")
+    for key in keys:
+        _check_quantity(backend.points, backend.links, backend.slides, key, lvl)
+    gaps: tuple[Gap, ...] = ()
+    toggles: tuple[Event, ...] = ()
+    dead: tuple[Event, ...] = ()
+    extremes: tuple[Extreme, ...] = ()
+    ratio = None
+    if analyse:
+        gaps, toggles = _gaps(backend, phi, data, ok)
+        dead, outputs = _dead_centres(backend, comp, phi, data, ok, names)
+        extremes = _extremes(backend, phi, data, ok & ~singular, names, keys)
+        ratio = _time_ratio(phi, ok, dead, outputs)
+    if ratio is not None and abs(ratio.ratio - 1.0) > 1e-9:
+        notes.append(f"quick return: {ratio.output} strokes take {math.degrees(ratio.slow):.4f}° and {math.degrees(ratio.fast):.4f}° of crank (ratio {ratio.ratio:.6g})")
+
+    vel = data.get("velocities") if lvl >= 1 else None
+    return Sweep(
+        mechanism=mech.label,
+        level=level,
+        method=backend.method,
+        drive=drive.link or "",
+        omega=omega,
+        alpha=alpha,
+        angles=_frozen(phi.copy()),  # type: ignore[arg-type]
+        points=backend.points,
+        positions=_frozen(data["positions"]),  # type: ignore[arg-type]
+        velocities=_frozen(vel),
+        accelerations=_frozen(data.get("accelerations")) if lvl >= 2 else None,
+        links=backend.links,
+        link_angles=_frozen(data["link_angles"]),  # type: ignore[arg-type]
+        omegas=_frozen(data.get("omegas")) if lvl >= 1 else None,
+        alphas=_frozen(data.get("alphas")) if lvl >= 2 else None,
+        slides=backend.slides,
+        displacement=_frozen(data["displacement"]),  # type: ignore[arg-type]
+        sliding=_frozen(data.get("sliding")) if lvl >= 1 else None,
+        assembled=_frozen(ok.copy()),  # type: ignore[arg-type]
+        condition=_frozen(cond),  # type: ignore[arg-type]
+        gaps=gaps,
+        toggles=toggles,
+        dead_centres=dead,
+        extremes=extremes,
+        time_ratio=ratio,
+        notes=tuple(notes),
+    )
+
+
+def _expand(mask: np.ndarray, arr: np.ndarray) -> np.ndarray:
+    return mask.reshape(mask.shape + (1,) * (arr.ndim - mask.ndim))
+
+
+def _unwrap(a: np.ndarray, ok: np.ndarray) -> np.ndarray:
+    """Link angles continuous along each assembled run (no 2π jumps), first value in [0, 2π)."""
+    out = a.copy()
+    for start, end in _runs(ok):
+        run = np.unwrap(out[start:end], axis=0)
+        run -= np.floor(run[0] / _TWO_PI) * _TWO_PI
+        out[start:end] = run
+    return out
+
+
+def _drive_omega(mech: Mechanism, options: SolveOptions) -> float | None:
+    d = mech.drives[0]
+    omega = d.omega
+    if options.omega is not None:
+        sign = -1.0 if (options.direction == "cw" or (options.direction is None and (d.omega or 0) < 0)) else 1.0
+        omega = sign * options.omega
+    elif options.direction is not None and omega is not None:
+        omega = abs(omega) * (-1.0 if options.direction == "cw" else 1.0)
+    return omega
+
+
+def _newton_series(backend: _Newton, phi: np.ndarray, notes: list[str]) -> dict[str, np.ndarray]:
+    """Per-step Newton continuation; it stops at the first angle it cannot reach, and says where."""
+    rows = backend.series(phi)
+    stopped = next((k for k, r in enumerate(rows) if r is None), None)
+    if stopped is not None:
+        notes.append(
+            f"Newton continuation stops at {math.degrees(phi[stopped]):.6g}°: the mechanism cannot be moved "
+            "there (a limit position, or out of reach); the steps from there on are not solved"
+        )
+    return _stack_rows(rows, (phi.size,))
+
+
+def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """Index ranges [i, j) where ``mask`` is True."""
+    edges = np.flatnonzero(np.diff(np.concatenate(([0], mask.astype(np.int8), [0]))))
+    return [(int(i), int(j)) for i, j in zip(edges[0::2], edges[1::2], strict=True)]
+
+
+def _gaps(backend: Any, phi: np.ndarray, data: dict[str, np.ndarray], ok: np.ndarray) -> tuple[tuple[Gap, ...], tuple[Event, ...]]:
+    """Unassembled runs, their edges located as toggles (closed form: bisection on the discriminant)."""
+    gaps: list[Gap] = []
+    toggles: list[Event] = []
+    prog = getattr(backend, "prog", None)
+    for s, e in _runs(~ok):
+        miss = data["miss"][s:e]
+        worst = int(np.argmax(np.max(miss, axis=0))) if miss.size else 0
+        what = prog.dyads[worst][2] if prog is not None and prog.dyads else "the loop cannot close"
+        start, end = float(phi[s]), float(phi[e - 1])
+        if prog is not None:
+            if s > 0:
+                start = _edge(backend, phi[s - 1], phi[s])
+                toggles.append(Event("toggle", start, what))
+            if e < phi.size:
+                end = _edge(backend, phi[e], phi[e - 1])
+                toggles.append(Event("toggle", end, what))
+        gaps.append(Gap(start, end, float(np.max(miss)) if miss.size else math.nan, what))
+    return tuple(gaps), tuple(sorted(toggles, key=lambda t: t.angle))
+
+
+def _edge(backend: _Closed, good: float, bad: float) -> float:
+    """Bisect on the worst dyad discriminant to the last angle that still closes."""
+    from mech.kinematics.dyads import _edge as edge
+
+    return edge(backend.prog, float(good), float(bad))
+
+
+def _outputs(comp: Compiled, names: dict[str, tuple[str, ...]], drive: str) -> list[tuple[str, str]]:
+    """Candidate outputs for dead centres: sliders on the frame, then links pivoted on the frame."""
+    lay, mech = comp.layout, comp.mech
+    out: list[tuple[str, str]] = []
+    for ps in lay.paths:
+        if ps.guide == mech.ground:
+            out.append(("slide", ps.joint))
+    pivoted = []
+    for j in mech.joints:
+        if j.type is JointType.REVOLUTE and mech.ground in j.links:
+            for lk in j.links:
+                if lk not in (mech.ground, drive) and lk in names["links"] and lk not in pivoted:
+                    pivoted.append(lk)
+    out += [("link", lk) for lk in pivoted]
+    return out
+
+
+def _refiner(backend: Any, names: dict[str, tuple[str, ...]], keys: Sequence[str], refs: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+    """fn(grid (K, m)) → values (K, m) of ``keys[k]`` on row k, one backend call for all rows.
+
+    Angles of links are brought to the branch of ``refs[k]`` (the grid value
+    the row refines), since the closed form returns them in (−π, π].
+    """
+
+    groups: dict[str, list[int]] = {}
+    for k, key in enumerate(keys):
+        groups.setdefault(key, []).append(k)
+    index = {key: np.array(rows) for key, rows in groups.items()}
+
+    def fn(grid: np.ndarray) -> np.ndarray:
+        data = backend.evaluate(grid)
+        out = np.empty(grid.shape)
+        for key, rows in index.items():
+            vals = _pick(data, names, key)[rows]
+            if key.startswith("angle."):
+                ref = refs[rows][:, None]
+                vals = np.where(np.isfinite(ref), vals + _TWO_PI * np.round((ref - vals) / _TWO_PI), vals)
+            out[rows] = vals
+        return out
+
+    return fn
+
+
+def _dedupe(events: list[Event], phi: np.ndarray) -> list[Event]:
+    """One event per place: over a full cycle 0° and 360° are the same crank position."""
+    full = abs(abs(phi[-1] - phi[0]) - _TWO_PI) < 1e-9
+    out: list[Event] = []
+    for e in sorted(events, key=lambda e: e.angle):
+        same = [
+            o
+            for o in out
+            if o.subject == e.subject
+            and (abs(o.angle - e.angle) < 1e-9 or (full and abs(abs(o.angle - e.angle) - _TWO_PI) < 1e-9))
+        ]
+        if not same:
+            out.append(e)
+    return out
+
+
+def _dead_centres(
+    backend: Any, comp: Compiled, phi: np.ndarray, data: dict[str, np.ndarray], ok: np.ndarray, names: dict[str, tuple[str, ...]]
+) -> tuple[tuple[Event, ...], list[tuple[str, str]]]:
+    """Where each output reverses: the sign change of its speed, root-found to rounding.
+
+    Closed form: a bracket zoom on the speed.  Newton: regula falsi (Illinois)
+    with a solve per iterate.
+    """
+    outputs = _outputs(comp, names, comp.layout.drives[0].link or "")
+    brackets: list[tuple[str, str, float, float, float, float]] = []  # name, key, lo, hi, v_lo, v_hi
+    for kind, name in outputs:
+        key = f"sliding.{name}" if kind == "slide" else f"omega.{name}"
+        v = _pick(data, names, key)
+        finite = v[np.isfinite(v)]
+        tiny = 1e-12 * (float(np.max(np.abs(finite))) if finite.size else 1.0)
+        sgn = np.where(np.abs(v) <= tiny, 0.0, np.sign(v))
+        for s, e in _runs(ok & np.isfinite(v)):
+            for k in range(s, e):
+                if sgn[k] == 0.0:  # on a grid angle: refine only if the neighbours bracket it
+                    if s < k < e - 1 and sgn[k - 1] * sgn[k + 1] < 0:
+                        brackets.append((name, key, phi[k - 1], phi[k + 1], v[k - 1], v[k + 1]))
+                    else:
+                        brackets.append((name, key, phi[k], phi[k], v[k], v[k]))
+                elif k + 1 < e and sgn[k] * sgn[k + 1] < 0:
+                    brackets.append((name, key, phi[k], phi[k + 1], v[k], v[k + 1]))
+    if not brackets:
+        return (), outputs
+    lo = np.array([b[2] for b in brackets], float)
+    hi = np.array([b[3] for b in brackets], float)
+    keys = [b[1] for b in brackets]
+    if isinstance(backend, _Closed):
+        roots, _ = _zoom(_refiner(backend, names, keys, np.full(len(keys), np.nan)), lo, hi, "root")
+    else:
+        roots = _illinois(
+            _refiner(backend, names, keys, np.full(len(keys), np.nan)),
+            lo,
+            hi,
+            np.array([b[4] for b in brackets]),
+            np.array([b[5] for b in brackets]),
+        )
+    pos_keys = [f"displacement.{b[0]}" if b[1].startswith("sliding") else f"angle.{b[0]}" for b in brackets]
+    at = _refiner(backend, names, pos_keys, np.full(len(keys), np.nan))(roots[:, None])[:, 0]
+    at = np.where([k.startswith("angle.") for k in pos_keys], np.mod(at, _TWO_PI), at)  # link angles in [0, 2π)
+    events = [Event("dead centre", float(r), b[0], float(x)) for r, x, b in zip(roots, at, brackets, strict=True)]
+    return tuple(_dedupe(events, phi)), outputs
+
+
+def _illinois(
+    fn: Callable[[np.ndarray], np.ndarray], a: np.ndarray, b: np.ndarray, fa: np.ndarray, fb: np.ndarray, iters: int = 12
+) -> np.ndarray:
+    """Regula falsi (Illinois) on K brackets at once: superlinear, a dozen solves each (Newton sweeps)."""
+    a, b, fa, fb = a.copy(), b.copy(), fa.copy(), fb.copy()
+    side = np.zeros(a.size)
+    for _ in range(iters):
+        with np.errstate(invalid="ignore", divide="ignore"):
+            c = np.where(fb != fa, b - fb * (b - a) / (fb - fa), a)
+        done = (np.abs(b - a) <= 1e-15 * np.maximum(np.abs(a), 1.0)) | (fa == 0) | (fb == 0)
+        if np.all(done):
+            break
+        fc = fn(c[:, None])[:, 0]
+        left = np.sign(fc) == np.sign(fa)
+        a, fa = np.where(left, c, a), np.where(left, fc, fa)
+        b, fb = np.where(left, b, c), np.where(left, fb, fc)
+        fb = np.where(left & (side == 1), fb / 2, fb)
+        fa = np.where(~left & (side == -1), fa / 2, fa)
+        side = np.where(left, 1, -1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(fb != fa, b - fb * (b - a) / (fb - fa), a)
+
+
+def _extremes(
+    backend: Any, phi: np.ndarray, data: dict[str, np.ndarray], ok: np.ndarray, names: dict[str, tuple[str, ...]], keys: Sequence[str]
+) -> tuple[Extreme, ...]:
+    """Grid extremes of every quantity, refined all at once (closed form) or by a parabola (Newton).
+
+    A quantity that does not vary (a piston's angle) or a link that turns
+    right round (its unwrapped angle only grows) has no extreme worth
+    reporting and is left out.
+    """
+    full = phi.size > 2 and abs(abs(phi[-1] - phi[0]) - _TWO_PI) < 1e-9 and bool(np.all(ok))
+    rows: list[tuple[str, str, int, float, float, float]] = []  # key, mode, k, lo, hi, grid value
+    for key in keys:
+        v = _pick(data, names, key)
+        valid = ok & np.isfinite(v)
+        if not np.any(valid):
+            continue
+        span = float(np.max(v[valid]) - np.min(v[valid]))
+        if span <= 1e-12 * max(float(np.max(np.abs(v[valid]))), 1e-300):
+            continue
+        if key.startswith("angle.") and span >= _TWO_PI - 1e-9:
+            continue
+        for mode in ("max", "min"):
+            vv = np.where(valid, v, -np.inf if mode == "max" else np.inf)
+            k = int(np.argmax(vv) if mode == "max" else np.argmin(vv))
+            lo = phi[k - 1] if k > 0 and valid[k - 1] else (phi[-2] - _TWO_PI * np.sign(phi[-1] - phi[0]) if full and k == 0 else phi[k])
+            hi = phi[k + 1] if k + 1 < phi.size and valid[k + 1] else (phi[1] + _TWO_PI * np.sign(phi[-1] - phi[0]) if full and k == phi.size - 1 else phi[k])
+            rows.append((key, mode, k, min(lo, hi), max(lo, hi), float(v[k])))
+    results: dict[tuple[str, str], tuple[float, float]] = {}
+    if rows and isinstance(backend, _Closed):
+        # minima are maxima of −v: one zoom refines every extreme of every quantity at once
+        sign = np.array([1.0 if r[1] == "max" else -1.0 for r in rows])
+        inner = _refiner(backend, names, [r[0] for r in rows], np.array([r[5] for r in rows]))
+        ang, val = _zoom(lambda g: sign[:, None] * inner(g), np.array([r[3] for r in rows]), np.array([r[4] for r in rows]), "max")
+        for r, sg, a, x in zip(rows, sign, ang, val, strict=True):
+            x = sg * x
+            better = (x >= r[5]) if r[1] == "max" else (x <= r[5])
+            results[(r[0], r[1])] = (float(a), float(x)) if better and math.isfinite(x) else (float(phi[r[2]]), r[5])
+    else:
+        for key, mode, k, _lo, _hi, val in rows:
+            results[(key, mode)] = _parabola(phi, _pick(data, names, key), k, val, full)
+    out = []
+    for key in dict.fromkeys(r[0] for r in rows):
+        (amax, vmax), (amin, vmin) = results[(key, "max")], results[(key, "min")]
+        if full:
+            amax, amin = _into(amax, phi), _into(amin, phi)
+        out.append(Extreme(key, quantity_unit(key), amax, vmax, amin, vmin))
+    return tuple(out)
+
+
+def _into(a: float, phi: np.ndarray) -> float:
+    """An angle of a full-cycle sweep brought into the swept range."""
+    lo, hi = min(phi[0], phi[-1]), max(phi[0], phi[-1])
+    while a < lo:
+        a += _TWO_PI
+    while a > hi:
+        a -= _TWO_PI
+    return a
+
+
+def _parabola(phi: np.ndarray, v: np.ndarray, k: int, val: float, full: bool) -> tuple[float, float]:
+    """Vertex of the parabola through the grid extreme and its neighbours (equal steps)."""
+    n = phi.size
+    if 0 < k < n - 1:
+        a, b, c = v[k - 1], v[k], v[k + 1]
+    elif full and n > 2:
+        a, b, c = (v[-2], v[k], v[1])
+    else:
+        return float(phi[k]), val
+    den = a - 2.0 * b + c
+    if not (np.isfinite(den) and den != 0.0):
+        return float(phi[k]), val
+    h = float(phi[1] - phi[0])
+    t = 0.5 * (a - c) / den
+    if abs(t) > 1.0:
+        return float(phi[k]), val
+    return float(phi[k] + t * h), float(b - 0.25 * (a - c) * t)
+
+
+def _time_ratio(phi: np.ndarray, ok: np.ndarray, dead: tuple[Event, ...], outputs: list[tuple[str, str]]) -> TimeRatio | None:
+    """Slow/fast stroke of the primary output over one full, gap-free revolution."""
+    if phi.size < 3 or not np.all(ok) or abs(phi[-1] - phi[0]) < _TWO_PI - 1e-9:
+        return None
+    order = [name for kind, name in outputs if kind == "slide"][-1:] or [name for kind, name in outputs][-1:]
+    if not order:
+        return None
+    out = order[0]
+    start = min(phi[0], phi[-1])
+    angles = sorted({round((e.angle - start) % _TWO_PI, 12) for e in dead if e.subject == out})
+    if len(angles) != 2:
+        return None
+    arc = angles[1] - angles[0]
+    slow, fast = max(arc, _TWO_PI - arc), min(arc, _TWO_PI - arc)
+    return TimeRatio(out, slow, fast) if fast > 0 else None

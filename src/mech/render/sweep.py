@@ -1,0 +1,242 @@
+"""Reports of ``mech sweep``: a rich summary, the series as CSV, JSON, and the plot wiring.
+
+The summary is what a student reads off a cycle: where the mechanism cannot
+be assembled, its toggles, the dead centres of its output, the quick-return
+time ratio and the extreme values with the crank angle where each occurs.
+The CSV holds the series themselves (one row per crank angle).  All three are
+made from the same :class:`~mech.kinematics.sweep.Sweep` and the same unit
+conversion, so they cannot disagree.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+from typing import Any
+
+import numpy as np
+
+from mech.kinematics.sweep import Sweep, default_quantities, quantity_unit
+from mech.options import OutputUnits
+from mech.units import format_unit, to_unit
+
+__all__ = ["sweep_animation_file", "sweep_csv", "sweep_json", "sweep_plot_file", "sweep_table"]
+
+
+def _out_unit(si: str, units: OutputUnits) -> str:
+    return {
+        "m": units.length,
+        "m/s": units.velocity,
+        "m/s^2": units.acceleration,
+        "rad": units.angle,
+        "rad/s": units.angular_velocity,
+        "rad/s^2": units.angular_acceleration,
+    }[si]
+
+
+def _conv(value: float | None, si: str, units: OutputUnits) -> float | None:
+    if value is None or not math.isfinite(value):
+        return None
+    return to_unit(value, _out_unit(si, units))
+
+
+def _deg(a: float) -> float:
+    return math.degrees(a)
+
+
+def quantities_of(sw: Sweep, asked: tuple[str, ...] = ()) -> list[str]:
+    """The quantities a report shows: those asked, else the sweep's defaults."""
+    if asked:
+        return list(asked)
+    from mech.kinematics.sweep import LEVELS
+
+    return default_quantities(sw.points, sw.links, sw.slides, LEVELS.index(sw.level), sw.drive)
+
+
+def sweep_json(sw: Sweep, *, units: OutputUnits, file: str | None = None, series: tuple[str, ...] = ()) -> dict[str, Any]:
+    """The sweep as a JSON-able dict (angles in degrees, values in ``units``).
+
+    Structure::
+
+        {"file", "mechanism", "level", "method", "drive", "steps",
+         "range": [from°, to°], "omega": rad/s | null, "alpha",
+         "units": {...},
+         "gaps": [{"from", "to", "miss" [length], "what"}],
+         "toggles": [{"angle", "what"}],
+         "dead_centres": [{"angle", "output", "position" [length or angle]}],
+         "time_ratio": {"output", "slow", "fast", "ratio"} | null,
+         "extremes": [{"quantity", "unit", "max", "max_angle", "min", "min_angle"}],
+         "max_condition": float, "notes": [str],
+         "series": {"angle": [...], key: [...]}   # only the keys asked with --quantity
+        }
+    """
+    out: dict[str, Any] = {
+        "file": file,
+        "mechanism": sw.mechanism,
+        "level": sw.level,
+        "method": sw.method,
+        "drive": sw.drive,
+        "steps": int(sw.angles.size),
+        "range": [_deg(float(sw.angles[0])), _deg(float(sw.angles[-1]))],
+        "omega": sw.omega,
+        "alpha": sw.alpha,
+        "units": {
+            "angle": "deg",
+            "length": units.length,
+            "velocity": units.velocity,
+            "acceleration": units.acceleration,
+            "angular_velocity": units.angular_velocity,
+            "angular_acceleration": units.angular_acceleration,
+        },
+        "gaps": [
+            {"from": _deg(g.start), "to": _deg(g.end), "miss": _conv(g.miss, "m", units), "what": g.what}
+            for g in sw.gaps
+        ],
+        "toggles": [{"angle": _deg(t.angle), "what": t.subject} for t in sw.toggles],
+        "dead_centres": [
+            {
+                "angle": _deg(e.angle),
+                "output": e.subject,
+                "position": _conv(e.value, "m" if e.subject in sw.slides else "rad", units),
+            }
+            for e in sw.dead_centres
+        ],
+        "time_ratio": None
+        if sw.time_ratio is None
+        else {
+            "output": sw.time_ratio.output,
+            "slow": _deg(sw.time_ratio.slow),
+            "fast": _deg(sw.time_ratio.fast),
+            "ratio": sw.time_ratio.ratio,
+        },
+        "extremes": [
+            {
+                "quantity": e.quantity,
+                "unit": _out_unit(e.unit, units),
+                "max": _conv(e.max_value, e.unit, units),
+                "max_angle": _deg(e.max_angle),
+                "min": _conv(e.min_value, e.unit, units),
+                "min_angle": _deg(e.min_angle),
+            }
+            for e in sw.extremes
+        ],
+        "max_condition": sw.max_condition,
+        "notes": list(sw.notes),
+    }
+    if series:
+        out["series"] = {"angle": [_deg(a) for a in sw.angles.tolist()]}
+        for key in series:
+            si = quantity_unit(key)
+            out["series"][key] = [_conv(v, si, units) for v in sw.series(key).tolist()]
+    return out
+
+
+def sweep_csv(sw: Sweep, *, units: OutputUnits, quantities: tuple[str, ...] = ()) -> str:
+    """The series: ``angle`` (deg) then one column per quantity, named ``key [unit]``; empty cells where unassembled."""
+    keys = quantities_of(sw, quantities)
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["angle [deg]"] + [f"{k} [{_out_unit(quantity_unit(k), units)}]" for k in keys])
+    cols = []
+    for k in keys:
+        si = quantity_unit(k)
+        factor = to_unit(1.0, _out_unit(si, units))
+        cols.append(np.asarray(sw.series(k)) * factor)
+    for i, a in enumerate(sw.angles.tolist()):
+        w.writerow([repr(round(_deg(a), 12))] + ["" if not np.isfinite(c[i]) else repr(float(c[i])) for c in cols])
+    return buf.getvalue()
+
+
+def sweep_table(sw: Sweep, console: Any, *, units: OutputUnits) -> None:
+    """The summary for people: gaps, toggles, dead centres, time ratio, extremes, notes."""
+    from rich.table import Table
+
+    from mech.render.console import table_box
+
+    lo, hi = _deg(float(sw.angles[0])), _deg(float(sw.angles[-1]))
+    console.print(f"[bold]{sw.mechanism}[/bold]")
+    speed = "" if sw.omega is None else f", ω = {sw.omega:.6g} rad/s"
+    console.print(
+        f"  sweep of {sw.drive} from {lo:g}° to {hi:g}° in {sw.angles.size - 1} steps ({sw.level}{speed}); "
+        f"{sw.method}"
+    )
+    if sw.gaps:
+        for g in sw.gaps:
+            miss = _conv(g.miss, "m", units)
+            gap = f", misses by {miss:.4g} {format_unit(units.length)}" if miss is not None else ""
+            console.print(f"  cannot be assembled from {_deg(g.start):.6f}° to {_deg(g.end):.6f}°: {g.what}{gap}")
+    else:
+        console.print("  assembled at every step")
+    for t in sw.toggles:
+        console.print(f"  toggle at {_deg(t.angle):.9f}°: {t.subject}")
+    for e in sw.dead_centres:
+        si = "m" if e.subject in sw.slides else "rad"
+        v = _conv(e.value, si, units)
+        unit = format_unit(_out_unit(si, units))
+        word = "at" if e.subject in sw.slides else "angle"
+        at = f" ({word} {v:.6g} {unit})" if v is not None else ""
+        console.print(f"  dead centre of {e.subject} at {_deg(e.angle):.6f}°{at}")
+    if sw.time_ratio is not None:
+        tr = sw.time_ratio
+        console.print(
+            f"  time ratio ({tr.output}): slow stroke {_deg(tr.slow):.4f}° / fast stroke {_deg(tr.fast):.4f}° "
+            f"of crank = {tr.ratio:.6g}"
+        )
+    cond = sw.max_condition
+    if math.isfinite(cond) and cond > 1e3:
+        console.print(f"  [yellow]largest condition number {cond:.3g}: results near it lose digits[/yellow]")
+    if sw.extremes:
+        table = Table(box=table_box(console), show_edge=False, pad_edge=False)
+        for name, justify in (("quantity", "left"), ("max", "right"), ("at", "right"), ("min", "right"), ("at", "right"), ("unit", "left")):
+            table.add_column(name, justify=justify)  # type: ignore[arg-type]
+        for e in sw.extremes:
+            unit = _out_unit(e.unit, units)
+            mx, mn = _conv(e.max_value, e.unit, units), _conv(e.min_value, e.unit, units)
+            table.add_row(
+                e.quantity,
+                f"{mx:.6g}" if mx is not None else "–",
+                f"{_deg(e.max_angle):.4f}°",
+                f"{mn:.6g}" if mn is not None else "–",
+                f"{_deg(e.min_angle):.4f}°",
+                format_unit(unit),
+            )
+        console.print()
+        console.print(table)
+    for note in sw.notes:
+        console.print(f"  note: {note}")
+
+
+def sweep_plot_file(path: str, sw: Sweep, *, units: OutputUnits, quantities: tuple[str, ...] = ()) -> None:
+    """A PNG of the asked quantities (default: ω's and speeds, else angles) against crank angle."""
+    from mech.draw.plot import Series, sweep_plot
+
+    keys = list(quantities) or [k for k in quantities_of(sw) if k.split(".")[0] in ("omega", "velocity", "sliding")]
+    keys = keys or quantities_of(sw)
+    series = []
+    for k in keys:
+        unit = _out_unit(quantity_unit(k), units)
+        factor = to_unit(1.0, unit)
+        series.append(Series(k, format_unit(unit), (np.asarray(sw.series(k)) * factor).tolist()))
+    sweep_plot(
+        path,
+        [_deg(a) for a in sw.angles.tolist()],
+        series,
+        dead_centres=[_deg(e.angle) for e in sw.dead_centres],
+        title=sw.mechanism,
+    )
+
+
+def sweep_animation_file(path: str, mech: Any, sw: Sweep, *, frames: int = 72) -> None:
+    """An animated GIF of the positions, about ``frames`` assembled steps of the sweep."""
+    from mech.draw.plot import animate
+    from mech.kinematics import solve
+
+    kin = solve(mech, "position")
+    ok = np.flatnonzero(sw.assembled)
+    pick = ok[:: max(1, ok.size // frames)] if ok.size else ok
+    shots = [
+        {name: (float(sw.positions[i, k, 0]), float(sw.positions[i, k, 1])) for k, name in enumerate(sw.points)}
+        for i in pick
+    ]
+    animate(path, mech, kin, shots)
