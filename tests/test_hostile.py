@@ -12,9 +12,8 @@ Expected behaviour comes from cli.md / DESIGN.md:
 
 Expected numbers are derived here in closed form, never taken from mech.
 
-Tests marked ``# CURRENTLY FAILS`` document a defect found in the audit (they
-are left failing on purpose; no xfail, so a fix turns them green).  All other
-tests pass today and guard regressions on hostile inputs.
+Tests marked ``# Audit defect, fixed`` pinned a defect the audit found; the comment
+says what used to happen.  The others guard hostile inputs that always held.
 """
 
 from __future__ import annotations
@@ -382,7 +381,7 @@ drive: {{link: crank, angle: {angle}, omega: 1}}
 
 
 def test_drive_angle_opposite_to_the_drawing_is_an_error(yaml_file):
-    # CURRENTLY FAILS: the drawing puts B at 90 deg from A; the file says the crank is at 270 deg.
+    # Audit defect, fixed: the drawing puts B at 90 deg from A; the file says the crank is at 270 deg.
     # DESIGN.md: drive.angle given with a drawing "must agree with it (else an error that says by
     # how much)".  mech checks only the *line* of the crank (n . (B - A) = 0), so 270 == 90 to it:
     # exit 0, the header says "at 270 deg" while the table shows the crank at 90 deg.
@@ -393,7 +392,7 @@ def test_drive_angle_opposite_to_the_drawing_is_an_error(yaml_file):
 
 
 def test_drive_angle_opposite_to_drawing_then_angle_override_lands_on_wrong_side(yaml_file):
-    # CURRENTLY FAILS: same file, `--angle 100` puts B at 280 deg (silently wrong position) because
+    # Audit defect, fixed: same file, `--angle 100` puts B at 280 deg (silently wrong position) because
     # the continuation starts from "270 deg" while the drawing is at 90 deg.
     f = yaml_file(DRAWN_FOUR_BAR.format(ab=1, angle=270))
     p = mech("position", "--json", str(f), "--angle", "100")
@@ -424,7 +423,7 @@ drive: {{link: g1, rpm: 600}}
 
 @pytest.mark.parametrize("size", ["teeth: [20, 40], module: 5 mm", "radii: [0.05, 0.1]"])
 def test_gear_centre_distance_that_contradicts_pitch_radii_is_refused(yaml_file, size):
-    # CURRENTLY FAILS: pitch radii 50 + 100 mm need centres 150 mm apart; the file puts them 300 mm
+    # Audit defect, fixed: pitch radii 50 + 100 mm need centres 150 mm apart; the file puts them 300 mm
     # apart.  mech accepts it (exit 0) and reports the pitch point M twice with different
     # velocities (3.14 m/s on g1, 7.85 m/s on g2): the teeth would slip.  Must be an error.
     f = yaml_file(GEARS.format(x2=0.3, size=size))
@@ -433,7 +432,7 @@ def test_gear_centre_distance_that_contradicts_pitch_radii_is_refused(yaml_file,
 
 
 def test_gear_contradiction_gives_icentres_traceback(yaml_file):
-    # CURRENTLY FAILS: same file: `mech icentres` dies with ICentreDisagreement (a traceback) on
+    # Audit defect, fixed: same file: `mech icentres` dies with ICentreDisagreement (a traceback) on
     # what is bad input, not a bug in the I-centre code.
     f = yaml_file(GEARS.format(x2=0.3, size="radii: [0.05, 0.1]"))
     assert_bad_input(mech("icentres", str(f)), f)
@@ -452,7 +451,7 @@ def test_consistent_gears_pitch_point_moves_alike_on_both(yaml_file):
 
 
 def test_mechanism_far_from_origin_gives_wrong_velocity(yaml_file):
-    # CURRENTLY FAILS: the same slider crank drawn with O at (1e12, 1e12) m.  The answer is
+    # Audit defect, fixed: the same slider crank drawn with O at (1e12, 1e12) m.  The answer is
     # translation-invariant (|vB| = w r = 1 m/s at 90 deg) but mech prints 0.99976 m/s (1e-4 off;
     # 6% off at 1e14).  Solve relative to a local origin, or refuse.
     f = yaml_file(slider_crank(0.1, 0.4, 90, 10, origin=1e12))
@@ -466,7 +465,7 @@ def test_mechanism_far_from_origin_gives_wrong_velocity(yaml_file):
 
 
 def test_huge_but_finite_mechanism_prints_nan_with_exit_0(yaml_file):
-    # CURRENTLY FAILS: lengths 1e307 m: every velocity is NaN (printed "nan", null in JSON) with
+    # Audit defect, fixed: lengths 1e307 m: every velocity is NaN (printed "nan", null in JSON) with
     # exit status 0 and a numpy RuntimeWarning.  The true slider speed w r = 1e308 is finite.
     f = yaml_file(slider_crank(1e307, 4e307, 90, 10, near_x=5e307))
     p = mech("velocity", "--json", str(f))
@@ -480,7 +479,7 @@ def test_huge_but_finite_mechanism_prints_nan_with_exit_0(yaml_file):
 
 
 def test_angle_override_huge_degrees_reduced_exactly(yaml_file):
-    # CURRENTLY FAILS (low severity): 1e300 deg is an exact multiple of 360 (math.fmod gives 0),
+    # Audit defect, fixed (was low severity): 1e300 deg is an exact multiple of 360 (math.fmod gives 0),
     # so A must be at (r, 0); mech converts to radians first and lands at about 266 deg.
     assert math.fmod(1e300, 360.0) == 0.0
     f = yaml_file(slider_crank(0.1, 0.4, 90, 10))
@@ -493,7 +492,7 @@ def test_angle_override_huge_degrees_reduced_exactly(yaml_file):
 
 
 def test_velocity_directions_are_in_0_360(yaml_file):
-    # CURRENTLY FAILS (cosmetic): a velocity along +x with a -1e-15 y component prints direction
+    # Audit defect, fixed (was cosmetic): a velocity along +x with a -1e-15 y component prints direction
     # 360.0 (e.g. mechanisms/slider_crank.yaml, point B); angles are reported in [0, 360).
     f = yaml_file(
         """\
@@ -519,7 +518,7 @@ drive: {link: crank, angle: 135, rpm: 300, direction: cw}
 
 
 def test_near_toggle_velocity_accuracy_after_continuation(yaml_file):
-    # CURRENTLY FAILS: AB = BC = CD = 1, AD = 2 drawn at 60 deg, asked at 75.5224878 deg (1.4e-8 deg
+    # Audit defect, fixed: AB = BC = CD = 1, AD = 2 drawn at 60 deg, asked at 75.5224878 deg (1.4e-8 deg
     # short of the toggle; mech does not call it singular).  Closed form: |w_coupler| = 313962.3;
     # mech prints 313949.0 (4.2e-5 off) with the default --tol 1e-12 (--tol 1e-15 gives 1.7e-7).
     # solve.py promises about 1e-6 below its singular threshold: refuse or be within 1e-6.
@@ -568,7 +567,7 @@ drive: {link: crank, angle: 60, omega: 10}
     [("", '"1e308 km"'), ("units: {length: km}\n", "1e306"), ("", '"1e308 ft"')],
 )
 def test_length_that_overflows_to_infinity_is_refused(yaml_file, units, length):
-    # CURRENTLY FAILS: parse_number refuses inf, but the unit factor is applied afterwards, so
+    # Audit defect, fixed: parse_number refuses inf, but the unit factor is applied afterwards, so
     # "1e308 km" = inf m gets in; `mech velocity` then dies with LinAlgError (a traceback).
     # cli.md: "NaN and infinity are refused."
     text = units + slider_crank(0.1, 0.4, 90, 10).replace("AB: 0.4", f"AB: {length}")
@@ -582,14 +581,14 @@ def test_length_that_overflows_to_infinity_is_refused(yaml_file, units, length):
 
 
 def test_omega_overflowing_to_infinity_is_refused(yaml_file):
-    # CURRENTLY FAILS: omega "1e308 rps" = 6.3e308 rad/s = inf: accepted, velocities print nan, exit 0.
+    # Audit defect, fixed: omega "1e308 rps" = 6.3e308 rad/s = inf: accepted, velocities print nan, exit 0.
     f = yaml_file(slider_crank(0.1, 0.4, 90, 10).replace("omega: 10", 'omega: "1e308 rps"'))
     assert_bad_input(mech("velocity", str(f)), f)
 
 
 @pytest.mark.parametrize("where", ["file", "option"])
 def test_huge_finite_omega_no_traceback(yaml_file, where):
-    # CURRENTLY FAILS: omega 1e200 (finite): OverflowError in solve._result (omega_ref**2) even at
+    # Audit defect, fixed: omega 1e200 (finite): OverflowError in solve._result (omega_ref**2) even at
     # velocity level -> traceback.  Velocities (1e199 m/s) are representable: print them or refuse.
     if where == "file":
         f = yaml_file(slider_crank(0.1, 0.4, 90, 10).replace("omega: 10", "omega: 1e200"))
@@ -604,7 +603,7 @@ def test_huge_finite_omega_no_traceback(yaml_file, where):
 
 
 def test_deeply_nested_yaml_is_an_error_not_a_segfault(yaml_file):
-    # CURRENTLY FAILS (severe): 50 000 nested brackets (100 kB) segfault the C YAML composer:
+    # Audit defect, fixed (was severe): 50 000 nested brackets (100 kB) segfault the C YAML composer:
     # exit -11 / 139, no message at all.
     f = yaml_file(
         "links: [frame, crank]\njoints:\n  A: {type: revolute, links: [frame, crank]}\n"
@@ -617,7 +616,7 @@ def test_deeply_nested_yaml_is_an_error_not_a_segfault(yaml_file):
 
 @pytest.mark.parametrize("jobs", ["1", "2"])
 def test_check_batch_survives_a_deeply_nested_file(tmp_path, jobs):
-    # CURRENTLY FAILS (severe): with -j 1 the whole `mech check` segfaults (exit 139, no report);
+    # Audit defect, fixed (was severe): with -j 1 the whole `mech check` segfaults (exit 139, no report);
     # with -j 2 it dies with BrokenProcessPool (a traceback, no report).  cli.md: one bad file is
     # one error row; the others still run.
     (tmp_path / "a.yaml").write_text(
@@ -637,7 +636,7 @@ def test_check_batch_survives_a_deeply_nested_file(tmp_path, jobs):
 
 
 def test_cam_without_contact_point_is_located_error_not_traceback(yaml_file):
-    # CURRENTLY FAILS: a cam joint with no `at` -> KeyError 'T' in constraints.build_system.
+    # Audit defect, fixed: a cam joint with no `at` -> KeyError 'T' in constraints.build_system.
     f = yaml_file(
         """\
 links: [frame, cam, follower]
@@ -654,7 +653,7 @@ drive: {link: cam, angle: 0, rpm: 60}
 
 
 def test_draw_to_missing_folder_is_exit_2_not_traceback(yaml_file, tmp_path):
-    # CURRENTLY FAILS: FileNotFoundError traceback from draw/__init__.save; `check --junit` to the
+    # Audit defect, fixed: FileNotFoundError traceback from draw/__init__.save; `check --junit` to the
     # same place is handled (exit 2 "cannot write"), draw is not.
     f = yaml_file(slider_crank())
     p = mech("draw", str(f), "-o", str(tmp_path / "no" / "such" / "x.svg"))
@@ -663,7 +662,7 @@ def test_draw_to_missing_folder_is_exit_2_not_traceback(yaml_file, tmp_path):
 
 
 def test_answer_icentre_of_a_link_with_itself_is_a_located_input_error(yaml_file):
-    # CURRENTLY FAILS: `icentre.crank.crank` passes the loader (mech dof exits 0) and mech check
+    # Audit defect, fixed: `icentre.crank.crank` passes the loader (mech dof exits 0) and mech check
     # then reports "internal error in mech (a bug, please report it): KeyError: 'no I-centre I22'".
     f = yaml_file(slider_crank(extra="answers:\n  icentre.crank.crank: [0, 0]\n"))
     assert_bad_input(mech("dof", str(f)), f)
@@ -676,7 +675,7 @@ def test_answer_icentre_of_a_link_with_itself_is_a_located_input_error(yaml_file
 # 5. Defects: solver refusals without file:line:column or hint
 # =========================================================================================
 def test_unreachable_offset_path_error_is_located_with_hint(yaml_file):
-    # CURRENTLY FAILS: "error: cannot assemble m.yaml: B cannot reach its path: ..." has no
+    # Audit defect, fixed: "error: cannot assemble m.yaml: B cannot reach its path: ..." has no
     # line:column and no hint (cli.md: every error is file:line:column with a hint).
     f = yaml_file(slider_crank(0.1, 0.4, 90, 10, offset=1.0))
     p = mech("velocity", str(f))
@@ -685,7 +684,7 @@ def test_unreachable_offset_path_error_is_located_with_hint(yaml_file):
 
 
 def test_length_disagreeing_with_drawing_error_is_located(yaml_file):
-    # CURRENTLY FAILS: "error: length AB = 1.5 m but the drawing gives 1 m (off by 0.5 m)" names
+    # Audit defect, fixed: "error: length AB = 1.5 m but the drawing gives 1 m (off by 0.5 m)" names
     # neither the file nor the line of `AB` in lengths.
     f = yaml_file(DRAWN_FOUR_BAR.format(ab=1.5, angle=90))
     p = mech("velocity", str(f))
