@@ -2,6 +2,9 @@
 
     python tests/benchmarks/bench_startup.py [--repeat 21]
 
+Run it with the interpreter of a fresh virtual environment (``.venv/bin/python``):
+packages with ``.pth`` start-up hooks in a busy system Python add their own cost.
+
 Compares bare Python, ``import mech.cli``, and whole ``mech dof`` / ``mech classify``
 runs on a shipped example, and (for contrast) ``import numpy`` and ``import rich``,
 which ``mech dof`` does not pay for.  Medians, because the machine is shared.
@@ -44,11 +47,18 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--repeat", type=int, default=21)
     args = parser.parse_args()
-    base = statistics.median(measure(CASES[0][1], args.repeat))
     print(f"cold start, median of {args.repeat} runs; Python {platform.python_version()}, {platform.machine()}")
+    print(f"interpreter: {sys.executable}")
     print(f"{'case':40} {'median ms':>10} {'min ms':>8} {'× bare python':>14}")
-    for label, argv in CASES:
-        t = measure(argv, args.repeat)
+    # Interleave the cases run by run, so that a burst of load on a shared machine
+    # hits every case alike instead of the one that happened to be running.
+    times: dict[str, list[float]] = {label: [] for label, _ in CASES}
+    for _ in range(args.repeat):
+        for label, argv in CASES:
+            times[label] += measure(argv, 1)
+    base = statistics.median(times[CASES[0][0]])
+    for label, _ in CASES:
+        t = times[label]
         med = statistics.median(t)
         print(f"{label:40} {med * 1e3:10.1f} {min(t) * 1e3:8.1f} {med / base:14.2f}")
 
