@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 import sys
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from enum import IntEnum
 from functools import wraps
 from typing import Any, TypeVar
@@ -17,7 +18,8 @@ from typing import Any, TypeVar
 import click
 
 from mech import __version__
-from mech.errors import MechError
+from mech.errors import InputError, MechError
+from mech.options import OutputUnits, SolveOptions
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -186,6 +188,7 @@ def classify_command(file: str, as_json: bool) -> None:
 
 @cli.command()
 @click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True), help="Write to a file.")
+@handles_errors
 def schema(output: str | None) -> None:
     """Print the JSON Schema (draft-07) of the mechanism file format.
 
@@ -196,41 +199,86 @@ def schema(output: str | None) -> None:
 
     text = dumps(SCHEMA)
     if output:
-        with open(output, "w", encoding="utf-8") as f:
-            f.write(text + "\n")
+        _write(output, text + "\n")
     else:
         click.echo(text)
 
 
 # -- kinematics -----------------------------------------------------------------------
-def kinematic_options(fn: F) -> F:
-    """Options shared by the commands that solve the mechanism."""
-    decorators = [
-        file_argument,
-        click.option("--rpm", type=float, help="Crank speed in rev/min (overrides the file)."),
-        click.option("--omega", type=float, help="Crank speed in rad/s (overrides the file)."),
-        click.option("--angle", type=float, help="Crank angle in degrees, counter-clockwise from +x."),
-        click.option("--direction", type=click.Choice(["cw", "ccw"]), help="Sense of the crank's rotation."),
-        click.option(
-            "--tol",
-            type=float,
-            default=1e-12,
-            show_default=True,
-            help="Newton tolerance on the loop closure, relative to the mechanism's size.",
-        ),
-        click.option(
-            "--units",
-            "unit_system",
-            type=click.Choice(["si", "mm", "cm"]),
-            default="si",
-            show_default=True,
-            help="Print lengths and speeds in m, mm or cm (angles always in deg, rad/s).",
-        ),
-        json_option,
-    ]
-    for decorator in reversed(decorators):
-        fn = decorator(fn)
-    return fn
+@dataclass(frozen=True, slots=True)
+class Request:
+    """What a solving command was asked, folded from its options once (STYLE: one value)."""
+
+    file: str
+    options: SolveOptions
+    units: OutputUnits
+    as_json: bool
+
+    @property
+    def speed_given(self) -> bool:
+        """True when --rpm or --omega set the drive's speed."""
+        return self.options.omega is not None
+
+
+_KINEMATIC_OPTIONS = (
+    file_argument,
+    click.option("--rpm", type=float, help="Crank speed in rev/min (overrides the file)."),
+    click.option("--omega", type=float, help="Crank speed in rad/s (overrides the file)."),
+    click.option("--angle", type=float, help="Crank angle in degrees, counter-clockwise from +x."),
+    click.option("--direction", type=click.Choice(["cw", "ccw"]), help="Sense of the crank's rotation."),
+    click.option(
+        "--tol",
+        type=float,
+        default=1e-12,
+        show_default=True,
+        help="Newton tolerance on the loop closure, relative to the mechanism's size.",
+    ),
+    click.option(
+        "--units",
+        "unit_system",
+        type=click.Choice(["si", "mm", "cm"]),
+        default="si",
+        show_default=True,
+        help="Print lengths and speeds in m, mm or cm (angles always in deg, rad/s).",
+    ),
+    json_option,
+)
+
+_ALPHA_OPTION = click.option(
+    "--alpha", type=float, help="Crank angular acceleration in rad/s², counter-clockwise positive."
+)
+
+
+def kinematic_command(*, alpha: bool = False) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """The options shared by the commands that solve the mechanism, folded into a :class:`Request`.
+
+    The command function receives ``request`` first and its own options by
+    name; errors, in the options or anywhere below, are reported (exit 2).
+    """
+
+    def decorate(fn: Callable[..., Any]) -> Callable[..., Any]:
+        @wraps(fn)
+        @handles_errors
+        def command(
+            file: str,
+            rpm: float | None,
+            omega: float | None,
+            angle: float | None,
+            direction: str | None,
+            tol: float,
+            unit_system: str,
+            as_json: bool,
+            alpha: float | None = None,
+            **own: Any,
+        ) -> Any:
+            options = _solve_options(rpm, omega, angle, direction, tol, alpha)
+            return fn(Request(file, options, OutputUnits.named(unit_system), as_json), **own)
+
+        for decorator in reversed((*_KINEMATIC_OPTIONS, *((_ALPHA_OPTION,) if alpha else ()))):
+            command = decorator(command)
+        return command
+
+    return decorate
 
 
 def _solve_options(
@@ -240,10 +288,8 @@ def _solve_options(
     direction: str | None,
     tol: float,
     alpha: float | None = None,
-) -> Any:
-    from mech.errors import InputError
-    from mech.options import SolveOptions
-
+) -> SolveOptions:
+    """Command-line speeds and angles (rpm, degrees) → one validated :class:`SolveOptions`."""
     if rpm is not None and omega is not None:
         raise InputError("give --rpm or --omega, not both")
     speed = None
@@ -266,105 +312,55 @@ def _solve_options(
             tol=tol,
         )
     except ValueError as exc:
-        raise InputError(str(exc)) from None
+        raise InputError(f"{exc}") from None
 
 
-def _kinematics(file: str, level: str, options: Any, unit_system: str, as_json: bool) -> None:
+def _kinematics(request: Request, level: str) -> None:
     from mech.kinematics import solve
     from mech.loader import load
-    from mech.options import OutputUnits
 
-    kin = solve(load(file), level=level, options=options)
-    units = OutputUnits.named(unit_system)
-    if as_json:
+    kin = solve(load(request.file), level=level, options=request.options)
+    if request.as_json:
         from mech.render.jsonout import dumps
         from mech.render.kinematics import kinematics_json
 
-        click.echo(dumps(kinematics_json(kin, units=units)))
+        click.echo(dumps(kinematics_json(kin, units=request.units)))
         return
     from mech.render.console import stdout
     from mech.render.kinematics import kinematics_table
 
-    kinematics_table(kin, stdout(), units=units)
+    kinematics_table(kin, stdout(), units=request.units)
 
 
 @cli.command()
-@kinematic_options
-@handles_errors
-def position(
-    file: str,
-    rpm: float | None,
-    omega: float | None,
-    angle: float | None,
-    direction: str | None,
-    tol: float,
-    unit_system: str,
-    as_json: bool,
-) -> None:
+@kinematic_command()
+def position(request: Request) -> None:
     """Solve the positions of every joint and point at the crank angle."""
-    _kinematics(file, "position", _solve_options(rpm, omega, angle, direction, tol), unit_system, as_json)
+    _kinematics(request, "position")
 
 
 @cli.command()
-@kinematic_options
-@handles_errors
-def velocity(
-    file: str,
-    rpm: float | None,
-    omega: float | None,
-    angle: float | None,
-    direction: str | None,
-    tol: float,
-    unit_system: str,
-    as_json: bool,
-) -> None:
+@kinematic_command()
+def velocity(request: Request) -> None:
     """Velocities of every point and link at the crank angle and speed.
 
     Absolute velocities of joints and points, angular velocities of links,
     relative velocities along links (the velocity polygon's ab, bc …), sliding
     velocities in slides and slots, and rubbing velocities at pins with a radius.
     """
-    _kinematics(file, "velocity", _solve_options(rpm, omega, angle, direction, tol), unit_system, as_json)
+    _kinematics(request, "velocity")
 
 
 @cli.command()
-@kinematic_options
-@click.option("--alpha", type=float, help="Crank angular acceleration in rad/s², counter-clockwise positive.")
-@handles_errors
-def acceleration(
-    file: str,
-    rpm: float | None,
-    omega: float | None,
-    angle: float | None,
-    direction: str | None,
-    tol: float,
-    unit_system: str,
-    as_json: bool,
-    alpha: float | None,
-) -> None:
+@kinematic_command(alpha=True)
+def acceleration(request: Request) -> None:
     """Accelerations (normal, tangential, Coriolis) of every point and link."""
-    if alpha is not None and not math.isfinite(alpha):
-        from mech.errors import InputError
-
-        raise InputError("--alpha must be a finite number")
-    _kinematics(
-        file, "acceleration", _solve_options(rpm, omega, angle, direction, tol, alpha), unit_system, as_json
-    )
+    _kinematics(request, "acceleration")
 
 
 @cli.command()
-@kinematic_options
-@handles_errors
-def icentres(
-    file: str,
-    rpm: float | None,
-    omega: float | None,
-    angle: float | None,
-    direction: str | None,
-    tol: float,
-    unit_system: str,
-    as_json: bool,
-) -> None:
+@kinematic_command()
+def icentres(request: Request) -> None:
     """Locate all n(n−1)/2 instantaneous centres at the crank angle.
 
     Primary I-centres by inspection (pins, sliders, rolling contacts), the
@@ -374,30 +370,32 @@ def icentres(
     from mech.icentres import locate
     from mech.kinematics import solve
     from mech.loader import load
-    from mech.options import OutputUnits
 
-    mechanism = load(file)
-    kin = solve(mechanism, level="velocity", options=_solve_options(rpm, omega, angle, direction, tol))
-    result = locate(mechanism, kin)
-    units = OutputUnits.named(unit_system)
-    if as_json:
+    mechanism = load(request.file)
+    result = locate(mechanism, solve(mechanism, level="velocity", options=request.options))
+    if request.as_json:
         from mech.render.icentres import icentres_dict
         from mech.render.jsonout import dumps
 
-        click.echo(dumps(icentres_dict(result, units=units, file=file)))
+        click.echo(dumps(icentres_dict(result, units=request.units, file=request.file)))
         return
     from mech.render.console import stdout
     from mech.render.icentres import icentres_table
 
-    icentres_table(result, stdout(), units=units)
+    icentres_table(result, stdout(), units=request.units)
 
 
 @cli.command(name="sweep")
-@kinematic_options
-@click.option("--from", "start", type=float, default=0.0, show_default=True, help="First crank angle, degrees.")
+@click.option(
+    "--from", "start", type=float, default=0.0, show_default=True, help="First crank angle, degrees."
+)
 @click.option("--to", "stop", type=float, default=360.0, show_default=True, help="Last crank angle, degrees.")
 @click.option(
-    "--steps", type=click.IntRange(min=1, max=10_000_000), default=360, show_default=True, help="Steps (angles − 1)."
+    "--steps",
+    type=click.IntRange(min=1, max=10_000_000),
+    default=360,
+    show_default=True,
+    help="Steps (angles − 1).",
 )
 @click.option(
     "--level",
@@ -419,18 +417,21 @@ def icentres(
     show_default=True,
     help="Closed-form dyads where the chain decomposes (auto), only them, or Newton with --tol.",
 )
-@click.option("--plot", "plot_path", type=click.Path(dir_okay=False), help="Plot the quantities to a PNG (needs matplotlib).")
-@click.option("--animate", "gif_path", type=click.Path(dir_okay=False), help="Animate the cycle to a GIF (needs matplotlib).")
-@handles_errors
+@click.option(
+    "--plot",
+    "plot_path",
+    type=click.Path(dir_okay=False),
+    help="Plot the quantities to a PNG (needs matplotlib).",
+)
+@click.option(
+    "--animate",
+    "gif_path",
+    type=click.Path(dir_okay=False),
+    help="Animate the cycle to a GIF (needs matplotlib).",
+)
+@kinematic_command()
 def sweep_command(
-    file: str,
-    rpm: float | None,
-    omega: float | None,
-    angle: float | None,
-    direction: str | None,
-    tol: float,
-    unit_system: str,
-    as_json: bool,
+    request: Request,
     start: float,
     stop: float,
     steps: int,
@@ -447,9 +448,7 @@ def sweep_command(
     centres are refined between steps, not read off the grid; for a
     quick-return mechanism the time ratio of the strokes is given.
     """
-    from mech.errors import InputError
-
-    if angle is not None:
+    if request.options.angle is not None:
         raise InputError("--angle does not apply to a sweep", hint="give the range with --from and --to")
     if not (math.isfinite(start) and math.isfinite(stop)) or start == stop:
         raise InputError("--from and --to must be two different finite angles (degrees)")
@@ -461,16 +460,15 @@ def sweep_command(
 
     from mech.kinematics import sweep
     from mech.loader import load
-    from mech.options import OutputUnits
 
-    options = _solve_options(rpm, omega, None, direction, tol).with_(method=method)
-    mechanism = load(file)
+    options = request.options.with_(method=method)
+    mechanism = load(request.file)
     if level is None:
-        has_speed = omega is not None or rpm is not None or any(d.omega is not None for d in mechanism.drives)
+        has_speed = request.speed_given or any(d.omega is not None for d in mechanism.drives)
         level = "velocity" if has_speed else "position"
     angles = np.radians(np.linspace(start, stop, steps + 1))
     result = sweep(mechanism, angles, level=level, options=options, quantities=quantities or None)
-    units = OutputUnits.named(unit_system)
+    units = request.units
     from mech.render import sweep as render
 
     if csv_path:
@@ -479,10 +477,10 @@ def sweep_command(
         render.sweep_plot_file(plot_path, result, units=units, quantities=quantities)
     if gif_path:
         render.sweep_animation_file(gif_path, mechanism, result)
-    if as_json:
+    if request.as_json:
         from mech.render.jsonout import dumps
 
-        click.echo(dumps(render.sweep_json(result, units=units, file=file, series=quantities)))
+        click.echo(dumps(render.sweep_json(result, units=units, file=request.file, series=quantities)))
         return
     from mech.render.console import stdout
 
@@ -505,12 +503,17 @@ def sweep_command(
     default=None,
     help="Worker processes (default: one per CPU core; 1: no pool).",
 )
-@click.option("--junit", type=click.Path(dir_okay=False), help="Also write JUnit XML (one testcase per answer).")
+@click.option(
+    "--junit", type=click.Path(dir_okay=False), help="Also write JUnit XML (one testcase per answer)."
+)
 @click.option(
     "--gradescope", type=click.Path(dir_okay=False), help="Also write a Gradescope autograder results.json."
 )
 @click.option(
-    "--csv", "csv_path", type=click.Path(dir_okay=False), help="Also write a CSV gradebook (student, problem …)."
+    "--csv",
+    "csv_path",
+    type=click.Path(dir_okay=False),
+    help="Also write a CSV gradebook (student, problem …).",
 )
 @click.option("-q", "--quiet", is_flag=True, help="List only answers that failed or could not be computed.")
 @json_option
@@ -567,7 +570,7 @@ def check_command(
 
 def _write(path: str, text: str) -> None:
     """Write a report file; a path that cannot be written is bad input (exit 2)."""
-    from mech.errors import InputError, Where
+    from mech.errors import Where
 
     try:
         with open(path, "w", encoding="utf-8", newline="") as f:
@@ -578,52 +581,39 @@ def _write(path: str, text: str) -> None:
 
 # -- drawings -------------------------------------------------------------------------
 @cli.command(name="draw")
-@kinematic_options
 @click.option(
-    "-o", "--output", required=True, type=click.Path(dir_okay=False), help="The drawing to write: .svg or .png."
+    "-o",
+    "--output",
+    required=True,
+    type=click.Path(dir_okay=False),
+    help="The drawing to write: .svg or .png.",
 )
-@click.option("--velocity", is_flag=True, help="Add the velocity polygon (o, a, b …) beside the configuration.")
+@click.option(
+    "--velocity", is_flag=True, help="Add the velocity polygon (o, a, b …) beside the configuration."
+)
 @click.option("--acceleration", is_flag=True, help="Add the acceleration polygon with its components.")
 @click.option("--icentres", "with_icentres", is_flag=True, help="Mark the I-centres on the configuration.")
-@click.option("--alpha", type=float, help="Crank angular acceleration in rad/s², counter-clockwise positive.")
-@handles_errors
+@kinematic_command(alpha=True)
 def draw_command(
-    file: str,
-    rpm: float | None,
-    omega: float | None,
-    angle: float | None,
-    direction: str | None,
-    tol: float,
-    unit_system: str,
-    as_json: bool,
-    output: str,
-    velocity: bool,
-    acceleration: bool,
-    with_icentres: bool,
-    alpha: float | None,
+    request: Request, output: str, velocity: bool, acceleration: bool, with_icentres: bool
 ) -> None:
     """Draw the configuration diagram to scale, with polygons and I-centres on request.
 
     SVG is written by mech itself; PNG needs the optional matplotlib
     (pip install 'planar-mech[plot]').
     """
-    from mech.options import OutputUnits
     from mech.render.draw import draw_file
 
-    if alpha is not None and not math.isfinite(alpha):
-        from mech.errors import InputError
-
-        raise InputError("--alpha must be a finite number")
     summary = draw_file(
-        file,
+        request.file,
         output,
-        options=_solve_options(rpm, omega, angle, direction, tol, alpha),
+        options=request.options,
         velocity=velocity,
         acceleration=acceleration,
         icentres=with_icentres,
-        units=OutputUnits.named(unit_system),
+        units=request.units,
     )
-    if as_json:
+    if request.as_json:
         from mech.render.jsonout import dumps
 
         click.echo(dumps(summary))
