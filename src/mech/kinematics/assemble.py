@@ -155,6 +155,27 @@ class _Same(_Eq):
         return p[0] - p[1], [np.eye(2), -np.eye(2)]
 
 
+class _Drawn(_Eq):
+    """A weak spring ``w·(p − drawn)``: a moving location drawn with ``at`` (precision of a drawing).
+
+    The weight is small enough that exact data (lengths, angles) absorb only w² of any
+    disagreement, and large enough to fix a location nothing else fixes.
+    """
+
+    rows = 2
+    weight = 1e-3
+
+    def __init__(self, pt: str, drawn: np.ndarray) -> None:
+        self.names, self.drawn, self.text = (pt,), drawn, f"{pt} as drawn"
+
+    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
+        return self.weight * (p[0] - self.drawn), [self.weight * np.eye(2)]
+
+
+def _unscale(p: np.ndarray, scale: float, centre: np.ndarray) -> np.ndarray:
+    return p * scale + centre
+
+
 class _Rel(_Eq):
     """``p = o + u·e + v·e⊥`` with ``e`` the unit vector ``o → t`` (a relative placement)."""
 
@@ -329,19 +350,28 @@ def assemble(
 
     # -- first guess by closed-form construction
     guess, notes, gaps = _construct(lay, eqs, scaled_known, near, centre, scale)
+    # A moving location drawn with ``at`` is good to the drawing's precision, while the lengths
+    # and angles a file gives are exact: solve for it too, held to its drawing by a weak spring,
+    # so that where the drawing is rounded the exact numbers win (and any disagreement larger
+    # than drawing precision is reported below).  Ground locations and path coordinates stay fixed.
+    soft = {n: v for n, v in scaled_known.items() if lay.carriers.get(n) and mech.ground not in lay.carriers[n]}
+    fixed = {n: v for n, v in scaled_known.items() if n not in soft}
+    guess.update(soft)
     # Contact points of higher pairs are data of the instant (``at``), never unknowns.
-    unknown = [n for n, c in lay.carriers.items() if c and n not in scaled_known]
+    unknown = [n for n, c in lay.carriers.items() if c and n not in fixed]
     col = {n: i for i, n in enumerate(unknown)}
     x = np.concatenate([guess[n] for n in unknown]) if unknown else np.zeros(0)
     live = [e for e in eqs if any(n in col for n in e.names)]
+    springs: list[_Eq] = [_Drawn(n, v) for n, v in soft.items()]
 
     def system(xv: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        nrows = sum(e.rows for e in live)
+        eq_all = live + springs
+        nrows = sum(e.rows for e in eq_all)
         res = np.empty(nrows)
         jac = np.zeros((nrows, xv.size))
         row = 0
-        for e in live:
-            pos = [xv[2 * col[n] : 2 * col[n] + 2] if n in col else scaled_known[n] for n in e.names]
+        for e in eq_all:
+            pos = [xv[2 * col[n] : 2 * col[n] + 2] if n in col else fixed[n] for n in e.names]
             r, grads = e.value(pos)
             res[row : row + e.rows] = r
             for n, g in zip(e.names, grads, strict=False):
@@ -352,7 +382,8 @@ def assemble(
 
     res = np.zeros(0)
     if unknown:
-        x, res, jac = _gauss_newton(system, x)
+        x, res_all, jac = _gauss_newton(system, x)
+        res = res_all[: sum(e.rows for e in live)]  # the file's equations, without the springs
         worst = float(np.max(np.abs(res))) if res.size else 0.0
         if worst > _AGREE:
             raise GeometryError(
@@ -360,10 +391,28 @@ def assemble(
                 where=_worst_where(live, res) or (lay.drives[0].drive.where if lay.drives else None),
                 hint="check the lengths; a rocker or a slider has limits: try another crank angle (--angle)",
             )
-        if worst > _ACCEPT:  # drawn data rounded to a few decimals: agree to drawing precision
+        moved = {n: float(np.hypot(*(x[2 * col[n] : 2 * col[n] + 2] - v))) for n, v in soft.items()}
+        far = [n for n, d in moved.items() if d > _AGREE]
+        if far:
+            raise InputError(
+                problems=[
+                    Problem(
+                        f"{n} is drawn at ({fmt(_unscale(soft[n], scale, centre)[0])}, "
+                        f"{fmt(_unscale(soft[n], scale, centre)[1])}), but the lengths and angles put it "
+                        f"{fmt(moved[n] * scale)} away",
+                        next((x.where for x in (*mech.joints, *mech.points) if x.name == n), None),
+                        "make the drawing and the numbers agree, or give only one of them "
+                        "(`at` on a moving joint means drawn here)",
+                    )
+                    for n in far
+                ],
+                source=mech.source,
+            )
+        if moved and max(moved.values()) > _ACCEPT:  # drawn data rounded to a few decimals
+            n = max(moved, key=moved.__getitem__)
             notes.append(
-                f"the drawing and the given lengths/angles agree to {fmt(worst * scale)} "
-                f"(within {_AGREE:g} of the size); least-squares positions used"
+                f"drawn positions moved by up to {fmt(moved[n] * scale)} ({n}) to agree with the given "
+                f"lengths and angles (drawing precision: within {_AGREE:g} of the size)"
             )
         if allow_free:
             if jac.shape[0] < x.size or np.linalg.matrix_rank(jac, tol=1e-8) < x.size:
@@ -371,11 +420,11 @@ def assemble(
         else:
             _check_determined(system, x, jac, unknown, lay)
 
-    positions = {n: tuple(float(c) for c in (p * scale + centre)) for n, p in scaled_known.items()}
+    positions = {n: tuple(float(c) for c in (p * scale + centre)) for n, p in fixed.items()}
     # Relative to the centre (a ground pivot) as well: far from the origin, absolute coordinates
     # round a millimetre link's end to the ulp there (1.2e-4 m at 1e12 m), so the constraint
     # system is built from these instead.
-    relative = {n: (float(p[0] * scale), float(p[1] * scale)) for n, p in scaled_known.items()}
+    relative = {n: (float(p[0] * scale), float(p[1] * scale)) for n, p in fixed.items()}
     for n in unknown:
         rel = x[2 * col[n] : 2 * col[n] + 2] * scale
         relative[n] = (float(rel[0]), float(rel[1]))
