@@ -1,0 +1,46 @@
+"""A drawing is good to its precision; the numbers a file gives are exact.
+
+The notes' crank and slotted lever (mechanisms/crank_slotted_lever.yaml) draws
+the lever's far end B rounded to 1e-3 mm, and gives the crank angle exactly.
+The exact data must win: the crank sits at exactly 35°, and the lever's ω is
+the closed form's to 1e-9, not the compromise of a least-squares fit.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from mech.errors import InputError
+from mech.kinematics import solve
+from mech.loader import load, loads
+
+FILE = Path(__file__).resolve().parents[2] / "mechanisms" / "crank_slotted_lever.yaml"
+
+
+def test_rounded_drawing_yields_to_the_exact_crank_angle():
+    kin = solve(load(FILE), level="velocity")
+    # closed form: O1 at the origin, O2 = (0, 0.5) m, crank 0.12 m at 35° turning 600 rpm ccw
+    w2, r, th = 600 * 2 * math.pi / 60, 0.12, math.radians(35)
+    ax, ay = r * math.cos(th), 0.5 + r * math.sin(th)
+    va = (-w2 * r * math.sin(th), w2 * r * math.cos(th))
+    d = math.hypot(ax, ay)
+    n = (-ay / d, ax / d)  # perpendicular to the lever O1A
+    omega_lever = (va[0] * n[0] + va[1] * n[1]) / d
+    assert kin.links["crank"].angle == pytest.approx(th, abs=1e-11)
+    assert kin.links["lever"].omega == pytest.approx(omega_lever, rel=1e-9)
+    assert kin.positions["A"] == pytest.approx((ax, ay), rel=1e-11, abs=1e-12)
+    assert any("drawn positions moved" in note for note in kin.notes)
+
+
+def test_a_drawing_far_from_the_numbers_is_refused_with_the_point():
+    text = FILE.read_text().replace(
+        "B: {link: lever, at: [102.170, 591.237]}", "B: {link: lever, at: [140, 591.237]}"
+    )
+    with pytest.raises(InputError) as info:
+        solve(loads(text, path="lever.yaml"), level="velocity")
+    problem = info.value.problems[0]
+    assert problem.message.startswith("B is drawn at")
+    assert problem.where is not None and problem.where.line > 0
