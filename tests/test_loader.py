@@ -188,6 +188,7 @@ BASE = "links: [frame, crank, rod]\njoints:\n  A: {type: revolute, links: [frame
         (BASE + "drive: {link: crnk, rpm: 60}\n", 5, 15, "unknown link 'crnk'"),
         (BASE + "drive: {link: crank, rpm: 60, omega: 6}\n", 5, 31, "rpm or omega"),
         (BASE + "drive: {link: frame, rpm: 60}\n", 5, 15, "cannot turn the ground"),
+        (BASE + "drive: [{link: crank, rpm: 60}, {link: crank, rpm: 30}]\n", 5, 33, "driven twice"),
         (BASE + "answers: {omega.crank: 5 m/s}\n", 5, 24, "angular velocity"),
         (BASE + "answers: {omegas.crank: 5}\n", 5, 11, "unknown answer key"),
         (BASE + "answers: {omega.crunk: 5}\n", 5, 11, "unknown link 'crunk'"),

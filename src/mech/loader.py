@@ -979,12 +979,21 @@ class _Reader:
         self, node: yaml.Node, links: set[str], ground: str | None, joints: list[Joint]
     ) -> list[Drive]:
         items = node.value if isinstance(node, yaml.SequenceNode) else [node]
-        out = []
+        out: list[Drive] = []
         for item in items:
             try:
-                out.append(self._drive(item, links, ground, joints))
+                drive = self._drive(item, links, ground, joints)
             except _Skip:
                 continue
+            twin = next((d for d in out if (d.link, d.joint) == (drive.link, drive.joint)), None)
+            if twin is not None:
+                self.problem(
+                    item,
+                    f"{drive.link or drive.joint} is driven twice (first at line {twin.where.line if twin.where else '?'})",
+                    "one drive per input link or slider; a mechanism of n degrees of freedom needs n different inputs",
+                )
+                continue
+            out.append(drive)
         return out
 
     def _drive(self, node: yaml.Node, links: set[str], ground: str | None, joints: list[Joint]) -> Drive:

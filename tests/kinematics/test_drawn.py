@@ -44,3 +44,25 @@ def test_a_drawing_far_from_the_numbers_is_refused_with_the_point():
     problem = info.value.problems[0]
     assert problem.message.startswith("B is drawn at")
     assert problem.where is not None and problem.where.line > 0
+
+
+def test_too_few_drives_says_how_many_are_needed():
+    # a five-bar (Kutzbach: n = 3(5 − 1) − 2·5 = 2) with one drive
+    text = """
+units: {length: mm}
+links: [frame, a, b, c, d]
+joints:
+  A: {type: revolute, links: [frame, a], at: [0, 0]}
+  B: {type: revolute, links: [a, b]}
+  C: {type: revolute, links: [b, c], near: [60, 80]}
+  D: {type: revolute, links: [c, d]}
+  E: {type: revolute, links: [d, frame], at: [120, 0]}
+lengths: {AB: 40, BC: 70, CD: 70, DE: 40}
+drive: {link: a, angle: 80, rpm: 60}
+"""
+    from mech.errors import MechError
+
+    with pytest.raises(MechError) as info:
+        solve(loads(text, path="five.yaml"), level="velocity")
+    assert "2 degrees of freedom" in str(info.value) and "1 drive" in str(info.value)
+    assert "2 of them" in (info.value.hint or "")

@@ -39,6 +39,7 @@ from mech.errors import GeometryError, InputError, Problem, Where
 from mech.kinematics.geometry import circle_circle, circle_line
 from mech.kinematics.layout import Layout
 from mech.model import Joint, JointType, Placement, Ref
+from mech.topology import dof
 from mech.units import to_unit
 
 __all__ = ["Drawn", "assemble", "gear_centre", "gear_pitch_points"]
@@ -648,12 +649,17 @@ def _check_determined(
         hint = f"give the drive of {undriven[0].link} an angle (or draw {undriven[0].toward} with at)"
     listed = ", ".join(names)
     first = next((x for x in (*lay.mech.joints, *lay.mech.points) if x.name in names), None)
-    raise GeometryError(
+    message = (
         f"the file does not fix where {listed} {'is' if len(names) == 1 else 'are'}: "
-        f"{'it' if len(names) == 1 else 'they'} can still move with everything given",
-        where=first.where if first is not None else Where(lay.mech.path),
-        hint=hint,
+        f"{'it' if len(names) == 1 else 'they'} can still move with everything given"
     )
+    count = dof(lay.mech)
+    if len(lay.drives) < count.n and not undriven:
+        # the usual cause: a mechanism of several degrees of freedom given fewer drives
+        drives = f"{len(lay.drives)} drive{'s' if len(lay.drives) != 1 else ''}"
+        message = f"{lay.mech.label} has {count.n} degrees of freedom ({count.formula}) but {drives}: " + message
+        hint = f"give one drive per degree of freedom: drive: [{{link: …, angle: …, rpm: …}}, …] ({count.n} of them)"
+    raise GeometryError(message, where=first.where if first is not None else Where(lay.mech.path), hint=hint)
 
 
 def _disagreement(e: _Eq, p: list[np.ndarray], scale: float, fmt: Callable[[float], str]) -> str:
