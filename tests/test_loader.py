@@ -300,3 +300,10 @@ def test_joint_types_are_all_accepted():
             text = text.replace("K: {type: revolute", "K: {type: revolute")
         m = loads(text)
         assert m.joint("J").type is jtype
+
+
+def test_a_misspelt_link_is_one_error_not_a_cascade():
+    # C's misspelt link would also make "C and D are not on one link" — noise, not news.
+    text = FOUR_BAR.replace("links: [coupler, rocker]", "links: [coupler, roker]")
+    found = problems(text)
+    assert [msg for _, _, msg in found] == ["joint C names unknown link 'roker'"]

@@ -202,6 +202,7 @@ class _Reader:
         self.angle_factor = math.pi / 180.0
         self.length_unit = "m"
         self.angle_unit = "deg"
+        self.tainted: set[str] = set()  # names whose own errors are reported already
 
     # -- problems -----------------------------------------------------------------------
     def where(self, node: yaml.Node | None) -> Where:
@@ -704,6 +705,7 @@ class _Reader:
             except _Skip:
                 continue
             if links and ln not in links:
+                self.tainted.add(name)  # lengths to this joint would only repeat the error
                 self.problem(
                     item,
                     f"{what} names unknown link {ln!r}",
@@ -934,7 +936,7 @@ class _Reader:
                 if a == b:
                     raise self.problem(knode, f"length {key} joins {a!r} to itself")
                 common = located[a] & located[b]
-                if not common:
+                if not common and not {a, b} & self.tainted:
                     raise self.problem(
                         knode,
                         f"{a} and {b} are not on one link ({a}: {', '.join(sorted(located[a]))}; {b}: {', '.join(sorted(located[b]))})",
