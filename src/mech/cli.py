@@ -216,8 +216,8 @@ class Request:
 
     @property
     def speed_given(self) -> bool:
-        """True when --rpm or --omega set the drive's speed."""
-        return self.options.omega is not None
+        """True when --rpm, --omega or --speed set the drive's speed."""
+        return self.options.omega is not None or self.options.speed is not None
 
 
 _KINEMATIC_OPTIONS = (
@@ -225,6 +225,7 @@ _KINEMATIC_OPTIONS = (
     click.option("--rpm", type=float, help="Crank speed in rev/min (overrides the file)."),
     click.option("--omega", type=float, help="Crank speed in rad/s (overrides the file)."),
     click.option("--angle", type=float, help="Crank angle in degrees, counter-clockwise from +x."),
+    click.option("--speed", type=float, help="A slider drive's speed in m/s, signed along its path."),
     click.option("--direction", type=click.Choice(["cw", "ccw"]), help="Sense of the crank's rotation."),
     click.option(
         "--tol",
@@ -264,6 +265,7 @@ def kinematic_command(*, alpha: bool = False) -> Callable[[Callable[..., Any]], 
             rpm: float | None,
             omega: float | None,
             angle: float | None,
+            speed: float | None,
             direction: str | None,
             tol: float,
             unit_system: str,
@@ -271,7 +273,7 @@ def kinematic_command(*, alpha: bool = False) -> Callable[[Callable[..., Any]], 
             alpha: float | None = None,
             **own: Any,
         ) -> Any:
-            options = _solve_options(rpm, omega, angle, direction, tol, alpha)
+            options = _solve_options(rpm, omega, angle, direction, tol, alpha, speed)
             return fn(Request(file, options, OutputUnits.named(unit_system), as_json), **own)
 
         for decorator in reversed((*_KINEMATIC_OPTIONS, *((_ALPHA_OPTION,) if alpha else ()))):
@@ -288,25 +290,27 @@ def _solve_options(
     direction: str | None,
     tol: float,
     alpha: float | None = None,
+    speed: float | None = None,
 ) -> SolveOptions:
     """Command-line speeds and angles (rpm, degrees) → one validated :class:`SolveOptions`."""
     if rpm is not None and omega is not None:
         raise InputError("give --rpm or --omega, not both")
-    speed = None
+    turning = None
     for name, value, factor in (("--rpm", rpm, 2 * math.pi / 60), ("--omega", omega, 1.0)):
         if value is not None:
             if not math.isfinite(value) or value < 0:
                 raise InputError(
                     f"{name} must be a finite speed ≥ 0", hint="give the sense with --direction cw|ccw"
                 )
-            speed = value * factor
+            turning = value * factor
     if angle is not None and not math.isfinite(angle):
         raise InputError("--angle must be a finite number of degrees")
     try:
         return SolveOptions(
             # reduce in degrees, where it is exact, before converting (1e300° is 0°)
             angle=None if angle is None else math.radians(math.fmod(angle, 360.0)),
-            omega=speed,
+            omega=turning,
+            speed=speed,
             direction=direction,
             alpha=alpha,
             tol=tol,
@@ -464,7 +468,7 @@ def sweep_command(
     options = request.options.with_(method=method)
     mechanism = load(request.file)
     if level is None:
-        has_speed = request.speed_given or any(d.omega is not None for d in mechanism.drives)
+        has_speed = request.speed_given or any(d.omega is not None or d.speed is not None for d in mechanism.drives)
         level = "velocity" if has_speed else "position"
     angles = np.radians(np.linspace(start, stop, steps + 1))
     result = sweep(mechanism, angles, level=level, options=options, quantities=quantities or None)

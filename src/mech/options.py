@@ -23,8 +23,11 @@ class SolveOptions:
     angle
         Overrides the (single) drive's angle, rad, counter-clockwise from +x.
     omega
-        Overrides the drive's angular speed magnitude, rad/s (``--rpm`` is
-        converted before it gets here).  For a slider drive: its speed, m/s.
+        Overrides a turning drive's angular speed magnitude, rad/s (``--rpm`` is
+        converted before it gets here).  Refused for a slider drive.
+    speed
+        Overrides a slider drive's speed, m/s, signed along its path.  Refused
+        for a turning drive.
     direction
         ``"cw"`` or ``"ccw"``: overrides the drive's sense of rotation.
     alpha
@@ -44,6 +47,7 @@ class SolveOptions:
 
     angle: float | None = None
     omega: float | None = None
+    speed: float | None = None
     direction: str | None = None
     alpha: float | None = None
     tol: float = 1e-12
@@ -59,14 +63,14 @@ class SolveOptions:
             raise ValueError(f"method must be 'auto', 'closed' or 'newton', not {self.method!r}")
         if self.max_iter < 1:
             raise ValueError("max_iter must be at least 1")
-        for name in ("angle", "omega", "alpha"):
+        for name in ("angle", "omega", "speed", "alpha"):
             v = getattr(self, name)
             if v is not None and not math.isfinite(v):
                 raise ValueError(f"{name} must be finite")
         if self.omega is not None and self.omega < 0:
             raise ValueError("omega is a magnitude; give the sense with direction")
         low, high = MAGNITUDE_RANGE
-        for name in ("omega", "alpha"):
+        for name in ("omega", "speed", "alpha"):
             v = getattr(self, name)
             if v is not None and v != 0.0 and not low <= abs(v) <= high:
                 raise ValueError(f"{name} = {v:g} (SI) is outside the range mech works in ({low:g} to {high:g})")

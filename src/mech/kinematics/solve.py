@@ -138,10 +138,12 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
     if level not in LEVELS:
         raise InputError(f"level must be one of {', '.join(LEVELS)}, not {level!r}")
     lvl = LEVELS.index(level)
-    overrides = any(v is not None for v in (options.angle, options.omega, options.direction, options.alpha))
+    overrides = any(
+        v is not None for v in (options.angle, options.omega, options.speed, options.direction, options.alpha)
+    )
     if overrides and len(mech.drives) != 1:
         raise InputError(
-            f"--angle, --rpm, --direction and --alpha override a single drive; {mech.label} has "
+            f"--angle, --rpm, --speed, --direction and --alpha override a single drive; {mech.label} has "
             f"{len(mech.drives)} drives",
             hint="give the drives in the file"
             if mech.drives
@@ -379,6 +381,12 @@ def _drives(mech: Mechanism, lay: Layout, drawn: Drawn, options: SolveOptions, l
     out = []
     for k, (d, spec) in enumerate(zip(mech.drives, lay.drives, strict=False)):
         if spec.link is not None:
+            if options.speed is not None:
+                raise InputError(
+                    f"--speed sets a slider drive; the drive of {d.link} turns",
+                    where=d.where,
+                    hint="use --rpm or --omega",
+                )
             omega = d.omega
             if options.omega is not None:
                 sign = (
@@ -407,9 +415,22 @@ def _drives(mech: Mechanism, lay: Layout, drawn: Drawn, options: SolveOptions, l
                 raise InputError(
                     f"--angle applies to a turning drive; the drive of {d.joint} is a slider", where=d.where
                 )
-            speed = d.speed
-            if options.omega is not None:
-                speed = math.copysign(options.omega, speed if speed is not None else 1.0)
+            turning = [
+                flag
+                for flag, given in (
+                    ("--rpm/--omega", options.omega is not None),
+                    ("--direction", options.direction is not None),
+                    ("--alpha", options.alpha is not None),
+                )
+                if given
+            ]
+            if turning:
+                raise InputError(
+                    f"{', '.join(turning)} set a turning drive; the drive of {d.joint} is a slider",
+                    where=d.where,
+                    hint="give its speed with --speed (m/s, signed along its path) or speed: in the file",
+                )
+            speed = options.speed if options.speed is not None else d.speed
             if lvl >= 1 and speed is None:
                 raise InputError(f"slider drive of {d.joint} has no speed: give speed (m/s)", where=d.where)
             out.append(replace(d, speed=speed, accel=d.accel or 0.0))

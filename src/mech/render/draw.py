@@ -71,6 +71,6 @@ def draw_file(
 
 
 def _has_speed(mech: Any, options: SolveOptions) -> bool:
-    if options.omega is not None:
+    if options.omega is not None or options.speed is not None:
         return True
     return bool(mech.drives) and all(d.omega is not None or d.speed is not None for d in mech.drives)
