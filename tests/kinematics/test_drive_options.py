@@ -35,8 +35,8 @@ def crank_omega(v_b: float) -> float:
     A = (r cos θ, r sin θ) with |A − B| = l; differentiating
     (r cos θ − x)² + (r sin θ)² = l² gives ω = ẋ (r cos θ − x) / (r x sin θ).
     """
-    r, l, x = 0.08, 0.25, 0.28
-    cos_t = (r * r + x * x - l * l) / (2 * r * x)
+    r, rod, x = 0.08, 0.25, 0.28
+    cos_t = (r * r + x * x - rod * rod) / (2 * r * x)
     th = math.acos(cos_t)  # A above the axis (near: [40, 69])
     return v_b * (r * math.cos(th) - x) / (r * x * math.sin(th))
 
