@@ -549,12 +549,20 @@ def _move(comp: Compiled, drives: tuple[Drive, ...], options: SolveOptions) -> n
         reached.append(fraction)
     c_ang = base_ang.copy()
     c_ang[rows] += deltas
-    gap = _closest_gap(comp, c_line, c_ang)
-    raise GeometryError(_unreachable_message(comp, drives, reached[0], gap))
+    gap, miss = _closest_gap(comp, c_line, c_ang)
+    d = next(d for d in drives if d.link is not None)
+    hint = "a rocker or a slider has limits: choose an angle between them (mech sweep shows them)"
+    if miss <= 1e-9:
+        hint = "that configuration is on another circuit: draw the mechanism there (at/near) to analyse it"
+    raise GeometryError(_unreachable_message(comp, drives, reached[0], gap, miss), where=d.where, hint=hint)
 
 
-def _closest_gap(comp: Compiled, c_line: np.ndarray, c_ang: np.ndarray) -> str:
-    """The joint left most open by the least-squares closest configuration (file's unit)."""
+def _closest_gap(comp: Compiled, c_line: np.ndarray, c_ang: np.ndarray) -> tuple[str, float]:
+    """The joint left most open by the least-squares closest configuration (file's unit).
+
+    Also returns that miss relative to the mechanism's size: about zero when the
+    angle can be assembled, but only on another circuit than the drawing's.
+    """
     sys_ = comp.system
     q = sys_.q0.copy()
     for _ in range(100):
@@ -575,7 +583,8 @@ def _closest_gap(comp: Compiled, c_line: np.ndarray, c_ang: np.ndarray) -> str:
     from mech.units import to_unit
 
     unit = comp.mech.length_unit
-    return f"the closest configuration leaves {names[worst]} open by {to_unit(miss[worst] * sys_.scale, unit):.4g} {unit}"
+    text = f"the closest configuration leaves {names[worst]} open by {to_unit(miss[worst] * sys_.scale, unit):.4g} {unit}"
+    return text, float(miss[worst])
 
 
 def _continue(
@@ -637,14 +646,24 @@ def _newton(
     return q if float(np.max(np.abs(r))) <= options.tol else None
 
 
-def _unreachable_message(comp: Compiled, drives: tuple[Drive, ...], reached: float | None, gap: str) -> str:
+def _unreachable_message(
+    comp: Compiled, drives: tuple[Drive, ...], reached: float | None, gap: str, miss: float
+) -> str:
     d = next(d for d in drives if d.link is not None)
     a = comp.drawn.drive_angles[0]
     limit = ""
     if reached is not None and a is not None and d.angle is not None:
         stop = a + reached * wrap_angle(d.angle - a)
-        limit = f"; moving {d.link} from the drawn {_deg(a)} it locks near {_deg(stop)} (a limit position)"
-    return f"{comp.mech.label} cannot be assembled with {d.link} at {_deg(d.angle)}: {gap}{limit}"
+        limit = f"moving {d.link} from the drawn {_deg(a)} it locks near {_deg(stop)} (a limit position)"
+    if miss <= 1e-9:  # it closes there, but not on the drawing's circuit
+        return (
+            f"{comp.mech.label} cannot reach {d.link} at {_deg(d.angle)} from its drawing: "
+            f"{limit or 'a limit position lies between'}; that angle belongs to another circuit "
+            "(it can be assembled there only by taking the mechanism apart)"
+        )
+    return f"{comp.mech.label} cannot be assembled with {d.link} at {_deg(d.angle)}: {gap}" + (
+        f"; {limit}" if limit else ""
+    )
 
 
 # -- results -----------------------------------------------------------------------------

@@ -628,6 +628,9 @@ def sweep(
         dead, outputs = _dead_centres(backend, comp, phi, data, ok, names)
         extremes = _extremes(backend, phi, data, ok & ~singular, names, keys)
         ratio = _time_ratio(phi, ok, dead, outputs)
+    circuits = _circuits(phi, ok, comp.drawn.drive_angles[0])
+    if circuits:
+        notes.append(circuits)
     if ratio is not None and abs(ratio.ratio - 1.0) > 1e-9:
         notes.append(f"quick return: {ratio.output} strokes take {math.degrees(ratio.slow):.4f}° and {math.degrees(ratio.fast):.4f}° of crank (ratio {ratio.ratio:.6g})")
 
@@ -703,6 +706,52 @@ def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
     """Index ranges [i, j) where ``mask`` is True."""
     edges = np.flatnonzero(np.diff(np.concatenate(([0], mask.astype(np.int8), [0]))))
     return [(int(i), int(j)) for i, j in zip(edges[0::2], edges[1::2], strict=True)]
+
+
+def _circuits(phi: np.ndarray, ok: np.ndarray, drawn: float | None) -> str | None:
+    """Say so when the assembled steps fall into separate ranges: separate circuits.
+
+    A crank that cannot turn fully between two limit positions reaches only the
+    range its drawing lies in; another assembled range (same branch sign of the
+    dyads) is a different circuit, reachable only by taking the mechanism apart.
+    A full turn whose first and last steps are both assembled wraps into one range.
+    """
+    runs: list[list[int]] = []
+    for i, good in enumerate(ok):
+        if good and runs and runs[-1][1] == i - 1:
+            runs[-1][1] = i
+        elif good:
+            runs.append([i, i])
+    full_turn = phi.size > 1 and abs(abs(phi[-1] - phi[0]) - _TWO_PI) < 1e-9
+    if full_turn and len(runs) > 1 and runs[0][0] == 0 and runs[-1][1] == phi.size - 1:
+        runs[0][0] = runs.pop()[0]  # wrapped: the last range continues into the first
+    if len(runs) < 2:
+        return None
+
+    def span(run: list[int]) -> str:
+        return f"{math.degrees(phi[run[0]]):.4g}°–{math.degrees(phi[run[1]]):.4g}°"
+
+    def holds(run: list[int]) -> bool:
+        if drawn is None:
+            return False
+        lo, hi = phi[run[0]], phi[run[1]]
+        if lo > hi:  # wrapped range
+            return bool(wrap(drawn - lo) >= 0 or wrap(drawn - hi) <= 0)
+        k = math.floor((lo - drawn) / _TWO_PI + 1.0)
+        a = drawn + k * _TWO_PI
+        return bool(lo - 1e-12 <= a <= hi + 1e-12 or lo - 1e-12 <= a - _TWO_PI <= hi + 1e-12)
+
+    def wrap(x: float) -> float:
+        return (x + math.pi) % _TWO_PI - math.pi
+
+    mine = [r for r in runs if holds(r)]
+    ranges = ", ".join(span(r) for r in runs)
+    if mine:
+        return (
+            f"the assembled ranges {ranges} are separate circuits: the drawing lies on {span(mine[0])}; "
+            "the others are the same branch on another circuit, reached only by taking the mechanism apart"
+        )
+    return f"the assembled ranges {ranges} are separate circuits, and none holds the drawn angle"
 
 
 def _gaps(backend: Any, phi: np.ndarray, data: dict[str, np.ndarray], ok: np.ndarray) -> tuple[tuple[Gap, ...], tuple[Event, ...]]:
