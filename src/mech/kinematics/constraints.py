@@ -260,9 +260,13 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
         for k, spec in enumerate(lay.drives)
         if spec.link is not None and spec.toward is None
     }
+    # A link with one located point has no line of its own: a slider or a guide takes its
+    # path's direction (so a block and the rod sliding through it report the same angle).
     slider_dir = {}
     for ps in lay.paths:
         slider_dir.setdefault(ps.slider, ps)
+    for ps in lay.paths:
+        slider_dir.setdefault(ps.guide, ps)
     for name in links:
         names = [p for p in lay.on_link.get(name, ()) if p in pos]
         origin = scn(names[0]) if names else np.zeros(2)
