@@ -191,8 +191,8 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
     if moved:
         if sys_.velocity_only:
             raise UnsupportedError(
-                f"cannot move {mech.label} to another angle: {', '.join(sys_.velocity_only)} "
-                "describe only the instant drawn (no profile is given)",
+                f"cannot move {mech.label} to another angle: {instant_pairs(sys_.velocity_only)} "
+                "only the instant drawn (no profile is given)",
                 hint="analyse the drawn angle, or draw the mechanism at the angle you need",
             )
         q = _move(comp, drives, options)
@@ -205,6 +205,13 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
 
     qd, qdd = _rates(comp, q, drives, lvl, omega_ref)
     return _result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
+
+
+def instant_pairs(names: Sequence[str]) -> str:
+    """``joint K describes`` / ``joints K, L describe``: the higher pairs known at one instant."""
+    if len(names) == 1:
+        return f"joint {names[0]} describes"
+    return f"joints {', '.join(names)} describe"
 
 
 def _rates(
@@ -226,7 +233,7 @@ def _rates(
                     f"accelerations need the curvature of the profiles at "
                     f"{', '.join(sys_.velocity_only)}: the file gives only the instant's contact "
                     "point and normal (velocities are available)",
-                    hint="solve with level='velocity'",
+                    hint="ask for velocities (mech velocity; level='velocity' from Python)",
                 )
             gamma = sys_.gamma(q, qd)
             acc = [

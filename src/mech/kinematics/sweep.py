@@ -50,7 +50,7 @@ import numpy as np
 from mech.errors import GeometryError, InputError, UnsupportedError
 from mech.kinematics.dyads import ACCURATE_COND, SLACK, DyadProgram, numpy_namespace, program
 from mech.kinematics.result import Kinematics
-from mech.kinematics.solve import SINGULAR, Compiled, compiled, continuation, solve
+from mech.kinematics.solve import SINGULAR, Compiled, compiled, continuation, instant_pairs, solve
 from mech.model import JointType, Mechanism
 from mech.options import SolveOptions
 
@@ -217,7 +217,9 @@ def quantity_unit(quantity: str) -> str:
     return _UNITS[quantity.split(".", 1)[0]]
 
 
-def _check_quantity(sw_points: Sequence[str], links: Sequence[str], slides: Sequence[str], key: str, lvl: int) -> None:
+def _check_quantity(
+    sw_points: Sequence[str], links: Sequence[str], slides: Sequence[str], key: str, lvl: int
+) -> None:
     parts = key.split(".")
     kind = parts[0]
     if kind not in _UNITS or len(parts) < 2:
@@ -233,10 +235,15 @@ def _check_quantity(sw_points: Sequence[str], links: Sequence[str], slides: Sequ
         kind, sw_points
     )
     if name not in pool:
-        raise InputError(f"{key}: no {'link' if kind in ('angle', 'omega', 'alpha') else 'joint' if kind in ('displacement', 'sliding') else 'point'} named {name}", hint=f"choose from {', '.join(pool)}")
+        raise InputError(
+            f"{key}: no {'link' if kind in ('angle', 'omega', 'alpha') else 'joint' if kind in ('displacement', 'sliding') else 'point'} named {name}",
+            hint=f"choose from {', '.join(pool)}",
+        )
     comp = parts[2] if len(parts) > 2 else None
     if comp not in (None, "x", "y") or (kind == "position" and comp is None) or (len(parts) > 3):
-        raise InputError(f"{key}: a component is .x or .y" + (" (position needs one)" if kind == "position" else ""))
+        raise InputError(
+            f"{key}: a component is .x or .y" + (" (position needs one)" if kind == "position" else "")
+        )
 
 
 def _pick(arrays: dict[str, Any], names: dict[str, tuple[str, ...]], key: str) -> np.ndarray:
@@ -273,7 +280,9 @@ def _series(sw: Sweep, key: str) -> np.ndarray:
     return _pick(arrays, {"links": sw.links, "slides": sw.slides, "points": sw.points}, key)
 
 
-def default_quantities(points: Sequence[str], links: Sequence[str], slides: Sequence[str], lvl: int, drive: str) -> list[str]:
+def default_quantities(
+    points: Sequence[str], links: Sequence[str], slides: Sequence[str], lvl: int, drive: str
+) -> list[str]:
     """What a sweep reports extremes of when none are asked: per level, the textbook quantities."""
     out = [f"displacement.{s}" for s in slides]
     out += [f"angle.{lk}" for lk in links if lk != drive]
@@ -344,14 +353,21 @@ class _Closed:
             res["velocities"] = np.stack([stack(parts["pvx"]), stack(parts["pvy"])], axis=-1)
             res["omegas"] = stack(parts["lw"])
             res["sliding"] = self._slides(
-                lx, ly, lt, px - cx, py - cy, (stack(parts["lvx"]), stack(parts["lvy"]), res["omegas"], res["velocities"])
+                lx,
+                ly,
+                lt,
+                px - cx,
+                py - cy,
+                (stack(parts["lvx"]), stack(parts["lvy"]), res["omegas"], res["velocities"]),
             )
         if lvl >= 2:
             res["accelerations"] = np.stack([stack(parts["pax"]), stack(parts["pay"])], axis=-1)
             res["alphas"] = stack(parts["lal"])
         return res
 
-    def _slides(self, lx: np.ndarray, ly: np.ndarray, lt: np.ndarray, px: np.ndarray, py: np.ndarray, vel: Any) -> np.ndarray:
+    def _slides(
+        self, lx: np.ndarray, ly: np.ndarray, lt: np.ndarray, px: np.ndarray, py: np.ndarray, vel: Any
+    ) -> np.ndarray:
         """Slider displacement along its path (vel None) or sliding speed relative to the guide."""
         cols = []
         n = len(self.links)
@@ -386,7 +402,9 @@ class _Newton:
 
     method = "newton"
 
-    def __init__(self, mech: Mechanism, comp: Compiled, options: SolveOptions, omega: float, alpha: float, lvl: int) -> None:
+    def __init__(
+        self, mech: Mechanism, comp: Compiled, options: SolveOptions, omega: float, alpha: float, lvl: int
+    ) -> None:
         self.mech, self.comp, self.lvl = mech, comp, lvl
         self.options = options.with_(
             omega=abs(omega), direction="ccw" if omega >= 0 else "cw", alpha=alpha, method="newton"
@@ -397,7 +415,10 @@ class _Newton:
 
     def series(self, phi: np.ndarray) -> list[dict[str, Any] | None]:
         """Warm-started continuation along ``phi`` (see :func:`~mech.kinematics.solve.continuation`)."""
-        return [None if k is None else self._arrays(k) for k in continuation(self.mech, list(phi), LEVELS[self.lvl], self.options)]
+        return [
+            None if k is None else self._arrays(k)
+            for k in continuation(self.mech, list(phi), LEVELS[self.lvl], self.options)
+        ]
 
     def _arrays(self, kin: Kinematics) -> dict[str, Any]:
         lay = self.comp.layout
@@ -414,7 +435,9 @@ class _Newton:
             at = j.at or (0.0, 0.0)
             through = ps.path.through
             t = through.xy if through.xy is not None else kin.positions[lay.resolve(through.name)]  # type: ignore[index]
-            disp.append((at[0] - t[0]) * u[0] + (at[1] - t[1]) * u[1] if ps.guide == self.mech.ground else math.nan)
+            disp.append(
+                (at[0] - t[0]) * u[0] + (at[1] - t[1]) * u[1] if ps.guide == self.mech.ground else math.nan
+            )
             if self.lvl >= 1 and not singular:
                 slid.append(kin.sliding(ps.joint))
         res["displacement"] = np.array(disp)
@@ -463,7 +486,14 @@ def _stack_rows(rows: list[dict[str, Any] | None], shape: tuple[int, ...]) -> di
 
 
 # -- refinement ----------------------------------------------------------------------------------
-def _zoom(fn: Callable[[np.ndarray], np.ndarray], lo: np.ndarray, hi: np.ndarray, mode: str, rounds: int = 14, m: int = 33) -> tuple[np.ndarray, np.ndarray]:
+def _zoom(
+    fn: Callable[[np.ndarray], np.ndarray],
+    lo: np.ndarray,
+    hi: np.ndarray,
+    mode: str,
+    rounds: int = 14,
+    m: int = 33,
+) -> tuple[np.ndarray, np.ndarray]:
     """Refine K brackets at once: maxima, minima (``mode``) or sign changes (``"root"``).
 
     Each round evaluates ``fn`` on an (K, m) sub-grid of every bracket and
@@ -560,7 +590,9 @@ def sweep(
     if level not in LEVELS:
         raise InputError(f"level must be one of {', '.join(LEVELS)}, not {level!r}")
     if options.angle is not None:
-        raise InputError("a sweep sets the crank angle itself", hint="give the range (--from, --to) instead of --angle")
+        raise InputError(
+            "a sweep sets the crank angle itself", hint="give the range (--from, --to) instead of --angle"
+        )
     lvl = LEVELS.index(level)
     if len(mech.drives) != 1 or mech.drives[0].link is None:
         raise UnsupportedError(
@@ -568,17 +600,21 @@ def sweep(
             + ("a slider drive" if mech.drives and mech.drives[0].joint else f"{len(mech.drives)} drives"),
             hint="give one drive: {link: crank, angle: …, rpm: …}",
         )
-    base = solve(mech, "position", options.with_(omega=None, direction=None, alpha=None))  # validates, assembles
+    base = solve(
+        mech, "position", options.with_(omega=None, direction=None, alpha=None)
+    )  # validates, assembles
     comp = compiled(mech, None)
     if comp.system.velocity_only:
         raise UnsupportedError(
-            f"cannot sweep {mech.label}: {', '.join(comp.system.velocity_only)} describe only the instant drawn "
+            f"cannot sweep {mech.label}: {instant_pairs(comp.system.velocity_only)} only the instant drawn "
             "(no profile is given)",
         )
     drive = base.drives[0]
     omega = _drive_omega(mech, options)
     if lvl >= 1 and omega is None:
-        raise InputError(f"drive of {drive.link} has no speed: give rpm or omega (or --rpm)", where=drive.where)
+        raise InputError(
+            f"drive of {drive.link} has no speed: give rpm or omega (or --rpm)", where=drive.where
+        )
     alpha = options.alpha if options.alpha is not None else (mech.drives[0].alpha or 0.0)
     w_int = omega if omega else 1.0  # velocities are needed for dead centres even at position level
     lvl_int = max(lvl, 1)
@@ -588,7 +624,9 @@ def sweep(
 
     prog = program(comp) if options.method != "newton" else None
     if options.method == "closed" and prog is None:
-        raise UnsupportedError(f"{mech.label} does not decompose into dyads driven by one crank", hint="use method auto")
+        raise UnsupportedError(
+            f"{mech.label} does not decompose into dyads driven by one crank", hint="use method auto"
+        )
     notes: list[str] = list(comp.drawn.notes)
     if prog is not None:
         backend: Any = _Closed(comp, prog, w_int, alpha, lvl_int)
@@ -615,7 +653,11 @@ def sweep(
     data["link_angles"] = _unwrap(data["link_angles"], ok)
 
     names = {"points": backend.points, "links": backend.links, "slides": backend.slides}
-    keys = list(quantities) if quantities else default_quantities(backend.points, backend.links, backend.slides, lvl, drive.link or "")
+    keys = (
+        list(quantities)
+        if quantities
+        else default_quantities(backend.points, backend.links, backend.slides, lvl, drive.link or "")
+    )
     for key in keys:
         _check_quantity(backend.points, backend.links, backend.slides, key, lvl)
     gaps: tuple[Gap, ...] = ()
@@ -632,7 +674,9 @@ def sweep(
     if circuits:
         notes.append(circuits)
     if ratio is not None and abs(ratio.ratio - 1.0) > 1e-9:
-        notes.append(f"quick return: {ratio.output} strokes take {math.degrees(ratio.slow):.4f}° and {math.degrees(ratio.fast):.4f}° of crank (ratio {ratio.ratio:.6g})")
+        notes.append(
+            f"quick return: {ratio.output} strokes take {math.degrees(ratio.slow):.4f}° and {math.degrees(ratio.fast):.4f}° of crank (ratio {ratio.ratio:.6g})"
+        )
 
     vel = data.get("velocities") if lvl >= 1 else None
     return Sweep(
@@ -683,7 +727,9 @@ def _drive_omega(mech: Mechanism, options: SolveOptions) -> float | None:
     d = mech.drives[0]
     omega = d.omega
     if options.omega is not None:
-        sign = -1.0 if (options.direction == "cw" or (options.direction is None and (d.omega or 0) < 0)) else 1.0
+        sign = (
+            -1.0 if (options.direction == "cw" or (options.direction is None and (d.omega or 0) < 0)) else 1.0
+        )
         omega = sign * options.omega
     elif options.direction is not None and omega is not None:
         omega = abs(omega) * (-1.0 if options.direction == "cw" else 1.0)
@@ -754,7 +800,9 @@ def _circuits(phi: np.ndarray, ok: np.ndarray, drawn: float | None) -> str | Non
     return f"the assembled ranges {ranges} are separate circuits, and none holds the drawn angle"
 
 
-def _gaps(backend: Any, phi: np.ndarray, data: dict[str, np.ndarray], ok: np.ndarray) -> tuple[tuple[Gap, ...], tuple[Event, ...]]:
+def _gaps(
+    backend: Any, phi: np.ndarray, data: dict[str, np.ndarray], ok: np.ndarray
+) -> tuple[tuple[Gap, ...], tuple[Event, ...]]:
     """Unassembled runs, their edges located as toggles (closed form: bisection on the discriminant)."""
     gaps: list[Gap] = []
     toggles: list[Event] = []
@@ -799,7 +847,9 @@ def _outputs(comp: Compiled, names: dict[str, tuple[str, ...]], drive: str) -> l
     return out
 
 
-def _refiner(backend: Any, names: dict[str, tuple[str, ...]], keys: Sequence[str], refs: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+def _refiner(
+    backend: Any, names: dict[str, tuple[str, ...]], keys: Sequence[str], refs: np.ndarray
+) -> Callable[[np.ndarray], np.ndarray]:
     """fn(grid (K, m)) → values (K, m) of ``keys[k]`` on row k, one backend call for all rows.
 
     Angles of links are brought to the branch of ``refs[k]`` (the grid value
@@ -842,7 +892,12 @@ def _dedupe(events: list[Event], phi: np.ndarray) -> list[Event]:
 
 
 def _dead_centres(
-    backend: Any, comp: Compiled, phi: np.ndarray, data: dict[str, np.ndarray], ok: np.ndarray, names: dict[str, tuple[str, ...]]
+    backend: Any,
+    comp: Compiled,
+    phi: np.ndarray,
+    data: dict[str, np.ndarray],
+    ok: np.ndarray,
+    names: dict[str, tuple[str, ...]],
 ) -> tuple[tuple[Event, ...], list[tuple[str, str]]]:
     """Where each output reverses: the sign change of its speed, root-found to rounding.
 
@@ -883,13 +938,22 @@ def _dead_centres(
         )
     pos_keys = [f"displacement.{b[0]}" if b[1].startswith("sliding") else f"angle.{b[0]}" for b in brackets]
     at = _refiner(backend, names, pos_keys, np.full(len(keys), np.nan))(roots[:, None])[:, 0]
-    at = np.where([k.startswith("angle.") for k in pos_keys], np.mod(at, _TWO_PI), at)  # link angles in [0, 2π)
-    events = [Event("dead centre", float(r), b[0], float(x)) for r, x, b in zip(roots, at, brackets, strict=True)]
+    at = np.where(
+        [k.startswith("angle.") for k in pos_keys], np.mod(at, _TWO_PI), at
+    )  # link angles in [0, 2π)
+    events = [
+        Event("dead centre", float(r), b[0], float(x)) for r, x, b in zip(roots, at, brackets, strict=True)
+    ]
     return tuple(_dedupe(events, phi)), outputs
 
 
 def _illinois(
-    fn: Callable[[np.ndarray], np.ndarray], a: np.ndarray, b: np.ndarray, fa: np.ndarray, fb: np.ndarray, iters: int = 12
+    fn: Callable[[np.ndarray], np.ndarray],
+    a: np.ndarray,
+    b: np.ndarray,
+    fa: np.ndarray,
+    fb: np.ndarray,
+    iters: int = 12,
 ) -> np.ndarray:
     """Regula falsi (Illinois) on K brackets at once: superlinear, a dozen solves each (Newton sweeps)."""
     a, b, fa, fb = a.copy(), b.copy(), fa.copy(), fb.copy()
@@ -912,7 +976,12 @@ def _illinois(
 
 
 def _extremes(
-    backend: Any, phi: np.ndarray, data: dict[str, np.ndarray], ok: np.ndarray, names: dict[str, tuple[str, ...]], keys: Sequence[str]
+    backend: Any,
+    phi: np.ndarray,
+    data: dict[str, np.ndarray],
+    ok: np.ndarray,
+    names: dict[str, tuple[str, ...]],
+    keys: Sequence[str],
 ) -> tuple[Extreme, ...]:
     """Grid extremes of every quantity, refined all at once (closed form) or by a parabola (Newton).
 
@@ -935,19 +1004,34 @@ def _extremes(
         for mode in ("max", "min"):
             vv = np.where(valid, v, -np.inf if mode == "max" else np.inf)
             k = int(np.argmax(vv) if mode == "max" else np.argmin(vv))
-            lo = phi[k - 1] if k > 0 and valid[k - 1] else (phi[-2] - _TWO_PI * np.sign(phi[-1] - phi[0]) if full and k == 0 else phi[k])
-            hi = phi[k + 1] if k + 1 < phi.size and valid[k + 1] else (phi[1] + _TWO_PI * np.sign(phi[-1] - phi[0]) if full and k == phi.size - 1 else phi[k])
+            lo = (
+                phi[k - 1]
+                if k > 0 and valid[k - 1]
+                else (phi[-2] - _TWO_PI * np.sign(phi[-1] - phi[0]) if full and k == 0 else phi[k])
+            )
+            hi = (
+                phi[k + 1]
+                if k + 1 < phi.size and valid[k + 1]
+                else (phi[1] + _TWO_PI * np.sign(phi[-1] - phi[0]) if full and k == phi.size - 1 else phi[k])
+            )
             rows.append((key, mode, k, min(lo, hi), max(lo, hi), float(v[k])))
     results: dict[tuple[str, str], tuple[float, float]] = {}
     if rows and isinstance(backend, _Closed):
         # minima are maxima of −v: one zoom refines every extreme of every quantity at once
         sign = np.array([1.0 if r[1] == "max" else -1.0 for r in rows])
         inner = _refiner(backend, names, [r[0] for r in rows], np.array([r[5] for r in rows]))
-        ang, val = _zoom(lambda g: sign[:, None] * inner(g), np.array([r[3] for r in rows]), np.array([r[4] for r in rows]), "max")
+        ang, val = _zoom(
+            lambda g: sign[:, None] * inner(g),
+            np.array([r[3] for r in rows]),
+            np.array([r[4] for r in rows]),
+            "max",
+        )
         for r, sg, a, x in zip(rows, sign, ang, val, strict=True):
             x = sg * x
             better = (x >= r[5]) if r[1] == "max" else (x <= r[5])
-            results[(r[0], r[1])] = (float(a), float(x)) if better and math.isfinite(x) else (float(phi[r[2]]), r[5])
+            results[(r[0], r[1])] = (
+                (float(a), float(x)) if better and math.isfinite(x) else (float(phi[r[2]]), r[5])
+            )
     else:
         for key, mode, k, _lo, _hi, val in rows:
             results[(key, mode)] = _parabola(phi, _pick(data, names, key), k, val, full)
@@ -989,7 +1073,9 @@ def _parabola(phi: np.ndarray, v: np.ndarray, k: int, val: float, full: bool) ->
     return float(phi[k] + t * h), float(b - 0.25 * (a - c) * t)
 
 
-def _time_ratio(phi: np.ndarray, ok: np.ndarray, dead: tuple[Event, ...], outputs: list[tuple[str, str]]) -> TimeRatio | None:
+def _time_ratio(
+    phi: np.ndarray, ok: np.ndarray, dead: tuple[Event, ...], outputs: list[tuple[str, str]]
+) -> TimeRatio | None:
     """Slow/fast stroke of the primary output over one full, gap-free revolution."""
     if phi.size < 3 or not np.all(ok) or abs(phi[-1] - phi[0]) < _TWO_PI - 1e-9:
         return None
