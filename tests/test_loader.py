@@ -307,3 +307,21 @@ def test_a_misspelt_link_is_one_error_not_a_cascade():
     text = FOUR_BAR.replace("links: [coupler, rocker]", "links: [coupler, roker]")
     found = problems(text)
     assert [msg for _, _, msg in found] == ["joint C names unknown link 'roker'"]
+
+
+def test_an_unknown_joint_type_is_not_echoed_by_the_lengths_that_name_it():
+    text = FOUR_BAR.replace(
+        "B: {type: revolute, links: [crank, coupler]}", "B: {type: pin, links: [crank, coupler]}"
+    )
+    found = problems(text)
+    assert [msg for _, _, msg in found] == ["unknown joint type 'pin'"]
+
+
+def test_point_placed_toward_coordinates_says_what_to_write():
+    text = FOUR_BAR.replace(
+        "E: {link: coupler, from: B, toward: C, distance: 50}",
+        "E: {link: coupler, from: B, toward: [1, 0], distance: 50}",
+    )
+    (line, column, message) = one_problem(text)
+    assert "must name a joint or point of the same link, not coordinates" in message
+    assert (line, column) == (13, 39)

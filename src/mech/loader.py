@@ -351,7 +351,8 @@ class _Reader:
 
         self._names(links_raw, top, joints, points)
         located = _located_on(joints, points)
-        self._check_refs(joints, points, located)
+        # a joint whose own error is reported counts as on every link, so nothing echoes it
+        self._check_refs(joints, points, {**located, **{n: set(link_names) for n in self.tainted}})
         lengths: list[Length] = []
         if "lengths" in top:
             lengths = self.guard(lambda: self._lengths(top["lengths"][1], located), [])
@@ -633,8 +634,8 @@ class _Reader:
     def _place(self, fields: dict[str, tuple[Any, Any]], what: str) -> Placement:
         at = self.optional(fields, "at", lambda n: self.vec(n, f"`at` of {what}"))
         near = self.optional(fields, "near", lambda n: self.vec(n, f"`near` of {what}"))
-        origin = self.optional(fields, "from", lambda n: self.name(n, f"`from` of {what}"))
-        toward = self.optional(fields, "toward", lambda n: self.name(n, f"`toward` of {what}"))
+        origin = self.optional(fields, "from", lambda n: self._anchor(n, "from", what))
+        toward = self.optional(fields, "toward", lambda n: self._anchor(n, "toward", what))
         distance = self.optional(
             fields, "distance", lambda n: self.number(n, f"`distance` of {what}", Dimension.LENGTH)
         )
@@ -652,15 +653,26 @@ class _Reader:
                 self.problem(fields["at"][0], f"{what} has both `at` and from/toward", "place it one way")
         return Placement(at=at, near=near, origin=origin, toward=toward, distance=distance, offset=offset)
 
+    def _anchor(self, node: yaml.Node, key: str, what: str) -> str:
+        """``from``/``toward`` of a placement: the name of a point of the same link."""
+        if isinstance(node, yaml.SequenceNode):
+            raise self.problem(
+                node,
+                f"`{key}` of {what} must name a joint or point of the same link, not coordinates",
+                "coordinates place it with `at: [x, y]`; from/toward keep it rigid on its link as it moves",
+            )
+        return self.name(node, f"`{key}` of {what}")
+
     def _joints(self, node: yaml.Node, links: set[str]) -> list[Joint]:
         joints: list[Joint] = []
         entries = self.mapping(node, "joints")
         if not entries:
             raise self.problem(node, "there are no joints")
-        for _key, (knode, vnode) in entries.items():
+        for key, (knode, vnode) in entries.items():
             try:
                 joints.append(self._joint(knode, vnode, links))
             except _Skip:
+                self.tainted.add(key)  # reported already: lengths naming it would only echo it
                 continue
         return joints
 
@@ -935,8 +947,11 @@ class _Reader:
                 a, b = self._length_key(knode, key, located)
                 if a == b:
                     raise self.problem(knode, f"length {key} joins {a!r} to itself")
+                value = self.number(vnode, f"length {key}", Dimension.LENGTH, positive=True)
+                if {a, b} & self.tainted:  # its joint's error is reported; more would be echoes
+                    continue
                 common = located[a] & located[b]
-                if not common and not {a, b} & self.tainted:
+                if not common:
                     raise self.problem(
                         knode,
                         f"{a} and {b} are not on one link ({a}: {', '.join(sorted(located[a]))}; {b}: {', '.join(sorted(located[b]))})",
@@ -946,13 +961,14 @@ class _Reader:
                 if pair in seen:
                     raise self.problem(knode, f"length {key} is given twice (also as {seen[pair]})")
                 seen[pair] = key
-                value = self.number(vnode, f"length {key}", Dimension.LENGTH, positive=True)
                 out.append(Length(a, b, value, self.where(knode)))
             except _Skip:
                 continue
         return out
 
     def _length_key(self, knode: yaml.Node, key: str, located: dict[str, set[str]]) -> tuple[str, str]:
+        if self.tainted:  # a joint whose own error is reported counts as known here, silently
+            located = {**{n: set() for n in self.tainted}, **located}
         if "-" in key:
             parts = key.split("-")
             if len(parts) != 2 or not all(parts):
