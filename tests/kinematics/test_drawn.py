@@ -66,3 +66,16 @@ drive: {link: a, angle: 80, rpm: 60}
         solve(loads(text, path="five.yaml"), level="velocity")
     assert "2 degrees of freedom" in str(info.value) and "1 drive" in str(info.value)
     assert "2 of them" in (info.value.hint or "")
+
+
+def test_an_unplaced_ground_pivot_is_named():
+    text = FILE.parent.joinpath("four_bar.yaml").read_text()
+    text = text.replace(
+        "A: {type: revolute, links: [frame, crank], at: [0, 0]}", "A: {type: revolute, links: [frame, crank]}"
+    )
+    from mech.errors import GeometryError
+
+    with pytest.raises(GeometryError) as info:
+        solve(loads(text, path="fb.yaml"), level="position")
+    assert str(info.value.problems[0].message).startswith("A is on the ground link frame but not placed")
+    assert info.value.where is not None and info.value.where.line == 19

@@ -645,6 +645,15 @@ def _check_determined(
         "a mechanism with more degrees of freedom than drives needs one drive per freedom"
     )
     undriven = [s for s in lay.drives if s.link is not None and s.drive.angle is None and s.toward in names]
+    unplaced = [n for n in names if lay.mech.ground in lay.carriers.get(n, ())]
+    if unplaced:  # the usual cause: a ground pivot the file does not place
+        where_first = next(x for x in lay.mech.joints if x.name == unplaced[0]).where
+        raise GeometryError(
+            f"{unplaced[0]} is on the ground link {lay.mech.ground} but not placed: "
+            f"{', '.join(names)} can still move with everything given",
+            where=where_first,
+            hint=f"place it with at: [x, y] (every joint on the {lay.mech.ground} needs one)",
+        )
     if undriven:
         hint = f"give the drive of {undriven[0].link} an angle (or draw {undriven[0].toward} with at)"
     listed = ", ".join(names)
