@@ -204,3 +204,13 @@ def test_dof_mobility_without_geometry_says_why(run):
     result = run("dof", "--mobility", str(ROOT / "mechanisms" / "four_bar_dof.yaml"))
     assert result.exit_code == 0
     assert "not computed" in result.output
+
+
+def test_rounding_noise_prints_as_zero(run):
+    # At dead centre the rod lies along the path: y = 0 and the piston stands still, exactly.
+    path = str(ROOT / "mechanisms" / "slider_crank.yaml")
+    data = json.loads(run("velocity", path, "--angle", "0", "--json").output)
+    points = {p["point"]: p for p in data["points"]}
+    assert points["B"]["position"][1] == 0.0
+    assert points["B"]["velocity"] == [0.0, 0.0] and points["B"]["direction"] is None
+    assert data["links"]["rod"]["angle"] in (0.0, 180.0)

@@ -74,6 +74,56 @@ def _link_pairs(kin: Kinematics) -> Iterator[tuple[str, str, str]]:
             yield lk, names[0], other
 
 
+class _Noise:
+    """Rounding noise shown as the zero it is: below 1e-12 of the mechanism's own scale.
+
+    A rod exactly along +x comes out at 3e-15° or 359.99999999999997°, a pivot's
+    velocity at 4e-18 m/s with a direction of 249°; a student reads those as
+    numbers.  The scales are the mechanism's: its size, its fastest link's ω, and
+    the largest velocity and acceleration of any of its points.
+    """
+
+    RELATIVE = 1e-12
+
+    def __init__(self, kin: Kinematics, has_v: bool, has_a: bool) -> None:
+        omegas = [abs(s.omega) for s in kin.links.values() if s.omega is not None]
+        alphas = [abs(s.alpha) for s in kin.links.values() if s.alpha is not None]
+        speeds = [abs(d.speed) / kin.size for d in kin.drives if d.speed is not None and kin.size > 0]
+        self.w = max([*omegas, *speeds], default=0.0)
+        self.al = max([*alphas, self.w * self.w], default=0.0)
+        v_pts = [math.hypot(*kin.velocity(n, lk)) for n, lk in _point_rows(kin)] if has_v else []
+        a_pts = [math.hypot(*kin.acceleration(n, lk)) for n, lk in _point_rows(kin)] if has_a else []
+        self.size = kin.size
+        self.v = max([kin.size * self.w, *v_pts], default=0.0)
+        self.a = max([kin.size * self.al, *a_pts], default=0.0)
+
+    def angle(self, theta: float) -> float:
+        return 0.0 if abs(math.remainder(theta, 2 * math.pi)) < self.RELATIVE else theta
+
+    def omega(self, w: float | None) -> float | None:
+        return None if w is None else (0.0 if abs(w) <= self.RELATIVE * self.w else w)
+
+    def alpha(self, a: float | None) -> float | None:
+        return None if a is None else (0.0 if abs(a) <= self.RELATIVE * self.al else a)
+
+    def speed(self, v: float) -> float:
+        return 0.0 if abs(v) <= self.RELATIVE * self.v else v
+
+    @classmethod
+    def _vector(cls, v: tuple[float, float], scale: float) -> tuple[float, float]:
+        floor = cls.RELATIVE * scale
+        return (0.0 if abs(v[0]) <= floor else v[0], 0.0 if abs(v[1]) <= floor else v[1])
+
+    def position(self, p: tuple[float, float]) -> tuple[float, float]:
+        return self._vector(p, self.size)
+
+    def velocity(self, v: tuple[float, float]) -> tuple[float, float]:
+        return self._vector(v, self.v)
+
+    def acceleration(self, a: tuple[float, float]) -> tuple[float, float]:
+        return self._vector(a, self.a)
+
+
 def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
     """The solve as a plain JSON-able dict, numbers in ``units``.
 
@@ -115,6 +165,7 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
         return None if x is None else to_unit(x, unit)
 
     has_v, has_a = _at_least(kin, "velocity"), _at_least(kin, "acceleration")
+    quiet = _Noise(kin, has_v, has_a)
     drives = []
     for d in kin.drives:
         entry: dict[str, Any] = {"link": d.link} if d.link is not None else {"joint": d.joint}
@@ -129,24 +180,24 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
 
     links = {
         name: {
-            "origin": vec(s.origin, L),
-            "angle": to_unit(s.angle, ANG),
-            "omega": num(s.omega, W),
-            "sense": _sense(s.omega),
-            "alpha": num(s.alpha, AL),
+            "origin": vec(quiet.position(s.origin), L),
+            "angle": to_unit(quiet.angle(s.angle), ANG),
+            "omega": num(quiet.omega(s.omega), W),
+            "sense": _sense(quiet.omega(s.omega)),
+            "alpha": num(quiet.alpha(s.alpha), AL),
         }
         for name, s in kin.links.items()
     }
 
     points = []
     for name, link in _point_rows(kin):
-        v = kin.velocity(name, link) if has_v else None
-        a = kin.acceleration(name, link) if has_a else None
+        v = quiet.velocity(kin.velocity(name, link)) if has_v else None
+        a = quiet.acceleration(kin.acceleration(name, link)) if has_a else None
         points.append(
             {
                 "point": name,
                 "link": link,
-                "position": vec(kin.positions[name], L),
+                "position": vec(quiet.position(kin.positions[name]), L),
                 "velocity": vec(v, V),
                 "speed": num(math.hypot(*v), V) if v is not None else None,
                 "direction": _dir(v) if v is not None else None,
@@ -159,7 +210,7 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
     if has_v:
         for lk, p, q in _link_pairs(kin):
             state = kin.links[lk]
-            v = kin.relative_velocity(q, p, link_a=lk, link_b=lk)
+            v = quiet.velocity(kin.relative_velocity(q, p, link_a=lk, link_b=lk))
             r = math.dist(kin.positions[p], kin.positions[q])
             relative.append(
                 {
@@ -169,8 +220,8 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
                     "label": f"{p}{q}".lower(),
                     "velocity": vec(v, V),
                     "speed": to_unit(math.hypot(*v), V),
-                    "normal": to_unit((state.omega or 0.0) ** 2 * r, A) if has_a else None,
-                    "tangential": to_unit(abs(state.alpha or 0.0) * r, A) if has_a else None,
+                    "normal": to_unit((quiet.omega(state.omega) or 0.0) ** 2 * r, A) if has_a else None,
+                    "tangential": to_unit(abs(quiet.alpha(state.alpha) or 0.0) * r, A) if has_a else None,
                 }
             )
 
@@ -178,14 +229,14 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
     if has_v:
         for name, j in kin.joints.items():
             if j.type in ("prismatic", "slot"):
-                cor = kin.coriolis(name) if has_a else None
+                cor = quiet.acceleration(kin.coriolis(name)) if has_a else None
                 sliders.append(
                     {
                         "joint": name,
                         "type": j.type,
                         "slider": j.links[0],
                         "guide": j.links[1],
-                        "sliding": to_unit(kin.sliding(name), V),
+                        "sliding": to_unit(quiet.speed(kin.sliding(name)), V),
                         "coriolis": vec(cor, A),
                         "coriolis_magnitude": num(math.hypot(*cor), A) if cor is not None else None,
                     }
