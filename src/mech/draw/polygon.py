@@ -431,7 +431,9 @@ def polygon_figure(mech: Mechanism, data: PolygonData, *, room: Vec = (90.0, 90.
     y += 7
     for v in named:
         mag = math.hypot(*v.value) / factor
-        what = {"sliding": "  (sliding)", "slip": "  (slip)"}.get(v.kind, "")
+        # in the acceleration polygon the coincident points' difference holds the Coriolis term too
+        sliding = "  (Coriolis + sliding)" if acc else "  (sliding)"
+        what = {"sliding": sliding, "slip": "  (slip)"}.get(v.kind, "")
         page.add(Text((MARGIN - 6, y), f"{v.name} = {fmt(mag)} {unit}{what}", 2.7, "start", "#333333",
                       cls="value"))
         y += 4.0
