@@ -531,31 +531,29 @@ class _Reader:
     def _units(self, node: yaml.Node) -> None:
         units = self.mapping(node, "units", allowed=("length", "angle"))
         if "length" in units:
-            vnode = units["length"][1]
-            u = self.scalar(vnode, "the length unit")
-            try:
-                dim, factor = unit_factor(u)
-            except KeyError:
-                dim, factor = None, 0.0
-            if dim is not Dimension.LENGTH:
-                self.problem(
-                    vnode,
-                    f"{u!r} is not a unit of length",
-                    f"use one of {', '.join(known_units(Dimension.LENGTH))}",
-                )
-            else:
-                self.length_factor, self.length_unit = factor, u
+            found = self._unit(units["length"][1], Dimension.LENGTH)
+            if found:
+                self.length_factor, self.length_unit = found
         if "angle" in units:
-            vnode = units["angle"][1]
-            u = self.scalar(vnode, "the angle unit")
-            try:
-                dim, factor = unit_factor(u)
-            except KeyError:
-                dim, factor = None, 0.0
-            if dim is not Dimension.ANGLE:
-                self.problem(vnode, f"{u!r} is not a unit of angle", "use deg or rad")
-            else:
-                self.angle_factor, self.angle_unit = factor, u
+            found = self._unit(units["angle"][1], Dimension.ANGLE)
+            if found:
+                self.angle_factor, self.angle_unit = found
+
+    def _unit(self, node: yaml.Node, dimension: Dimension) -> tuple[float, str] | None:
+        """A unit name of ``dimension`` → (factor to SI, name); a problem otherwise."""
+        name = self.scalar(node, f"the {dimension.label} unit")
+        try:
+            dim, factor = unit_factor(name)
+        except KeyError:
+            dim, factor = None, 0.0
+        if dim is not dimension:
+            self.problem(
+                node,
+                f"{name!r} is not a unit of {dimension.label}",
+                f"use one of {', '.join(known_units(dimension))}",
+            )
+            return None
+        return factor, name
 
     def _links(self, node: yaml.Node) -> list[tuple[str, yaml.Node, dict[str, Any]]]:
         out: list[tuple[str, yaml.Node, dict[str, Any]]] = []

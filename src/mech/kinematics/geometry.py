@@ -1,34 +1,19 @@
-"""Closed-form planar primitives: circle intersections, homogeneous lines, angles.
+"""Closed-form planar primitives: circle intersections and angles.
 
 Pure functions on plain floats (no numpy), each with an explicit branch
 argument and a clear answer when there is no solution (``None`` plus the gap),
 never a silent NaN.  The assembler uses them for its first guess of every
-dyad; the I-centre module may use the homogeneous lines.
-
-Homogeneous coordinates: a point is ``(x, y, w)`` (``w = 0`` is a point at
-infinity in direction ``(x, y)``); a line is ``(a, b, c)`` meaning
-``a x + b y + c w = 0``.  The line through two points and the meeting point of
-two lines are both cross products, so no division happens before the caller
-tests ``w`` against its own scaled tolerance.
+dyad.  Lines and points at infinity in homogeneous coordinates live in
+:mod:`mech.icentres.homogeneous`, where Kennedy's construction needs them.
 """
 
 from __future__ import annotations
 
 import math
 
-__all__ = [
-    "circle_circle",
-    "circle_line",
-    "cross",
-    "is_at_infinity",
-    "left_of",
-    "line_through",
-    "meet",
-    "wrap_angle",
-]
+__all__ = ["circle_circle", "circle_line", "cross", "wrap_angle"]
 
 Vec = tuple[float, float]
-Hom = tuple[float, float, float]
 
 #: relative slack under which two curves that miss are taken as touching (tangent)
 _TANGENT = 1e-12
@@ -37,11 +22,6 @@ _TANGENT = 1e-12
 def cross(a: Vec, b: Vec) -> float:
     """The z component of ``a × b`` (positive when b is counter-clockwise of a)."""
     return a[0] * b[1] - a[1] * b[0]
-
-
-def left_of(p: Vec, a: Vec, b: Vec) -> bool:
-    """True when ``p`` lies strictly to the left of the directed line ``a → b``."""
-    return cross((b[0] - a[0], b[1] - a[1]), (p[0] - a[0], p[1] - a[1])) > 0.0
 
 
 def wrap_angle(angle: float) -> float:
@@ -110,22 +90,3 @@ def circle_line(c: Vec, r: float, p: Vec, u: Vec, *, forward: bool = True) -> tu
     h = math.sqrt(max(r * r - off * off, 0.0))
     s = -along + (h if forward else -h)
     return (p[0] + s * u[0], p[1] + s * u[1]), 0.0
-
-
-def line_through(p: Hom, q: Hom) -> Hom:
-    """The homogeneous line through two homogeneous points (their cross product)."""
-    return (
-        p[1] * q[2] - p[2] * q[1],
-        p[2] * q[0] - p[0] * q[2],
-        p[0] * q[1] - p[1] * q[0],
-    )
-
-
-def meet(l1: Hom, l2: Hom) -> Hom:
-    """The homogeneous meeting point of two lines (``w = 0``: parallel lines)."""
-    return line_through(l1, l2)
-
-
-def is_at_infinity(p: Hom, size: float, *, rel: float = 1e-9) -> bool:
-    """True when ``p`` is farther than ``size / rel`` away, i.e. ``|w|·size/rel ≤ |(x, y)|``."""
-    return abs(p[2]) * size <= rel * math.hypot(p[0], p[1])
