@@ -79,3 +79,18 @@ def test_an_unplaced_ground_pivot_is_named():
         solve(loads(text, path="fb.yaml"), level="position")
     assert str(info.value.problems[0].message).startswith("A is on the ground link frame but not placed")
     assert info.value.where is not None and info.value.where.line == 19
+
+
+def test_sliding_acceleration_of_the_block_on_the_lever():
+    # s = |O1A| along the lever: ṡ = (A·Ȧ)/|A|, s̈ = (Ȧ·Ȧ + A·Ä)/|A| − (A·Ȧ)²/|A|³ (crank at constant ω)
+    kin = solve(load(FILE), level="acceleration")
+    w, r, th = 600 * 2 * math.pi / 60, 0.12, math.radians(35)
+    a = (r * math.cos(th), 0.5 + r * math.sin(th))
+    ad = (-w * r * math.sin(th), w * r * math.cos(th))
+    add = (-w * w * r * math.cos(th), -w * w * r * math.sin(th))
+    n = math.hypot(*a)
+    dot = a[0] * ad[0] + a[1] * ad[1]
+    s_dot = dot / n
+    s_ddot = (ad[0] ** 2 + ad[1] ** 2 + a[0] * add[0] + a[1] * add[1]) / n - dot**2 / n**3
+    assert kin.sliding("slot") == pytest.approx(s_dot, rel=1e-9)
+    assert kin.sliding_acceleration("slot") == pytest.approx(s_ddot, rel=1e-9)

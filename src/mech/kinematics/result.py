@@ -293,6 +293,24 @@ class Kinematics:
         omegas = [self._state(lk).omega or 0.0 for lk in j.links]
         return max(abs(a - b) for a in omegas for b in omegas) * j.radius
 
+    def sliding_acceleration(self, joint: str) -> float:
+        """Acceleration (m/s²) of sliding at a prismatic or slot joint, signed along its path.
+
+        The slider point's acceleration relative to the coincident point of the
+        guide, less the Coriolis term: ``a_P − a_P' − 2 ω × v_slide = s̈ u``
+        (the path is straight, so nothing is left across it).
+        """
+        self._need("acceleration")
+        j = self._joint(joint, ("prismatic", "slot"), "sliding acceleration")
+        if j.at is None:
+            raise InputError(f"joint {joint} has no point on its path in this configuration")
+        slider, guide = j.links
+        a_s = self._state(slider).acceleration_at(j.at)
+        a_g = self._state(guide).acceleration_at(j.at)
+        cor = self.coriolis(joint)
+        u = j.direction or (1.0, 0.0)
+        return (a_s[0] - a_g[0] - cor[0]) * u[0] + (a_s[1] - a_g[1] - cor[1]) * u[1]
+
     def coriolis(self, joint: str) -> Vec:
         """Coriolis acceleration (m/s²) at a prismatic or slot joint: ``2 ω_guide × v_slide``.
 

@@ -148,6 +148,7 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
                         "normal": float | null, "tangential": float | null}],  # ω²·AB, α·AB
           "sliders": [{"joint": str, "type": str, "slider": str, "guide": str,
                        "sliding": float [velocity, signed along the path],
+                       "sliding_acceleration": float [acceleration, along the path] | null,
                        "coriolis": [ax, ay] | null, "coriolis_magnitude": float | null}],
           "rubbing": [{"joint": str, "radius": float [length], "rubbing": float [velocity]}],
           "mobility": {"kutzbach": int, "numeric": int | null, "redundant": int,
@@ -237,6 +238,9 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
                         "slider": j.links[0],
                         "guide": j.links[1],
                         "sliding": to_unit(quiet.speed(kin.sliding(name)), V),
+                        "sliding_acceleration": num(
+                            quiet.acceleration((kin.sliding_acceleration(name), 0.0))[0] if has_a else None, A
+                        ),
                         "coriolis": vec(cor, A),
                         "coriolis_magnitude": num(math.hypot(*cor), A) if cor is not None else None,
                     }
@@ -414,12 +418,17 @@ def kinematics_table(kin: Kinematics, console: Any, *, units: OutputUnits) -> No
         for col in ("joint", "slider on guide", f"sliding ({u['velocity']})"):
             _col(t, col, justify="right" if "sliding" in col else "left")
         if has_a:
+            _col(t, f"sliding acc. ({u['acceleration']})", justify="right")
             _col(t, f"Coriolis 2ωv ({u['acceleration']})", justify="right")
             _col(t, f"dir ({u['angle']})", justify="right")
         for s in data["sliders"]:
             row = [s["joint"], f"{s['slider']} on {s['guide']}", _g(s["sliding"])]
             if has_a:
-                row += [_g(s["coriolis_magnitude"]), _g(_dir(tuple(s["coriolis"])), 4)]
+                row += [
+                    _g(s["sliding_acceleration"]),
+                    _g(s["coriolis_magnitude"]),
+                    _g(_dir(tuple(s["coriolis"])), 4),
+                ]
             t.add_row(*row)
         console.print(t)
 
