@@ -150,7 +150,9 @@ def test_acceleration_polygon_components_add_up_and_match_scale():
     assert total == pytest.approx(rel, rel=1e-9)
     normal = next(p for p in parts if p.kind == "normal")
     w = kin.links["coupler"].omega
-    assert math.hypot(*normal.value) == pytest.approx(w * w * math.dist(kin.positions["B"], kin.positions["C"]))
+    assert math.hypot(*normal.value) == pytest.approx(
+        w * w * math.dist(kin.positions["B"], kin.positions["C"])
+    )
     root = _parse(to_svg(draw(m, kin, acceleration=True)))
     scale = _panel_scales(root)[1]
     assert _vectors(root)["d′c′"] / 10 * scale == pytest.approx(math.hypot(*kin.acceleration("C")), rel=2e-3)
@@ -217,8 +219,9 @@ def test_cli_draw_writes_svg(run, tmp_path):
 
 def test_cli_draw_json_summary_states_scales(run, tmp_path):
     out = tmp_path / "sc.svg"
-    result = run("draw", str(MECHANISMS / "slider_crank.yaml"), "-o", str(out), "--velocity", "--json",
-                 "--units", "mm")
+    result = run(
+        "draw", str(MECHANISMS / "slider_crank.yaml"), "-o", str(out), "--velocity", "--json", "--units", "mm"
+    )
     assert result.exit_code == 0
     assert '"1 cm = 500 mm/s"' in result.stdout
 
@@ -244,8 +247,13 @@ def test_dof_and_check_never_import_drawing_code(command):
         f"try:\n    main([{command!r}, sys.argv[1]])\nexcept SystemExit:\n    pass\n"
         "print('LOADED=' + ','.join(sorted(m for m in sys.modules if m == 'matplotlib' or m.startswith('mech.draw'))))\n"
     )
-    result = subprocess.run([sys.executable, "-c", code, str(MECHANISMS / "four_bar.yaml")],
-                            capture_output=True, text=True, cwd=ROOT, timeout=120)
+    result = subprocess.run(
+        [sys.executable, "-c", code, str(MECHANISMS / "four_bar.yaml")],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        timeout=120,
+    )
     assert "LOADED=\n" in result.stdout, result.stdout + result.stderr
 
 

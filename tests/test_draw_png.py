@@ -107,8 +107,10 @@ def test_sweep_plot_rejects_mismatched_lengths(tmp_path):
 
 def test_animate_writes_one_gif_frame_per_position_set(tmp_path):
     m = load(ROOT / "mechanisms" / "four_bar.yaml")
-    frames = [solve(m, level="position", options=SolveOptions(angle=math.radians(a))).positions
-              for a in (60, 150, 240, 330)]
+    frames = [
+        solve(m, level="position", options=SolveOptions(angle=math.radians(a))).positions
+        for a in (60, 150, 240, 330)
+    ]
     kin = solve(m, level="position")
     out = tmp_path / "four_bar.gif"
     animate(out, m, kin, frames, fps=10, dpi=40)

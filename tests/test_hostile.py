@@ -66,7 +66,9 @@ def mech(
             env=env,
             timeout=timeout,
         )
-        return _Run(proc.returncode, proc.stdout.decode("utf-8", "replace"), proc.stderr.decode("utf-8", "replace"))
+        return _Run(
+            proc.returncode, proc.stdout.decode("utf-8", "replace"), proc.stderr.decode("utf-8", "replace")
+        )
     import traceback
 
     from click.testing import CliRunner
@@ -82,7 +84,9 @@ def mech(
         os.chdir(here)
     stderr = result.stderr
     if result.exception is not None and not isinstance(result.exception, SystemExit):
-        stderr += "Traceback (most recent call last):\n" + "".join(traceback.format_exception(result.exception))
+        stderr += "Traceback (most recent call last):\n" + "".join(
+            traceback.format_exception(result.exception)
+        )
         return _Run(1, result.stdout, stderr)
     return _Run(result.exit_code, result.stdout, stderr)
 

@@ -468,7 +468,9 @@ def sweep_command(
     options = request.options.with_(method=method)
     mechanism = load(request.file)
     if level is None:
-        has_speed = request.speed_given or any(d.omega is not None or d.speed is not None for d in mechanism.drives)
+        has_speed = request.speed_given or any(
+            d.omega is not None or d.speed is not None for d in mechanism.drives
+        )
         level = "velocity" if has_speed else "position"
     angles = np.radians(np.linspace(start, stop, steps + 1))
     result = sweep(mechanism, angles, level=level, options=options, quantities=quantities or None)

@@ -73,7 +73,9 @@ class SolveOptions:
         for name in ("omega", "speed", "alpha"):
             v = getattr(self, name)
             if v is not None and v != 0.0 and not low <= abs(v) <= high:
-                raise ValueError(f"{name} = {v:g} (SI) is outside the range mech works in ({low:g} to {high:g})")
+                raise ValueError(
+                    f"{name} = {v:g} (SI) is outside the range mech works in ({low:g} to {high:g})"
+                )
 
     def with_(self, **changes: object) -> SolveOptions:
         """A copy with some fields changed (options are immutable)."""

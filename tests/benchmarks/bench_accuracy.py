@@ -51,7 +51,16 @@ def reference(prog, phi: float, w: float, al: float) -> dict[str, np.ndarray]:
     """Positions, velocities, accelerations of every point in 40 digits (returned as floats)."""
     with mpmath.workdps(40):
         clip = lambda x: x if x > 0 else mpmath.mpf(0)  # noqa: E731
-        out = prog._fns[2](mpmath.mpf(phi), mpmath.mpf(w), mpmath.mpf(al), mpmath.sqrt, mpmath.cos, mpmath.sin, mpmath.atan2, clip)
+        out = prog._fns[2](
+            mpmath.mpf(phi),
+            mpmath.mpf(w),
+            mpmath.mpf(al),
+            mpmath.sqrt,
+            mpmath.cos,
+            mpmath.sin,
+            mpmath.atan2,
+            clip,
+        )
         parts = prog.split(out, 2)
         cx, cy = prog.centre
         pick = [k for k, p in enumerate(prog.points) if not p.startswith("#")]
@@ -76,7 +85,9 @@ def errors(kin, ref, names) -> tuple[float, float, float]:
 
 def table_tolerance() -> None:
     print("### 1. One solve (position, velocity, acceleration) at the drawn angle + 37°\n")
-    print("| mechanism | method | tol | time per solve | position error | velocity error | acceleration error |")
+    print(
+        "| mechanism | method | tol | time per solve | position error | velocity error | acceleration error |"
+    )
     print("| --- | --- | ---: | ---: | ---: | ---: | ---: |")
     for label, stem in CASES.items():
         m = mech.load(ROOT / "mechanisms" / f"{stem}.yaml")
@@ -92,22 +103,35 @@ def table_tolerance() -> None:
             kin = solve(m, "acceleration", opts)
             t = median_time(lambda m=m, o=opts: solve(m, "acceleration", o), 200 if tol is None else 50)
             ep, ev, ea = errors(kin, ref, names)
-            print(f"| {label} | {method} | {'—' if tol is None else f'{tol:.0e}'} | {t * 1e6:.0f} µs | {ep:.1e} | {ev:.1e} | {ea:.1e} |")
+            print(
+                f"| {label} | {method} | {'—' if tol is None else f'{tol:.0e}'} | {t * 1e6:.0f} µs | {ep:.1e} | {ev:.1e} | {ea:.1e} |"
+            )
 
 
 def table_sweeps() -> None:
     print("\n### 2. A whole turn: per-step Newton continuation against the vectorised closed form\n")
-    print("| mechanism | method | steps | time | per step | position error | velocity error | acceleration error |")
+    print(
+        "| mechanism | method | steps | time | per step | position error | velocity error | acceleration error |"
+    )
     print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |")
     for label, stem in CASES.items():
         m = mech.load(ROOT / "mechanisms" / f"{stem}.yaml")
         prog = closed_form(m)
         d = solve(m, "acceleration").drives[0]
-        for method, steps, tol in (("Newton, tol 1e-6", 360, 1e-6), ("Newton, tol 1e-12", 360, 1e-12), ("closed form", 360, None), ("closed form", 3600, None)):
+        for method, steps, tol in (
+            ("Newton, tol 1e-6", 360, 1e-6),
+            ("Newton, tol 1e-12", 360, 1e-12),
+            ("closed form", 360, None),
+            ("closed form", 3600, None),
+        ):
             phi = d.angle + np.radians(np.linspace(0, 360, steps + 1))
             opts = SolveOptions(method="newton" if tol else "auto", tol=tol or 1e-12)
             s = sweep(m, phi, level="acceleration", options=opts, analyse=False)
-            t = median_time(lambda m=m, p=phi, o=opts: sweep(m, p, level="acceleration", options=o, analyse=False), 1, repeat=3 if tol else 9)
+            t = median_time(
+                lambda m=m, p=phi, o=opts: sweep(m, p, level="acceleration", options=o, analyse=False),
+                1,
+                repeat=3 if tol else 9,
+            )
             idx = np.linspace(0, steps, 13).astype(int)  # 13 angles checked in 40 digits
             ep = ev = ea = 0.0
             for k in idx:
@@ -115,9 +139,23 @@ def table_sweeps() -> None:
                 pick = [s.points.index(n) for n in s.points]
                 size = solve(m, "position").size
                 ep = max(ep, float(np.max(np.hypot(*(s.positions[k, pick] - ref["p"]).T))) / size)
-                ev = max(ev, float(np.max(np.hypot(*(s.velocities[k, pick] - ref["v"]).T)) / np.max(np.hypot(*ref["v"].T))))
-                ea = max(ea, float(np.max(np.hypot(*(s.accelerations[k, pick] - ref["a"]).T)) / np.max(np.hypot(*ref["a"].T))))
-            print(f"| {label} | {method} | {steps} | {t * 1e3:.2f} ms | {t / (steps + 1) * 1e6:.2f} µs | {ep:.1e} | {ev:.1e} | {ea:.1e} |")
+                ev = max(
+                    ev,
+                    float(
+                        np.max(np.hypot(*(s.velocities[k, pick] - ref["v"]).T))
+                        / np.max(np.hypot(*ref["v"].T))
+                    ),
+                )
+                ea = max(
+                    ea,
+                    float(
+                        np.max(np.hypot(*(s.accelerations[k, pick] - ref["a"]).T))
+                        / np.max(np.hypot(*ref["a"].T))
+                    ),
+                )
+            print(
+                f"| {label} | {method} | {steps} | {t * 1e3:.2f} ms | {t / (steps + 1) * 1e6:.2f} µs | {ep:.1e} | {ev:.1e} | {ea:.1e} |"
+            )
 
 
 def exact_extreme(prog, key_fn, guess: float, w: float) -> float:
@@ -134,7 +172,9 @@ def exact_extreme(prog, key_fn, guess: float, w: float) -> float:
 
 
 def table_extremes() -> None:
-    print("\n### 3. Extremes: read off the grid against refined by the sweep (relative error to the exact extreme)\n")
+    print(
+        "\n### 3. Extremes: read off the grid against refined by the sweep (relative error to the exact extreme)\n"
+    )
     print("| mechanism | quantity | steps | grid maximum error | refined error | sweep time |")
     print("| --- | --- | ---: | ---: | ---: | ---: |")
     cases = [("slider crank", "slider_crank", "sliding.P"), ("four-bar", "four_bar", "omega.rocker")]
@@ -154,8 +194,12 @@ def table_extremes() -> None:
             phi = np.radians(np.linspace(0, 360, steps + 1))
             s = sweep(m, phi, level="velocity", quantities=[key])
             grid = float(np.nanmax(s.series(key)))
-            t = median_time(lambda m=m, p=phi, k=key: sweep(m, p, level="velocity", quantities=[k]), 1, repeat=7)
-            print(f"| {label} | max {key} | {steps} | {abs(grid - exact) / abs(exact):.1e} | {abs(s.extremes[0].max_value - exact) / abs(exact):.1e} | {t * 1e3:.2f} ms |")
+            t = median_time(
+                lambda m=m, p=phi, k=key: sweep(m, p, level="velocity", quantities=[k]), 1, repeat=7
+            )
+            print(
+                f"| {label} | max {key} | {steps} | {abs(grid - exact) / abs(exact):.1e} | {abs(s.extremes[0].max_value - exact) / abs(exact):.1e} | {t * 1e3:.2f} ms |"
+            )
 
 
 if __name__ == "__main__":

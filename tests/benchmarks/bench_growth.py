@@ -68,7 +68,9 @@ def median_time(fn, number: int, repeat: int = 5) -> float:
 
 
 def main() -> None:
-    print("| links | Newton solve | closed form, `solve` | closed form, lean | sweep 360 steps | Newton / closed |")
+    print(
+        "| links | Newton solve | closed form, `solve` | closed form, lean | sweep 360 steps | Newton / closed |"
+    )
     print("| ---: | ---: | ---: | ---: | ---: | ---: |")
     for n in range(4, 42, 2):
         m = chain(n)

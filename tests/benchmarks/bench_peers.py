@@ -79,11 +79,19 @@ def main() -> None:
         sys.exit("pylinkage is not installed: pip install -e '.[bench]'")
     cases = [
         ("four-bar", mech.load(ROOT / "mechanisms" / "four_bar.yaml"), "C", math.radians(60), -4 * math.pi),
-        ("slider crank", mech.load(ROOT / "mechanisms" / "slider_crank.yaml"), "B", math.radians(135), -10 * math.pi),
+        (
+            "slider crank",
+            mech.load(ROOT / "mechanisms" / "slider_crank.yaml"),
+            "B",
+            math.radians(135),
+            -10 * math.pi,
+        ),
     ]
     models = pylinkage_models()
-    print(f"mech vs pylinkage {pylinkage.__version__} (numba: no) — Python {platform.python_version()}, "
-          f"numpy {np.__version__}, {platform.machine()}, medians of 7")
+    print(
+        f"mech vs pylinkage {pylinkage.__version__} (numba: no) — Python {platform.python_version()}, "
+        f"numpy {np.__version__}, {platform.machine()}, medians of 7"
+    )
     print()
     rows = []
     for (label, m, point, phi0, w), (model, index, _) in zip(cases, models, strict=True):
@@ -118,20 +126,36 @@ def main() -> None:
         k = s.points.index(point)
         err = [
             float(np.max(np.abs(ours - theirs)) / np.max(np.abs(ours)))
-            for ours, theirs in ((s.positions[:, k], pl_p), (s.velocities[:, k], pl_v), (s.accelerations[:, k], pl_a))
+            for ours, theirs in (
+                (s.positions[:, k], pl_p),
+                (s.velocities[:, k], pl_v),
+                (s.accelerations[:, k], pl_a),
+            )
         ]
         rows.append((label, t_rich, t_lean, t_pl_one, t_sweep, t_sweep_full, t_pl_sweep, t_pl_pos, err))
 
     print("| mechanism | task | mech | pylinkage | ratio |")
     print("| --- | --- | ---: | ---: | ---: |")
     for label, t_rich, t_lean, t_pl_one, t_sweep, t_full, t_pl_sweep, t_pl_pos, _ in rows:
-        print(f"| {label} | one position + v + a, lean (`closed_form(m).state`) | {fmt(t_lean)} | {fmt(t_pl_one)} | {t_pl_one / t_lean:.1f}× |")
-        print(f"| {label} | one position + v + a, full result (`solve`) | {fmt(t_rich)} | {fmt(t_pl_one)} | {t_pl_one / t_rich:.2f}× |")
-        print(f"| {label} | 3,600 steps, positions + v + a (`sweep(analyse=False)`) | {fmt(t_sweep)} | {fmt(t_pl_sweep)} | {t_pl_sweep / t_sweep:.0f}× |")
-        print(f"| {label} | 3,600 steps + extremes, dead centres, time ratio (`sweep`) | {fmt(t_full)} | {fmt(t_pl_sweep)} | {t_pl_sweep / t_full:.1f}× |")
-        print(f"| {label} | 3,600 steps, positions only (pylinkage `step`) | {fmt(t_sweep)} | {fmt(t_pl_pos)} | {t_pl_pos / t_sweep:.0f}× |")
+        print(
+            f"| {label} | one position + v + a, lean (`closed_form(m).state`) | {fmt(t_lean)} | {fmt(t_pl_one)} | {t_pl_one / t_lean:.1f}× |"
+        )
+        print(
+            f"| {label} | one position + v + a, full result (`solve`) | {fmt(t_rich)} | {fmt(t_pl_one)} | {t_pl_one / t_rich:.2f}× |"
+        )
+        print(
+            f"| {label} | 3,600 steps, positions + v + a (`sweep(analyse=False)`) | {fmt(t_sweep)} | {fmt(t_pl_sweep)} | {t_pl_sweep / t_sweep:.0f}× |"
+        )
+        print(
+            f"| {label} | 3,600 steps + extremes, dead centres, time ratio (`sweep`) | {fmt(t_full)} | {fmt(t_pl_sweep)} | {t_pl_sweep / t_full:.1f}× |"
+        )
+        print(
+            f"| {label} | 3,600 steps, positions only (pylinkage `step`) | {fmt(t_sweep)} | {fmt(t_pl_pos)} | {t_pl_pos / t_sweep:.0f}× |"
+        )
     print()
-    print("| mechanism | largest difference over 3,600 steps (relative) | position | velocity | acceleration |")
+    print(
+        "| mechanism | largest difference over 3,600 steps (relative) | position | velocity | acceleration |"
+    )
     print("| --- | --- | ---: | ---: | ---: |")
     for label, *_, err in rows:
         print(f"| {label} | mech − pylinkage | {err[0]:.1e} | {err[1]:.1e} | {err[2]:.1e} |")

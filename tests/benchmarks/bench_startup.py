@@ -44,10 +44,14 @@ def measure(args: list[str], repeat: int) -> list[float]:
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("--repeat", type=int, default=21)
     args = parser.parse_args()
-    print(f"cold start, median of {args.repeat} runs; Python {platform.python_version()}, {platform.machine()}")
+    print(
+        f"cold start, median of {args.repeat} runs; Python {platform.python_version()}, {platform.machine()}"
+    )
     print(f"interpreter: {sys.executable}")
     print(f"{'case':40} {'median ms':>10} {'min ms':>8} {'× bare python':>14}")
     # Interleave the cases run by run, so that a burst of load on a shared machine

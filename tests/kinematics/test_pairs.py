@@ -49,7 +49,9 @@ def test_five_bar_takes_two_drives():
 def test_too_few_or_too_many_drives_are_input_errors():
     with pytest.raises(GeometryError, match="does not fix where") as err:  # positions undetermined
         solve(five_bar([{"link": "left", "angle": 1.0, "omega": 1.0}]))
-    assert "one drive per degree of freedom" in (err.value.hint or "") and "2 degrees of freedom" in str(err.value)
+    assert "one drive per degree of freedom" in (err.value.hint or "") and "2 degrees of freedom" in str(
+        err.value
+    )
     drawn = solve(
         five_bar(
             [{"link": "left", "angle": 1.0, "omega": 1.0}, {"link": "right", "angle": 2.0, "omega": 1.0}]

@@ -120,7 +120,9 @@ def test_four_bar_rocker_extremes_and_dead_centres_match_the_law_of_cosines():
     got = sorted(x.angle for x in s.dead_centres if x.subject == "rocker")
     assert got == pytest.approx(expected, abs=1e-12)
     beta = expected[1] - expected[0]
-    assert s.time_ratio.ratio == pytest.approx(max(beta, 2 * math.pi - beta) / min(beta, 2 * math.pi - beta), rel=1e-12)
+    assert s.time_ratio.ratio == pytest.approx(
+        max(beta, 2 * math.pi - beta) / min(beta, 2 * math.pi - beta), rel=1e-12
+    )
     # the rocker's fastest turn, against mpmath on the closed-form angle
     w = -4 * math.pi
     om = ext["omega.rocker"]
@@ -191,7 +193,12 @@ def test_extreme_link_ratios(ratio):
         r, rod = 1e-6, 1.0
     else:
         r, rod = 1.0, 1e6
-    s = sweep(slider_crank(r=r, rod=rod, omega=3.0), FULL, level="velocity", quantities=["displacement.P", "sliding.P"])
+    s = sweep(
+        slider_crank(r=r, rod=rod, omega=3.0),
+        FULL,
+        level="velocity",
+        quantities=["displacement.P", "sliding.P"],
+    )
     d = s.extremes[0]
     assert d.max_value - d.min_value == pytest.approx(2 * r, abs=1e-9 * (r + rod))
     v = s.extremes[1]
@@ -216,7 +223,9 @@ def test_millimetre_links_a_thousand_kilometres_out(offset):
     # the data describe is (offset + d) − offset, exactly, and that is the reference.
     d = (offset + 0.015) - offset
     ref = sweep(four_bar(0.004, 0.015, 0.008, d, omega=2.0), FULL, level="acceleration")
-    s = sweep(four_bar(0.004, 0.015, 0.008, 0.015, omega=2.0, origin=(offset, offset)), FULL, level="acceleration")
+    s = sweep(
+        four_bar(0.004, 0.015, 0.008, 0.015, omega=2.0, origin=(offset, offset)), FULL, level="acceleration"
+    )
     # Positions are as good as a double at 1e6 m allows (ulp 1.2e-10 m); rates do not see the
     # offset at all: the solver works relative to a ground pivot from assembly on.
     np.testing.assert_allclose(s.positions - offset, ref.positions, atol=3e-10)
@@ -243,7 +252,9 @@ def test_newton_sweep_warm_starts_and_agrees_with_the_closed_form():
     assert slow.method == "newton" and fast.method == "closed form"
     np.testing.assert_allclose(slow.positions, fast.positions, atol=1e-12)
     np.testing.assert_allclose(slow.accelerations, fast.accelerations, rtol=1e-9, atol=1e-9)
-    assert [e.angle for e in slow.dead_centres] == pytest.approx([e.angle for e in fast.dead_centres], abs=1e-9)
+    assert [e.angle for e in slow.dead_centres] == pytest.approx(
+        [e.angle for e in fast.dead_centres], abs=1e-9
+    )
 
 
 def test_sweep_refuses_what_it_cannot_do():

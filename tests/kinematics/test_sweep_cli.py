@@ -21,7 +21,17 @@ def test_sweep_prints_dead_centres_and_time_ratio(run):
 def test_sweep_json_and_csv_agree(run, tmp_path):
     out = tmp_path / "s.csv"
     result = run(
-        "sweep", FOUR_BAR, "--json", "--steps", "72", "--quantity", "omega.rocker", "--csv", str(out), "--units", "mm"
+        "sweep",
+        FOUR_BAR,
+        "--json",
+        "--steps",
+        "72",
+        "--quantity",
+        "omega.rocker",
+        "--csv",
+        str(out),
+        "--units",
+        "mm",
     )
     assert result.exit_code == 0, result.output
     data = json.loads(result.output)
@@ -64,7 +74,18 @@ def test_plot_and_animation_are_written(run, tmp_path):
 
     pytest.importorskip("matplotlib")
     png, gif = tmp_path / "p.png", tmp_path / "a.gif"
-    result = run("sweep", FOUR_BAR, "--steps", "24", "--quantity", "omega.rocker", "--plot", str(png), "--animate", str(gif))
+    result = run(
+        "sweep",
+        FOUR_BAR,
+        "--steps",
+        "24",
+        "--quantity",
+        "omega.rocker",
+        "--plot",
+        str(png),
+        "--animate",
+        str(gif),
+    )
     assert result.exit_code == 0, result.output
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert gif.read_bytes()[:6] in (b"GIF89a", b"GIF87a")

@@ -84,7 +84,7 @@ def draw(
 
 
 def _state_line(kin: Any) -> str:
-    """"crank at 60°, 120 rpm cw" for each drive: the instant the drawing shows."""
+    """ "crank at 60°, 120 rpm cw" for each drive: the instant the drawing shows."""
     parts = []
     for d in getattr(kin, "drives", ()):
         if d.link is not None and d.angle is not None:

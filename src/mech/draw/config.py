@@ -67,7 +67,9 @@ def link_colours(mech: Mechanism) -> dict[str, str]:
     return out
 
 
-def link_members(mech: Mechanism, kin: Any, positions: Mapping[str, Vec] | None = None) -> dict[str, list[str]]:
+def link_members(
+    mech: Mechanism, kin: Any, positions: Mapping[str, Vec] | None = None
+) -> dict[str, list[str]]:
     """Located names fixed in each link, in file order, plus the slider points it guides.
 
     The slider point of a prismatic or slot joint is not fixed in the guide,
@@ -167,7 +169,11 @@ def configuration(
     members = link_members(mech, kin, pos)
     colours = link_colours(mech)
     if view is None:
-        pts = list(pos.values()) + _circle_extents(mech, pos) + [e for _, _, e in _follower_rods(mech, kin, pos)]
+        pts = (
+            list(pos.values())
+            + _circle_extents(mech, pos)
+            + [e for _, _, e in _follower_rods(mech, kin, pos)]
+        )
         pts += [c.point for c in reachable(icentres, pts)]
         view = fit_view(pts, room)
     tr = view.transform()
@@ -185,7 +191,9 @@ def configuration(
     page.extend(_labels(mech, members, pos, tr, list(page.items)))
     page.extend(_drive_arrows(mech, kin, pos, tr, [i for i in page.items if isinstance(i, Text)]))
     if icentres:
-        page.extend(overlay(icentres, tr, (MARGIN, TITLE_H + MARGIN, width - MARGIN, height - MARGIN - FOOT_H)))
+        page.extend(
+            overlay(icentres, tr, (MARGIN, TITLE_H + MARGIN, width - MARGIN, height - MARGIN - FOOT_H))
+        )
 
     factor = _unit_factor(mech.length_unit)
     page.extend(scale_bar((MARGIN - 6, height - 7), view.scale / factor, mech.length_unit))
@@ -234,8 +242,14 @@ def _page_dir(u: Vec) -> Vec:
     return (u[0], -u[1])
 
 
-def _guides(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform,
-            directions: Mapping[str, Vec], view: View) -> list[Item]:
+def _guides(
+    mech: Mechanism,
+    kin: Any,
+    pos: Mapping[str, Vec],
+    tr: Transform,
+    directions: Mapping[str, Vec],
+    view: View,
+) -> list[Item]:
     """Ground guides of sliders: the line of stroke (dash-dot) and a hatched guide surface."""
     items: list[Item] = []
     centre = _centre(pos)
@@ -302,8 +316,13 @@ def _spread(points: list[Vec]) -> float:
     return area / (per * per)
 
 
-def _links(mech: Mechanism, members: Mapping[str, list[str]], pos: Mapping[str, Vec], tr: Transform,
-           colours: Mapping[str, str]) -> list[Item]:
+def _links(
+    mech: Mechanism,
+    members: Mapping[str, list[str]],
+    pos: Mapping[str, Vec],
+    tr: Transform,
+    colours: Mapping[str, str],
+) -> list[Item]:
     """Bars for binary links, plates for links of three or more points not in one line."""
     plates: list[Item] = []
     bars: list[Item] = []
@@ -314,7 +333,9 @@ def _links(mech: Mechanism, members: Mapping[str, list[str]], pos: Mapping[str, 
         colour = colours[link.name]
         if len(pts) >= 3 and _spread(pts) > 0.01:
             hull = tuple(_hull(pts))
-            plates.append(Poly(hull, True, Style(colour, 0.6, fill=colour, fill_opacity=0.16), "link", link.name))
+            plates.append(
+                Poly(hull, True, Style(colour, 0.6, fill=colour, fill_opacity=0.16), "link", link.name)
+            )
             # members inside the plate still get a visible bar to the nearest corner
             continue
         # collinear: one bar from end to end
@@ -335,8 +356,14 @@ def _ground_pivots(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transf
     return items
 
 
-def _blocks(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform,
-            directions: Mapping[str, Vec], colours: Mapping[str, str]) -> list[Item]:
+def _blocks(
+    mech: Mechanism,
+    kin: Any,
+    pos: Mapping[str, Vec],
+    tr: Transform,
+    directions: Mapping[str, Vec],
+    colours: Mapping[str, str],
+) -> list[Item]:
     """Slider blocks (prismatic) and slots (pin in a slot), oriented along their paths."""
     items: list[Item] = []
     for j in mech.joints:
@@ -356,7 +383,9 @@ def _blocks(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform,
             )
             colour = colours.get(j.links[0], INK)
             items.append(Poly(corners, True, Style(colour, 0.6, fill="#ffffff"), "slider", j.name))
-            items.append(Poly(corners, True, Style(None, 0, fill=colour, fill_opacity=0.16), "slider-fill", j.name))
+            items.append(
+                Poly(corners, True, Style(None, 0, fill=colour, fill_opacity=0.16), "slider-fill", j.name)
+            )
         else:  # slot: two parallel lines along the path, in the slot link's colour
             colour = colours.get(j.links[1], INK)
             half, w = 9.0, PIN_R + 0.6
@@ -381,26 +410,49 @@ def _contacts(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform) 
                 centre = _pivot_of(mech, link, pos)
                 if centre is not None:
                     pc = tr(centre)
-                    items.append(Circle(pc, math.dist(pc, c), Style(link_colours(mech).get(link, INK), 0.6,
-                                        dash=(3, 1, 0.6, 1)), "pitch-circle", link))
+                    items.append(
+                        Circle(
+                            pc,
+                            math.dist(pc, c),
+                            Style(link_colours(mech).get(link, INK), 0.6, dash=(3, 1, 0.6, 1)),
+                            "pitch-circle",
+                            link,
+                        )
+                    )
         normal = j.normal
         geom = kin.joints.get(j.name)
         if normal is None and geom is not None and geom.direction is not None:
             normal = math.atan2(geom.direction[1], geom.direction[0]) - math.pi / 2
         if normal is not None:
             u = (math.cos(normal), -math.sin(normal))
-            items.append(Line((c[0] - 14 * u[0], c[1] - 14 * u[1]), (c[0] + 14 * u[0], c[1] + 14 * u[1]),
-                              Style("#555555", 0.25, dash=(3, 1, 0.6, 1)), "normal", j.name))
+            items.append(
+                Line(
+                    (c[0] - 14 * u[0], c[1] - 14 * u[1]),
+                    (c[0] + 14 * u[0], c[1] + 14 * u[1]),
+                    Style("#555555", 0.25, dash=(3, 1, 0.6, 1)),
+                    "normal",
+                    j.name,
+                )
+            )
             t = (-u[1], u[0])
-            items.append(Line((c[0] - 6 * t[0], c[1] - 6 * t[1]), (c[0] + 6 * t[0], c[1] + 6 * t[1]),
-                              Style(INK, 0.5), "tangent", j.name))
+            items.append(
+                Line(
+                    (c[0] - 6 * t[0], c[1] - 6 * t[1]),
+                    (c[0] + 6 * t[0], c[1] + 6 * t[1]),
+                    Style(INK, 0.5),
+                    "tangent",
+                    j.name,
+                )
+            )
         colours = link_colours(mech)
         for link in j.links:
             if j.type in (JointType.GEAR, JointType.ROLLING):
                 continue
             body = [n for n, links in kin.carriers.items() if link in links and n in pos]
             for n in body:  # the profile is unknown: show which points the contact belongs to
-                items.append(Line(tr(pos[n]), c, Style(colours.get(link, INK), 0.5, dash=(2.0, 1.0)), "body", link))
+                items.append(
+                    Line(tr(pos[n]), c, Style(colours.get(link, INK), 0.5, dash=(2.0, 1.0)), "body", link)
+                )
             if not body and link != mech.ground:
                 items.extend(_follower(mech, kin, link, pos[j.name], tr, colours.get(link, INK)))
         items.append(Circle(c, 0.9, Style(INK, 0.3, fill=INK), "contact", j.name))
@@ -423,8 +475,17 @@ def _follower_rods(mech: Mechanism, kin: Any, pos: Mapping[str, Vec]) -> list[tu
         for link in j.links:
             if link == mech.ground or any(link in links and n in pos for n, links in kin.carriers.items()):
                 continue
-            guide = next((g for g in mech.joints if g.type is JointType.PRISMATIC and g.links[0] == link
-                          and g.name in kin.joints and kin.joints[g.name].direction), None)
+            guide = next(
+                (
+                    g
+                    for g in mech.joints
+                    if g.type is JointType.PRISMATIC
+                    and g.links[0] == link
+                    and g.name in kin.joints
+                    and kin.joints[g.name].direction
+                ),
+                None,
+            )
             if guide is None:
                 continue
             u = kin.joints[guide.name].direction
@@ -456,8 +517,13 @@ def _follower(mech: Mechanism, kin: Any, link: str, tip: Vec, tr: Transform, col
 
 
 def _contact_partners(mech: Mechanism, link: str) -> list[str]:
-    return [lk for j in mech.joints if j.type in (JointType.CAM, JointType.CONTACT) and link in j.links
-            for lk in j.links if lk != link]
+    return [
+        lk
+        for j in mech.joints
+        if j.type in (JointType.CAM, JointType.CONTACT) and link in j.links
+        for lk in j.links
+        if lk != link
+    ]
 
 
 def _circle_extents(mech: Mechanism, pos: Mapping[str, Vec]) -> list[Vec]:
@@ -480,15 +546,17 @@ def _pivot_of(mech: Mechanism, link: str, pos: Mapping[str, Vec]) -> Vec | None:
     return None
 
 
-def _drive_arrows(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform,
-                  labels: Sequence[Text] = ()) -> list[Item]:
+def _drive_arrows(
+    mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform, labels: Sequence[Text] = ()
+) -> list[Item]:
     """A curved arrow round each driven pivot showing the sense of ω, as the notes draw it."""
     items: list[Item] = []
     for d in getattr(kin, "drives", ()):
         if d.link is None or d.omega is None or d.omega == 0:
             continue
         pivot = d.about or next(
-            (j.name for j in mech.joints if d.link in j.links and mech.ground in j.links and j.name in pos), None
+            (j.name for j in mech.joints if d.link in j.links and mech.ground in j.links and j.name in pos),
+            None,
         )
         if pivot is None or pivot not in pos:
             continue
@@ -497,15 +565,25 @@ def _drive_arrows(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transfo
         # page angles (y down) of what leaves the pivot: its links, and the ground symbol below
         busy = [math.pi / 2, math.pi / 3, 2 * math.pi / 3]
         for name, links in kin.carriers.items():
-            if pivot in pos and name != pivot and name in pos and set(links) & set(kin.carriers.get(pivot, ())):
+            if (
+                pivot in pos
+                and name != pivot
+                and name in pos
+                and set(links) & set(kin.carriers.get(pivot, ()))
+            ):
                 q = tr(pos[name])
                 busy.append(math.atan2(q[1] - cy, q[0] - cx))
         busy += [math.atan2(t.at[1] - cy, t.at[0] - cx) for t in labels if math.dist(t.at, (cx, cy)) < 12]
-        centre = max((math.radians(15 * k) for k in range(24)),
-                     key=lambda a: min(abs(math.remainder(a - b, 2 * math.pi)) for b in busy))
+        centre = max(
+            (math.radians(15 * k) for k in range(24)),
+            key=lambda a: min(abs(math.remainder(a - b, 2 * math.pi)) for b in busy),
+        )
         sweep = math.radians(90) * (1 if d.omega < 0 else -1)  # cw in the world is +angle on the page
         a0 = centre - sweep / 2
-        pts = [(cx + r * math.cos(a0 + sweep * t / 12), cy + r * math.sin(a0 + sweep * t / 12)) for t in range(13)]
+        pts = [
+            (cx + r * math.cos(a0 + sweep * t / 12), cy + r * math.sin(a0 + sweep * t / 12))
+            for t in range(13)
+        ]
         items.append(Poly(tuple(pts[:-1]), False, Style(INK, 0.3), "omega"))
         items.extend(arrow(pts[-3], pts[-1], INK, 0.3, cls="omega", head=1.8))
         end = pts[6]
@@ -533,14 +611,23 @@ def _pins_and_points(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Tran
     return items
 
 
-def _labels(mech: Mechanism, members: Mapping[str, list[str]], pos: Mapping[str, Vec], tr: Transform,
-            drawn: list[Item]) -> list[Item]:
+def _labels(
+    mech: Mechanism,
+    members: Mapping[str, list[str]],
+    pos: Mapping[str, Vec],
+    tr: Transform,
+    drawn: list[Item],
+) -> list[Item]:
     """Each joint and point named beside it, away from the links that meet there and clear of lines."""
     items: list[Item] = []
     done = set()
-    contacts = [j.name for j in mech.joints if j.name in pos and not any(j.name in m for m in members.values())]
+    contacts = [
+        j.name for j in mech.joints if j.name in pos and not any(j.name in m for m in members.values())
+    ]
     for name in contacts:
-        items.append(place_label(tr(pos[name]), display_name(name), 3.0, (0.6, -0.8), drawn + items, cls="label"))
+        items.append(
+            place_label(tr(pos[name]), display_name(name), 3.0, (0.6, -0.8), drawn + items, cls="label")
+        )
         done.add(name)
     for names in members.values():
         for name in names:

@@ -85,7 +85,9 @@ def overlay(centres: Sequence[Any], tr: Transform, box: tuple[float, float, floa
         items.append(Circle(q, 1.5, Style(COLOUR, 0.35), "icentre", names[0]))
         items.append(Line((q[0] - 1.1, q[1] - 1.1), (q[0] + 1.1, q[1] + 1.1), Style(COLOUR, 0.3), "icentre"))
         items.append(Line((q[0] - 1.1, q[1] + 1.1), (q[0] + 1.1, q[1] - 1.1), Style(COLOUR, 0.3), "icentre"))
-        items.append(Text((q[0] + 2.2, q[1] + 3.0), ", ".join(names), 2.8, "start", COLOUR, cls="icentre-label"))
+        items.append(
+            Text((q[0] + 2.2, q[1] + 3.0), ", ".join(names), 2.8, "start", COLOUR, cls="icentre-label")
+        )
     items.extend(_border_arrows(far, box))
     return items
 

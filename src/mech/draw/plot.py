@@ -39,7 +39,9 @@ class Series:
     values: Sequence[float]
 
 
-def extremes(angles: Sequence[float], values: Sequence[float]) -> tuple[tuple[float, float], tuple[float, float]]:
+def extremes(
+    angles: Sequence[float], values: Sequence[float]
+) -> tuple[tuple[float, float], tuple[float, float]]:
     """((angle, value) of the maximum, (angle, value) of the minimum), ignoring NaN."""
     pairs = [(a, v) for a, v in zip(angles, values, strict=True) if not math.isnan(v)]
     if not pairs:
@@ -85,8 +87,15 @@ def sweep_plot(
                 (ah, vh), (al, vl) = extremes(angles, s.values)
                 for a, v, word, va in ((ah, vh, "max", "bottom"), (al, vl, "min", "top")):
                     ax.plot([a], [v], marker="o", ms=4, color=colour)
-                    ax.annotate(f"{word} {v:.4g} at {a:.0f}°", (a, v), textcoords="offset points",
-                                xytext=(4, 4 if va == "bottom" else -4), va=va, fontsize=7, color=colour)
+                    ax.annotate(
+                        f"{word} {v:.4g} at {a:.0f}°",
+                        (a, v),
+                        textcoords="offset points",
+                        xytext=(4, 4 if va == "bottom" else -4),
+                        va=va,
+                        fontsize=7,
+                        color=colour,
+                    )
         for d in dead_centres:
             ax.axvline(d, color="#777777", lw=0.8, ls="--")
         ax.set_ylabel(unit)
@@ -96,8 +105,17 @@ def sweep_plot(
     if dead_centres:
         top = axes[0]
         for d in dead_centres:
-            top.annotate("dead centre", (d, 1.0), xycoords=("data", "axes fraction"), xytext=(2, -10),
-                         textcoords="offset points", fontsize=7, color="#555555", rotation=90, va="top")
+            top.annotate(
+                "dead centre",
+                (d, 1.0),
+                xycoords=("data", "axes fraction"),
+                xytext=(2, -10),
+                textcoords="offset points",
+                fontsize=7,
+                color="#555555",
+                rotation=90,
+                va="top",
+            )
     lo, hi = min(angles), max(angles)
     axes[-1].set_xlim(lo, hi)
     if hi - lo >= 180:
@@ -138,5 +156,12 @@ def animate(
     for frame in frames:
         fig = configuration(mech, kin, positions=frame, view=view, title=getattr(mech, "label", ""))
         images.append(Image.fromarray(render_rgb(fig, dpi=dpi)).convert("P", palette=Image.Palette.ADAPTIVE))
-    images[0].save(str(path), save_all=True, append_images=images[1:], duration=round(1000 / fps), loop=0,
-                   optimize=False, disposal=2)
+    images[0].save(
+        str(path),
+        save_all=True,
+        append_images=images[1:],
+        duration=round(1000 / fps),
+        loop=0,
+        optimize=False,
+        disposal=2,
+    )

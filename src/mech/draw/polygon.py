@@ -179,18 +179,28 @@ def _build(mech: Mechanism, kin: Any, kind: str) -> PolygonData:
             elif (name, link.name) in guided:
                 key = f"{name}@{link.name}"
                 if key not in images:
-                    images[key] = Image(key, display_name(name, lower=True) + str(numbers[link.name]).translate(_SUB)
-                                        + mark, name, link.name, value(name, link.name))
+                    images[key] = Image(
+                        key,
+                        display_name(name, lower=True) + str(numbers[link.name]).translate(_SUB) + mark,
+                        name,
+                        link.name,
+                        value(name, link.name),
+                    )
                     order.append(key)
             else:
                 key = name
                 if key not in images:
-                    images[key] = Image(key, display_name(name, lower=True) + mark, name, link.name, value(name))
+                    images[key] = Image(
+                        key, display_name(name, lower=True) + mark, name, link.name, value(name)
+                    )
                     order.append(key)
             if key not in link_keys[link.name]:
                 link_keys[link.name].append(key)
-    contacts = [j for j in mech.joints if j.type in (JointType.CAM, JointType.GEAR, JointType.CONTACT,
-                                                       JointType.ROLLING) and j.name in pos]
+    contacts = [
+        j
+        for j in mech.joints
+        if j.type in (JointType.CAM, JointType.GEAR, JointType.CONTACT, JointType.ROLLING) and j.name in pos
+    ]
     for j in contacts:
         for link in j.links:
             if link == ground:
@@ -199,8 +209,13 @@ def _build(mech: Mechanism, kin: Any, kind: str) -> PolygonData:
             short = j.name if len(j.name) <= 2 else j.name[0]
             if short.lower() in {display_name(n, lower=True) for n in pos if n != j.name}:
                 short = j.name  # "c" is taken by a point C: keep the full name
-            images[key] = Image(key, display_name(short, lower=True) + str(numbers[link]).translate(_SUB) + mark,
-                                j.name, link, value(j.name, link))
+            images[key] = Image(
+                key,
+                display_name(short, lower=True) + str(numbers[link]).translate(_SUB) + mark,
+                j.name,
+                link,
+                value(j.name, link),
+            )
             order.append(key)
             link_keys[link].append(key)
 
@@ -224,16 +239,31 @@ def _build(mech: Mechanism, kin: Any, kind: str) -> PolygonData:
                 break
         vectors.append(Vector(start_label + im.label, "o", key, "absolute", via, im.value))
         if acc and via is not None:
-            _components(kin, via, _fixed_point(members[via], ground_names), im.point, "o", key, (0.0, 0.0),
-                        im.value, vectors, construction)
+            _components(
+                kin,
+                via,
+                _fixed_point(members[via], ground_names),
+                im.point,
+                "o",
+                key,
+                (0.0, 0.0),
+                im.value,
+                vectors,
+                construction,
+            )
 
     # relative vectors: between moving points of one link
     for link in mech.moving_links:
         keys = [k for k in link_keys[link.name] if k != "o"]
         edges = _edges(keys, images, pos)
-        if "o" in link_keys[link.name] and len(keys) >= 2 and len(edges) == 1 and _collinear(
-            [pos[images[k].point] for k in keys if images[k].point in pos]  # type: ignore[index]
-            + [pos[n] for n in members[link.name] if n in ground_names]
+        if (
+            "o" in link_keys[link.name]
+            and len(keys) >= 2
+            and len(edges) == 1
+            and _collinear(
+                [pos[images[k].point] for k in keys if images[k].point in pos]  # type: ignore[index]
+                + [pos[n] for n in members[link.name] if n in ground_names]
+            )
         ):
             edges = []  # a lever through its pivot: the absolute vectors already lie along it
         for a, b in edges:
@@ -243,8 +273,9 @@ def _build(mech: Mechanism, kin: Any, kind: str) -> PolygonData:
             rel = (vb[0] - va[0], vb[1] - va[1])
             vectors.append(Vector(label(a) + label(b), a, b, "relative", link.name, rel))
             if acc:
-                _components(kin, link.name, images[a].point, images[b].point, a, b, va, rel, vectors,
-                                construction)
+                _components(
+                    kin, link.name, images[a].point, images[b].point, a, b, va, rel, vectors, construction
+                )
 
     # sliding along moving guides, slip at higher pairs
     for (point, guide), j in guided.items():
@@ -263,8 +294,16 @@ def _build(mech: Mechanism, kin: Any, kind: str) -> PolygonData:
         keys = [f"{j.name}@{link}" for link in j.links if link != ground]
         if len(keys) == 2:
             va, vb = images[keys[0]].value, images[keys[1]].value
-            vectors.append(Vector(label(keys[0]) + label(keys[1]), keys[0], keys[1], "slip", None,
-                                  (vb[0] - va[0], vb[1] - va[1])))
+            vectors.append(
+                Vector(
+                    label(keys[0]) + label(keys[1]),
+                    keys[0],
+                    keys[1],
+                    "slip",
+                    None,
+                    (vb[0] - va[0], vb[1] - va[1]),
+                )
+            )
     return PolygonData(kind, pole_label, tuple(images[k] for k in order), tuple(vectors), construction)
 
 
@@ -280,8 +319,18 @@ def _fixed_point(names: list[str], ground_names: list[str]) -> str:
     return next(n for n in names if n in ground_names)
 
 
-def _components(kin: Any, link: str, p: str | None, q: str | None, a: str, b: str, start: Vec, rel: Vec,
-                vectors: list[Vector], construction: dict[str, Vec]) -> None:
+def _components(
+    kin: Any,
+    link: str,
+    p: str | None,
+    q: str | None,
+    a: str,
+    b: str,
+    start: Vec,
+    rel: Vec,
+    vectors: list[Vector],
+    construction: dict[str, Vec],
+) -> None:
     """Split a relative acceleration of two points of ``link`` into normal and tangential parts."""
     state = kin.links.get(link)
     if state is None or state.omega is None or state.alpha is None or p is None or q is None:
@@ -343,8 +392,14 @@ def _edges(keys: list[str], images: Mapping[str, Image], pos: Mapping[str, Vec])
 
 
 # -- drawing ------------------------------------------------------------------------------
-def polygon_figure(mech: Mechanism, data: PolygonData, *, room: Vec = (90.0, 90.0),
-                   scale: float | None = None, units: OutputUnits | None = None) -> Figure:
+def polygon_figure(
+    mech: Mechanism,
+    data: PolygonData,
+    *,
+    room: Vec = (90.0, 90.0),
+    scale: float | None = None,
+    units: OutputUnits | None = None,
+) -> Figure:
     """The polygon drawn to a round scale, with its scale bar and the value of each vector.
 
     Returns a :class:`Figure` in page mm.  Vector shafts carry ``class="vector"``
@@ -384,7 +439,9 @@ def polygon_figure(mech: Mechanism, data: PolygonData, *, room: Vec = (90.0, 90.
         if math.hypot(*v.value) <= tiny:
             continue  # a zero vector (no slip at a pitch point): nothing to draw or list
         if not v.name:
-            comps.extend(arrow(at(v.start), at(v.end), colour, 0.25, cls="component", head=1.6, dash=(1.2, 0.8)))
+            comps.extend(
+                arrow(at(v.start), at(v.end), colour, 0.25, cls="component", head=1.6, dash=(1.2, 0.8))
+            )
             continue
         width_mm = 0.55 if v.kind != "absolute" or v.link else 0.4
         main.extend(arrow(at(v.start), at(v.end), colour, width_mm, cls="vector", name=v.name))
@@ -406,7 +463,9 @@ def polygon_figure(mech: Mechanism, data: PolygonData, *, room: Vec = (90.0, 90.
         dx, dy = q[0] - c[0], q[1] - c[1]
         n = math.hypot(dx, dy)
         prefer = (dx / n, dy / n) if n > 1 else (-0.7, 0.7)
-        drawn.append(place_label(q, ", ".join(labs), 3.2, prefer, drawn, italic=True, bold=True, cls="image-label"))
+        drawn.append(
+            place_label(q, ", ".join(labs), 3.2, prefer, drawn, italic=True, bold=True, cls="image-label")
+        )
 
     # vector names beside their shafts, where they collide least
     for v, colour in labelled:
@@ -434,7 +493,8 @@ def polygon_figure(mech: Mechanism, data: PolygonData, *, room: Vec = (90.0, 90.
         # in the acceleration polygon the coincident points' difference holds the Coriolis term too
         sliding = "  (Coriolis + sliding)" if acc else "  (sliding)"
         what = {"sliding": sliding, "slip": "  (slip)"}.get(v.kind, "")
-        page.add(Text((MARGIN - 6, y), f"{v.name} = {fmt(mag)} {unit}{what}", 2.7, "start", "#333333",
-                      cls="value"))
+        page.add(
+            Text((MARGIN - 6, y), f"{v.name} = {fmt(mag)} {unit}{what}", 2.7, "start", "#333333", cls="value")
+        )
         y += 4.0
     return page.figure(title)

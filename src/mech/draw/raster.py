@@ -58,27 +58,71 @@ def _canvas(figure: Figure, dpi: int) -> tuple[Any, Any]:
         z += 1e-3
         if isinstance(item, Text):
             ax.text(
-                item.at[0], item.at[1], item.text, fontsize=item.size / 0.73 * _PT, ha=_HA[item.anchor],
-                va="center_baseline", color=item.colour, family="DejaVu Sans",
-                style="italic" if item.italic else "normal", weight="bold" if item.bold else "normal", zorder=z,
+                item.at[0],
+                item.at[1],
+                item.text,
+                fontsize=item.size / 0.73 * _PT,
+                ha=_HA[item.anchor],
+                va="center_baseline",
+                color=item.colour,
+                family="DejaVu Sans",
+                style="italic" if item.italic else "normal",
+                weight="bold" if item.bold else "normal",
+                zorder=z,
             )
             continue
         s = item.style
         lw = s.width * _PT if s.stroke else 0.0
         dashes = (0, tuple(d * _PT / max(lw, 1e-9) for d in s.dash)) if s.dash and lw else "solid"
         if isinstance(item, Line):
-            ax.plot([item.p0[0], item.p1[0]], [item.p0[1], item.p1[1]], color=s.stroke or "none", lw=lw,
-                    linestyle=dashes, solid_capstyle="round", dash_capstyle="round", zorder=z)
+            ax.plot(
+                [item.p0[0], item.p1[0]],
+                [item.p0[1], item.p1[1]],
+                color=s.stroke or "none",
+                lw=lw,
+                linestyle=dashes,
+                solid_capstyle="round",
+                dash_capstyle="round",
+                zorder=z,
+            )
         elif isinstance(item, Poly):
             if s.fill:
-                ax.add_patch(MplPolygon(item.points, closed=item.closed, facecolor=s.fill, alpha=s.fill_opacity,
-                                        edgecolor="none", zorder=z))
+                ax.add_patch(
+                    MplPolygon(
+                        item.points,
+                        closed=item.closed,
+                        facecolor=s.fill,
+                        alpha=s.fill_opacity,
+                        edgecolor="none",
+                        zorder=z,
+                    )
+                )
             if s.stroke:
-                ax.add_patch(MplPolygon(item.points, closed=item.closed, facecolor="none", edgecolor=s.stroke,
-                                        lw=lw, linestyle=dashes, joinstyle="round", zorder=z))
+                ax.add_patch(
+                    MplPolygon(
+                        item.points,
+                        closed=item.closed,
+                        facecolor="none",
+                        edgecolor=s.stroke,
+                        lw=lw,
+                        linestyle=dashes,
+                        joinstyle="round",
+                        zorder=z,
+                    )
+                )
         elif isinstance(item, Circle):
-            ax.add_patch(MplCircle(item.centre, item.r, facecolor=s.fill or "none", edgecolor=s.stroke or "none",
-                                   lw=lw, linestyle=dashes, alpha=None, zorder=z))
+            ax.add_patch(
+                MplCircle(
+                    item.centre,
+                    item.r,
+                    facecolor=s.fill or "none",
+                    edgecolor=s.stroke or "none",
+                    lw=lw,
+                    linestyle=dashes,
+                    alpha=None,
+                    zorder=z,
+                )
+            )
     return fig, ax
 
 

@@ -213,8 +213,15 @@ def shift(item: Item, dx: float, dy: float) -> Item:
 
 # -- composite shapes: arrows, hatching, scale bars ---------------------------------------
 def arrow(
-    p0: Vec, p1: Vec, colour: str = INK, width: float = 0.35, *, cls: str = "", name: str = "",
-    head: float = 2.2, dash: tuple[float, ...] = (),
+    p0: Vec,
+    p1: Vec,
+    colour: str = INK,
+    width: float = 0.35,
+    *,
+    cls: str = "",
+    name: str = "",
+    head: float = 2.2,
+    dash: tuple[float, ...] = (),
 ) -> list[Item]:
     """A vector ``p0 → p1`` (page mm): its shaft as a :class:`Line`, its head as a filled triangle.
 
@@ -234,8 +241,9 @@ def arrow(
     return out
 
 
-def hatch(p0: Vec, p1: Vec, side: float = 1.0, depth: float = 2.0, pitch: float = 1.6,
-          colour: str = INK) -> list[Item]:
+def hatch(
+    p0: Vec, p1: Vec, side: float = 1.0, depth: float = 2.0, pitch: float = 1.6, colour: str = INK
+) -> list[Item]:
     """Ground: a base line ``p0 → p1`` with short slanted strokes on one side (``side`` ±1).
 
     This is the textbook sign for "fixed to the frame" under pivots and along
@@ -295,7 +303,9 @@ def _obstacles(items: Sequence[Item]) -> tuple[list[tuple[Vec, Vec, float]], lis
         elif isinstance(item, Poly):
             pts = item.points
             soft = 1.2 if item.style.dash else 0.0
-            segs.extend((a, b, soft) for a, b in zip(pts, pts[1:] + (pts[:1] if item.closed else ()), strict=False))
+            segs.extend(
+                (a, b, soft) for a, b in zip(pts, pts[1:] + (pts[:1] if item.closed else ()), strict=False)
+            )
         elif isinstance(item, Circle):
             discs.append((item.centre, item.r))
         elif isinstance(item, Text):
@@ -338,8 +348,18 @@ def best_spot(candidates: Sequence[tuple[Vec, float]], text: str, size: float, d
     return best[1]
 
 
-def place_label(here: Vec, text: str, size: float, prefer: Vec, drawn: Sequence[Item], *,
-                colour: str = INK, italic: bool = False, bold: bool = False, cls: str = "label") -> Text:
+def place_label(
+    here: Vec,
+    text: str,
+    size: float,
+    prefer: Vec,
+    drawn: Sequence[Item],
+    *,
+    colour: str = INK,
+    italic: bool = False,
+    bold: bool = False,
+    cls: str = "label",
+) -> Text:
     """A label beside the point ``here`` where it overlaps the least of what is ``drawn``.
 
     Sixteen directions at two distances are tried, with a small bonus for the

@@ -153,8 +153,14 @@ def facts(instant: Instant) -> tuple[Fact, ...]:
             for b in range(a + 1, len(ids)):
                 if ids[a] != ids[b]:
                     out.append(
-                        Fact(_pair(ids[a], ids[b]), "point", unit(f.hom(pin.at)), f"pin {pin.joint}", True,
-                             xy=pin.at)
+                        Fact(
+                            _pair(ids[a], ids[b]),
+                            "point",
+                            unit(f.hom(pin.at)),
+                            f"pin {pin.joint}",
+                            True,
+                            xy=pin.at,
+                        )
                     )
     for s in instant.slides:
         pair = _pair(index[s.slider], index[s.guide])
@@ -172,7 +178,9 @@ def facts(instant: Instant) -> tuple[Fact, ...]:
         if c.normal is None:
             out.append(Fact(pair, "point", unit(f.hom(c.at)), f"rolling contact {c.joint}", True, xy=c.at))
         else:
-            out.append(Fact(pair, "line", unit(line_along(f.hom(c.at), c.normal)), f"normal at {c.joint}", False))
+            out.append(
+                Fact(pair, "line", unit(line_along(f.hom(c.at), c.normal)), f"normal at {c.joint}", False)
+            )
     return tuple(out)
 
 

@@ -242,8 +242,16 @@ def _field(
     return out, ref
 
 
-def _centre(instant: Instant, pair: tuple[int, int], hom: Hom | None, method: str, primary: bool,
-            step: int | None, check: float | None, xy: Vec | None = None) -> ICentre:
+def _centre(
+    instant: Instant,
+    pair: tuple[int, int],
+    hom: Hom | None,
+    method: str,
+    primary: bool,
+    step: int | None,
+    check: float | None,
+    xy: Vec | None = None,
+) -> ICentre:
     i, j = pair
     links = (instant.links[i], instant.links[j])
     nums = (i + 1, j + 1)
@@ -252,7 +260,9 @@ def _centre(instant: Instant, pair: tuple[int, int], hom: Hom | None, method: st
     if xy is not None:
         return ICentre(links, nums, name(i, j), xy, None, False, method, primary, step, check)
     if at_infinity(hom):
-        return ICentre(links, nums, name(i, j), None, instant.frame.direction(hom), True, method, primary, step, check)
+        return ICentre(
+            links, nums, name(i, j), None, instant.frame.direction(hom), True, method, primary, step, check
+        )
     return ICentre(links, nums, name(i, j), instant.frame.xy(hom), None, False, method, primary, step, check)
 
 
@@ -289,7 +299,9 @@ def from_instant(
     notes: list[str] = []
     at_rest = motion is not None and ref == 0.0
     if at_rest:
-        notes.append("every link is at rest (drive speed 0): nothing to cross-check against the velocity field")
+        notes.append(
+            "every link is at rest (drive speed 0): nothing to cross-check against the velocity field"
+        )
     centres: list[ICentre] = []
     n = len(instant.links)
     for i in range(n):
@@ -320,9 +332,13 @@ def from_instant(
             else:
                 why = result.missing[pair]
                 what = "velocities not solved" if motion is None else "no relative motion at this instant"
-                centres.append(_centre(instant, pair, None, f"undetermined ({why}; {what})", False, None, None))
+                centres.append(
+                    _centre(instant, pair, None, f"undetermined ({why}; {what})", False, None, None)
+                )
     omegas = omega_by_icentres(instant, centres, motion, drivers) if motion is not None else ()
-    return ICentres(mechanism, instant.links, tuple(centres), instant.frame.size, result.rounds, omegas, tuple(notes))
+    return ICentres(
+        mechanism, instant.links, tuple(centres), instant.frame.size, result.rounds, omegas, tuple(notes)
+    )
 
 
 def _describe(instant: Instant, h: Hom) -> str:

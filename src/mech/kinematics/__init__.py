@@ -21,4 +21,14 @@ from mech.kinematics.result import Kinematics, LinkState, Mobility
 from mech.kinematics.solve import closed_form, solve
 from mech.kinematics.sweep import Sweep, sweep
 
-__all__ = ["Kinematics", "LinkState", "Mobility", "Sweep", "closed_form", "kutzbach", "mobility", "solve", "sweep"]
+__all__ = [
+    "Kinematics",
+    "LinkState",
+    "Mobility",
+    "Sweep",
+    "closed_form",
+    "kutzbach",
+    "mobility",
+    "solve",
+    "sweep",
+]

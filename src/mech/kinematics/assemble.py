@@ -71,7 +71,9 @@ class Drawn:
     scale: float
     notes: tuple[str, ...]
     centre: tuple[float, float] = (0.0, 0.0)
-    relative: dict[str, tuple[float, float]] | None = None  # positions − centre, never rounded through absolute
+    relative: dict[str, tuple[float, float]] | None = (
+        None  # positions − centre, never rounded through absolute
+    )
 
 
 #: residual (rows,) and Jacobian (rows, 2·unknowns) of all equations at scaled positions x
@@ -355,7 +357,9 @@ def assemble(
     # and angles a file gives are exact: solve for it too, held to its drawing by a weak spring,
     # so that where the drawing is rounded the exact numbers win (and any disagreement larger
     # than drawing precision is reported below).  Ground locations and path coordinates stay fixed.
-    soft = {n: v for n, v in scaled_known.items() if lay.carriers.get(n) and mech.ground not in lay.carriers[n]}
+    soft = {
+        n: v for n, v in scaled_known.items() if lay.carriers.get(n) and mech.ground not in lay.carriers[n]
+    }
     fixed = {n: v for n, v in scaled_known.items() if n not in soft}
     guess.update(soft)
     # Contact points of higher pairs are data of the instant (``at``), never unknowns.
@@ -666,7 +670,9 @@ def _check_determined(
     if len(lay.drives) < count.n and not undriven:
         # the usual cause: a mechanism of several degrees of freedom given fewer drives
         drives = f"{len(lay.drives)} drive{'s' if len(lay.drives) != 1 else ''}"
-        message = f"{lay.mech.label} has {count.n} degrees of freedom ({count.formula}) but {drives}: " + message
+        message = (
+            f"{lay.mech.label} has {count.n} degrees of freedom ({count.formula}) but {drives}: " + message
+        )
         hint = f"give one drive per degree of freedom: drive: [{{link: …, angle: …, rpm: …}}, …] ({count.n} of them)"
     raise GeometryError(message, where=first.where if first is not None else Where(lay.mech.path), hint=hint)
 

@@ -367,7 +367,9 @@ def _build(lay: Layout, sys_: System, drive_angles: tuple[float | None, ...]) ->
         dx, dy = pos[name][0] - x, pos[name][1] - y
         return (c * dx + s * dy, -s * dx + c * dy)
 
-    carriers = {name: tuple(idx.get(c, gi) if c != ground else gi for c in lay.carriers.get(name, ())) for name in pos}
+    carriers = {
+        name: tuple(idx.get(c, gi) if c != ground else gi for c in lay.carriers.get(name, ())) for name in pos
+    }
     on = {i: [p for p in pos if i in carriers[p]] for i in range(n + 1)}
     size = max((math.dist(a, b) for a in pos.values() for b in pos.values()), default=1.0) or 1.0
     tiny = 1e-9 * size
@@ -584,7 +586,13 @@ def _build(lay: Layout, sys_: System, drive_angles: tuple[float | None, ...]) ->
             sign = 1.0 if (pos[p][0] - pos[o][0]) * ugx + (pos[p][1] - pos[o][1]) * ugy >= 0 else -1.0
             k = len(dyads)
             code += _rpr(k, g, o, p, float(e), ux, uy, sign, pv)
-            dyads.append(("RPR", sys_.links[g], f"{p} at the foot of the perpendicular from {o} to the path of {ps.joint}"))
+            dyads.append(
+                (
+                    "RPR",
+                    sys_.links[g],
+                    f"{p} at the foot of the perpendicular from {o} to the path of {ps.joint}",
+                )
+            )
             steps.append(f"rpr {sys_.links[g]} about {o} through {p}")
             place_from_point(g, o)
             progress = True
@@ -599,8 +607,12 @@ def _build(lay: Layout, sys_: System, drive_angles: tuple[float | None, ...]) ->
     outs = [f"{w}{k}" for w in ("d", "sn", "ms") for k in range(len(dyads))]
     outs += [f"l{i}_{w}" for w in ("x", "y", "t") for i in range(n)]
     outs += [pv(p, w) for w in ("x", "y") for p in names]
-    vel = [f"l{i}_{w}" for w in ("vx", "vy", "w") for i in range(n)] + [pv(p, w) for w in ("vx", "vy") for p in names]
-    acc = [f"l{i}_{w}" for w in ("ax", "ay", "al") for i in range(n)] + [pv(p, w) for w in ("ax", "ay") for p in names]
+    vel = [f"l{i}_{w}" for w in ("vx", "vy", "w") for i in range(n)] + [
+        pv(p, w) for w in ("vx", "vy") for p in names
+    ]
+    acc = [f"l{i}_{w}" for w in ("ax", "ay", "al") for i in range(n)] + [
+        pv(p, w) for w in ("ax", "ay") for p in names
+    ]
     fns = []
     source = ""
     for level in range(3):
@@ -619,7 +631,9 @@ def _build(lay: Layout, sys_: System, drive_angles: tuple[float | None, ...]) ->
         src = (
             "def run(phi, omega, alpha, sqrt, cos, sin, atan2, clip):\n"
             + "\n".join(lines)
-            + "\n    return (" + ", ".join(ret) + ",)\n"
+            + "\n    return ("
+            + ", ".join(ret)
+            + ",)\n"
         )
         env: dict[str, Any] = {}
         exec(compile(src, f"<dyad program of {lay.mech.label}>", "exec"), env)  # our own generated code
@@ -673,7 +687,17 @@ def _rrr(k: int, j: str, p: str, q: str, lp: float, lq: float, sign: float, pv: 
 
 
 def _rrp(
-    k: int, b: str, a: str, g: int, tx: float, ty: float, ux: float, uy: float, length: float, sign: float, pv: Any
+    k: int,
+    b: str,
+    a: str,
+    g: int,
+    tx: float,
+    ty: float,
+    ux: float,
+    uy: float,
+    length: float,
+    sign: float,
+    pv: Any,
 ) -> list[str]:
     """Circle–line: B = T + s·u with |B − A| = l, s = −(T−A)·u + sign·√(l² − ((T−A)·n)²).
 

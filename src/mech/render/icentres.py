@@ -42,7 +42,9 @@ def _centre_dict(c: ICentre, unit: str) -> dict[str, Any]:
     }
 
 
-def icentres_dict(ic: ICentres, *, units: OutputUnits | None = None, file: str | None = None) -> dict[str, Any]:
+def icentres_dict(
+    ic: ICentres, *, units: OutputUnits | None = None, file: str | None = None
+) -> dict[str, Any]:
     """The JSON of ``mech icentres --json`` (structure in cli.md)."""
     unit = _length_unit(units)
     checks = [c.check for c in ic.centres if c.check is not None]

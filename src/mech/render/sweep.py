@@ -54,7 +54,9 @@ def quantities_of(sw: Sweep, asked: tuple[str, ...] = ()) -> list[str]:
     return default_quantities(sw.points, sw.links, sw.slides, LEVELS.index(sw.level), sw.drive)
 
 
-def sweep_json(sw: Sweep, *, units: OutputUnits, file: str | None = None, series: tuple[str, ...] = ()) -> dict[str, Any]:
+def sweep_json(
+    sw: Sweep, *, units: OutputUnits, file: str | None = None, series: tuple[str, ...] = ()
+) -> dict[str, Any]:
     """The sweep as a JSON-able dict (angles in degrees, values in ``units``).
 
     Structure::
@@ -144,7 +146,9 @@ def sweep_csv(sw: Sweep, *, units: OutputUnits, quantities: tuple[str, ...] = ()
         factor = to_unit(1.0, _out_unit(si, units))
         cols.append(np.asarray(sw.series(k)) * factor)
     for i, a in enumerate(sw.angles.tolist()):
-        w.writerow([repr(round(_deg(a), 12))] + ["" if not np.isfinite(c[i]) else repr(float(c[i])) for c in cols])
+        w.writerow(
+            [repr(round(_deg(a), 12))] + ["" if not np.isfinite(c[i]) else repr(float(c[i])) for c in cols]
+        )
     return buf.getvalue()
 
 
@@ -165,7 +169,9 @@ def sweep_table(sw: Sweep, console: Any, *, units: OutputUnits) -> None:
         for g in sw.gaps:
             miss = _conv(g.miss, "m", units)
             gap = f", misses by {miss:.4g} {format_unit(units.length)}" if miss is not None else ""
-            console.print(f"  cannot be assembled from {_deg(g.start):.6f}° to {_deg(g.end):.6f}°: {g.what}{gap}")
+            console.print(
+                f"  cannot be assembled from {_deg(g.start):.6f}° to {_deg(g.end):.6f}°: {g.what}{gap}"
+            )
     else:
         console.print("  assembled at every step")
     for t in sw.toggles:
@@ -188,7 +194,14 @@ def sweep_table(sw: Sweep, console: Any, *, units: OutputUnits) -> None:
         console.print(f"  [yellow]largest condition number {cond:.3g}: results near it lose digits[/yellow]")
     if sw.extremes:
         table = Table(box=table_box(console), show_edge=False, pad_edge=False)
-        for name, justify in (("quantity", "left"), ("max", "right"), ("at", "right"), ("min", "right"), ("at", "right"), ("unit", "left")):
+        for name, justify in (
+            ("quantity", "left"),
+            ("max", "right"),
+            ("at", "right"),
+            ("min", "right"),
+            ("at", "right"),
+            ("unit", "left"),
+        ):
             table.add_column(name, justify=justify)  # type: ignore[arg-type]
         for e in sw.extremes:
             unit = _out_unit(e.unit, units)
@@ -211,7 +224,9 @@ def sweep_plot_file(path: str, sw: Sweep, *, units: OutputUnits, quantities: tup
     """A PNG of the asked quantities (default: ω's and speeds, else angles) against crank angle."""
     from mech.draw.plot import Series, sweep_plot
 
-    keys = list(quantities) or [k for k in quantities_of(sw) if k.split(".")[0] in ("omega", "velocity", "sliding")]
+    keys = list(quantities) or [
+        k for k in quantities_of(sw) if k.split(".")[0] in ("omega", "velocity", "sliding")
+    ]
     keys = keys or quantities_of(sw)
     series = []
     for k in keys:
@@ -236,7 +251,10 @@ def sweep_animation_file(path: str, mech: Any, sw: Sweep, *, frames: int = 72) -
     ok = np.flatnonzero(sw.assembled)
     pick = ok[:: max(1, ok.size // frames)] if ok.size else ok
     shots = [
-        {name: (float(sw.positions[i, k, 0]), float(sw.positions[i, k, 1])) for k, name in enumerate(sw.points)}
+        {
+            name: (float(sw.positions[i, k, 0]), float(sw.positions[i, k, 1]))
+            for k, name in enumerate(sw.points)
+        }
         for i in pick
     ]
     animate(path, mech, kin, shots)

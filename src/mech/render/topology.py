@@ -80,6 +80,7 @@ def dof_table(results: Sequence[Topology], console: Console) -> None:
     """One table for one or many files: l, j, h, n worked, Grübler, verdict."""
     from rich.table import Table
     from rich.text import Text
+
     table = Table(box=table_box(console), title="Degrees of freedom (Kutzbach)" if len(results) > 1 else None)
     if len(results) > 1:
         table.add_column("file", overflow="fold")
@@ -118,6 +119,7 @@ def classify_tables(t: Topology, console: Console) -> None:
     """``mech classify``: links by class, pairs three ways, then the count."""
     from rich.table import Table
     from rich.text import Text
+
     console.print(Text(t.name, style="bold"))
     links = Table(box=table_box(console), title="Links")
     for col in ("link", "class", "joints", "kind"):
