@@ -138,16 +138,16 @@ def _class_table(report: Report, console: Console) -> None:
 def progress(console: Console | None = None) -> Iterator[tuple[Callable[[int], None], Callable[[Any], None]]]:
     """``(start, advance)`` callbacks for :func:`mech.batch.run`'s ``on_start``/``on_result``.
 
-    The bar is drawn on stderr only when stderr is a terminal and the batch
-    has more than :data:`PROGRESS_THRESHOLD` rows; otherwise both are no-ops,
-    so piped and CI output stays clean.
+    The bar is drawn on stderr only when stderr is a terminal, NO_COLOR is not
+    set and the batch has more than :data:`PROGRESS_THRESHOLD` rows; otherwise
+    both are no-ops, so piped, plain and CI output stays clean.
     """
     console = console or Console(stderr=True)
     state: dict[str, Any] = {}
 
     def start(total: int) -> None:
-        if not console.is_terminal or total <= PROGRESS_THRESHOLD:
-            return
+        if not console.is_terminal or console.no_color or total <= PROGRESS_THRESHOLD:
+            return  # NO_COLOR promises plain text: no cursor movement either
         from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
         bar = Progress(
