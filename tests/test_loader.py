@@ -161,81 +161,90 @@ def test_load_reads_a_file_and_reports_missing_ones(tmp_path):
 BASE = "links: [frame, crank, rod]\njoints:\n  A: {type: revolute, links: [frame, crank], at: [0, 0]}\n  B: {type: revolute, links: [crank, rod]}\n"
 
 
-@pytest.mark.parametrize(
-    ("text", "line", "column", "fragment"),
-    [
-        ("links: [frame, crank\njoints: {}\n", 2, 7, "not valid YAML"),
-        ("links: [frame, crank]\nlinks: [a]\njoints: {}\n", 2, 1, "duplicate key 'links'"),
-        (BASE.replace("at: [0, 0]", "at: [0, 0], at: [1, 1]"), 3, 58, "duplicate key 'at'"),
-        (BASE.replace("[frame, crank], at", "[frame, crankk], at"), 3, 38, "unknown link 'crankk'"),
-        (BASE.replace("links: [crank, rod]", "links: [crank]"), 4, 30, "joins 1 link"),
-        (
-            BASE.replace("type: revolute, links: [crank", "type: revolte, links: [crank"),
-            4,
-            13,
-            "unknown joint type 'revolte'",
-        ),
-        (BASE + "lengths: {AB: 0}\n", 5, 15, "greater than zero"),
-        (BASE + "lengths: {AB: -3}\n", 5, 15, "greater than zero"),
-        (BASE + "lengths: {AB: forty}\n", 5, 15, "must be a number"),
-        (BASE + "lengths: {AB: .nan}\n", 5, 15, "finite"),
-        (BASE + "lengths: {AB: .inf}\n", 5, 15, "finite"),
-        (BASE + 'lengths: {AB: "4 furlong"}\n', 5, 15, "unknown unit 'furlong'"),
-        (BASE + 'lengths: {AB: "4 rad/s"}\n', 5, 15, "must be a length"),
-        (BASE + "units: {length: parsec}\n", 5, 17, "not a unit of length"),
-        (BASE + "lengths: {A-X: 3}\n", 5, 11, "unknown point 'X'"),
-        (BASE + "links2: []\n", 5, 1, "unknown key 'links2'"),
-        (BASE + "drive: {link: crnk, rpm: 60}\n", 5, 15, "unknown link 'crnk'"),
-        (BASE + "drive: {link: crank, rpm: 60, omega: 6}\n", 5, 31, "rpm or omega"),
-        (BASE + "drive: {link: frame, rpm: 60}\n", 5, 15, "cannot turn the ground"),
-        (BASE + "drive: [{link: crank, rpm: 60}, {link: crank, rpm: 30}]\n", 5, 33, "driven twice"),
-        (BASE + "answers: {omega.crank: 5 m/s}\n", 5, 24, "angular velocity"),
-        (BASE + "answers: {omegas.crank: 5}\n", 5, 11, "unknown answer key"),
-        (BASE + "answers: {omega.crunk: 5}\n", 5, 11, "unknown link 'crunk'"),
-        (BASE + "answers: {dof: one}\n", 5, 16, "whole number"),
-        ("links: [a, b]\njoints:\n  A: {type: revolute, links: [a, b]}\n", 1, 8, "no ground link"),
-        (
-            "links: [frame, ground]\njoints:\n  A: {type: revolute, links: [frame, ground]}\n",
-            1,
-            8,
-            "two links could be ground",
-        ),
-        (
-            "ground: base\nlinks: [frame, crank]\njoints:\n  A: {type: revolute, links: [frame, crank]}\n",
-            1,
-            9,
-            "not among the links",
-        ),
-        ("- a\n- b\n", 1, 1, "must be a mapping"),
-        ("just a string\n", 1, 1, "must be a mapping"),
-        ("links: [frame, crank]\n", 1, 1, "no `joints:`"),
-        (BASE.replace("  B: {type: revolute", "  crank: {type: revolute"), 4, 3, "used twice"),
-        (
-            "links: [frame, crank, rod, block]\njoints:\n  A: {type: revolute, links: [frame, crank]}\n"
-            "  B: {type: revolute, links: [crank, rod]}\n  C: {type: revolute, links: [rod, block]}\nlengths: {A-C: 4}\n",
-            6,
-            11,
-            "not on one link",
-        ),
-        (
-            BASE.replace("links: [crank, rod]}", "links: [crank, rod], path: {through: A, angle: 0}}"),
-            4,
-            44,
-            "unknown key 'path' for a revolute",
-        ),
-        (
-            "links: [frame, a, b, c]\njoints:\n  A: {type: cam, links: [frame, a, b]}\n",
-            3,
-            25,
-            "exactly two links",
-        ),
-    ],
-)
+BAD_CASES = [
+    ("links: [frame, crank\njoints: {}\n", 2, 7, "not valid YAML"),
+    ("links: [frame, crank]\nlinks: [a]\njoints: {}\n", 2, 1, "duplicate key 'links'"),
+    (BASE.replace("at: [0, 0]", "at: [0, 0], at: [1, 1]"), 3, 58, "duplicate key 'at'"),
+    (BASE.replace("[frame, crank], at", "[frame, crankk], at"), 3, 38, "unknown link 'crankk'"),
+    (BASE.replace("links: [crank, rod]", "links: [crank]"), 4, 30, "joins 1 link"),
+    (
+        BASE.replace("type: revolute, links: [crank", "type: revolte, links: [crank"),
+        4,
+        13,
+        "unknown joint type 'revolte'",
+    ),
+    (BASE + "lengths: {AB: 0}\n", 5, 15, "greater than zero"),
+    (BASE + "lengths: {AB: -3}\n", 5, 15, "greater than zero"),
+    (BASE + "lengths: {AB: forty}\n", 5, 15, "must be a number"),
+    (BASE + "lengths: {AB: .nan}\n", 5, 15, "finite"),
+    (BASE + "lengths: {AB: .inf}\n", 5, 15, "finite"),
+    (BASE + 'lengths: {AB: "4 furlong"}\n', 5, 15, "unknown unit 'furlong'"),
+    (BASE + 'lengths: {AB: "4 rad/s"}\n', 5, 15, "must be a length"),
+    (BASE + "units: {length: parsec}\n", 5, 17, "not a unit of length"),
+    (BASE + "lengths: {A-X: 3}\n", 5, 11, "unknown point 'X'"),
+    (BASE + "links2: []\n", 5, 1, "unknown key 'links2'"),
+    (BASE + "drive: {link: crnk, rpm: 60}\n", 5, 15, "unknown link 'crnk'"),
+    (BASE + "drive: {link: crank, rpm: 60, omega: 6}\n", 5, 31, "rpm or omega"),
+    (BASE + "drive: {link: frame, rpm: 60}\n", 5, 15, "cannot turn the ground"),
+    (BASE + "drive: [{link: crank, rpm: 60}, {link: crank, rpm: 30}]\n", 5, 33, "driven twice"),
+    (BASE + "answers: {omega.crank: 5 m/s}\n", 5, 24, "angular velocity"),
+    (BASE + "answers: {omegas.crank: 5}\n", 5, 11, "unknown answer key"),
+    (BASE + "answers: {omega.crunk: 5}\n", 5, 11, "unknown link 'crunk'"),
+    (BASE + "answers: {dof: one}\n", 5, 16, "whole number"),
+    ("links: [a, b]\njoints:\n  A: {type: revolute, links: [a, b]}\n", 1, 8, "no ground link"),
+    (
+        "links: [frame, ground]\njoints:\n  A: {type: revolute, links: [frame, ground]}\n",
+        1,
+        8,
+        "two links could be ground",
+    ),
+    (
+        "ground: base\nlinks: [frame, crank]\njoints:\n  A: {type: revolute, links: [frame, crank]}\n",
+        1,
+        9,
+        "not among the links",
+    ),
+    ("- a\n- b\n", 1, 1, "must be a mapping"),
+    ("just a string\n", 1, 1, "must be a mapping"),
+    ("links: [frame, crank]\n", 1, 1, "no `joints:`"),
+    (BASE.replace("  B: {type: revolute", "  crank: {type: revolute"), 4, 3, "used twice"),
+    (
+        "links: [frame, crank, rod, block]\njoints:\n  A: {type: revolute, links: [frame, crank]}\n"
+        "  B: {type: revolute, links: [crank, rod]}\n  C: {type: revolute, links: [rod, block]}\nlengths: {A-C: 4}\n",
+        6,
+        11,
+        "not on one link",
+    ),
+    (
+        BASE.replace("links: [crank, rod]}", "links: [crank, rod], path: {through: A, angle: 0}}"),
+        4,
+        44,
+        "unknown key 'path' for a revolute",
+    ),
+    (
+        "links: [frame, a, b, c]\njoints:\n  A: {type: cam, links: [frame, a, b]}\n",
+        3,
+        25,
+        "exactly two links",
+    ),
+]
+
+
+@pytest.mark.parametrize(("text", "line", "column", "fragment"), BAD_CASES)
 def test_bad_input_is_located(text, line, column, fragment):
     found = problems(text)
     assert any(fragment in msg for _, _, msg in found), found
     first = next((ln, col) for ln, col, msg in found if fragment in msg)
     assert first == (line, column), found
+
+
+@pytest.mark.parametrize(("text", "line", "column", "fragment"), BAD_CASES)
+def test_bad_input_on_the_command_line_exits_2_with_the_place(text, line, column, fragment, run, write):
+    path = write(text)
+    result = run("dof", str(path))
+    assert result.exit_code == 2
+    assert f"{path}:{line}:{column}: error:" in result.stderr and fragment in result.stderr
+    assert "Traceback" not in result.stderr
 
 
 def test_every_problem_in_a_file_is_reported_at_once():
@@ -325,3 +334,14 @@ def test_point_placed_toward_coordinates_says_what_to_write():
     (line, column, message) = one_problem(text)
     assert "must name a joint or point of the same link, not coordinates" in message
     assert (line, column) == (13, 39)
+
+
+@pytest.mark.parametrize(
+    ("data", "fragment"),
+    [(b"", "empty"), (b"\x00\x01binary", "binary file"), (b"links: [\xff]\n", "not UTF-8")],
+)
+def test_unreadable_files_exit_2_on_the_command_line(data, fragment, run, tmp_path):
+    path = tmp_path / "bad.yaml"
+    path.write_bytes(data)
+    result = run("dof", str(path))
+    assert result.exit_code == 2 and fragment in result.stderr and str(path) in result.stderr
