@@ -16,6 +16,7 @@ from __future__ import annotations
 from xml.sax.saxutils import escape, quoteattr
 
 from mech.draw.scene import Circle, Figure, Item, Line, Poly, Style, Text
+from mech.render.safe import xml_safe
 
 __all__ = ["to_svg"]
 
@@ -85,4 +86,4 @@ def to_svg(figure: Figure) -> str:
     title = f"<title>{escape(figure.title)}</title>\n" if figure.title else ""
     body = [f'<rect x="0" y="0" width="{_n(w)}" height="{_n(h)}" fill="white"/>']
     body += [_item(item) for item in figure.items]
-    return head + title + "\n".join(body) + "\n</svg>\n"
+    return xml_safe(head + title + "\n".join(body) + "\n</svg>\n")

@@ -22,6 +22,7 @@ from mech.check import ERROR, FAIL, PASS, FileResult, Verdict
 from mech.errors import InputError
 from mech.render.console import is_plain, table_box
 from mech.render.jsonout import dumps, error_dict
+from mech.render.safe import printable, xml_safe
 
 __all__ = [
     "PROGRESS_THRESHOLD",
@@ -96,13 +97,15 @@ def _answers_table(report: Report, console: Console, *, quiet: bool) -> None:
             continue
         if rows:
             table.add_section()
-        table.add_row(Text(_label(r), style="bold"), "", "", "")
+        table.add_row(Text(printable(_label(r)), style="bold"), "", "", "")
         previous = None
         for v in shown:
             # one reason (a solve that failed) repeated down a file is said once
             message = "〃 (as above)" if v.status == ERROR and v.message == previous else v.message
             previous = v.message
-            table.add_row("  " + v.key, v.claimed, _status(v, console), message)
+            table.add_row(
+                "  " + printable(v.key), printable(v.claimed), _status(v, console), printable(message)
+            )
             rows += 1
     if rows:
         console.print(table)
@@ -122,7 +125,7 @@ def _class_table(report: Report, console: Console) -> None:
         table.add_column(name, justify=justify)  # type: ignore[arg-type]
     for s in report.scores():
         table.add_row(
-            s.student,
+            printable(s.student),
             str(s.problems),
             str(s.total),
             str(s.passed),
@@ -142,7 +145,7 @@ def progress(console: Console | None = None) -> Iterator[tuple[Callable[[int], N
     set and the batch has more than :data:`PROGRESS_THRESHOLD` rows; otherwise
     both are no-ops, so piped, plain and CI output stays clean.
     """
-    console = console or Console(stderr=True)
+    console = console or Console(stderr=True, markup=False)
     state: dict[str, Any] = {}
 
     def start(total: int) -> None:
@@ -280,7 +283,7 @@ def junit_xml(report: Report) -> str:
                 node = ET.SubElement(case, "error", message=v.message, type=kind)
                 node.text = "\n".join(_problem_lines(r)) if v.key == "file" and r.problems else _details(v)
     ET.indent(root)
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
+    return xml_safe('<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n")
 
 
 def _classname(r: FileResult) -> str:

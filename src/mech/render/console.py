@@ -16,13 +16,16 @@ def stdout() -> Console:
     """The console for reports.  Piped output is plain text, $COLUMNS (default 120) wide."""
     from rich.console import Console
 
-    console = Console(highlight=False)
+    # markup=False: names, claims and messages come from users' files, and "[/b]" in a
+    # mechanism's name must print as written, not be read (or fail) as rich markup.
+    # Styles are given as Text styles instead.
+    console = Console(highlight=False, markup=False)
     if not console.is_terminal:
         width = int(os.environ.get("COLUMNS", 120))
-        return Console(highlight=False, width=width, color_system=None)
+        return Console(highlight=False, markup=False, width=width, color_system=None)
     if os.environ.get("NO_COLOR"):
         # rich drops colour for NO_COLOR but keeps bold; we promise plain text
-        return Console(highlight=False, color_system=None)
+        return Console(highlight=False, markup=False, color_system=None)
     return console
 
 

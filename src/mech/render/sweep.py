@@ -155,11 +155,12 @@ def sweep_csv(sw: Sweep, *, units: OutputUnits, quantities: tuple[str, ...] = ()
 def sweep_table(sw: Sweep, console: Any, *, units: OutputUnits) -> None:
     """The summary for people: gaps, toggles, dead centres, time ratio, extremes, notes."""
     from rich.table import Table
+    from rich.text import Text
 
     from mech.render.console import table_box
 
     lo, hi = _deg(float(sw.angles[0])), _deg(float(sw.angles[-1]))
-    console.print(f"[bold]{sw.mechanism}[/bold]")
+    console.print(Text(sw.mechanism, style="bold"))
     speed = "" if sw.omega is None else f", ω = {sw.omega:.6g} rad/s"
     console.print(
         f"  sweep of {sw.drive} from {lo:g}° to {hi:g}° in {sw.angles.size - 1} steps ({sw.level}{speed}); "
@@ -191,7 +192,9 @@ def sweep_table(sw: Sweep, console: Any, *, units: OutputUnits) -> None:
         )
     cond = sw.max_condition
     if math.isfinite(cond) and cond > 1e3:
-        console.print(f"  [yellow]largest condition number {cond:.3g}: results near it lose digits[/yellow]")
+        console.print(
+            Text(f"  largest condition number {cond:.3g}: results near it lose digits", style="yellow")
+        )
     if sw.extremes:
         table = Table(box=table_box(console), show_edge=False, pad_edge=False)
         for name, justify in (
