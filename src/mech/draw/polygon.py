@@ -413,9 +413,15 @@ def polygon_figure(
     colours = link_colours(mech)
     pts: list[Vec] = [(0.0, 0.0)] + [im.value for im in data.images] + list(data.construction.values())
     x0, y0, x1, y1 = bbox(pts)
+    at_rest = max(x1 - x0, y1 - y0) <= 1e-200  # every image at the pole: nothing moves
     w, h = max(x1 - x0, 1e-300), max(y1 - y0, 1e-300)
     if scale is None:
-        scale = nice_scale(w, room[0]) if w / room[0] >= h / room[1] else nice_scale(h, room[1])
+        # at rest there is no extent to fit: a nominal 1 unit per cm, not 1e-301
+        scale = (
+            1.0 * factor
+            if at_rest
+            else (nice_scale(w, room[0]) if w / room[0] >= h / room[1] else nice_scale(h, room[1]))
+        )
     tr = Transform(scale, (x0, y1), (MARGIN, TITLE_H + MARGIN))
     pw, ph = tr.length(w), tr.length(h)
     tiny = 1e-9 * max((math.hypot(*p) for p in pts), default=1.0)
@@ -427,6 +433,18 @@ def polygon_figure(
     page = Page(width, height)
     title = "Acceleration diagram" if acc else "Velocity diagram"
     page.add(Text((MARGIN - 6, 5.5), title, 3.4, "start", bold=True, cls="title"))
+    if at_rest:
+        what = "acceleration" if acc else "velocity"
+        page.add(
+            Text(
+                (MARGIN - 6, 10.0),
+                f"every {what} is zero: the polygon is the pole o",
+                2.7,
+                "start",
+                "#333333",
+                cls="value",
+            )
+        )
 
     def at(key: str) -> Vec:
         return tr(data.at(key))
