@@ -3,11 +3,14 @@
 ``mech check`` is a thin layer over :func:`run`:
 
 1. :func:`find_problem_files` walks files and folders (recursively, ``*.yaml``
-   and ``*.yml``) into one sorted list.
+   and ``*.yml``, the suffix in any case) into one sorted list.
 2. With ``answers``, :func:`read_sheets` reads one sheet (one student) or a
    folder of sheets (a class; the student is the sheet's path without its
-   suffix).  A sheet maps a problem — its file stem, file name or ``name`` —
-   to an answers mapping in the same grammar as a file's own ``answers``.
+   suffix).  A sheet maps a problem — its file stem, file name, path under a
+   folder given, or ``name`` — to an answers mapping in the same grammar as a
+   file's own ``answers``.  Paths are resolved here (:class:`_Index`), names
+   in the worker that loads the file; a key naming several files, or a
+   problem named by several keys, is an error row, never graded twice.
 3. Each problem file is loaded and solved **once**, however many students
    answered it, and every student's claims are checked against that one
    solution (:class:`mech.check.Analysis`).  With ``jobs > 1`` problems are
@@ -36,6 +39,7 @@ __all__ = [
     "CheckOptions",
     "Report",
     "Sheet",
+    "SheetEntry",
     "StudentScore",
     "find_problem_files",
     "read_sheets",
@@ -141,7 +145,8 @@ class Report:
 
     @property
     def files(self) -> int:
-        return len({r.path for r in self.results}) + len(self.skipped)
+        """Problem files checked or skipped (a sheet's own rows are not problem files)."""
+        return len({r.path for r in self.results if not r.sheet}) + len(self.skipped)
 
     @property
     def exit_status(self) -> int:
@@ -156,7 +161,7 @@ class Report:
             out.append(
                 StudentScore(
                     student=student,
-                    problems=len(rows),
+                    problems=len({r.path for r in rows if not r.sheet}),
                     passed=sum(r.passed for r in rows),
                     failed=sum(r.failed for r in rows),
                     errors=sum(r.errors for r in rows),
@@ -169,6 +174,8 @@ class Report:
 def find_problem_files(paths: Iterable[str]) -> tuple[str, ...]:
     """Every ``*.yaml``/``*.yml`` file named or under a named folder, sorted, without repeats.
 
+    The suffix is matched in any case (``hw.YAML`` is found too).
+
     Raises
     ------
     InputError
@@ -179,11 +186,7 @@ def find_problem_files(paths: Iterable[str]) -> tuple[str, ...]:
     for raw in paths:
         path = Path(raw)
         if path.is_dir():
-            found.update(
-                str(p)
-                for p in path.rglob("*")
-                if p.suffix in SUFFIXES and p.is_file() and not _hidden(p, path)
-            )
+            found.update(str(p) for p in _yaml_files(path))
         elif path.is_file():
             found.add(str(path))
         else:
@@ -198,35 +201,95 @@ def find_problem_files(paths: Iterable[str]) -> tuple[str, ...]:
     return tuple(sorted(found))
 
 
+def _yaml_files(root: Path) -> list[Path]:
+    """``*.yaml``/``*.yml`` files under ``root`` (suffix in any case), hidden folders skipped."""
+    return sorted(
+        p for p in root.rglob("*") if p.suffix.lower() in SUFFIXES and p.is_file() and not _hidden(p, root)
+    )
+
+
 def _hidden(path: Path, root: Path) -> bool:
     return any(part.startswith(".") for part in path.relative_to(root).parts)
 
 
+@dataclass(frozen=True, slots=True)
+class _Index:
+    """Which problem files each sheet key names: by stem, file name or path under a folder given.
+
+    A problem's ``name`` is learnt only when its file is loaded (in a worker),
+    so keys naming no file here may still name a problem by its ``name``.
+    """
+
+    files: dict[str, tuple[str, ...]]  # key → the problem files it names
+    labels: dict[str, str]  # problem file → the shortest key naming it alone
+
+    @classmethod
+    def of(cls, files: Sequence[str], roots: Iterable[str]) -> _Index:
+        dirs = [Path(r) for r in roots if Path(r).is_dir()]
+        ids: dict[str, list[str]] = {}
+        for f in files:
+            p = Path(f)
+            keys = [p.stem, p.name]
+            for d in dirs:
+                try:
+                    rel = p.relative_to(d)
+                except ValueError:
+                    continue
+                keys += [rel.with_suffix("").as_posix(), rel.as_posix()]
+            ids[f] = list(dict.fromkeys(keys))
+        by_key: dict[str, list[str]] = {}
+        for f, keys in ids.items():
+            for k in keys:
+                by_key.setdefault(k, []).append(f)
+        labels = {f: next((k for k in ids[f] if len(by_key[k]) == 1), f) for f in files}
+        return cls({k: tuple(v) for k, v in by_key.items()}, labels)
+
+
 # -- answer sheets --------------------------------------------------------------------------
 @dataclass(frozen=True, slots=True)
-class Sheet:
-    """One student's answer sheet: problem key → the YAML node of its answers.
+class SheetEntry:
+    """One top-level entry of a sheet: a problem key, where it is written, and its answers.
 
-    Nodes are kept (not Python values) so that the loader validates them
-    with the same code and locations as a file's own ``answers``.
+    ``node`` is the answers mapping node (kept, not converted, so that the
+    loader validates it with the same code and locations as a file's own
+    ``answers``); None for an empty entry (``four_bar: {}`` or ``four_bar:``),
+    which answers nothing.  ``problem`` says why the value cannot be answers.
+    """
+
+    key: str
+    where: Where
+    node: Any = None
+    problem: str | None = None
+
+    @property
+    def empty(self) -> bool:
+        return self.problem is None and (self.node is None or not self.node.value)
+
+
+@dataclass(frozen=True, slots=True)
+class Sheet:
+    """One student's answer sheet: its entries, or the error row that it could not be read.
+
+    ``bad_keys`` are entries whose key is not text (a list, a mapping): the
+    key as written and where.
     """
 
     student: str
     path: str
     source: str
-    entries: tuple[tuple[str, Any], ...] = ()
+    entries: tuple[SheetEntry, ...] = ()
     error: FileResult | None = None
-    keys_at: tuple[tuple[str, Where], ...] = ()  # where each problem key is written
-
-    def where(self, key: str) -> Where:
-        return dict(self.keys_at).get(key, Where(self.path))
+    bad_keys: tuple[tuple[str, str, Where], ...] = ()  # (key as written, what it is, where)
 
 
 def read_sheets(path: str) -> tuple[Sheet, ...]:
     """One sheet (a file) or every sheet under a folder, sorted by student.
 
-    A sheet that cannot be read is returned with its ``error`` row set, so
-    that one bad sheet costs one student one row, not the class its run.
+    In a folder the student is the sheet's path without its suffix; two sheets
+    for one student (``carol.yaml`` and ``carol.yml``) are one error row for
+    that student, so that no sheet is counted twice.  A sheet that cannot be
+    read is returned with its ``error`` row set, so that one bad sheet costs
+    one student one row, not the class its run.
 
     Raises
     ------
@@ -235,26 +298,44 @@ def read_sheets(path: str) -> tuple[Sheet, ...]:
     """
     root = Path(path)
     if root.is_dir():
-        files = sorted(
-            p for p in root.rglob("*") if p.suffix in SUFFIXES and p.is_file() and not _hidden(p, root)
-        )
+        files = _yaml_files(root)
         if not files:
             raise InputError(f"no answer sheets (*.yaml, *.yml) in {path}", where=Where(path))
-        return tuple(_read_sheet(p, p.relative_to(root).with_suffix("").as_posix()) for p in files)
+        by_student: dict[str, list[Path]] = {}
+        for p in files:
+            by_student.setdefault(p.relative_to(root).with_suffix("").as_posix(), []).append(p)
+        return tuple(
+            _read_sheet(found[0], student) if len(found) == 1 else _two_sheets(student, found)
+            for student, found in sorted(by_student.items())
+        )
     if root.is_file():
         return (_read_sheet(root, root.stem),)
     raise InputError(f"no such answer sheet or folder: {path}", where=Where(path), hint="check the path")
+
+
+def _two_sheets(student: str, paths: Sequence[Path]) -> Sheet:
+    """Sheets that are one student's (``carol.yaml``, ``carol.yml``): neither is graded."""
+    names = [str(p) for p in paths]
+    error = InputError(
+        f"student {student!r} has {len(names)} answer sheets: {', '.join(names)}; none of them is graded",
+        where=Where(names[0]),
+        hint="keep one sheet per student (remove or rename the others)",
+    )
+    return Sheet(student, names[0], "", error=error_result(names[0], error, student=student, sheet=True))
 
 
 def _read_sheet(path: Path, student: str) -> Sheet:
     import yaml
 
     name = str(path)
+
+    def failed(error: InputError, text: str = "") -> Sheet:
+        return Sheet(student, name, text, error=error_result(name, error, student=student, sheet=True))
+
     try:
         text = path.read_bytes().decode("utf-8-sig")
     except (OSError, UnicodeDecodeError) as exc:
-        error = InputError(f"cannot read the answer sheet: {exc}", where=Where(name))
-        return Sheet(student, name, "", error=error_result(name, error, student=student))
+        return failed(InputError(f"cannot read the answer sheet: {exc}", where=Where(name)))
     loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
     try:
         root = yaml.compose(text, Loader=loader)
@@ -262,38 +343,35 @@ def _read_sheet(path: Path, student: str) -> Sheet:
         mark = getattr(exc, "problem_mark", None)
         where = Where(name, mark.line + 1, mark.column + 1) if mark else Where(name)
         what = getattr(exc, "problem", None) or "malformed YAML"
-        error = InputError(f"this answer sheet is not valid YAML: {what}", where=where, source=text)
-        return Sheet(student, name, text, error=error_result(name, error, student=student))
+        return failed(
+            InputError(f"this answer sheet is not valid YAML: {what}", where=where, source=text), text
+        )
     if not isinstance(root, yaml.MappingNode):
         error = InputError(
             "an answer sheet maps problems to answers (`four_bar: {dof: 1, …}`)",
             where=Where(name, 1, 1),
             hint="each top-level key is a problem's file name, stem or name",
         )
-        return Sheet(student, name, text, error=error_result(name, error, student=student))
-    entries: dict[str, Any] = {}
-    keys_at: dict[str, Where] = {}
-    problems = []
+        return failed(error, text)
+    from mech.loader import _is_null, _kind
+
+    entries = []
+    bad_keys = []
     for knode, vnode in root.value:
-        key = str(knode.value)
         where = Where(name, knode.start_mark.line + 1, knode.start_mark.column + 1)
-        if key in entries:
-            problems.append(Problem(f"problem {key!r} is answered twice on this sheet", where, "keep one"))
-        elif not isinstance(vnode, yaml.MappingNode):
-            problems.append(
-                Problem(
-                    f"the answers to {key} must be a mapping (`dof: 1` lines)",
-                    where,
-                    "see cli.md § mech check",
-                )
-            )
+        if not isinstance(knode, yaml.ScalarNode):
+            written = " ".join(text[knode.start_mark.index : knode.end_mark.index].split())
+            bad_keys.append((written if len(written) <= 40 else written[:39] + "…", _kind(knode), where))
+            continue
+        key = str(knode.value)
+        if isinstance(vnode, yaml.MappingNode):
+            entries.append(SheetEntry(key, where, vnode))
+        elif _is_null(vnode):
+            entries.append(SheetEntry(key, where))
         else:
-            entries[key] = vnode
-            keys_at[key] = where
-    if problems:
-        error = InputError(problems=problems, source=text)
-        return Sheet(student, name, text, error=error_result(name, error, student=student))
-    return Sheet(student, name, text, tuple(entries.items()), keys_at=tuple(keys_at.items()))
+            message = f"the answers to {key} must be a mapping (`dof: 1` lines), not {_kind(vnode)}"
+            entries.append(SheetEntry(key, where, problem=message))
+    return Sheet(student, name, text, tuple(entries), bad_keys=tuple(bad_keys))
 
 
 @dataclass(frozen=True, slots=True)
@@ -303,9 +381,9 @@ class _Submission:
     student: str
     sheet: str
     source: str
-    node: Any  # the matched answers node, or None
-    key: str | None  # the sheet key it was matched by
-    unresolved: tuple[tuple[str, Any], ...]  # entries no file stem matched: maybe a problem's `name`
+    entries: tuple[SheetEntry, ...]  # entries naming this problem file (and no other) by path
+    ambiguous: tuple[tuple[SheetEntry, tuple[str, ...]], ...]  # entries naming it and others: candidates
+    unresolved: tuple[SheetEntry, ...]  # entries naming no file by path: maybe a problem's `name`
 
 
 @dataclass(frozen=True, slots=True)
@@ -318,7 +396,7 @@ class _Task:
 @dataclass(frozen=True, slots=True)
 class _Done:
     results: tuple[FileResult, ...]
-    used: tuple[tuple[str, str], ...] = ()  # (student, sheet key) matched by a problem's name
+    used: tuple[tuple[str, str, str], ...] = ()  # (student, sheet key, problem file) matched by `name`
 
 
 # -- the worker -----------------------------------------------------------------------------
@@ -359,48 +437,56 @@ def _check_sheets(task: _Task, mech: Any) -> _Done:
 
     analysis = Analysis(mech, options=task.solve)
     teacher = {c.key: c for c in mech.answers}
-    parsed: list[tuple[_Submission, Any]] = []
-    used: list[tuple[str, str]] = []
+    parsed: list[tuple[_Submission, SheetEntry | None, Any]] = []
+    used: list[tuple[str, str, str]] = []
     for sub in task.submissions or ():
-        node = sub.node
-        if node is None and mech.name is not None:
-            for k, n in sub.unresolved:
-                if k == mech.name:
-                    node = n
-                    used.append((sub.student, k))
-                    break
-        if node is None:
-            parsed.append((sub, None))
+        entries = list(sub.entries)
+        for e in sub.unresolved:
+            if mech.name is not None and e.key == mech.name:
+                entries.append(e)
+                used.append((sub.student, e.key, task.path))
+        if len(entries) > 1:
+            parsed.append((sub, None, _twice(task.path, entries, sub.source)))
+            continue
+        if not entries:
+            error = (
+                _ambiguous(sub.ambiguous[0][0], sub.ambiguous[0][1], sub.source) if sub.ambiguous else None
+            )
+            parsed.append((sub, None, error))
+            continue
+        entry = entries[0]
+        if entry.problem is not None:
+            problem = Problem(entry.problem, entry.where, "see cli.md § mech check")
+            parsed.append((sub, entry, InputError(problems=[problem], source=sub.source)))
+            continue
+        if entry.empty:
+            parsed.append((sub, entry, None))
             continue
         try:
-            _refuse_tolerance(node, sub)
-            claims, _ = parse_answers(node, mech, path=sub.sheet, source=sub.source)
+            _refuse_tolerance(entry.node, sub)
+            claims, _ = parse_answers(entry.node, mech, path=sub.sheet, source=sub.source)
         except InputError as error:
-            parsed.append((sub, error))
+            parsed.append((sub, entry, error))
             continue
-        parsed.append((sub, claims))
-    analysis.need([c for _, claims in parsed if isinstance(claims, tuple) for c in claims])
+        parsed.append((sub, entry, claims))
+    analysis.need([c for _, _, claims in parsed if isinstance(claims, tuple) for c in claims])
     results = []
-    for sub, claims in parsed:
-        if claims is None:
-            results.append(
-                FileResult(
-                    task.path,
-                    mech.name,
-                    (
-                        Verdict(
-                            "answers",
-                            FAIL,
-                            message="not answered: the sheet has no answers for this problem",
-                            where=Where(sub.sheet),
-                        ),
-                    ),
-                    student=sub.student,
-                )
-            )
-            continue
+    for sub, entry, claims in parsed:
         if isinstance(claims, MechError):
             results.append(error_result(task.path, claims, student=sub.student, name=mech.name))
+            continue
+        where = entry.where if entry is not None else Where(sub.sheet)
+        if claims is None:
+            # not answered: nothing on the sheet, or an empty entry; one row per question if the
+            # problem file sets them, so that leaving a problem out never scores better than trying it
+            why = (
+                "the sheet's entry for this problem is empty"
+                if entry
+                else "the sheet has no answers for this problem"
+            )
+            verdicts = [Verdict(key, FAIL, message=f"not answered: {why}", where=where) for key in teacher]
+            verdicts = verdicts or [Verdict("answers", FAIL, message=f"not answered: {why}", where=where)]
+            results.append(FileResult(task.path, mech.name, tuple(verdicts), student=sub.student))
             continue
         # tolerances are the teacher's: per answer from the problem file, else the file's
         with_tol = tuple(
@@ -412,12 +498,33 @@ def _check_sheets(task: _Task, mech: Any) -> _Done:
         verdicts = list(check(mech, with_tol, tolerance=mech.tolerance, analysis=analysis))
         answered = {c.key for c in claims}
         verdicts += [
-            Verdict(key, FAIL, message="not answered", where=Where(sub.sheet))
-            for key in teacher
-            if key not in answered
+            Verdict(key, FAIL, message="not answered", where=where) for key in teacher if key not in answered
         ]
         results.append(FileResult(task.path, mech.name, tuple(verdicts), student=sub.student))
     return _Done(tuple(results), tuple(used))
+
+
+def _twice(path: str, entries: Sequence[SheetEntry], source: str) -> InputError:
+    """One problem answered by two entries of a sheet: neither is graded (which one was meant?)."""
+    entries = sorted(entries, key=lambda e: (e.where.line, e.where.column))
+    keys = " and ".join(f"`{e.key}` (line {e.where.line})" for e in entries)
+    return InputError(
+        f"{Path(path).name} is answered twice on this sheet: by {keys}; neither is graded",
+        where=entries[-1].where,
+        hint="keep one entry per problem (a problem's stem, file name, path and `name` all name it)",
+        source=source,
+    )
+
+
+def _ambiguous(entry: SheetEntry, candidates: Sequence[str], source: str) -> InputError:
+    """A sheet key that names several problem files: it is graded against none of them."""
+    return InputError(
+        f"`{entry.key}` names {len(candidates)} problem files ({', '.join(candidates)}); it is graded "
+        "against none of them",
+        where=entry.where,
+        hint=f"name one by its path under the problems folder (`{candidates[0]}:`) or by its `name`",
+        source=source,
+    )
 
 
 def _with_tolerance(claim: Any, tolerance: Any) -> Any:
@@ -468,17 +575,19 @@ def run(
     """
     files = find_problem_files(options.paths)
     sheets = read_sheets(options.answers) if options.answers else None
-    tasks, extra = _plan(files, sheets, options.solve)
+    index = _Index.of(files, options.paths)
+    tasks, extra = _plan(files, sheets, options.solve, index)
     if on_start is not None:
         on_start(sum(len(t.submissions) if t.submissions is not None else 1 for t in tasks))
     done = _execute(tasks, options.workers, on_result)
     results = list(extra)
-    used: set[tuple[str, str]] = set()
+    used: list[tuple[str, str, str]] = []
     for d in done:
         results += d.results
-        used.update(d.used)
+        used += d.used
     if sheets is not None:
-        results += _unmatched(sheets, files, used)
+        results = _shared_names(results, sheets, index, used)
+        results += _unmatched(sheets, index, {(student, key) for student, key, _ in used})
     report = Report.of(results, students=[s.student for s in sheets] if sheets is not None else ())
     if not report.results:
         raise InputError(
@@ -489,55 +598,86 @@ def run(
 
 
 def _plan(
-    files: Sequence[str], sheets: Sequence[Sheet] | None, solve: SolveOptions
+    files: Sequence[str], sheets: Sequence[Sheet] | None, solve: SolveOptions, index: _Index
 ) -> tuple[list[_Task], list[FileResult]]:
     """One task per problem file; with sheets, each task carries every student's answers to it."""
     if sheets is None:
         return [_Task(f, None, solve) for f in files], []
     extra = [s.error for s in sheets if s.error is not None]
     usable = [s for s in sheets if s.error is None]
-    ids = {f: (Path(f).stem, Path(f).name) for f in files}
-    known = {n for pair in ids.values() for n in pair}
+    # per student: the entries naming one file, several files (with their labels), or none
+    alone: list[dict[str, list[SheetEntry]]] = []
+    shared: list[dict[str, list[tuple[SheetEntry, tuple[str, ...]]]]] = []
+    unresolved: list[tuple[SheetEntry, ...]] = []
+    for s in usable:
+        one: dict[str, list[SheetEntry]] = {}
+        several: dict[str, list[tuple[SheetEntry, tuple[str, ...]]]] = {}
+        for e in s.entries:
+            named = index.files.get(e.key, ())
+            if len(named) == 1:
+                one.setdefault(named[0], []).append(e)
+            for f in named if len(named) > 1 else ():
+                several.setdefault(f, []).append((e, tuple(index.labels[c] for c in named)))
+        alone.append(one)
+        shared.append(several)
+        unresolved.append(tuple(e for e in s.entries if e.key not in index.files))
     tasks = []
     for f in files:
-        subs = []
-        for s in usable:
-            node = key = None
-            for k, n in s.entries:
-                if k in ids[f]:
-                    node, key = n, k
-                    break
-            unresolved = tuple((k, n) for k, n in s.entries if k not in known)
-            subs.append(_Submission(s.student, s.path, s.source, node, key, unresolved))
-        tasks.append(_Task(f, tuple(subs), solve))
+        subs = tuple(
+            _Submission(s.student, s.path, s.source, tuple(one.get(f, ())), tuple(several.get(f, ())), loose)
+            for s, one, several, loose in zip(usable, alone, shared, unresolved, strict=True)
+        )
+        tasks.append(_Task(f, subs, solve))
     return tasks, extra
 
 
-def _unmatched(sheets: Sequence[Sheet], files: Sequence[str], used: set[tuple[str, str]]) -> list[FileResult]:
-    """An error row for every sheet entry that names no problem file."""
-    known = {n for f in files for n in (Path(f).stem, Path(f).name)}
+def _shared_names(
+    results: list[FileResult], sheets: Sequence[Sheet], index: _Index, used: Sequence[tuple[str, str, str]]
+) -> list[FileResult]:
+    """A sheet key that is the `name` of several problem files: an error row for each of them."""
+    named: dict[tuple[str, str], list[str]] = {}
+    for student, key, path in used:
+        named.setdefault((student, key), []).append(path)
+    clashes = {sk: sorted(paths) for sk, paths in named.items() if len(paths) > 1}
+    if not clashes:
+        return results
+    by_student = {s.student: s for s in sheets}
+    replace: dict[tuple[str, str], FileResult] = {}
+    for (student, key), paths in clashes.items():
+        sheet = by_student[student]
+        entry = next(e for e in sheet.entries if e.key == key)
+        error = _ambiguous(entry, [index.labels[p] for p in paths], sheet.source)
+        for path in paths:
+            replace[(student, path)] = error_result(path, error, student=student)
+    return [replace.get((r.student or "", r.path), r) if not r.sheet else r for r in results]
+
+
+def _unmatched(sheets: Sequence[Sheet], index: _Index, used: set[tuple[str, str]]) -> list[FileResult]:
+    """An error row for every sheet entry that names no problem file, or whose key is not text."""
     out = []
     for s in sheets:
         if s.error is not None:
             continue
-        for key, _ in s.entries:
-            if key in known or (s.student, key) in used:
-                continue
-            where = s.where(key)
-            out.append(
-                FileResult(
-                    s.path,
-                    verdicts=(
-                        Verdict(
-                            key,
-                            ERROR,
-                            message=f"no problem file is named {key!r} (by file name, stem or `name`)",
-                            where=where,
-                        ),
-                    ),
-                    student=s.student,
-                )
+        rows = [
+            Verdict(
+                written,
+                ERROR,
+                message=f"a problem is named by text (its file name, stem, path or `name`), not by {kind}",
+                where=where,
             )
+            for written, kind, where in s.bad_keys
+        ]
+        rows += [
+            Verdict(
+                e.key,
+                ERROR,
+                message=f"no problem file is named {e.key!r} (by file name, stem, path or `name`)",
+                where=e.where,
+            )
+            for e in s.entries
+            if e.key not in index.files and (s.student, e.key) not in used
+        ]
+        out += [FileResult(s.path, verdicts=(v,), student=s.student, sheet=True) for v in rows]
     return out
 
 

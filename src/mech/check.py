@@ -130,7 +130,10 @@ class FileResult:
 
     A file that cannot be read or checked at all is *one* error verdict with
     key ``file``; its located problems are kept in ``problems`` for JSON.
-    ``skipped`` is True for a file with no answers to check.
+    ``skipped`` is True for a file with no answers to check.  ``sheet`` is
+    True for a row about an answer sheet itself (a sheet that cannot be read,
+    an entry that names no problem file): ``path`` is then the sheet's, and
+    the row is not a problem file in the counts.
     """
 
     path: str
@@ -139,6 +142,7 @@ class FileResult:
     student: str | None = None
     problems: tuple[Problem, ...] = ()
     skipped: bool = False
+    sheet: bool = False
 
     @property
     def passed(self) -> int:
@@ -162,7 +166,12 @@ class FileResult:
 
 
 def error_result(
-    path: str, error: MechError, *, student: str | None = None, name: str | None = None
+    path: str,
+    error: MechError,
+    *,
+    student: str | None = None,
+    name: str | None = None,
+    sheet: bool = False,
 ) -> FileResult:
     """A file that could not be checked: one error row carrying the error's problems."""
     first = error.problems[0] if error.problems else Problem(str(error))
@@ -177,6 +186,7 @@ def error_result(
         verdicts=(Verdict("file", ERROR, message=message, where=where),),
         student=student,
         problems=tuple(error.problems),
+        sheet=sheet,
     )
 
 
