@@ -472,22 +472,31 @@ def sweep_command(
             d.omega is not None or d.speed is not None for d in mechanism.drives
         )
         level = "velocity" if has_speed else "position"
-    angles = np.radians(np.linspace(start, stop, steps + 1))
-    result = sweep(mechanism, angles, level=level, options=options, quantities=quantities or None)
-    units = request.units
-    from mech.render import sweep as render
+    # the sweep refuses up front when its arrays would exceed its budget (MEMORY_BUDGET, 1 GiB); a
+    # machine with less memory than that, or the CSV / series / plot of that many steps, can still
+    # run out: say so (exit 2), never a traceback
+    try:
+        angles = np.radians(np.linspace(start, stop, steps + 1))
+        result = sweep(mechanism, angles, level=level, options=options, quantities=quantities or None)
+        units = request.units
+        from mech.render import sweep as render
 
-    if csv_path:
-        _write(csv_path, render.sweep_csv(result, units=units, quantities=quantities))
-    if plot_path:
-        render.sweep_plot_file(plot_path, result, units=units, quantities=quantities)
-    if gif_path:
-        render.sweep_animation_file(gif_path, mechanism, result)
-    if request.as_json:
-        from mech.render.jsonout import dumps
+        if csv_path:
+            _write(csv_path, render.sweep_csv(result, units=units, quantities=quantities))
+        if plot_path:
+            render.sweep_plot_file(plot_path, result, units=units, quantities=quantities)
+        if gif_path:
+            render.sweep_animation_file(gif_path, mechanism, result)
+        if request.as_json:
+            from mech.render.jsonout import dumps
 
-        click.echo(dumps(render.sweep_json(result, units=units, file=request.file, series=quantities)))
-        return
+            click.echo(dumps(render.sweep_json(result, units=units, file=request.file, series=quantities)))
+            return
+    except MemoryError:
+        raise InputError(
+            f"out of memory sweeping {steps + 1:,} angles of {mechanism.label}",
+            hint="give fewer --steps, or sweep the range in parts",
+        ) from None
     from mech.render.console import stdout
 
     render.sweep_table(result, stdout(), units=units)

@@ -28,7 +28,15 @@ Rules the results keep:
   in 16× per round until the bracket is at rounding, so an extreme value is
   exact to about 1e-15 relative and its angle to about 1e-8 rad (the top of
   a smooth maximum is flat: value changes only as Δθ²); a dead centre's
-  angle, a root, is found to about 1e-15 rad.
+  angle, a root, is found to about 1e-15 rad.  A Newton sweep refines each
+  one between its neighbouring steps by Brent's method (extremes) or regula
+  falsi (dead centres) on Newton solves warm-started along the sweep's own
+  branch (:class:`_Walk`), to the solver's tolerance.  Over a full turn only
+  a quantity that comes back to its first value is taken as periodic (a
+  2:1 wheel is not); nothing is extrapolated beyond the range swept.
+* **Bounded memory.**  A sweep whose arrays would exceed
+  :data:`MEMORY_BUDGET` (1 GiB, estimated per angle from the chain) is
+  refused before solving, with the number of angles that fit.
 
 The quick-return time ratio is the crank angle of the slow stroke over that
 of the fast one, between the two dead centres of the output (the last slider
@@ -452,17 +460,44 @@ class _Newton:
             res["alphas"] = nan_l if singular else np.array([kin.links[lk].alpha for lk in self.links])
         return res
 
-    def evaluate(self, phi: np.ndarray) -> dict[str, np.ndarray]:
-        """Independent solves at any angles (refinement): each continued from the drawn configuration."""
-        flat = np.asarray(phi, float).ravel()
-        rows: list[dict[str, Any] | None] = []
-        for p in flat:
-            try:
-                kin = solve(self.mech, LEVELS[self.lvl], self.options.with_(angle=float(p)))
-                rows.append(self._arrays(kin))
-            except GeometryError:
-                rows.append(None)
-        return _stack_rows(rows, np.shape(phi))
+
+class _Walk:
+    """One Newton continuation sent from angle to angle, each solve warm from the last one.
+
+    Refinement needs solutions between the steps *on the sweep's branch*: a
+    solve from the drawing would turn the crank the short way round, and a
+    gear train is then elsewhere (a 2:1 wheel at crank 350° is at −175° along
+    the sweep, +5° from the drawing).  So the walk starts where the sweep
+    started and continues along the crank to every angle it is sent to, by the
+    same predictor–corrector as the sweep
+    (:func:`~mech.kinematics.solve.continuation`, which reads its angles one
+    at a time: the route is a list that grows as the walk goes).  Once a solve
+    fails the walk is lost (continuation cannot jump) and starts again.
+    """
+
+    def __init__(self, backend: _Newton, start: float) -> None:
+        self.backend, self.start = backend, float(start)
+        self._begin()
+
+    def _begin(self) -> None:
+        self._route = [self.start]
+        self._steps = continuation(
+            self.backend.mech, self._route, LEVELS[self.backend.lvl], self.backend.options
+        )
+        self.lost = next(self._steps) is None
+
+    def to(self, angle: float) -> dict[str, Any] | None:
+        """The sweep's arrays for one step at ``angle``, or None where it cannot be reached."""
+        if self.lost:
+            self._begin()
+            if self.lost:
+                return None
+        self._route.append(float(angle))
+        kin = next(self._steps)
+        if kin is None:
+            self.lost = True
+            return None
+        return self.backend._arrays(kin)
 
 
 def _stack_rows(rows: list[dict[str, Any] | None], shape: tuple[int, ...]) -> dict[str, np.ndarray]:
@@ -518,7 +553,8 @@ def _zoom(
             jl, jh = np.maximum(j - 1, 0), np.minimum(j + 1, m - 1)
             lo, hi = grid[k, jl], grid[k, jh]
         # a root to rounding; a maximum only to 1e-11 rad: its value is then exact (it moves as Δθ²)
-        if np.all(hi - lo <= (4e-16 if mode == "root" else 1e-11) * np.maximum(np.abs(lo), 1.0)):
+        # (a bracket may run downwards, lo > hi, as a descending sweep gives it: measure its width)
+        if np.all(np.abs(hi - lo) <= (4e-16 if mode == "root" else 1e-11) * np.maximum(np.abs(lo), 1.0)):
             break
     mid = 0.5 * (lo + hi)
     if mode == "root":
@@ -627,6 +663,7 @@ def sweep(
         raise UnsupportedError(
             f"{mech.label} does not decompose into dyads driven by one crank", hint="use method auto"
         )
+    _check_memory(comp, prog, phi.size, lvl_int)
     notes: list[str] = list(comp.drawn.notes)
     if prog is not None:
         backend: Any = _Closed(comp, prog, w_int, alpha, lvl_int)
@@ -670,6 +707,21 @@ def sweep(
         dead, outputs = _dead_centres(backend, comp, phi, data, ok, names)
         extremes = _extremes(backend, phi, data, ok & ~singular, names, keys)
         ratio = _time_ratio(phi, ok, dead, outputs)
+    if (
+        analyse
+        and phi.size > 1
+        and np.all(np.abs(np.remainder(phi - phi[0] + math.pi, _TWO_PI) - math.pi) < 1e-9)
+    ):
+        notes.append(
+            f"each of the {phi.size - 1} step(s) from {math.degrees(phi[0]):g}° to {math.degrees(phi[-1]):g}° "
+            "is a whole number of turns: every angle is the same crank position, so "
+            + (
+                "nothing varies over the grid and no extreme, dead centre or time ratio can be located"
+                if not (extremes or dead)
+                else "the grid sees nothing of the motion between them"
+            )
+            + " (give at least 2 steps per turn)"
+        )
     circuits = _circuits(phi, ok, comp.drawn.drive_angles[0])
     if circuits:
         notes.append(circuits)
@@ -706,6 +758,37 @@ def sweep(
         extremes=extremes,
         time_ratio=ratio,
         notes=tuple(notes),
+    )
+
+
+MEMORY_BUDGET = 1 << 30
+"""Bytes a sweep's arrays may take (1 GiB); more angles are refused before solving."""
+
+
+def _check_memory(comp: Compiled, prog: DyadProgram | None, n: int, lvl: int) -> None:
+    """Refuse a sweep whose arrays would exceed :data:`MEMORY_BUDGET` (an estimate, kept on the safe side).
+
+    Closed form: the generated program's outputs and what is derived from them,
+    about 20 bytes per output per angle (measured: 650 bytes per angle for a
+    four-bar at velocity level, 1,360 for a six-bar at acceleration level).
+    Newton: one small record per step, about 1,200 bytes plus 32 per value kept.
+    """
+    if prog is not None:
+        with np.errstate(all="ignore"):
+            outputs = len(prog.raw(np.zeros(1), 1.0, 0.0, level=lvl, xp=numpy_namespace()))
+        per = 20 * outputs + 128
+    else:
+        sys_ = comp.system
+        values = (lvl + 1) * (2 * len(sys_.loc_names) + len(sys_.links)) + 2 * len(comp.layout.paths)
+        per = 1200 + 32 * values
+    if n * per <= MEMORY_BUDGET:
+        return
+    fit = MEMORY_BUDGET // per
+    raise InputError(
+        f"a sweep of {n:,} angles would need about {n * per / 2**30:.1f} GiB for its arrays "
+        f"({per:,} bytes per angle for {comp.mech.label}), more than the {MEMORY_BUDGET / 2**30:g} GiB "
+        f"a sweep may use",
+        hint=f"give at most {fit:,} angles (--steps {fit - 1}), or sweep the range in parts",
     )
 
 
@@ -926,18 +1009,23 @@ def _dead_centres(
     lo = np.array([b[2] for b in brackets], float)
     hi = np.array([b[3] for b in brackets], float)
     keys = [b[1] for b in brackets]
+    pos_keys = [f"displacement.{b[0]}" if b[1].startswith("sliding") else f"angle.{b[0]}" for b in brackets]
     if isinstance(backend, _Closed):
         roots, _ = _zoom(_refiner(backend, names, keys, np.full(len(keys), np.nan)), lo, hi, "root")
-    else:
-        roots = _illinois(
-            _refiner(backend, names, keys, np.full(len(keys), np.nan)),
-            lo,
-            hi,
-            np.array([b[4] for b in brackets]),
-            np.array([b[5] for b in brackets]),
-        )
-    pos_keys = [f"displacement.{b[0]}" if b[1].startswith("sliding") else f"angle.{b[0]}" for b in brackets]
-    at = _refiner(backend, names, pos_keys, np.full(len(keys), np.nan))(roots[:, None])[:, 0]
+        at = _refiner(backend, names, pos_keys, np.full(len(keys), np.nan))(roots[:, None])[:, 0]
+    else:  # one bracket at a time along a warm-started walk, on the sweep's branch
+        roots, at = np.empty(len(brackets)), np.empty(len(brackets))
+        walk = _Walk(backend, phi[0])
+        for i in sorted(range(len(brackets)), key=lambda i: abs(lo[i] - phi[0])):  # along the sweep
+            probe = _probe(walk, names, keys[i], math.nan)
+            roots[i] = _illinois(
+                lambda g, probe=probe: np.array([[probe(float(g[0, 0]))]]),  # type: ignore[misc]
+                lo[i : i + 1],
+                hi[i : i + 1],
+                np.array([brackets[i][4]]),
+                np.array([brackets[i][5]]),
+            )[0]
+            at[i] = _probe(walk, names, pos_keys[i], math.nan)(float(roots[i]))
     at = np.where(
         [k.startswith("angle.") for k in pos_keys], np.mod(at, _TWO_PI), at
     )  # link angles in [0, 2π)
@@ -983,24 +1071,33 @@ def _extremes(
     names: dict[str, tuple[str, ...]],
     keys: Sequence[str],
 ) -> tuple[Extreme, ...]:
-    """Grid extremes of every quantity, refined all at once (closed form) or by a parabola (Newton).
+    """Grid extremes of every quantity, refined between the neighbouring steps.
 
-    A quantity that does not vary (a piston's angle) or a link that turns
-    right round (its unwrapped angle only grows) has no extreme worth
-    reporting and is left out.
+    Closed form: all at once by :func:`_zoom`.  Newton: Brent's method on the
+    Newton solve, along a :class:`_Walk` (warm-started, on the sweep's branch).
+    Over a full turn a quantity that comes back to its first value (periodic)
+    is refined across the seam (0° and 360° are neighbours); one that does not
+    (a 2:1 wheel turns half a turn) is refined only inside the range, never
+    extrapolated beyond it.  A quantity that does not vary (a piston's angle)
+    or a link that turns right round (its unwrapped angle only grows) has no
+    extreme worth reporting and is left out.
     """
-    full = phi.size > 2 and abs(abs(phi[-1] - phi[0]) - _TWO_PI) < 1e-9 and bool(np.all(ok))
+    turn = phi.size > 2 and abs(abs(phi[-1] - phi[0]) - _TWO_PI) < 1e-9 and bool(np.all(ok))
     rows: list[tuple[str, str, int, float, float, float]] = []  # key, mode, k, lo, hi, grid value
+    wraps: dict[str, bool] = {}
     for key in keys:
         v = _pick(data, names, key)
         valid = ok & np.isfinite(v)
         if not np.any(valid):
             continue
+        size = max(float(np.max(np.abs(v[valid]))), 1e-300)
         span = float(np.max(v[valid]) - np.min(v[valid]))
-        if span <= 1e-12 * max(float(np.max(np.abs(v[valid]))), 1e-300):
+        if span <= 1e-12 * size:
             continue
         if key.startswith("angle.") and span >= _TWO_PI - 1e-9:
             continue
+        # periodic over the range: back to its first value after the turn (to the solver's accuracy)
+        full = wraps[key] = turn and bool(valid[0] and valid[-1] and abs(v[-1] - v[0]) <= 1e-8 * size)
         for mode in ("max", "min"):
             vv = np.where(valid, v, -np.inf if mode == "max" else np.inf)
             k = int(np.argmax(vv) if mode == "max" else np.argmin(vv))
@@ -1015,10 +1112,10 @@ def _extremes(
                 else (phi[1] + _TWO_PI * np.sign(phi[-1] - phi[0]) if full and k == phi.size - 1 else phi[k])
             )
             rows.append((key, mode, k, min(lo, hi), max(lo, hi), float(v[k])))
-    results: dict[tuple[str, str], tuple[float, float]] = {}
+    sign = np.array([1.0 if r[1] == "max" else -1.0 for r in rows])
+    ang, val = np.full(len(rows), np.nan), np.full(len(rows), np.nan)
     if rows and isinstance(backend, _Closed):
         # minima are maxima of −v: one zoom refines every extreme of every quantity at once
-        sign = np.array([1.0 if r[1] == "max" else -1.0 for r in rows])
         inner = _refiner(backend, names, [r[0] for r in rows], np.array([r[5] for r in rows]))
         ang, val = _zoom(
             lambda g: sign[:, None] * inner(g),
@@ -1026,19 +1123,24 @@ def _extremes(
             np.array([r[4] for r in rows]),
             "max",
         )
-        for r, sg, a, x in zip(rows, sign, ang, val, strict=True):
-            x = sg * x
-            better = (x >= r[5]) if r[1] == "max" else (x <= r[5])
-            results[(r[0], r[1])] = (
-                (float(a), float(x)) if better and math.isfinite(x) else (float(phi[r[2]]), r[5])
-            )
-    else:
-        for key, mode, k, _lo, _hi, val in rows:
-            results[(key, mode)] = _parabola(phi, _pick(data, names, key), k, val, full)
+    elif rows:
+        walk = _Walk(backend, phi[0])
+        for i in sorted(range(len(rows)), key=lambda i: abs(phi[rows[i][2]] - phi[0])):  # along the sweep
+            key, _mode, k, lo, hi, grid = rows[i]
+            probe, sg = _probe(walk, names, key, grid), float(sign[i])
+            x, fx = _brent(lambda a, p=probe, sg=sg: -sg * p(a), lo, hi, float(phi[k]), -sg * grid)  # type: ignore[misc]
+            ang[i], val[i] = x, -fx
+    results: dict[tuple[str, str], tuple[float, float]] = {}
+    for i, r in enumerate(rows):
+        x = sign[i] * val[i]
+        better = (x >= r[5]) if r[1] == "max" else (x <= r[5])
+        results[(r[0], r[1])] = (
+            (float(ang[i]), float(x)) if better and math.isfinite(x) else (float(phi[r[2]]), r[5])
+        )
     out = []
     for key in dict.fromkeys(r[0] for r in rows):
         (amax, vmax), (amin, vmin) = results[(key, "max")], results[(key, "min")]
-        if full:
+        if wraps[key]:
             amax, amin = _into(amax, phi), _into(amin, phi)
         out.append(Extreme(key, quantity_unit(key), amax, vmax, amin, vmin))
     return tuple(out)
@@ -1054,23 +1156,85 @@ def _into(a: float, phi: np.ndarray) -> float:
     return a
 
 
-def _parabola(phi: np.ndarray, v: np.ndarray, k: int, val: float, full: bool) -> tuple[float, float]:
-    """Vertex of the parabola through the grid extreme and its neighbours (equal steps)."""
-    n = phi.size
-    if 0 < k < n - 1:
-        a, b, c = v[k - 1], v[k], v[k + 1]
-    elif full and n > 2:
-        a, b, c = (v[-2], v[k], v[1])
-    else:
-        return float(phi[k]), val
-    den = a - 2.0 * b + c
-    if not (np.isfinite(den) and den != 0.0):
-        return float(phi[k]), val
-    h = float(phi[1] - phi[0])
-    t = 0.5 * (a - c) / den
-    if abs(t) > 1.0:
-        return float(phi[k]), val
-    return float(phi[k] + t * h), float(b - 0.25 * (a - c) * t)
+def _probe(walk: _Walk, names: dict[str, tuple[str, ...]], key: str, ref: float) -> Callable[[float], float]:
+    """fn(angle) → ``key`` there along the walk (NaN where not reached); a link's angle on ``ref``'s turn."""
+
+    def fn(angle: float) -> float:
+        arrays = walk.to(angle)
+        if arrays is None:
+            return math.nan
+        v = float(_pick(arrays, names, key))
+        if key.startswith("angle.") and math.isfinite(ref) and math.isfinite(v):
+            v += _TWO_PI * round((ref - v) / _TWO_PI)
+        return v
+
+    return fn
+
+
+_GOLD = 0.5 * (3.0 - math.sqrt(5.0))
+
+
+def _brent(
+    f: Callable[[float], float], a: float, b: float, x: float, fx: float, xtol: float = 1e-10
+) -> tuple[float, float]:
+    """Brent's minimisation of ``f`` on [a, b] from the best known point ``x`` (value ``fx``).
+
+    Parabolic steps where the function is smooth, golden-section ones where it
+    is not (the V of a speed's magnitude through zero); NaN counts as +∞.  The
+    bracket shrinks to about ``xtol`` rad, some 10–40 solves.  Returns the best
+    point seen, never worse than the start (Brent, *Algorithms for Minimization
+    without Derivatives*, 1973, ch. 5).
+    """
+
+    def g(u: float) -> float:
+        val = f(u)
+        return val if math.isfinite(val) else math.inf
+
+    w = v = x
+    fw = fv = fx
+    d = e = 0.0
+    for _ in range(100):
+        m = 0.5 * (a + b)
+        tol1 = xtol + 4e-16 * abs(x)
+        tol2 = 2.0 * tol1
+        if abs(x - m) <= tol2 - 0.5 * (b - a):
+            break
+        golden = True
+        if abs(e) > tol1:  # a parabola through x, w, v
+            r = (x - w) * (fx - fv)
+            q = (x - v) * (fx - fw)
+            p = (x - v) * q - (x - w) * r
+            q = 2.0 * (q - r)
+            if q > 0.0:
+                p = -p
+            q = abs(q)
+            e_old, e = e, d
+            if abs(p) < abs(0.5 * q * e_old) and q * (a - x) < p < q * (b - x):
+                d = p / q
+                if (x + d) - a < tol2 or b - (x + d) < tol2:
+                    d = math.copysign(tol1, m - x)
+                golden = False
+        if golden:
+            e = (a - x) if x >= m else (b - x)
+            d = _GOLD * e
+        u = x + d if abs(d) >= tol1 else x + math.copysign(tol1, d)
+        fu = g(u)
+        if fu <= fx:
+            if u >= x:
+                a = x
+            else:
+                b = x
+            v, fv, w, fw, x, fx = w, fw, x, fx, u, fu
+        else:
+            if u < x:
+                a = u
+            else:
+                b = u
+            if fu <= fw or w == x:
+                v, fv, w, fw = w, fw, u, fu
+            elif fu <= fv or v in (x, w):
+                v, fv = u, fu
+    return x, fx
 
 
 def _time_ratio(
