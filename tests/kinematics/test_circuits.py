@@ -57,3 +57,23 @@ def test_an_angle_on_the_other_circuit_is_refused_as_unreachable():
         solve(loads(DOUBLE_ROCKER), level="velocity", options=SolveOptions(angle=math.radians(300)))
     assert "another circuit" in str(info.value)
     assert "open by" not in str(info.value)
+
+
+def test_a_newton_sweep_starts_from_the_drawing_not_from_the_first_angle():
+    # The GATE four-bar's input AB is a rocker (CD = 20 mm is the shortest link and turns fully);
+    # a sweep from 0° starts beyond its limit.  Newton continuation must begin at the drawing
+    # (90°), reach both limits, and agree with the closed form on the steps it solves.
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "mechanisms" / "gate_four_bar_translating_coupler.yaml"
+    m = loads(path.read_text(), path=str(path))
+    angles = np.radians(np.linspace(0, 360, 361))
+    newton = sweep(m, angles, level="velocity", options=SolveOptions(method="newton"), analyse=False)
+    closed = sweep(m, angles, level="velocity", options=SolveOptions(method="closed"), analyse=False)
+    solved = np.flatnonzero(newton.assembled)
+    # limits: |BD| = BC ∓ CD = 30 or 70 mm with |BD|² = 50² + 40² − 2·50·40·cos θ,
+    # i.e. cos θ = 0.8 (36.87°) and −0.2 (101.54°)
+    assert solved.min() == 37 and solved.max() == 101
+    assert np.allclose(
+        newton.series("omega.rocker")[solved], closed.series("omega.rocker")[solved], rtol=1e-9
+    )

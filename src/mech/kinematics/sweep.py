@@ -671,7 +671,7 @@ def sweep(
         notes.append("closed form: " + "; ".join(prog.steps))
     else:
         backend = _Newton(mech, comp, options, w_int, alpha, lvl_int)
-        data = _newton_series(backend, phi, notes)
+        data = _newton_series(backend, phi, notes, comp.drawn.drive_angles[0])
 
     ok = data["assembled"]
     cond = np.where(ok, data["condition"], np.nan)
@@ -819,14 +819,38 @@ def _drive_omega(mech: Mechanism, options: SolveOptions) -> float | None:
     return omega
 
 
-def _newton_series(backend: _Newton, phi: np.ndarray, notes: list[str]) -> dict[str, np.ndarray]:
-    """Per-step Newton continuation; it stops at the first angle it cannot reach, and says where."""
-    rows = backend.series(phi)
-    stopped = next((k for k, r in enumerate(rows) if r is None), None)
-    if stopped is not None:
+def _newton_series(
+    backend: _Newton, phi: np.ndarray, notes: list[str], drawn: float | None = None
+) -> dict[str, np.ndarray]:
+    """Per-step Newton continuation outward from the step nearest the drawing.
+
+    The drawn configuration is the one place known to be assembled: the sweep
+    continues from there forward and backward, each way until the first angle it
+    cannot reach (a limit position), and says where it stopped.  Starting at the
+    range's first angle instead would fail outright when that angle lies beyond
+    a rocker's limits.
+    """
+    k0 = 0
+    if drawn is not None and phi.size:
+        k0 = int(np.argmin(np.abs(np.remainder(phi - drawn + math.pi, _TWO_PI) - math.pi)))
+    forward = backend.series(phi[k0:])
+    backward = backend.series(phi[: k0 + 1][::-1])[::-1] if k0 > 0 else []
+    for part in (forward, backward):  # after a failure, nothing beyond it is trusted
+        order = range(len(part)) if part is forward else range(len(part) - 1, -1, -1)
+        failed = False
+        for k in order:
+            failed = failed or part[k] is None
+            if failed:
+                part[k] = None
+    rows = backward[:-1] + forward
+    solved = [k for k, r in enumerate(rows) if r is not None]
+    if len(solved) < len(rows):
+        # the first steps it could not reach, on either side of the solved run
+        stops = [k for k in (solved[0] - 1, solved[-1] + 1) if 0 <= k < len(rows)] if solved else [k0]
         notes.append(
-            f"Newton continuation stops at {math.degrees(phi[stopped]):.6g}°: the mechanism cannot be moved "
-            "there (a limit position, or out of reach); the steps from there on are not solved"
+            "Newton continuation from the drawing cannot reach "
+            + " or ".join(f"{math.degrees(phi[k]):.6g}°" for k in stops)
+            + " (a limit position, or out of reach): the steps beyond are not solved"
         )
     return _stack_rows(rows, (phi.size,))
 
@@ -1200,7 +1224,7 @@ def _brent(
         if abs(x - m) <= tol2 - 0.5 * (b - a):
             break
         golden = True
-        if abs(e) > tol1:  # a parabola through x, w, v
+        if abs(e) > tol1 and math.isfinite(fw) and math.isfinite(fv):  # a parabola through x, w, v
             r = (x - w) * (fx - fv)
             q = (x - v) * (fx - fw)
             p = (x - v) * q - (x - w) * r
