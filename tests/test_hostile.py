@@ -18,14 +18,13 @@ says what used to happen.  The others guard hostile inputs that always held.
 
 from __future__ import annotations
 
-import json
 import math
 import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+
+from hostile_runner import mech, strict_json
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "mechanisms"
@@ -34,72 +33,6 @@ REL = 1e-9  # relative accuracy asked of velocities against closed forms
 
 
 # -- helpers ------------------------------------------------------------------------------
-class _Run:
-    """What a run of mech left: ``returncode``, ``stdout``, ``stderr`` (as subprocess gives)."""
-
-    def __init__(self, returncode: int, stdout: str, stderr: str) -> None:
-        self.returncode, self.stdout, self.stderr = returncode, stdout, stderr
-
-
-def mech(
-    *args: str,
-    input: str | bytes | None = None,
-    cwd: Path | None = None,
-    timeout: float = 120,
-    subprocess_: bool = False,
-):
-    """Run mech ARGS as a user would, with NO_COLOR and a wide terminal.
-
-    In process (click's runner) by default, which is fast; an exception that escapes
-    is turned into a ``Traceback`` on stderr, exactly what a user would see.  With
-    ``subprocess_=True``, ``python -m mech`` in a real process: for crashes of the
-    interpreter itself (a segfault in a C extension) and for process pools.
-    """
-    env = dict(os.environ, NO_COLOR="1", COLUMNS="200", PYTHONWARNINGS="ignore")
-    if subprocess_:
-        data = input.encode() if isinstance(input, str) else input
-        proc = subprocess.run(
-            [sys.executable, "-m", "mech", *args],
-            input=data,
-            capture_output=True,
-            cwd=cwd,
-            env=env,
-            timeout=timeout,
-        )
-        return _Run(
-            proc.returncode, proc.stdout.decode("utf-8", "replace"), proc.stderr.decode("utf-8", "replace")
-        )
-    import traceback
-
-    from click.testing import CliRunner
-
-    from mech.cli import cli
-
-    here = os.getcwd()
-    try:
-        if cwd is not None:
-            os.chdir(cwd)
-        result = CliRunner().invoke(cli, list(args), input=input, env=env, prog_name="mech")
-    finally:
-        os.chdir(here)
-    stderr = result.stderr
-    if result.exception is not None and not isinstance(result.exception, SystemExit):
-        stderr += "Traceback (most recent call last):\n" + "".join(
-            traceback.format_exception(result.exception)
-        )
-        return _Run(1, result.stdout, stderr)
-    return _Run(result.exit_code, result.stdout, stderr)
-
-
-def strict_json(text: str):
-    """json.loads that refuses NaN / Infinity tokens (not valid JSON)."""
-
-    def bad(token: str):
-        raise ValueError(f"invalid JSON constant {token}")
-
-    return json.loads(text, parse_constant=bad)
-
-
 def assert_bad_input(proc, path: Path | str | None = None, *, located: bool = True) -> None:
     """Exit 2, an ``error:`` on stderr (located when asked), never a traceback."""
     assert "Traceback" not in proc.stderr, proc.stderr[-2000:]

@@ -22,7 +22,6 @@ import csv
 import io
 import json
 import math
-import os
 import re
 import subprocess
 import sys
@@ -32,79 +31,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from hostile_runner import Run, mech, strict_json
+
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "mechanisms"
 
 
 # -- helpers (mech() copied from tests/test_hostile.py) -----------------------------------
-class _Run:
-    """What a run of mech left: ``returncode``, ``stdout``, ``stderr`` (as subprocess gives)."""
-
-    def __init__(self, returncode: int, stdout: str, stderr: str) -> None:
-        self.returncode, self.stdout, self.stderr = returncode, stdout, stderr
-
-
-def mech(
-    *args: str,
-    input: str | bytes | None = None,
-    cwd: Path | None = None,
-    timeout: float = 120,
-    subprocess_: bool = False,
-    preexec_fn=None,
-):
-    """Run mech ARGS as a user would, with NO_COLOR and a wide terminal.
-
-    In process (click's runner) by default; an exception that escapes is turned into a
-    ``Traceback`` on stderr, exactly what a user would see.  With ``subprocess_=True``,
-    ``python -m mech`` in a real process (process pools, memory limits, crashes).
-    """
-    env = dict(os.environ, NO_COLOR="1", COLUMNS="200", PYTHONWARNINGS="ignore")
-    if subprocess_:
-        data = input.encode() if isinstance(input, str) else input
-        proc = subprocess.run(
-            [sys.executable, "-m", "mech", *args],
-            input=data,
-            capture_output=True,
-            cwd=cwd,
-            env=env,
-            timeout=timeout,
-            preexec_fn=preexec_fn,
-        )
-        return _Run(
-            proc.returncode, proc.stdout.decode("utf-8", "replace"), proc.stderr.decode("utf-8", "replace")
-        )
-    import traceback
-
-    from click.testing import CliRunner
-
-    from mech.cli import cli
-
-    here = os.getcwd()
-    try:
-        if cwd is not None:
-            os.chdir(cwd)
-        result = CliRunner().invoke(cli, list(args), input=input, env=env, prog_name="mech")
-    finally:
-        os.chdir(here)
-    stderr = result.stderr
-    if result.exception is not None and not isinstance(result.exception, SystemExit):
-        stderr += "Traceback (most recent call last):\n" + "".join(
-            traceback.format_exception(result.exception)
-        )
-        return _Run(1, result.stdout, stderr)
-    return _Run(result.exit_code, result.stdout, stderr)
-
-
-def strict_json(text: str):
-    """json.loads that refuses NaN / Infinity tokens (not valid JSON)."""
-
-    def bad(token: str):
-        raise ValueError(f"invalid JSON constant {token}")
-
-    return json.loads(text, parse_constant=bad)
-
-
-def no_traceback(p: _Run) -> None:
+def no_traceback(p: Run) -> None:
     assert "Traceback" not in p.stderr, p.stderr[-2500:]
 
 
@@ -142,7 +76,7 @@ def problems(tmp_path: Path) -> Path:
     return d
 
 
-def check_json(*args: str) -> tuple[_Run, dict]:
+def check_json(*args: str) -> tuple[Run, dict]:
     p = mech("check", *args, "-j", "1", "--json")
     no_traceback(p)
     return p, strict_json(p.stdout)
