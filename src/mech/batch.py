@@ -353,7 +353,7 @@ def _read_sheet(path: Path, student: str) -> Sheet:
             hint="each top-level key is a problem's file name, stem or name",
         )
         return failed(error, text)
-    from mech.loader import _is_null, _kind
+    from mech.loader import is_null, node_kind
 
     entries = []
     bad_keys = []
@@ -361,15 +361,15 @@ def _read_sheet(path: Path, student: str) -> Sheet:
         where = Where(name, knode.start_mark.line + 1, knode.start_mark.column + 1)
         if not isinstance(knode, yaml.ScalarNode):
             written = " ".join(text[knode.start_mark.index : knode.end_mark.index].split())
-            bad_keys.append((written if len(written) <= 40 else written[:39] + "…", _kind(knode), where))
+            bad_keys.append((written if len(written) <= 40 else written[:39] + "…", node_kind(knode), where))
             continue
         key = str(knode.value)
         if isinstance(vnode, yaml.MappingNode):
             entries.append(SheetEntry(key, where, vnode))
-        elif _is_null(vnode):
+        elif is_null(vnode):
             entries.append(SheetEntry(key, where))
         else:
-            message = f"the answers to {key} must be a mapping (`dof: 1` lines), not {_kind(vnode)}"
+            message = f"the answers to {key} must be a mapping (`dof: 1` lines), not {node_kind(vnode)}"
             entries.append(SheetEntry(key, where, problem=message))
     return Sheet(student, name, text, tuple(entries), bad_keys=tuple(bad_keys))
 

@@ -254,7 +254,7 @@ class _Reader:
         self._check_size(root)
         if not isinstance(root, yaml.MappingNode):
             raise InputError(
-                f"a mechanism file must be a mapping of keys (links:, joints: …), not {_kind(root)}",
+                f"a mechanism file must be a mapping of keys (links:, joints: …), not {node_kind(root)}",
                 where=self.where(root),
                 hint="start with `links: [...]` and `joints: {...}`",
                 source=self.text,
@@ -403,12 +403,12 @@ class _Reader:
     ) -> dict[str, tuple[yaml.Node, yaml.Node]]:
         """A mapping node as ``{key: (key node, value node)}``; duplicates and unknown keys reported."""
         if not isinstance(node, yaml.MappingNode):
-            raise self.problem(node, f"{what} must be a mapping (`key: value` lines), not {_kind(node)}")
+            raise self.problem(node, f"{what} must be a mapping (`key: value` lines), not {node_kind(node)}")
         out: dict[str, tuple[yaml.Node, yaml.Node]] = {}
         allowed_set = set(allowed) if allowed is not None else None
         for knode, vnode in node.value:
             if not isinstance(knode, yaml.ScalarNode):
-                self.problem(knode, f"a key in {what} must be a plain name, not {_kind(knode)}")
+                self.problem(knode, f"a key in {what} must be a plain name, not {node_kind(knode)}")
                 continue
             key = knode.value
             if key == "<<":
@@ -430,19 +430,19 @@ class _Reader:
 
     def sequence(self, node: yaml.Node, what: str) -> list[yaml.Node]:
         if not isinstance(node, yaml.SequenceNode):
-            raise self.problem(node, f"{what} must be a list, not {_kind(node)}")
+            raise self.problem(node, f"{what} must be a list, not {node_kind(node)}")
         return list(node.value)
 
     def scalar(self, node: yaml.Node, what: str) -> str:
         if not isinstance(node, yaml.ScalarNode):
-            raise self.problem(node, f"{what} must be a single value, not {_kind(node)}")
+            raise self.problem(node, f"{what} must be a single value, not {node_kind(node)}")
         return node.value
 
     def text_value(self, node: yaml.Node) -> str:
         return self.scalar(node, "this value")
 
     def name(self, node: yaml.Node, what: str) -> str:
-        if _is_null(node):
+        if is_null(node):
             raise self.problem(node, f"{what} is empty", "write a name")
         value = self.scalar(node, what)
         if not _NAME.match(value):
@@ -463,7 +463,7 @@ class _Reader:
 
     def number(self, node: yaml.Node, what: str, dimension: Dimension, *, positive: bool = False) -> float:
         """A number in SI: a bare number is in the file's units, a string may carry its unit."""
-        if _is_null(node):
+        if is_null(node):
             raise self.problem(node, f"{what} is empty", "write a number")
         raw = self.scalar(node, what)
         try:
@@ -568,8 +568,8 @@ class _Reader:
                 except _Skip:
                     continue
                 extra: dict[str, Any] = {}
-                is_null = _is_null(vnode)
-                if not is_null:
+                empty = is_null(vnode)
+                if not empty:
                     try:
                         fields = self.mapping(vnode, f"link {key}", allowed=("kind", "description"))
                     except _Skip:
@@ -589,7 +589,7 @@ class _Reader:
         else:
             raise self.problem(
                 node,
-                f"links must be a list of names or a mapping, not {_kind(node)}",
+                f"links must be a list of names or a mapping, not {node_kind(node)}",
                 "e.g. `links: [frame, crank, coupler, rocker]`",
             )
         if not out and not self.problems:
@@ -1310,19 +1310,22 @@ def _located_on(joints: list[Joint], points: list[Point]) -> dict[str, set[str]]
     return out
 
 
-def _is_null(node: yaml.Node | None) -> bool:
-    """An empty value (``key:``, ``~``, ``null``): YAML's resolver tagged it null."""
+def is_null(node: yaml.Node | None) -> bool:
+    """An empty value (``key:``, ``~``, ``null``): YAML's resolver tagged it null.
+
+    Public because :mod:`mech.batch` reads answer sheets' nodes with it too.
+    """
     return isinstance(node, yaml.ScalarNode) and node.tag == "tag:yaml.org,2002:null"
 
 
-def _kind(node: yaml.Node | None) -> str:
+def node_kind(node: yaml.Node | None) -> str:
     """What a node is, with its article, for messages: ``a list``, ``an empty value``."""
     if isinstance(node, yaml.MappingNode):
         return "a mapping"
     if isinstance(node, yaml.SequenceNode):
         return "a list"
     if isinstance(node, yaml.ScalarNode):
-        if _is_null(node):
+        if is_null(node):
             return "an empty value"
         return f"a single value ({node.value!r})" if len(node.value) < 40 else "a single value"
     return "nothing"
