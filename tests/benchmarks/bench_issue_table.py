@@ -1,0 +1,223 @@
+"""Every figure of the speed table, each as a ratio against its reference, in ONE interleaved run.
+
+    pip install -e '.[bench]'                       # pylinkage, for the one-step reference
+    python tests/benchmarks/bench_issue_table.py [--repeat 9] [--venv /tmp/mech-bench-venv]
+
+Rows (mech | reference):
+
+* ``mech dof --json four_bar.yaml`` | ``python -c pass``, and
+  ``mech velocity four_bar.yaml --rpm 600`` | ``python -c "import numpy"``: whole
+  commands in fresh processes, run from a throw-away virtual environment made
+  with ``pip install .`` as the README's first line does (not editable, so
+  bytecode is compiled and no import hook adds its cost).  The venv is made
+  once at ``--venv`` and the current tree reinstalled into it on every run
+  (``--no-install`` skips that).
+* one position + velocity + acceleration of the four-bar at the drawn angle +
+  37°: full :func:`~mech.kinematics.solve`, and the lean closed form
+  (``closed_form(m).state``) | pylinkage's one step with derivatives.
+* Newton (``method="newton"``, 5° from the drawing, tol 1e-12) on generated
+  chains of 40, 100 and 200 links | the same on 4 links; linear growth is a
+  ratio of n/4 (10, 25, 50) or less.
+* a 3,600-step sweep with accelerations of a mechanism that does not decompose
+  into dyads (the double parallelogram, the gear pair) | the closed-form sweep
+  of the four-bar; the series alone (``analyse=False``) and the whole
+  ``sweep`` (extremes refined, dead centres).
+
+Every repeat runs every case once, in turn, so that a burst of load on the
+shared machine falls on all cases alike; the table gives medians over the
+repeats and the ratio of medians.  The machine this project is developed on
+is shared by several engineers: absolute times move by tens of per cent
+between runs, the ratios within one run much less.  Quote ratios.
+"""
+
+from __future__ import annotations
+
+import os
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # a shared 2-core machine: threads only add noise here
+
+import argparse
+import math
+import platform
+import statistics
+import subprocess
+import sys
+import time
+import timeit
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+sys.path.insert(0, str(HERE))
+
+from bench_growth import chain  # noqa: E402
+
+import mech  # noqa: E402
+from mech.kinematics import closed_form, solve, sweep  # noqa: E402
+from mech.options import SolveOptions  # noqa: E402
+
+FOUR_BAR = ROOT / "mechanisms" / "four_bar.yaml"
+STEPS = 3600
+
+
+def venv(path: Path, install: bool) -> Path:
+    """A virtual environment at ``path`` with this tree ``pip install``-ed (not editable)."""
+    python = path / "bin" / "python"
+    if not python.exists():
+        subprocess.run([sys.executable, "-m", "venv", str(path)], check=True)
+        subprocess.run([str(python), "-m", "pip", "install", "-q", str(ROOT)], check=True)
+    elif install:  # the tree as it is now; the dependencies are already there
+        subprocess.run(
+            [str(python), "-m", "pip", "install", "-q", "--force-reinstall", "--no-deps", str(ROOT)],
+            check=True,
+        )
+    return path
+
+
+def run_once(argv: list[str]) -> float:
+    start = time.perf_counter()
+    subprocess.run(argv, check=True, capture_output=True)
+    return time.perf_counter() - start
+
+
+def per_call(fn: Callable[[], object], number: int) -> Callable[[], float]:
+    """One sample: seconds per call over ``number`` calls."""
+    return lambda: timeit.timeit(fn, number=number) / number
+
+
+def fmt(t: float) -> str:
+    if t < 1e-3:
+        return f"{t * 1e6:.1f} µs"
+    if t < 1.0:
+        return f"{t * 1e3:.2f} ms"
+    return f"{t:.2f} s"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    parser.add_argument("--repeat", type=int, default=9)
+    parser.add_argument("--venv", type=Path, default=Path("/tmp/mech-bench-venv"))
+    parser.add_argument("--no-install", action="store_true", help="use the venv as it is")
+    parser.add_argument("--links", default="4,40,100,200", help="chain sizes for Newton (first: reference)")
+    args = parser.parse_args()
+    try:
+        import pylinkage
+        from bench_peers import pylinkage_models
+    except ImportError:
+        sys.exit("pylinkage is not installed: pip install -e '.[bench]'")
+
+    env = venv(args.venv, not args.no_install)
+    py, cmd = str(env / "bin" / "python"), str(env / "bin" / "mech")
+
+    # -- the cases: name -> one sample -----------------------------------------------------------
+    cases: dict[str, Callable[[], float]] = {
+        "python -c pass": lambda: run_once([py, "-c", "pass"]),
+        'python -c "import numpy"': lambda: run_once([py, "-c", "import numpy"]),
+        "mech dof --json four_bar.yaml": lambda: run_once([cmd, "dof", "--json", str(FOUR_BAR)]),
+        "mech velocity four_bar.yaml --rpm 600": lambda: run_once(
+            [cmd, "velocity", str(FOUR_BAR), "--rpm", "600"]
+        ),
+    }
+    four = mech.load(FOUR_BAR)
+    target = math.radians(60.0 + 37.0)
+    moved = SolveOptions(angle=target)
+    solve(four, "acceleration", moved)
+    prog = closed_form(four)
+    model = pylinkage_models()[0][0]
+    cases["pylinkage one step (+ v, a)"] = per_call(
+        lambda: next(iter(model.step_with_derivatives(iterations=1))), 500
+    )
+    cases["solve() full, four-bar"] = per_call(lambda: solve(four, "acceleration", moved), 500)
+    cases["closed form lean, four-bar"] = per_call(lambda: prog.state(target, -4 * math.pi, 0.0), 5000)
+
+    sizes = [int(s) for s in args.links.split(",")]
+    newton = SolveOptions(angle=math.radians(65), method="newton")
+    for n in sizes:
+        m = chain(n)
+        solve(m, "acceleration", newton)  # compile (layout, assembly, mobility) outside the timing
+        cases[f"Newton, {n} links"] = per_call(lambda m=m: solve(m, "acceleration", newton), max(1, 200 // n))
+
+    phi = np.radians(np.linspace(0.0, 360.0, STEPS + 1))
+    sweeps = {
+        "four-bar (closed form)": mech.load(FOUR_BAR),
+        "double parallelogram": mech.load(ROOT / "mechanisms" / "double_parallelogram.yaml"),
+        "gear pair": mech.load(ROOT / "mechanisms" / "gear_pair.yaml"),
+    }
+    for label, m in sweeps.items():
+        sweep(m, phi[:10], level="acceleration", analyse=False)  # compile outside the timing
+        cases[f"sweep series, {label}"] = per_call(
+            lambda m=m: sweep(m, phi, level="acceleration", analyse=False), 1
+        )
+        cases[f"sweep whole, {label}"] = per_call(lambda m=m: sweep(m, phi, level="acceleration"), 1)
+
+    # -- one interleaved run -------------------------------------------------------------------
+    samples: dict[str, list[float]] = {name: [] for name in cases}
+    for r in range(args.repeat):
+        for name, sample in cases.items():
+            samples[name].append(sample())
+        print(f"repeat {r + 1}/{args.repeat} done", file=sys.stderr)
+    med = {name: statistics.median(t) for name, t in samples.items()}
+
+    print(
+        f"one interleaved run, median of {args.repeat}; Python {platform.python_version()}, "
+        f"numpy {np.__version__}, pylinkage {pylinkage.__version__} (no numba), {platform.machine()}, "
+        f"{os.cpu_count()} cores shared with other jobs (load average {os.getloadavg()[0]:.1f} at the end)"
+    )
+    print(f"commands from {env} (pip install ., not editable)")
+    print()
+    print("| figure | mech | reference | ratio | target |")
+    print("| --- | ---: | ---: | ---: | ---: |")
+
+    def row(label: str, name: str, ref: str, target: str, ref_label: str | None = None) -> None:
+        print(
+            f"| {label} | {fmt(med[name])} | {ref_label or ref} {fmt(med[ref])} | "
+            f"{med[name] / med[ref]:.2f}× | {target} |"
+        )
+
+    row("`mech dof --json four_bar.yaml`", "mech dof --json four_bar.yaml", "python -c pass", "≤ 4×")
+    row(
+        "`mech velocity four_bar.yaml --rpm 600`",
+        "mech velocity four_bar.yaml --rpm 600",
+        'python -c "import numpy"',
+        "≤ 1.5×",
+    )
+    row(
+        "one position + v + a, full `solve()`",
+        "solve() full, four-bar",
+        "pylinkage one step (+ v, a)",
+        "≤ 1×",
+        "pylinkage one step",
+    )
+    row(
+        "the same, lean closed form",
+        "closed form lean, four-bar",
+        "pylinkage one step (+ v, a)",
+        "≤ 0.3×",
+        "pylinkage one step",
+    )
+    base = sizes[0]
+    for n in sizes[1:]:
+        row(
+            f"Newton solve, {n}-link chain",
+            f"Newton, {n} links",
+            f"Newton, {base} links",
+            f"linear: ≤ {n / base:.0f}×",
+            f"{base}-link Newton",
+        )
+    for kind in ("series", "whole"):
+        for label in ("double parallelogram", "gear pair"):
+            what = "series only" if kind == "series" else "whole sweep (extremes, dead centres)"
+            print(
+                f"| 3,600-step sweep, {label}, {what} | {fmt(med[f'sweep {kind}, {label}'])} | "
+                f"closed-form {fmt(med[f'sweep {kind}, four-bar (closed form)'])} | "
+                f"{med[f'sweep {kind}, {label}'] / med[f'sweep {kind}, four-bar (closed form)']:.0f}× | ≤ 0.25 s |"
+            )
+
+
+if __name__ == "__main__":
+    main()
