@@ -9,13 +9,15 @@ another reads.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
+from typing import Any
 
 from mech.errors import InputError
 from mech.model import Drive
 
-__all__ = ["JointGeom", "Kinematics", "LinkState", "Mobility"]
+__all__ = ["Fields", "JointGeom", "Kinematics", "LinkState", "Mobility"]
 
 Vec = tuple[float, float]
 
@@ -125,12 +127,55 @@ class JointGeom:
     at: Vec | None = None  # where the pair acts in this configuration, m
 
 
-@dataclass(frozen=True, slots=True)
+class Fields:
+    """The named mappings of a :class:`Kinematics`, made together from the solve's lean state.
+
+    ``size`` may be left None and measured on first use (``measure``): it is
+    the largest distance between two joints, the one quantity that grows with
+    the square of the number of points.
+    """
+
+    __slots__ = ("carriers", "joint_names", "joints", "links", "positions", "size")
+
+    def __init__(
+        self,
+        positions: Mapping[str, Vec],
+        links: Mapping[str, LinkState],
+        carriers: Mapping[str, tuple[str, ...]],
+        joints: Mapping[str, JointGeom],
+        size: float | None = None,
+        joint_names: frozenset[str] = frozenset(),
+    ) -> None:
+        self.positions, self.links, self.carriers, self.joints = positions, links, carriers, joints
+        self.size, self.joint_names = size, joint_names
+
+    def measure(self) -> float:
+        """Largest distance between two joints (all located points if fewer than two joints)."""
+        pts = [p for n, p in self.positions.items() if n in self.joint_names]
+        if len(pts) < 2:
+            pts = list(self.positions.values())
+        if len(pts) > 64:  # all pairs, but in one array operation
+            import numpy as np
+
+            xy = np.asarray(pts)
+            best = 0.0
+            for k in range(0, len(pts), 256):
+                d = xy[k : k + 256, None, :] - xy[None, :, :]
+                best = max(best, float(np.sqrt(np.max(np.einsum("ijk,ijk->ij", d, d)))))
+            return best
+        return max((math.dist(a, b) for k, a in enumerate(pts) for b in pts[k + 1 :]), default=0.0)
+
+
 class Kinematics:
     """Positions, velocities and accelerations of a mechanism at one instant.
 
     Build it with :func:`mech.kinematics.solve`.  Points are looked up by
     name; a link's state gives the velocity of any point fixed in it.
+
+    The solve keeps its lean state (the scaled coordinates, or the closed
+    form's flat output) and the named mappings below are built from it on
+    first use, once: a caller who reads one link's ω does not pay for every
+    point, joint and the size.  Read-only: no attribute can be set.
 
     Attributes
     ----------
@@ -159,17 +204,139 @@ class Kinematics:
         Joint name → :class:`JointGeom`.
     """
 
+    __slots__ = ("_build", "_fields", "_notes", "drives", "ground", "level", "mechanism", "mobility")
+
     mechanism: str
     level: str
-    positions: Mapping[str, Vec]
-    links: Mapping[str, LinkState]
-    size: float
     mobility: Mobility
-    notes: tuple[str, ...]
     drives: tuple[Drive, ...]
-    carriers: Mapping[str, tuple[str, ...]]
-    joints: Mapping[str, JointGeom]
     ground: str
+    _notes: tuple[str, ...] | Callable[[], tuple[str, ...]]
+    _build: Callable[[], Fields] | None
+    _fields: Fields | None
+
+    def __init__(
+        self,
+        mechanism: str,
+        level: str,
+        positions: Mapping[str, Vec],
+        links: Mapping[str, LinkState],
+        size: float,
+        mobility: Mobility,
+        notes: tuple[str, ...],
+        drives: tuple[Drive, ...],
+        carriers: Mapping[str, tuple[str, ...]],
+        joints: Mapping[str, JointGeom],
+        ground: str,
+    ) -> None:
+        fields = Fields(positions, links, carriers, joints, size)
+        self._init(mechanism, level, mobility, drives, ground, notes, None, fields)
+
+    def _init(
+        self,
+        mechanism: str,
+        level: str,
+        mobility: Mobility,
+        drives: tuple[Drive, ...],
+        ground: str,
+        notes: tuple[str, ...] | Callable[[], tuple[str, ...]],
+        build: Callable[[], Fields] | None,
+        fields: Fields | None,
+    ) -> None:
+        setter = object.__setattr__
+        setter(self, "mechanism", mechanism)
+        setter(self, "level", level)
+        setter(self, "mobility", mobility)
+        setter(self, "drives", drives)
+        setter(self, "ground", ground)
+        setter(self, "_notes", notes)
+        setter(self, "_build", build)
+        setter(self, "_fields", fields)
+
+    @classmethod
+    def lazy(
+        cls,
+        mechanism: str,
+        level: str,
+        mobility: Mobility,
+        drives: tuple[Drive, ...],
+        ground: str,
+        notes: tuple[str, ...] | Callable[[], tuple[str, ...]],
+        build: Callable[[], Fields],
+    ) -> Kinematics:
+        """A result whose named mappings (and notes, when a callable) are made by ``build`` on first use."""
+        self = cls.__new__(cls)
+        self._init(mechanism, level, mobility, drives, ground, notes, build, None)
+        return self
+
+    def __setattr__(self, name: str, value: object) -> None:
+        raise AttributeError(f"Kinematics is read-only (cannot set {name})")
+
+    def __delattr__(self, name: str) -> None:
+        raise AttributeError(f"Kinematics is read-only (cannot delete {name})")
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickle the built result as plain dicts (the lean state refers to compiled code)."""
+        f = self._all()
+        return (
+            _unpickle,
+            (
+                self.mechanism,
+                self.level,
+                dict(f.positions),
+                dict(f.links),
+                self.size,
+                self.mobility,
+                self.notes,
+                self.drives,
+                dict(f.carriers),
+                dict(f.joints),
+                self.ground,
+            ),
+        )
+
+    def __repr__(self) -> str:
+        return f"Kinematics({self.mechanism!r}, level={self.level!r})"
+
+    def _all(self) -> Fields:
+        fields = self._fields
+        if fields is None:
+            assert self._build is not None
+            fields = self._build()
+            object.__setattr__(self, "_fields", fields)
+            object.__setattr__(self, "_build", None)
+        return fields
+
+    @property
+    def positions(self) -> Mapping[str, Vec]:
+        return self._all().positions
+
+    @property
+    def links(self) -> Mapping[str, LinkState]:
+        return self._all().links
+
+    @property
+    def carriers(self) -> Mapping[str, tuple[str, ...]]:
+        return self._all().carriers
+
+    @property
+    def joints(self) -> Mapping[str, JointGeom]:
+        return self._all().joints
+
+    @property
+    def size(self) -> float:
+        f = self._all()
+        if f.size is None:
+            f.size = f.measure()
+        return f.size
+
+    @property
+    def notes(self) -> tuple[str, ...]:
+        notes = self._notes
+        if callable(notes):
+            notes = notes()
+            object.__setattr__(self, "_notes", notes)
+        return notes
 
     # -- helpers -----------------------------------------------------------------
     def _need(self, level: str) -> None:
@@ -324,3 +491,22 @@ class Kinematics:
         s = self.sliding(joint)
         u = j.direction or (1.0, 0.0)
         return (-2.0 * w * s * u[1], 2.0 * w * s * u[0])
+
+
+def _unpickle(*fields: Any) -> Kinematics:
+    """A pickled :class:`Kinematics` back, its mappings read-only again."""
+    mechanism, level, positions, links, size, mobility, notes, drives, carriers, joints, ground = fields
+    ro = MappingProxyType
+    return Kinematics(
+        mechanism,
+        level,
+        ro(positions),
+        ro(links),
+        size,
+        mobility,
+        notes,
+        drives,
+        ro(carriers),
+        ro(joints),
+        ground,
+    )

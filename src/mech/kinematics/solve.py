@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from collections import OrderedDict
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from types import MappingProxyType
 from typing import Any
@@ -39,7 +39,7 @@ from mech.kinematics.constraints import System, build_system
 from mech.kinematics.geometry import wrap_angle
 from mech.kinematics.layout import CONTACT_TYPES, Layout, layout
 from mech.kinematics.mobility import kutzbach, numeric_mobility
-from mech.kinematics.result import JointGeom, Kinematics, LinkState, Mobility
+from mech.kinematics.result import Fields, JointGeom, Kinematics, LinkState, Mobility
 from mech.model import Drive, Mechanism
 from mech.options import SolveOptions
 
@@ -54,6 +54,8 @@ LEVELS = ("position", "velocity", "acceleration")
 SINGULAR = 1e6
 _MAX_STEP = math.radians(15.0)
 _TWO_PI = 2.0 * math.pi
+#: q, q̇, q̈ of a solve, scaled (q̇ and q̈ None above the level asked).
+_State = tuple[np.ndarray, "np.ndarray | None", "np.ndarray | None"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -159,7 +161,7 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
     sys_, lay, drawn = comp.system, comp.layout, comp.drawn
     notes = list(drawn.notes) + list(comp.mobility.notes)
 
-    drives = _drives(mech, lay, drawn, options, lvl)
+    drives = _drives_of(comp, options, lvl)
     n_drives = len(drives)
     numeric = comp.mobility.numeric
     targets = [d.angle for d in drives]
@@ -184,10 +186,9 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
     if options.method == "closed" or (moved and options.method == "auto"):
         fast = _closed_form(comp, drives, lvl, omega_ref, options)
         if fast is not None:
-            q, qd, qdd, note = fast
-            if moved:
-                notes.append(note)
-            return _result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
+            state, note = fast
+            told = (lambda: (*notes, note())) if moved else tuple(notes)
+            return _lazy(comp, level, state, omega_ref, moved, told, drives)
     if moved:
         if sys_.velocity_only:
             raise UnsupportedError(
@@ -295,8 +296,12 @@ def continuation(
 
 def _closed_form(
     comp: Compiled, drives: tuple[Drive, ...], lvl: int, omega_ref: float, options: SolveOptions
-) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None, str] | None:
+) -> tuple[Callable[[], _State], Callable[[], str]] | None:
     """q, q̇, q̈ (scaled) from the dyad program, or None to let Newton solve (and explain).
+
+    Checked here (closure, reachability, toggles); the arrays and the note are
+    made only when the result is read (two callables), so a solve whose caller
+    reads one number does not pay for the rest.
 
     None when the chain does not decompose, when the target angle cannot be
     reached from the drawn one by turning the crank (a gap in between: the
@@ -337,31 +342,37 @@ def _closed_form(
             f"velocities here would be good only to about {min(2e-16 * cond * cond, 1.0):.0e})",
             hint="analyse a slightly different angle: velocities here are undetermined",
         )
-    sys_ = comp.system
-    n, scale = sys_.n, sys_.scale
-    q = np.empty(3 * n)
-    q[0::3] = np.asarray(parts["lx"]) / scale
-    q[1::3] = np.asarray(parts["ly"]) / scale
-    q[2::3] = parts["lt"]
-    qd = qdd = None
-    if lvl >= 1:
-        qd = np.empty(3 * n)
-        qd[0::3] = np.asarray(parts["lvx"]) / (scale * omega_ref)
-        qd[1::3] = np.asarray(parts["lvy"]) / (scale * omega_ref)
-        qd[2::3] = np.asarray(parts["lw"]) / omega_ref
-        qd = _snap(qd)
-    if lvl >= 2:
-        qdd = np.empty(3 * n)
-        qdd[0::3] = np.asarray(parts["lax"]) / (scale * omega_ref**2)
-        qdd[1::3] = np.asarray(parts["lay"]) / (scale * omega_ref**2)
-        qdd[2::3] = np.asarray(parts["lal"]) / omega_ref**2
-        qdd = _snap(qdd)
-    kinds = ", ".join(dict.fromkeys(k for k, _, _ in prog.dyads)) or "crank only"
-    note = (
-        f"moved from the drawn angle ({_deg(prog.drawn_angle)} → {_deg(phi)}) keeping its branch, "
-        f"in closed form (dyads: {kinds})"
-    )
-    return q, qd, qdd, note
+
+    def state() -> _State:
+        sys_ = comp.system
+        n, scale = sys_.n, sys_.scale
+        q = np.empty(3 * n)
+        q[0::3] = np.asarray(parts["lx"]) / scale
+        q[1::3] = np.asarray(parts["ly"]) / scale
+        q[2::3] = parts["lt"]
+        qd = qdd = None
+        if lvl >= 1:
+            qd = np.empty(3 * n)
+            qd[0::3] = np.asarray(parts["lvx"]) / (scale * omega_ref)
+            qd[1::3] = np.asarray(parts["lvy"]) / (scale * omega_ref)
+            qd[2::3] = np.asarray(parts["lw"]) / omega_ref
+            qd = _snap(qd)
+        if lvl >= 2:
+            qdd = np.empty(3 * n)
+            qdd[0::3] = np.asarray(parts["lax"]) / (scale * omega_ref**2)
+            qdd[1::3] = np.asarray(parts["lay"]) / (scale * omega_ref**2)
+            qdd[2::3] = np.asarray(parts["lal"]) / omega_ref**2
+            qdd = _snap(qdd)
+        return q, qd, qdd
+
+    def note() -> str:
+        kinds = ", ".join(dict.fromkeys(k for k, _, _ in prog.dyads)) or "crank only"
+        return (
+            f"moved from the drawn angle ({_deg(prog.drawn_angle)} → {_deg(phi)}) keeping its branch, "
+            f"in closed form (dyads: {kinds})"
+        )
+
+    return state, note
 
 
 def closed_form(mech: Mechanism) -> Any:
@@ -383,6 +394,26 @@ def closed_form(mech: Mechanism) -> Any:
 
 
 # -- drives ---------------------------------------------------------------------------
+_DRIVES: OrderedDict[tuple, tuple[Compiled, tuple[Drive, ...]]] = OrderedDict()
+
+
+def _drives_of(comp: Compiled, options: SolveOptions, lvl: int) -> tuple[Drive, ...]:
+    """:func:`_drives` for a compiled mechanism, remembered: a repeated solve skips rebuilding them.
+
+    Keyed like :func:`compiled` (the entry holds ``comp``, so its identity is a
+    safe key while the entry lives); errors are raised afresh, never cached.
+    """
+    key = (id(comp), options, lvl)
+    hit = _DRIVES.get(key)
+    if hit is not None and hit[0] is comp:
+        return hit[1]
+    drives = _drives(comp.mech, comp.layout, comp.drawn, options, lvl)
+    _DRIVES[key] = (comp, drives)
+    if len(_DRIVES) > _CACHE_SIZE:
+        _DRIVES.popitem(last=False)
+    return drives
+
+
 def _drives(mech: Mechanism, lay: Layout, drawn: Drawn, options: SolveOptions, lvl: int) -> tuple[Drive, ...]:
     """The drives as used: overrides applied, angle from the drawing, omega signed."""
     out = []
@@ -685,6 +716,39 @@ def _result(
     notes: tuple[str, ...],
     drives: tuple[Drive, ...],
 ) -> Kinematics:
+    """The result of a solve in scaled coordinates ``q, q̇, q̈``, packaged when first read."""
+    return _lazy(comp, level, lambda: (q, qd, qdd), omega_ref, moved, notes, drives)
+
+
+def _lazy(
+    comp: Compiled,
+    level: str,
+    state: Callable[[], _State],
+    omega_ref: float,
+    moved: bool,
+    notes: tuple[str, ...] | Callable[[], tuple[str, ...]],
+    drives: tuple[Drive, ...],
+) -> Kinematics:
+    mech = comp.mech
+    return Kinematics.lazy(
+        mech.label,
+        level,
+        comp.mobility,
+        drives,
+        mech.ground,
+        notes,
+        lambda: _fields(comp, *state(), omega_ref, moved),
+    )
+
+
+def _fields(
+    comp: Compiled,
+    q: np.ndarray,
+    qd: np.ndarray | None,
+    qdd: np.ndarray | None,
+    omega_ref: float,
+    moved: bool,
+) -> Fields:
     """Unscale and package; vectorised, since it runs on every solve of a sweep."""
     sys_, lay, mech = comp.system, comp.layout, comp.mech
     scale, centre = sys_.scale, sys_.centre
@@ -764,24 +828,10 @@ def _result(
     carriers = {n_: c_ for n_, c_ in lay.carriers.items() if not n_.startswith("#")}
     for alias, target in lay.alias.items():
         carriers[alias] = carriers.get(target, ())
-    return Kinematics(
-        mechanism=mech.label,
-        level=level,
-        positions=MappingProxyType(positions),
-        links=MappingProxyType(links),
-        size=_size(positions, sys_.joint_names),
-        mobility=comp.mobility,
-        notes=notes,
-        drives=drives,
-        carriers=MappingProxyType(carriers),
-        joints=MappingProxyType(joints),
-        ground=mech.ground,
+    return Fields(
+        MappingProxyType(positions),
+        MappingProxyType(links),
+        MappingProxyType(carriers),
+        MappingProxyType(joints),
+        joint_names=sys_.joint_names,
     )
-
-
-def _size(positions: dict[str, tuple[float, float]], joint_names: frozenset[str]) -> float:
-    """Largest distance between two joints (all located points if fewer than two joints)."""
-    pts = [p for n, p in positions.items() if n in joint_names]
-    if len(pts) < 2:
-        pts = list(positions.values())
-    return max((math.dist(a, b) for k, a in enumerate(pts) for b in pts[k + 1 :]), default=0.0)
