@@ -1022,6 +1022,7 @@ class _Reader:
             "direction",
             "alpha",
             "about",
+            "relative_to",
             "speed",
             "accel",
             "acceleration",
@@ -1055,7 +1056,7 @@ class _Reader:
                     f"a joint drive moves a slider; {joint} is {known[joint].type.value}",
                     "drive a prismatic joint, or use `link:` for a crank",
                 )
-            for key in ("rpm", "omega", "angle", "alpha", "direction", "about"):
+            for key in ("rpm", "omega", "angle", "alpha", "direction", "about", "relative_to"):
                 if key in f:
                     self.problem(
                         f[key][0], f"`{key}` belongs to a crank drive (`link:`); a slider takes speed"
@@ -1079,6 +1080,20 @@ class _Reader:
             alpha = self._signed(f["alpha"][1], "alpha", Dimension.ANGULAR_ACCELERATION)
         angle = self.optional(f, "angle", lambda n: self.number(n, "the drive angle", Dimension.ANGLE))
         about = self.optional(f, "about", lambda n: self.name(n, "`about`"))
+        relative_to = self.optional(f, "relative_to", lambda n: self.name(n, "`relative_to`"))
+        if relative_to is not None and link is not None:
+            if links and relative_to not in links:
+                raise self.problem(
+                    f["relative_to"][1],
+                    f"relative_to names unknown link {relative_to!r}",
+                    _did_you_mean(relative_to, links),
+                )
+            if relative_to == link:
+                raise self.problem(
+                    f["relative_to"][1], f"{link} cannot be driven relative to itself", "name another link"
+                )
+            if relative_to == ground:
+                relative_to = None  # relative to the ground is what a drive means anyway
         speed = self.optional(f, "speed", lambda n: self.number(n, "the slider speed", Dimension.VELOCITY))
         acc_key = "accel" if "accel" in f else "acceleration"
         accel = self.optional(
@@ -1094,6 +1109,7 @@ class _Reader:
             speed=speed,
             accel=accel,
             where=self.where(node),
+            relative_to=relative_to,
         )
 
     def _angular(self, node: yaml.Node, key: str, bare_factor: float) -> tuple[float, str | None]:

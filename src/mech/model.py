@@ -239,6 +239,11 @@ class Drive:
     ``omega`` in rad/s, counter-clockwise positive, ``alpha`` in rad/s²,
     ``about`` the pivot joint), or a slider (``joint`` with ``speed`` in m/s
     along its path and ``accel`` in m/s²).  ``None`` means "not given".
+
+    A turning drive's angle, omega and alpha are absolute (measured from the
+    ground, like every angle in ``mech``) whatever ``about`` is, unless
+    ``relative_to`` names a link: then they are the driven link's minus that
+    link's (θ_b − θ_a, ω_b − ω_a, α_b − α_a).
     """
 
     link: str | None = None
@@ -250,6 +255,7 @@ class Drive:
     speed: float | None = None
     accel: float | None = None
     where: Where | None = field(default=None, compare=False)
+    relative_to: str | None = None
 
 
 @dataclass(frozen=True, slots=True)

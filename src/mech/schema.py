@@ -155,6 +155,11 @@ SCHEMA: dict[str, Any] = {
                 "direction": {"enum": ["cw", "ccw"]},
                 "alpha": _NUMBER,
                 "about": _NAME,
+                "relative_to": {
+                    **_NAME,
+                    "description": "angle, omega and alpha are the driven link's minus this link's "
+                    "(default: absolute, measured from the ground)",
+                },
                 "speed": _NUMBER,
                 "accel": _NUMBER,
                 "acceleration": _NUMBER,

@@ -114,10 +114,43 @@ class _Dir(_Eq):
     def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
         return np.array([self.n @ (p[1] - p[0])]), [-self.n[None, :], self.n[None, :]]
 
+    def angle(self, p: Sequence[np.ndarray]) -> float:
+        """The ray's global direction (rad) at positions ``p``."""
+        del p
+        return self.phi
+
     def forward(self, p: Sequence[np.ndarray]) -> bool:
         """True when ``b`` is on the ray itself, not on its opposite half (angle + 180°)."""
         w = p[1] - p[0]
-        return bool(w[0] * math.cos(self.phi) + w[1] * math.sin(self.phi) >= 0.0)
+        psi = self.angle(p)
+        return bool(w[0] * math.cos(psi) + w[1] * math.sin(psi) >= 0.0)
+
+
+class _RelDir(_Dir):
+    """Drive relative to a link: ``b`` on the ray from ``o`` at ``phi`` plus the direction ``a0 → a1``.
+
+    ``a0 → a1`` is the reference link's line, so its direction is the angle θ_a
+    ``mech`` reports for that link, and ``phi`` is θ_b − θ_a (DESIGN § 1.1).
+    """
+
+    def __init__(self, o: str, b: str, a0: str, a1: str, phi: float, text: str) -> None:
+        super().__init__(o, b, phi, text)
+        self.names = (o, b, a0, a1)
+
+    def angle(self, p: Sequence[np.ndarray]) -> float:
+        d = p[3] - p[2]
+        return self.phi + math.atan2(d[1], d[0])
+
+    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
+        psi = self.angle(p)
+        n = np.array([-math.sin(psi), math.cos(psi)])
+        e = np.array([math.cos(psi), math.sin(psi)])
+        w = p[1] - p[0]
+        d = p[3] - p[2]
+        dd = float(d @ d) or 1.0
+        dpsi = np.array([-d[1], d[0]]) / dd  # ∂ψ/∂a1 (and −∂ψ/∂a0)
+        g = -float(e @ w) * dpsi
+        return np.array([n @ w]), [-n[None, :], n[None, :], -g[None, :], g[None, :]]
 
 
 class _OnLine(_Eq):
@@ -291,7 +324,12 @@ def assemble(
         if spec.link is None or angle is None or spec.toward is None:
             continue
         shown = f"{math.degrees(angle):.6g}°" if deg else f"{angle:.6g} rad"
-        eqs.append(_Dir(spec.pivot, spec.toward, angle, f"drive angle {shown}"))  # type: ignore[arg-type]
+        if spec.reference_line is not None:
+            a0, a1 = spec.reference_line
+            text = f"drive angle {shown} relative to {spec.reference}"
+            eqs.append(_RelDir(spec.pivot, spec.toward, a0, a1, angle, text))  # type: ignore[arg-type]
+        else:
+            eqs.append(_Dir(spec.pivot, spec.toward, angle, f"drive angle {shown}"))  # type: ignore[arg-type]
         eqs[-1].where = spec.drive.where
     for ps in lay.paths:
         path_where = mech.joint(ps.joint).where
@@ -455,6 +493,11 @@ def assemble(
                 continue
             o, b = positions[spec.pivot], positions[spec.toward]  # type: ignore[index]
             resolved_angles[k] = math.atan2(b[1] - o[1], b[0] - o[0])
+            if spec.reference_line is not None:  # θ_b − θ_a
+                r0, r1 = (positions[n] for n in spec.reference_line)
+                resolved_angles[k] = math.remainder(
+                    resolved_angles[k] - math.atan2(r1[1] - r0[1], r1[0] - r0[0]), 2 * math.pi
+                )
     gear_pitch_points(lay, positions)
     cx, cy = float(centre[0]), float(centre[1])
     for n, xy in positions.items():
@@ -525,11 +568,10 @@ def _construct(
                         )
                         break
                 if isinstance(e, _Dir) and e.names[1] == n:
-                    lengths = [d for d in mine if isinstance(d, _Dist) and set(d.names) == set(e.names)]
+                    lengths = [d for d in mine if isinstance(d, _Dist) and set(d.names) == set(e.names[:2])]
                     if lengths:
-                        found = pos[e.names[0]] + lengths[0].length * np.array(
-                            [math.cos(e.phi), math.sin(e.phi)]
-                        )
+                        psi = e.angle([pos[m] if m != n else pos[e.names[0]] for m in e.names])
+                        found = pos[e.names[0]] + lengths[0].length * np.array([math.cos(psi), math.sin(psi)])
                         break
             if found is None:
                 circles = [
@@ -685,9 +727,10 @@ def _disagreement(e: _Eq, p: list[np.ndarray], scale: float, fmt: Callable[[floa
     if isinstance(e, _Dir):
         w = p[1] - p[0]
         drawn = math.atan2(w[1], w[0])
+        psi = e.angle(p)
         return (
-            f"{e.text} but the drawing gives {math.degrees(drawn):.6g}° "
-            f"(off by {abs(math.degrees(math.remainder(drawn - e.phi, 2 * math.pi))):.3g}°)"
+            f"{e.text} but the drawing gives {math.degrees(drawn - psi + e.phi):.6g}° "
+            f"(off by {abs(math.degrees(math.remainder(drawn - psi, 2 * math.pi))):.3g}°)"
         )
     r, _ = e.value(p)
     return f"{e.text}: the drawing is off by {fmt(float(np.hypot(*r)) * scale if r.size == 2 else abs(float(r[0])) * scale)}"

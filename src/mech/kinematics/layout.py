@@ -19,7 +19,7 @@ constraints and results.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from mech.errors import Problem, UnsupportedError, collect
 from mech.model import Drive, Joint, JointType, Mechanism, Path
@@ -46,11 +46,14 @@ class PathSpec:
 class DriveSpec:
     """A drive resolved against the layout.
 
-    Rotary: ``link`` turns relative to ``reference`` (ground unless ``about``
-    joins it to a moving link) about ``pivot``; its angle is the direction
+    Rotary: ``link`` turns about ``pivot``; its angle is the direction
     ``pivot → toward`` (``toward`` None when the link has no other located
-    point: then the angle is the link's own frame angle).  Slider: ``joint``
-    names a prismatic or slot joint whose point moves along its path.
+    point: then the angle is the link's own frame angle), measured from
+    ``reference``: the ground, whatever ``pivot`` is, unless the drive says
+    ``relative_to`` (DESIGN § 1.1 "Drives are absolute").  Then
+    ``reference_line`` is the pair of locations whose direction is that
+    link's angle θ_a (its frame: first located point → next).  Slider:
+    ``joint`` names a prismatic or slot joint whose point moves along its path.
     """
 
     drive: Drive
@@ -59,6 +62,7 @@ class DriveSpec:
     pivot: str | None = None
     toward: str | None = None
     joint: str | None = None
+    reference_line: tuple[str, str] | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -207,6 +211,21 @@ def layout(mech: Mechanism) -> Layout:
         if first is not None:
             names = [first] + [n for n in names if n != first]
         on_link[lk.name] = tuple(names)
+    for k, spec in enumerate(drives):
+        if spec.link is None or spec.reference == ground:
+            continue
+        line = on_link.get(spec.reference, ())  # type: ignore[arg-type]
+        if len(line) < 2:
+            problems.append(
+                Problem(
+                    f"drive: {spec.link} is driven relative_to {spec.reference}, which has no line of its "
+                    f"own to measure from (it needs two located joints or points)",
+                    spec.drive.where,
+                    hint="drive it from the ground (omit relative_to) or relative to a link with two joints",
+                )
+            )
+            continue
+        drives[k] = replace(spec, reference_line=(line[0], line[1]))
 
     collect(problems, source=mech.source)
     return Layout(mech, carriers, alias, on_link, tuple(paths), contacts, tuple(drives))
@@ -262,7 +281,7 @@ def _drive_spec(
             )
             return None
         pivot = pins[0]
-    others = [lk for lk in carriers[pivot] if lk != link]
-    reference = mech.ground if mech.ground in others else (others[0] if others else mech.ground)
+    # Absolute unless the drive says otherwise, whatever link the pivot joins (DESIGN § 1.1).
+    reference = d.relative_to or mech.ground
     rest = [n for n in joint_locs.get(link, []) + point_locs.get(link, []) if n != pivot]
     return DriveSpec(d, link=link, reference=reference, pivot=pivot, toward=rest[0] if rest else None)

@@ -124,6 +124,47 @@ class _Noise:
         return self._vector(a, self.a)
 
 
+def _drive_frames(kin: Kinematics, d: Any, num: Any, ANG: str, W: str, AL: str) -> dict[str, Any]:
+    """A turning drive both ways: ``absolute`` (from the ground) and ``relative`` (to a moving link).
+
+    The drive's own values are in its convention (absolute unless it says
+    ``relative_to``, DESIGN § 1.1); the other convention is derived from the
+    solved links: θ_b = φ + θ_a, ω_b from the solve, ω_b − ω_a …  The
+    reference link is ``relative_to``, else the moving link the ``about``
+    pivot joins the driven link to (the pair a student measures at a joint),
+    else there is none (``relative`` is null).
+    """
+    ref = d.relative_to
+    if ref is None and d.about is not None and d.about in kin.joints:
+        others = [lk for lk in kin.joints[d.about].links if lk != d.link]
+        ref = others[0] if len(others) == 1 and others[0] != kin.ground else None
+    mine = kin.links.get(d.link)
+    other = kin.links.get(ref) if ref is not None else None
+
+    def diff(x: float | None, y: float | None) -> float | None:
+        return None if x is None or y is None else x - y
+
+    theta_a = other.angle if other is not None else 0.0
+    if d.relative_to is not None:
+        angle_abs = None if d.angle is None else math.remainder(d.angle + theta_a, 2 * math.pi)
+        angle_rel = d.angle
+    else:
+        angle_abs = d.angle
+        angle_rel = None if d.angle is None else math.remainder(d.angle - theta_a, 2 * math.pi)
+    w_abs = mine.omega if mine is not None else None
+    al_abs = mine.alpha if mine is not None else None
+    absolute = {"angle": num(angle_abs, ANG), "omega": num(w_abs, W), "alpha": num(al_abs, AL)}
+    relative = None
+    if other is not None:
+        relative = {
+            "to": ref,
+            "angle": num(angle_rel, ANG),
+            "omega": num(diff(w_abs, other.omega), W),
+            "alpha": num(diff(al_abs, other.alpha), AL),
+        }
+    return {"absolute": absolute, "relative": relative}
+
+
 def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
     """The solve as a plain JSON-able dict, numbers in ``units``.
 
@@ -136,7 +177,11 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
           "size": float,                                  # largest joint distance [length]
           "drives": [{"link" | "joint": str, "angle": float [angle] | null,
                       "omega": float [angular_velocity, ccw +] | null, "sense": "cw" | "ccw" | null,
-                      "alpha": float | null, "speed": float [velocity] | null}],
+                      "alpha": float | null, "speed": float [velocity] | null,
+                      # turning drives only: the values above are in the drive's own convention
+                      "relative_to": str | null,
+                      "absolute": {"angle", "omega", "alpha"},               # from the ground
+                      "relative": {"to": str, "angle", "omega", "alpha"} | null}],
           "links": {name: {"origin": [x, y], "angle": float, "omega": float | null,
                            "sense": "cw" | "ccw" | null, "alpha": float | null}},
           "points": [{"point": str, "link": str | null,   # link: the contact point's link
@@ -177,6 +222,9 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
             alpha=num(d.alpha, AL),
             speed=num(d.speed, V),
         )
+        if d.link is not None:
+            entry["relative_to"] = d.relative_to
+            entry.update(_drive_frames(kin, d, num, ANG, W, AL))
         drives.append(entry)
 
     links = {
@@ -330,6 +378,18 @@ def kinematics_table(kin: Kinematics, console: Any, *, units: OutputUnits) -> No
                 parts.append(f"ω = {_g(abs(d['omega']))} {u['angular_velocity']} {d['sense'] or ''}".rstrip())
             if d["alpha"]:
                 parts.append(f"α = {_g(d['alpha'])} {u['angular_acceleration']}")
+            other = d["relative"] if d["relative_to"] is None else d["absolute"]
+            if other is not None:
+                what = f"relative to {other['to']}" if d["relative_to"] is None else "absolute"
+                if d["relative_to"] is not None:
+                    parts[0] += f" relative to {d['relative_to']}"
+                extra = [f"{_g(other['angle'])} {u['angle']}"] if other["angle"] is not None else []
+                if other["omega"] is not None:
+                    w = other["omega"]
+                    extra.append(f"ω = {_g(abs(w))} {u['angular_velocity']} {_sense(w) or ''}".rstrip())
+                if other["alpha"] is not None and d["alpha"]:
+                    extra.append(f"α = {_g(other['alpha'])} {u['angular_acceleration']}")
+                parts[-1] += f" ({what}: {', '.join(extra)})"
         else:
             parts = [f"drive {d['joint']}"]
             if d["speed"] is not None:
