@@ -35,6 +35,7 @@ import numpy as np
 
 from mech.errors import GeometryError, InputError, UnsupportedError
 from mech.kinematics.assemble import Drawn, assemble, gear_pitch_points
+from mech.kinematics.blocks import BlockForm, block_form
 from mech.kinematics.constraints import System, build_system
 from mech.kinematics.geometry import wrap_angle
 from mech.kinematics.layout import CONTACT_TYPES, Layout, layout
@@ -223,11 +224,11 @@ def _rates(
     qd = qdd = None
     if lvl >= 1:
         jac = sys_.jacobian(q)
-        svd = _svd_checked(comp, jac, q, drives)
+        lin = _checked(comp, jac, drives)
         rhs = np.zeros(sys_.m)
         rates = [(d.omega if d.link is not None else d.speed / drawn.scale) / omega_ref for d in drives]  # type: ignore[operator]
         rhs[sys_.drive_rows] = rates
-        qd = _snap(_lin_solve(svd, rhs))
+        qd = _snap(lin(rhs))
         if lvl >= 2:
             if sys_.velocity_only:
                 raise UnsupportedError(
@@ -242,7 +243,7 @@ def _rates(
                 for d in drives
             ]
             gamma[sys_.drive_rows] += acc
-            qdd = _snap(_lin_solve(svd, gamma))
+            qdd = _snap(lin(gamma))
     return qd, qdd
 
 
@@ -496,7 +497,67 @@ def _deg(a: float) -> str:
 
 
 # -- linear algebra ---------------------------------------------------------------------
-def _svd_checked(comp: Compiled, jac: np.ndarray, q: np.ndarray, drives: tuple[Drive, ...]) -> tuple:
+#: Unknowns (3 per moving link) from which square systems are solved block by block
+#: (:mod:`.blocks`) rather than densely: below it one dense LU or SVD is cheaper than
+#: a Python loop over the blocks.
+BLOCK_MIN = 90
+_BLOCKS: OrderedDict[int, tuple[System, BlockForm | None]] = OrderedDict()
+
+
+def _blocks(sys_: System) -> BlockForm | None:
+    """The block-triangular form of ``sys_``'s Φ_q (cached), or None: small, redundant or irreducible.
+
+    The sparsity is read from Φ_q at the drawn configuration and at a perturbed
+    one, so that an entry that happens to vanish as drawn (a link at 0°) is
+    still counted.
+    """
+    n3 = 3 * sys_.n
+    if n3 < BLOCK_MIN or sys_.m != n3:
+        return None
+    hit = _BLOCKS.get(id(sys_))
+    if hit is not None and hit[0] is sys_:
+        return hit[1]
+    wiggle = np.random.default_rng(0).uniform(-0.1, 0.1, n3)
+    pattern = (sys_.jacobian(sys_.q0) != 0) | (sys_.jacobian(sys_.q0 + wiggle) != 0)
+    form = block_form(pattern)
+    if form is not None and form.largest * 2 > n3:
+        form = None  # one block holds most of it: nothing to gain over the dense path
+    _BLOCKS[id(sys_)] = (sys_, form)
+    if len(_BLOCKS) > _CACHE_SIZE:
+        _BLOCKS.popitem(last=False)
+    return form
+
+
+def _square_solve(sys_: System, jac: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """x with Φ_q x = rhs: one LU (block by block for a large chain), least squares when not square."""
+    if jac.shape[0] != jac.shape[1]:
+        return np.linalg.lstsq(jac, rhs, rcond=None)[0]
+    form = _blocks(sys_)
+    return form.solve(jac, rhs) if form is not None else np.linalg.solve(jac, rhs)
+
+
+def _checked(
+    comp: Compiled, jac: np.ndarray, drives: tuple[Drive, ...]
+) -> Callable[[np.ndarray], np.ndarray]:
+    """A solver of Φ_q x = b at a converged configuration, after refusing a singular one.
+
+    Rank and conditioning are judged here, once per configuration: by one SVD
+    (small systems), or block by block for a large chain (:mod:`.blocks`).
+    """
+    form = _blocks(comp.system)
+    if form is None:
+        svd = _svd_checked(comp, jac, drives)
+        return lambda rhs: _lin_solve(svd, rhs)
+    cond, null = form.condition(jac)
+    if cond > SINGULAR:
+        raise GeometryError(
+            _singular_message(comp, null, cond, drives),  # type: ignore[arg-type]
+            hint="analyse a slightly different angle: velocities here are undetermined",
+        )
+    return lambda rhs: form.solve(jac, rhs)
+
+
+def _svd_checked(comp: Compiled, jac: np.ndarray, drives: tuple[Drive, ...]) -> tuple:
     """SVD of Φ_q, refusing a singular configuration with the links that lose their guidance."""
     n = jac.shape[1]
     if jac.shape[0] < n:  # fewer equations than unknowns: pad so that the null vector shows
@@ -643,7 +704,10 @@ def _continue(
         jac = sys_.jacobian(q)
         rhs = np.zeros(sys_.m)
         rhs[rhs_rows] = total
-        pred = q + h * np.linalg.lstsq(jac, rhs, rcond=None)[0]
+        try:
+            pred = q + h * _square_solve(sys_, jac, rhs)
+        except np.linalg.LinAlgError:  # a singular start (a toggle drawn): the least-squares rate
+            pred = q + h * np.linalg.lstsq(jac, rhs, rcond=None)[0]
         c_ang = base_ang.copy()
         c_ang[rows] += (done + h) * total
         q_new = _newton(sys_, pred, c_line, c_ang, options)
@@ -662,7 +726,6 @@ def _newton(
     sys_: System, q: np.ndarray, c_line: np.ndarray, c_ang: np.ndarray, options: SolveOptions
 ) -> np.ndarray | None:
     """Newton–Raphson on Φ(q) = 0 (scaled); None when it does not converge quadratically."""
-    square = sys_.m == q.size
     prev = math.inf
     for _ in range(options.max_iter):
         r = sys_.phi(q, c_line, c_ang)
@@ -674,7 +737,7 @@ def _newton(
         prev = norm
         jac = sys_.jacobian(q)
         try:
-            dq = np.linalg.solve(jac, -r) if square else np.linalg.lstsq(jac, -r, rcond=None)[0]
+            dq = _square_solve(sys_, jac, -r)
         except np.linalg.LinAlgError:
             return None
         if float(np.max(np.abs(dq))) > 1.0:  # more than a mechanism size: lost
