@@ -38,12 +38,11 @@ JSON, JUnit XML, Gradescope and CSV from the same :class:`Verdict` objects.
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from mech.answers import parse_icentre_name, parse_key
+from mech.answers import LEVELS, AnswerKey, AtInfinity, Compare, Undefined, parse_key
 from mech.errors import MechError, Problem, Where
 from mech.model import Claim, Mechanism, Tolerance
 from mech.options import SolveOptions
@@ -73,7 +72,7 @@ ERROR = "error"
 #: Errors below this fraction of the mechanism's own scale are rounding, not a wrong answer.
 NOISE = 1e-6
 
-_LEVELS = ("topology", "mobility", "position", "velocity", "acceleration")
+_SOLVED = ("position", "velocity", "acceleration")
 
 
 @dataclass(frozen=True, slots=True)
@@ -261,21 +260,29 @@ class Analysis:
     gets the same reason without solving again.
     """
 
+    #: Errors below this fraction of the mechanism's own scale are rounding (see the module doc).
+    noise = NOISE
+
     def __init__(self, mech: Mechanism, *, options: SolveOptions | None = None) -> None:
         self.mech = mech
         self.options = options or SolveOptions()
         self.level = "topology"
         self._cache: dict[str, Any] = {}
 
-    def need(self, claims: Sequence[Claim]) -> None:
-        """Raise the solve level to the highest any claim needs (before anything is solved)."""
+    def need(self, claims: Sequence[Claim] | Sequence[str]) -> None:
+        """Raise the solve level to the highest any claim (or key) needs, before anything is solved."""
         for claim in claims:
-            level = parse_key(claim.key).level
-            if level in ("velocity", "acceleration") and _LEVELS.index(level) > _LEVELS.index(self.level):
+            level = parse_key(claim if isinstance(claim, str) else claim.key).level
+            if level in _SOLVED and LEVELS.index(level) > LEVELS.index(self.level):
                 self.level = level
                 # a solve made for a lower level is not enough any more
-                self._cache.pop("kin", None)
-                self._cache.pop("icentres", None)
+                for name in [n for n in self._cache if n not in ("topology", "mobility")]:
+                    del self._cache[name]
+
+    def cached(self, name: str, make: Callable[[], Any]) -> Any:
+        """``make()`` once per analysis (a solve's error is kept and raised again): for answer keys
+        whose reference value costs (a sweep for ``transmission_angle.min``)."""
+        return self._get(name, make)
 
     def _get(self, name: str, make: Callable[[], Any]) -> Any:
         if name not in self._cache:
@@ -312,7 +319,7 @@ class Analysis:
         def make() -> Kinematics:
             from mech.kinematics import solve
 
-            level = self.level if self.level in ("velocity", "acceleration") else "velocity"
+            level = self.level if self.level in _SOLVED else "position"
             return solve(self.mech, level=level, options=self.options)
 
         return self._get("kin", make)
@@ -363,13 +370,14 @@ def _verdict(claim: Claim, analysis: Analysis, default: Tolerance) -> Verdict:
     akey = parse_key(claim.key)
     base = Verdict(claim.key, ERROR, claimed=claim.text or str(claim.value), where=claim.where)
     try:
-        if akey.is_count or akey.family == "chain":
-            return _count(claim, akey.family, analysis, base)
-        return _KINEMATIC[akey.family](claim, akey.names, analysis, claim.tolerance or default, base)
+        value = akey.kind.compute(analysis, akey.names)
+        return _COMPARE[akey.compare](claim, akey, value, analysis, claim.tolerance or default, base)
     except MechError as error:
         return _replace(base, status=ERROR, message=f"cannot be computed: {_reason(error)}")
-    except (_Undefined, InternalError) as why:
+    except (Undefined, InternalError) as why:
         return _replace(base, status=ERROR, message=str(why))
+    except Exception as exc:  # a bug in a key's computation: this row says so, the others stand
+        return _replace(base, status=ERROR, message=str(InternalError.of(exc)))
 
 
 class InternalError(Exception):
@@ -393,10 +401,6 @@ class InternalError(Exception):
         return cls(f"internal error in mech (a bug, please report it): {type(exc).__name__}: {exc}{at}")
 
 
-class _Undefined(Exception):
-    """The asked quantity does not exist here (a ratio over a link at rest …)."""
-
-
 def _reason(error: MechError) -> str:
     p = error.problems[0] if error.problems else None
     text = p.message if p else str(error)
@@ -411,61 +415,34 @@ def _replace(v: Verdict, **changes: Any) -> Verdict:
     return replace(v, **changes)
 
 
-# -- counts: topology only (no numpy) ----------------------------------------------------------
-def _normal_chain(name: str) -> str:
-    s = name.strip().lower().replace("_", "-").replace(" ", "-")
-    s = re.sub(r"'s\b", "", s)
-    s = re.sub(r"-(chain|mechanism|linkage)$", "", s)
-    return {"fourbar": "four-bar", "4-bar": "four-bar", "fivebar": "five-bar", "5-bar": "five-bar"}.get(s, s)
-
-
-def _count(claim: Claim, family: str, analysis: Analysis, base: Verdict) -> Verdict:
-    if family == "mobility":
-        computed: Any = analysis.mobility
-        if computed is None:
-            return _replace(base, message="cannot be computed: the file has no geometry for a Jacobian")
-    elif family == "chain":
-        computed = analysis.topology.chain
-        ok = computed is not None and _normal_chain(str(claim.value)) == computed
-        shown = computed if computed is not None else "none of the named chains"
-        return _replace(
-            base,
-            status=PASS if ok else FAIL,
-            computed=computed,
-            message=f"chain is {shown}" if ok else f"the chain is {shown}, not {claim.value}",
-        )
-    else:
-        computed = _topology_count(family, analysis.topology)
+# -- comparisons, one per Compare mode ----------------------------------------------------------
+def _cmp_count(
+    claim: Claim, akey: AnswerKey, computed: Any, an: Analysis, tol: Tolerance, base: Verdict
+) -> Verdict:
+    key = akey.key
     ok = computed == claim.value
     return _replace(
         base,
         status=PASS if ok else FAIL,
         computed=computed,
-        error=float(abs(computed - int(claim.value))),
+        error=float(abs(computed - int(claim.value))),  # type: ignore[arg-type]
         allowed=0.0,
-        message=f"{family} = {computed}" if ok else f"{family} is {computed}, not {claim.value}",
+        message=f"{key} = {computed}" if ok else f"{key} is {computed}, not {claim.value}",
     )
 
 
-def _topology_count(family: str, t: Topology) -> int:
-    c = t.count
-    if family == "dof":
-        return c.n
-    if family == "links.count":
-        return c.l
-    if family.startswith("links."):
-        return len(t.link_classes().get(family.split(".", 1)[1], ()))
-    if family == "joints.count":
-        return c.joints
-    if family == "joints.equivalent_binary":
-        return c.j
-    if family.startswith("joints."):
-        return len(t.joint_classes().get(family.split(".", 1)[1], ()))
-    if family == "higher_pairs":
-        return c.h
-    if family == "icentres.count":
-        return t.icentres
-    raise AssertionError(f"unhandled count key {family}")  # pragma: no cover - parse_key knows them all
+def _cmp_label(
+    claim: Claim, akey: AnswerKey, computed: Any, an: Analysis, tol: Tolerance, base: Verdict
+) -> Verdict:
+    normal = akey.kind.normalise or (lambda s: s.strip().lower())
+    ok = computed is not None and normal(str(claim.value)) == normal(str(computed))
+    shown = computed if computed is not None else f"none of the named {akey.key}s"
+    return _replace(
+        base,
+        status=PASS if ok else FAIL,
+        computed=computed,
+        message=f"{akey.key} is {shown}" if ok else f"the {akey.key} is {shown}, not {claim.value}",
+    )
 
 
 # -- kinematic quantities --------------------------------------------------------------------
@@ -559,67 +536,59 @@ def _signed_claim(claim: Claim) -> float:
     return v
 
 
-def _angular(attr: str, dimension: Dimension) -> Callable[..., Verdict]:
-    """``omega.<link>`` / ``alpha.<link>``: the sign is checked only when the claim says cw or ccw."""
-
-    def run(claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance, base: Verdict) -> Verdict:
-        value = getattr(an.kin.links[names[0]], attr)
-        if claim.sense is not None:
-            return _compare(claim, base, value, _signed_claim(claim), dimension, tol, an, sense=True)
-        return _compare(claim, base, abs(value), abs(float(claim.value)), dimension, tol, an)  # type: ignore[arg-type]
-
-    return run
-
-
-def _vector(level: str) -> Callable[..., Verdict]:
-    """``velocity.<p>[.<q>]`` / ``acceleration.<p>[.<q>]``: magnitudes of absolute or relative vectors."""
-
-    def run(claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance, base: Verdict) -> Verdict:
-        kin = an.kin
-        if level == "velocity":
-            vec = kin.velocity(names[0]) if len(names) == 1 else kin.relative_velocity(names[0], names[1])
-            dimension = Dimension.VELOCITY
-        else:
-            vec = (
-                kin.acceleration(names[0])
-                if len(names) == 1
-                else kin.relative_acceleration(names[0], names[1])
-            )
-            dimension = Dimension.ACCELERATION
-        return _compare(claim, base, _mag(vec), abs(float(claim.value)), dimension, tol, an)  # type: ignore[arg-type]
-
-    return run
-
-
-def _omega_ratio(
-    claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance, base: Verdict
+def _cmp_sense(
+    claim: Claim, akey: AnswerKey, value: Any, an: Analysis, tol: Tolerance, base: Verdict
 ) -> Verdict:
-    """ω_a/ω_b.  A negative claim says the links turn opposite ways and is checked signed;
-    a positive one is the textbook's velocity ratio, a magnitude."""
-    wa, wb = an.kin.links[names[0]].omega, an.kin.links[names[1]].omega
-    if abs(wb) <= NOISE * an.omega_ref:
-        raise _Undefined(
-            f"cannot be computed: ω of {names[1]} is zero, so ω_{names[0]}/ω_{names[1]} is undefined"
+    """``omega.<link>`` / ``alpha.<link>``: the sign is checked only when the claim says cw or ccw."""
+    dimension = akey.dimension or Dimension.NUMBER
+    if claim.sense is not None:
+        return _compare(claim, base, value, _signed_claim(claim), dimension, tol, an, sense=True)
+    return _compare(claim, base, abs(value), abs(float(claim.value)), dimension, tol, an)  # type: ignore[arg-type]
+
+
+def _cmp_magnitude(
+    claim: Claim, akey: AnswerKey, value: Any, an: Analysis, tol: Tolerance, base: Verdict
+) -> Verdict:
+    """Vectors and speeds by magnitude; a value at infinity (a distance to it) fails as infinite."""
+    if isinstance(value, AtInfinity):
+        return _replace(
+            base,
+            status=FAIL,
+            computed=math.inf,
+            unit=(akey.dimension or Dimension.NUMBER).value,
+            message=f"{value.label} is at infinity{_direction(value)}: the {akey.family} is infinite",
         )
-    ratio = wa / wb
+    magnitude = _mag(value) if isinstance(value, tuple) else abs(value)
+    return _compare(
+        claim,
+        base,
+        magnitude,
+        abs(float(claim.value)),
+        akey.dimension or Dimension.NUMBER,
+        tol,
+        an,  # type: ignore[arg-type]
+    )
+
+
+def _cmp_ratio(
+    claim: Claim, akey: AnswerKey, value: Any, an: Analysis, tol: Tolerance, base: Verdict
+) -> Verdict:
+    """A negative claim says the two turn opposite ways and is checked signed; a positive one
+    is the textbook's velocity ratio, a magnitude."""
     claimed = float(claim.value)  # type: ignore[arg-type]
+    what = "ω ratio " if akey.family == "omega_ratio" else ""
+    dimension = akey.dimension or Dimension.NUMBER
     if claimed < 0:
-        return _compare(claim, base, ratio, claimed, Dimension.NUMBER, tol, an, what="ω ratio ")
-    return _compare(claim, base, abs(ratio), claimed, Dimension.NUMBER, tol, an, what="ω ratio ")
+        return _compare(claim, base, value, claimed, dimension, tol, an, what=what)
+    return _compare(claim, base, abs(value), claimed, dimension, tol, an, what=what)
 
 
-def _joint_speed(kind: str) -> Callable[..., Verdict]:
-    def run(claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance, base: Verdict) -> Verdict:
-        kin = an.kin
-        if kind == "sliding":
-            value, dimension = abs(kin.sliding(names[0])), Dimension.VELOCITY
-        elif kind == "rubbing":
-            value, dimension = abs(kin.rubbing(names[0])), Dimension.VELOCITY
-        else:
-            value, dimension = _mag(kin.coriolis(names[0])), Dimension.ACCELERATION
-        return _compare(claim, base, value, abs(float(claim.value)), dimension, tol, an)  # type: ignore[arg-type]
-
-    return run
+def _cmp_signed(
+    claim: Claim, akey: AnswerKey, value: Any, an: Analysis, tol: Tolerance, base: Verdict
+) -> Verdict:
+    return _compare(
+        claim, base, float(value), float(claim.value), akey.dimension or Dimension.NUMBER, tol, an
+    )  # type: ignore[arg-type]
 
 
 def least_speed(mech: Mechanism, kin: Kinematics, link: str) -> float:
@@ -667,26 +636,7 @@ def least_speed(mech: Mechanism, kin: Kinematics, link: str) -> float:
     return abs(va[0] * u[0] + va[1] * u[1])
 
 
-def _least_speed(
-    claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance, base: Verdict
-) -> Verdict:
-    value = least_speed(an.mech, an.kin, names[0])
-    return _compare(claim, base, value, abs(float(claim.value)), Dimension.VELOCITY, tol, an)  # type: ignore[arg-type]
-
-
-# -- I-centres and distances ------------------------------------------------------------------
-def _ic_links(mech: Mechanism, name: str) -> tuple[str, str] | None:
-    """``I13`` → the links numbered 1 and 3 (ground is 1, the others in file order)."""
-    numbers = parse_icentre_name(name)
-    if numbers is None:
-        return None
-    numbered = mech.numbered_links
-    a, b = numbers
-    if not (1 <= a <= len(numbered) and 1 <= b <= len(numbered)):
-        return None
-    return numbered[a - 1].name, numbered[b - 1].name
-
-
+# -- points (I-centres, positions) -------------------------------------------------------------
 def _fmt_point(p: tuple[float, float], claim: Claim) -> str:
     unit = "m"
     if claim.text.startswith("["):
@@ -707,40 +657,41 @@ def _direction(ic: Any) -> str:
     return f" (direction {math.degrees(math.atan2(d[1], d[0])) % 180.0:.1f}°)" if d else ""
 
 
-def _icentre(claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance, base: Verdict) -> Verdict:
-    ic = an.icentres.get(names[0], names[1])
+def _cmp_point(
+    claim: Claim, akey: AnswerKey, value: Any, an: Analysis, tol: Tolerance, base: Verdict
+) -> Verdict:
+    """A point within the tolerance times the mechanism's size (or an absolute length)."""
     size = an.kin.size
     allowed = tol.value * size if tol.relative else tol.value
     tol_text = f"{tol} of size {size:.4g} m" if tol.relative else str(tol)
     common = {"unit": "m", "allowed": allowed, "tolerance": tol_text}
+    noun = "the I-centre" if akey.family == "icentre" else (akey.names[0] if akey.names else akey.key)
     if claim.value == "infinity":
-        if ic.at_infinity:
+        if isinstance(value, AtInfinity):
             return _replace(
-                base, status=PASS, computed="infinity", message="at infinity" + _direction(ic), **common
+                base, status=PASS, computed="infinity", message="at infinity" + _direction(value), **common
             )
         return _replace(
             base,
             status=FAIL,
-            computed=tuple(ic.point),
-            message=f"the I-centre is at {_fmt_point(ic.point, claim)}, not at infinity",
+            computed=tuple(value),
+            message=f"{noun} is at {_fmt_point(value, claim)}, not at infinity",
             **common,
         )
-    if ic.at_infinity:
+    if isinstance(value, AtInfinity):
         return _replace(
             base,
             status=FAIL,
             computed="infinity",
-            message="the I-centre is at infinity" + _direction(ic) + ", not at a point",
+            message=f"{noun} is at infinity" + _direction(value) + ", not at a point",
             **common,
         )
-    point = tuple(ic.point)
+    point = tuple(value)
     claimed = claim.value
     err = math.dist(point, claimed)  # type: ignore[arg-type]
     ok = err <= allowed or err <= NOISE * size
     shown = _fmt_point(point, claim)  # type: ignore[arg-type]
-    message = (
-        shown if ok else f"the I-centre is at {shown}: {err / size:.1%} of the size away (allowed {tol_text})"
-    )
+    message = shown if ok else f"{noun} is at {shown}: {err / size:.1%} of the size away (allowed {tol_text})"
     if not ok:
         far = max(point, key=abs)
         near = claimed[point.index(far)]  # type: ignore[index]
@@ -748,39 +699,12 @@ def _icentre(claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance,
     return _replace(base, status=PASS if ok else FAIL, computed=point, error=err, message=message, **common)
 
 
-def _distance(claim: Claim, names: tuple[str, ...], an: Analysis, tol: Tolerance, base: Verdict) -> Verdict:
-    points = []
-    for name in names:
-        if name in an.kin.positions:
-            points.append(an.kin.positions[name])
-            continue
-        pair = _ic_links(an.mech, name)
-        if pair is None:  # the loader lets through only points and I-centre names
-            raise _Undefined(f"cannot be computed: {name} is neither a point nor an I-centre")
-        ic = an.icentres.get(*pair)
-        if ic.at_infinity:
-            return _replace(
-                base,
-                status=FAIL,
-                computed=math.inf,
-                unit="m",
-                message=f"{name} is at infinity{_direction(ic)}: the distance is infinite",
-            )
-        points.append(tuple(ic.point))
-    value = math.dist(points[0], points[1])
-    return _compare(claim, base, value, abs(float(claim.value)), Dimension.LENGTH, tol, an)  # type: ignore[arg-type]
-
-
-_KINEMATIC: dict[str, Callable[..., Verdict]] = {
-    "velocity": _vector("velocity"),
-    "acceleration": _vector("acceleration"),
-    "omega": _angular("omega", Dimension.ANGULAR_VELOCITY),
-    "alpha": _angular("alpha", Dimension.ANGULAR_ACCELERATION),
-    "omega_ratio": _omega_ratio,
-    "sliding": _joint_speed("sliding"),
-    "rubbing": _joint_speed("rubbing"),
-    "coriolis": _joint_speed("coriolis"),
-    "least_speed": _least_speed,
-    "icentre": _icentre,
-    "distance": _distance,
+_COMPARE: dict[Compare, Callable[..., Verdict]] = {
+    Compare.COUNT: _cmp_count,
+    Compare.LABEL: _cmp_label,
+    Compare.POINT: _cmp_point,
+    Compare.MAGNITUDE: _cmp_magnitude,
+    Compare.SENSE: _cmp_sense,
+    Compare.RATIO: _cmp_ratio,
+    Compare.SIGNED: _cmp_signed,
 }

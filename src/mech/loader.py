@@ -28,7 +28,7 @@ from typing import Any
 
 import yaml
 
-from mech.answers import icentre_name, parse_key
+from mech.answers import KIND_LABELS, AnswerKey, Compare, key_forms, names_by_kind, parse_key
 from mech.errors import InputError, Problem, Where
 from mech.model import (
     Claim,
@@ -70,6 +70,7 @@ _TOP_KEYS = (
     "drive",
     "points",
     "answers",
+    "asks",
 )
 _PLACE_KEYS = ("at", "near", "from", "toward", "distance", "offset")
 _JOINT_KEYS: dict[JointType, tuple[str, ...]] = {
@@ -366,6 +367,9 @@ class _Reader:
                 lambda: self._answers(top["answers"][1], links, joints, points),
                 ([], tolerance),
             )
+        asks: tuple[str, ...] = ()
+        if "asks" in top:
+            asks = self.guard(lambda: self._asks(top["asks"][1], links, joints, points), ())
         self.fail()
         return Mechanism(
             name=name,
@@ -377,6 +381,7 @@ class _Reader:
             lengths=tuple(lengths),
             drives=tuple(drives),
             answers=tuple(answers),
+            asks=asks,
             tolerance=tolerance,
             length_unit=self.length_unit,
             angle_unit=self.angle_unit,
@@ -1162,17 +1167,9 @@ class _Reader:
         if "tolerance" in entries:
             with contextlib.suppress(_Skip):
                 tolerance = self._tolerance(entries["tolerance"][1], None, file_level=True)
-        link_names = {link.name for link in links}
-        joint_names = {j.name for j in joints}
-        point_names = joint_names | {p.name for p in points}
-        n = len(links)
-        ic_names = {icentre_name(a, b) for a in range(1, n + 1) for b in range(a + 1, n + 1)}
-        kinds = {
-            "link": link_names,
-            "joint": joint_names,
-            "point": point_names,
-            "icpoint": point_names | ic_names,
-        }
+        kinds = names_by_kind(
+            (link.name for link in links), (j.name for j in joints), (p.name for p in points), len(links)
+        )
         claims: list[Claim] = []
         for key, (knode, vnode) in entries.items():
             if key == "tolerance":
@@ -1183,30 +1180,53 @@ class _Reader:
                 continue
         return claims, tolerance
 
-    def _claim(self, key: str, knode: yaml.Node, vnode: yaml.Node, kinds: dict[str, set[str]]) -> Claim:
-        from mech.answers import KEY_FORMS
-
+    def _answer_key(self, key: str, knode: yaml.Node, kinds: dict[str, set[str]]) -> AnswerKey:
+        """A key of ``answers`` or ``asks``: a registered form whose names exist."""
         try:
             akey = parse_key(key)
         except ValueError as exc:
             raise self.problem(
                 knode,
                 str(exc),
-                _did_you_mean(key.split(".")[0], {f.split(".")[0] for f in KEY_FORMS})
+                _did_you_mean(key.split(".")[0], {f.split(".")[0] for f in key_forms()})
                 or "see `answers` in cli.md",
             ) from None
         for name, kind in zip(akey.names, akey.kinds, strict=False):
             if name not in kinds[kind]:
-                label = {"icpoint": "point or I-centre"}.get(kind, kind)
+                label = KIND_LABELS.get(kind, kind)
                 raise self.problem(
                     knode, f"answer {key} names unknown {label} {name!r}", _did_you_mean(name, kinds[kind])
                 )
-        if akey.family in ("icentre", "omega_ratio", "distance") and len(set(akey.names)) < 2:
+        if akey.kind.distinct and len(set(akey.names)) < len(akey.names):
             raise self.problem(
                 knode,
                 f"answer {key} names {akey.names[0]!r} twice",
                 f"{akey.family} relates two different names",
             )
+        return akey
+
+    def _asks(
+        self, node: yaml.Node, links: tuple[Link, ...], joints: list[Joint], points: list[Point]
+    ) -> tuple[str, ...]:
+        """``asks: [omega.rocker, velocity.C]``: the questions of a problem file without values."""
+        kinds = names_by_kind(
+            (link.name for link in links), (j.name for j in joints), (p.name for p in points), len(links)
+        )
+        out: dict[str, yaml.Node] = {}
+        for item in self.sequence(node, "asks (a list of answer keys)"):
+            try:
+                key = self.scalar(item, "an answer key")
+                self._answer_key(key, item, kinds)
+            except _Skip:
+                continue
+            if key in out:
+                self.problem(item, f"asks lists {key} twice", f"first at line {out[key].start_mark.line + 1}")
+                continue
+            out[key] = item
+        return tuple(out)
+
+    def _claim(self, key: str, knode: yaml.Node, vnode: yaml.Node, kinds: dict[str, set[str]]) -> Claim:
+        akey = self._answer_key(key, knode, kinds)
         tolerance = None
         value_node = vnode
         if isinstance(vnode, yaml.MappingNode):
@@ -1217,20 +1237,25 @@ class _Reader:
             if "tolerance" in f:
                 tolerance = self._tolerance(f["tolerance"][1], akey.dimension, file_level=False)
         text = _text(value_node)
-        if akey.family == "chain":
+        if akey.compare is Compare.LABEL:
             return Claim(
                 key, self.scalar(value_node, "the chain"), None, None, tolerance, text, self.where(knode)
             )
-        if akey.is_count:
+        if akey.compare is Compare.COUNT:
             raw = self.scalar(value_node, f"answer {key}")
             if not re.fullmatch(r"[+-]?\d+", raw.strip()):
                 raise self.problem(value_node, f"answer {key} is a count: a whole number, not {raw!r}")
             return Claim(key, int(raw), Dimension.NUMBER.value, None, tolerance, text, self.where(knode))
-        if akey.family == "icentre":
-            if isinstance(value_node, yaml.ScalarNode) and value_node.value.strip().lower() in (
-                "infinity",
-                "inf",
-                "at infinity",
+        if akey.compare is Compare.POINT:
+            if (
+                akey.kind.infinity
+                and isinstance(value_node, yaml.ScalarNode)
+                and value_node.value.strip().lower()
+                in (
+                    "infinity",
+                    "inf",
+                    "at infinity",
+                )
             ):
                 return Claim(
                     key, "infinity", Dimension.LENGTH.value, None, tolerance, text, self.where(knode)
@@ -1252,24 +1277,22 @@ class _Reader:
             raise self.problem(
                 value_node, f"answer {key} must be a number with an optional unit, not {raw!r}"
             ) from None
-        if q.dimension is not None and q.dimension is not dimension:
+        if q.dimension is not None and q.dimension not in akey.dimensions:
             raise self.problem(
                 value_node,
                 f"answer {key} is {_a(dimension.label)}, but {q.unit!r} is a unit of {q.dimension.label}",
                 f"{dimension.label} units: {', '.join(known_units(dimension)) or 'none (a plain number)'}",
             )
         self.in_range(value_node, f"answer {key}", q.value, dimension)
-        if q.sense is not None and dimension not in (
-            Dimension.ANGULAR_VELOCITY,
-            Dimension.ANGULAR_ACCELERATION,
-        ):
+        if q.sense is not None and akey.compare not in (Compare.SENSE, Compare.SIGNED):
             raise self.problem(value_node, f"answer {key} is not an angular quantity: cw/ccw does not apply")
         return Claim(key, q.value, dimension.value, q.sense, tolerance, text, self.where(knode))
 
     def _claim_point(self, node: yaml.Node, key: str) -> Vec:
-        items = self.sequence(node, f"answer {key} (a point [x, y] or infinity)")
+        shape = "a point [x, y]" + (" or infinity" if parse_key(key).kind.infinity else "")
+        items = self.sequence(node, f"answer {key} ({shape})")
         if len(items) != 2:
-            raise self.problem(node, f"answer {key} must be a point [x, y] or infinity")
+            raise self.problem(node, f"answer {key} must be {shape}")
         out = []
         for item in items:
             raw = self.scalar(item, "a coordinate")

@@ -311,6 +311,7 @@ class Mechanism:
     tolerance: Tolerance = Tolerance(0.02)
     length_unit: str = "m"
     angle_unit: str = "deg"
+    asks: tuple[str, ...] = ()  # answer keys a student must answer (when `answers` carries no values)
     source: str | None = field(default=None, repr=False, compare=False)
 
     # -- lookups -----------------------------------------------------------------

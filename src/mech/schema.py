@@ -125,6 +125,11 @@ SCHEMA: dict[str, Any] = {
                 {"type": "array", "items": {"$ref": "#/definitions/drive"}, "minItems": 1},
             ]
         },
+        "asks": {
+            "type": "array",
+            "items": {"type": "string"},
+            "description": "Answer keys a student must answer (mech check --answers), when `answers` gives no values.",
+        },
         "answers": {
             "type": "object",
             "properties": {"tolerance": {"type": "string", "pattern": r"^\s*\d+(\.\d*)?\s*%\s*$"}},
