@@ -38,13 +38,12 @@ from mech.model import (
     Length,
     Link,
     Mechanism,
-    Path,
     Placement,
     Point,
-    Ref,
     Tolerance,
     Vec,
 )
+from mech.pairs.registry import KINDS
 from mech.units import (
     MAGNITUDE_RANGE,
     Dimension,
@@ -73,17 +72,6 @@ _TOP_KEYS = (
     "asks",
 )
 _PLACE_KEYS = ("at", "near", "from", "toward", "distance", "offset")
-_JOINT_KEYS: dict[JointType, tuple[str, ...]] = {
-    JointType.REVOLUTE: ("radius",),
-    JointType.PRISMATIC: ("path", "point"),
-    JointType.SLOT: ("path", "point"),
-    JointType.ROLLING: (),
-    JointType.CAM: ("normal",),
-    JointType.CONTACT: ("normal",),
-    JointType.GEAR: ("normal", "pressure_angle", "radii", "teeth", "module", "internal"),
-    JointType.SCREW: (),
-    JointType.SPHERICAL: (),
-}
 _COMMON_JOINT_KEYS = ("type", "links", "closure", "description", *_PLACE_KEYS)
 _NAME = re.compile(r"^[^\s.\-\[\]{},:#]+$")
 _MAX_NODES = 200_000  # an alias bomb is refused, not expanded
@@ -700,10 +688,11 @@ class _Reader:
                 _did_you_mean(type_text, [t.value for t in JointType])
                 or "types: " + ", ".join(t.value for t in JointType),
             ) from None
-        allowed = set(_COMMON_JOINT_KEYS) | set(_JOINT_KEYS[jtype])
+        pair = KINDS[jtype]
+        allowed = set(_COMMON_JOINT_KEYS) | set(pair.keys)
         for key, (kn, _) in fields.items():
             if key not in allowed:
-                others = [t.value for t, keys in _JOINT_KEYS.items() if key in keys]
+                others = [t.value for t, k in KINDS.items() if key in k.keys]
                 hint = (
                     f"`{key}` belongs to {', '.join(others)} joints"
                     if others
@@ -736,39 +725,20 @@ class _Reader:
                 f"{what} joins {len(lnode.value)} link; a joint joins at least two",
                 "list both links it connects",
             )
-        if len(lnode.value) > 2 and jtype is not JointType.REVOLUTE:
+        if pair.max_links is not None and len(lnode.value) > pair.max_links:
             raise self.problem(
                 lnode,
                 f"a {jtype.value} joint joins exactly two links, not {len(lnode.value)}",
                 "only a revolute (pin) joint may join more than two",
             )
         place = self._place(fields, what)
-        path = self.optional(fields, "path", lambda n: self._path(n, what))
-        point = self.optional(fields, "point", lambda n: self.name(n, f"`point` of {what}"))
-        radius = self.optional(
-            fields, "radius", lambda n: self.number(n, "the pin radius", Dimension.LENGTH, positive=True)
-        )
-        normal = self.optional(
-            fields, "normal", lambda n: self.number(n, "the common normal", Dimension.ANGLE)
-        )
-        pressure = self.optional(
-            fields, "pressure_angle", lambda n: self.number(n, "the pressure angle", Dimension.ANGLE)
-        )
-        radii = self.optional(fields, "radii", lambda n: self._pair(n, "radii", positive=True))
-        teeth = self.optional(fields, "teeth", self._teeth)
-        module = self.optional(
-            fields, "module", lambda n: self.number(n, "the module", Dimension.LENGTH, positive=True)
-        )
-        internal = bool(self.optional(fields, "internal", lambda n: self.boolean(n, "internal")))
+        own = {k: v for k, v in fields.items() if k in pair.keys}
+        spec = pair.read(self, own, what, tuple(names))
         closure = self.optional(fields, "closure", lambda n: self.scalar(n, "closure"))
         if closure is not None and closure not in ("form", "force", "self"):
             self.problem(
                 fields["closure"][1], f"unknown closure {closure!r}", "closure is form (self-closed) or force"
             )
-        if teeth is not None and module is None:
-            self.problem(fields["teeth"][0], "gear teeth need a `module` to give the pitch radii")
-        if radii is not None and teeth is not None:
-            self.problem(fields["radii"][0], "give `radii` or `teeth` with `module`, not both")
         if "description" in fields:
             self.scalar(fields["description"][1], "description")
         return Joint(
@@ -776,57 +746,10 @@ class _Reader:
             type=jtype,
             links=tuple(names),
             place=place,
-            path=path,
-            point=point,
-            radius=radius,
-            normal=normal,
-            pressure_angle=pressure,
-            radii=radii,
-            teeth=teeth,
-            module=module,
-            internal=internal,
+            spec=spec,
             closure=closure,
             where=self.where(knode),
         )
-
-    def _pair(self, node: yaml.Node, what: str, *, positive: bool) -> Vec:
-        items = self.sequence(node, what)
-        if len(items) != 2:
-            raise self.problem(node, f"{what} must be a pair [a, b]")
-        return (
-            self.number(items[0], f"the first of {what}", Dimension.LENGTH, positive=positive),
-            self.number(items[1], f"the second of {what}", Dimension.LENGTH, positive=positive),
-        )
-
-    def _teeth(self, node: yaml.Node) -> tuple[int, int]:
-        items = self.sequence(node, "teeth")
-        if len(items) != 2:
-            raise self.problem(node, "teeth must be a pair [z1, z2]")
-        out = []
-        for item in items:
-            raw = self.scalar(item, "a tooth count")
-            if not re.fullmatch(r"\d+", raw.strip()) or int(raw) < 1:
-                raise self.problem(item, f"a tooth count must be a whole number above zero, not {raw!r}")
-            out.append(int(raw))
-        return (out[0], out[1])
-
-    def _ref(self, node: yaml.Node, what: str) -> Ref:
-        if isinstance(node, yaml.SequenceNode):
-            return Ref(xy=self.vec(node, what))
-        return Ref(name=self.name(node, what))
-
-    def _path(self, node: yaml.Node, what: str) -> Path:
-        fields = self.mapping(node, f"the path of {what}", allowed=("through", "angle", "toward"))
-        if "through" not in fields:
-            raise self.problem(
-                node, f"the path of {what} has no `through`", "e.g. `path: {through: O, angle: 0}`"
-            )
-        if ("angle" in fields) == ("toward" in fields):
-            raise self.problem(node, f"the path of {what} needs exactly one of `angle` or `toward`")
-        through = self._ref(fields["through"][1], f"`through` of {what}")
-        angle = self.optional(fields, "angle", lambda n: self.number(n, "the path angle", Dimension.ANGLE))
-        toward = self.optional(fields, "toward", lambda n: self._ref(n, f"`toward` of {what}"))
-        return Path(through=through, angle=angle, toward=toward)
 
     def _points(self, node: yaml.Node, links: set[str]) -> list[Point]:
         out: list[Point] = []

@@ -14,8 +14,13 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from enum import Enum
+from typing import TYPE_CHECKING
 
 from mech.errors import Where
+
+if TYPE_CHECKING:
+    from mech.pairs.base import PairKind
+    from mech.pairs.specs import JointSpec, Profile, Profiles
 
 __all__ = [
     "Claim",
@@ -37,7 +42,11 @@ Vec = tuple[float, float]
 
 
 class JointType(str, Enum):
-    """Kinds of joint in format 1, with how each is counted and classified."""
+    """Kinds of joint in format 1.
+
+    What each kind reads, how it is counted and classified lives in its entry
+    of :data:`mech.pairs.registry.KINDS`; these properties read it from there.
+    """
 
     REVOLUTE = "revolute"
     PRISMATIC = "prismatic"
@@ -50,46 +59,36 @@ class JointType(str, Enum):
     SPHERICAL = "spherical"
 
     @property
+    def kind(self) -> PairKind:
+        """This type's entry in the pair-kind registry."""
+        from mech.pairs.registry import KINDS
+
+        return KINDS[self]
+
+    @property
     def is_higher(self) -> bool:
         """True for the pairs Kutzbach counts in h (one freedom removed each)."""
-        return self in _HIGHER
+        return self.kind.higher
 
     @property
     def is_planar(self) -> bool:
         """False for the pairs the planar solvers cannot model (screw, spherical)."""
-        return self not in (JointType.SCREW, JointType.SPHERICAL)
+        return self.kind.planar
 
     @property
     def relative_motion(self) -> str:
         """The lecture notes' classification by the relative motion of the elements."""
-        return _MOTION[self]
+        return self.kind.motion
 
     @property
     def contact(self) -> str:
         """Lower (surface contact) or higher (line or point contact)."""
-        return "higher" if self in _LINE_CONTACT else "lower"
+        return "higher" if self.kind.line_contact else "lower"
 
     @property
     def default_closure(self) -> str:
         """Self-closed (mechanically) or force-closed (kept in contact by a force)."""
-        return "force" if self in (JointType.CAM, JointType.CONTACT, JointType.ROLLING) else "self"
-
-
-_HIGHER = frozenset({JointType.SLOT, JointType.CAM, JointType.GEAR, JointType.CONTACT})
-_LINE_CONTACT = frozenset(
-    {JointType.SLOT, JointType.CAM, JointType.GEAR, JointType.CONTACT, JointType.ROLLING}
-)
-_MOTION = {
-    JointType.REVOLUTE: "turning",
-    JointType.PRISMATIC: "sliding",
-    JointType.SLOT: "sliding and turning (pin in slot)",
-    JointType.ROLLING: "rolling",
-    JointType.CAM: "cam (sliding and rolling)",
-    JointType.GEAR: "gear (sliding and rolling)",
-    JointType.CONTACT: "sliding and rolling (point contact)",
-    JointType.SCREW: "screw",
-    JointType.SPHERICAL: "spherical",
-}
+        return self.kind.closure
 
 
 @dataclass(frozen=True, slots=True)
@@ -156,27 +155,71 @@ class Joint:
     """A kinematic pair between two or more links, as the file writes it.
 
     A revolute joint listing k links is one joint of order k, i.e. k − 1
-    equivalent binary joints.  The extra fields belong to particular types:
-    ``path`` and ``point`` to prismatic and slot joints, ``normal`` (rad) to cam,
-    contact and gear, ``radii``/``teeth``/``module``/``internal``/``pressure_angle``
-    to gear, ``radius`` (pin radius, m) to revolute.
+    equivalent binary joints.  What belongs to the joint's type (a pin's
+    radius, a slider's path, a gear's radii, a cam's profiles …) is its
+    ``spec``, one of the typed specs of :mod:`mech.pairs.specs`; ``None``
+    stands for the type's empty spec.  The type-specific attributes below
+    (``path``, ``normal``, ``radii`` …) read the spec and are ``None`` where
+    the type has no such key.
     """
 
     name: str
     type: JointType
     links: tuple[str, ...]
     place: Placement = Placement()
-    path: Path | None = None
-    point: str | None = None
-    radius: float | None = None
-    normal: float | None = None
-    pressure_angle: float | None = None
-    radii: Vec | None = None
-    teeth: tuple[int, int] | None = None
-    module: float | None = None
-    internal: bool = False
+    spec: JointSpec | None = None
     closure: str | None = None
     where: Where | None = field(default=None, compare=False)
+
+    def __post_init__(self) -> None:
+        if self.spec is None:
+            object.__setattr__(self, "spec", self.type.kind.spec)
+
+    # -- the spec's fields, for readers that do not care about the type --------------------
+    @property
+    def path(self) -> Path | None:
+        return getattr(self.spec, "path", None)
+
+    @property
+    def point(self) -> str | None:
+        return getattr(self.spec, "point", None)
+
+    @property
+    def radius(self) -> float | None:
+        return getattr(self.spec, "radius", None)
+
+    @property
+    def normal(self) -> float | None:
+        return getattr(self.spec, "normal", None)
+
+    @property
+    def pressure_angle(self) -> float | None:
+        return getattr(self.spec, "pressure_angle", None)
+
+    @property
+    def radii(self) -> tuple[float | None, float | None] | None:
+        return getattr(self.spec, "radii", None)
+
+    @property
+    def teeth(self) -> tuple[int, int] | None:
+        return getattr(self.spec, "teeth", None)
+
+    @property
+    def module(self) -> float | None:
+        return getattr(self.spec, "module", None)
+
+    @property
+    def internal(self) -> bool:
+        return bool(getattr(self.spec, "internal", False))
+
+    @property
+    def profiles(self) -> Profiles:
+        """Each link's curve (``(link, profile)`` pairs); empty when the pair has none."""
+        return getattr(self.spec, "profiles", ())
+
+    @property
+    def profile_of(self) -> dict[str, Profile]:
+        return dict(self.profiles)
 
     @property
     def order(self) -> int:
@@ -197,9 +240,10 @@ class Joint:
         only: it moves along the slotted link.  Every other joint is a point of
         each link it joins (a contact point at the drawn instant).
         """
-        if self.type is JointType.PRISMATIC:
+        rule = self.type.kind.located
+        if rule == "none":
             return ()
-        if self.type is JointType.SLOT:
+        if rule == "first":
             return self.links[:1]
         return self.links
 

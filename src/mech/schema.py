@@ -11,18 +11,11 @@ from __future__ import annotations
 
 from typing import Any
 
-from mech.model import JointType
+from mech.pairs.base import NAME as _NAME
+from mech.pairs.base import NUMBER as _NUMBER
+from mech.pairs.base import XY as _XY
+from mech.pairs.registry import KINDS
 
-_NUMBER: dict[str, Any] = {
-    "description": 'A bare number in the file\'s units, or a string with its unit ("40 mm", "60 deg").',
-    "oneOf": [
-        {"type": "number"},
-        {"type": "string", "pattern": r"^\s*[+-]?(\d[\d_]*(\.\d*)?|\.\d+)([eE][+-]?\d+)?\s*[^\s\d]*.*$"},
-    ],
-}
-_NAME: dict[str, Any] = {"type": "string", "pattern": r"^[^\s.\-\[\]{},:#]+$"}
-_XY: dict[str, Any] = {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2}
-_REF: dict[str, Any] = {"oneOf": [_NAME, _XY], "description": "Coordinates [x, y] or the name of a point."}
 _PLACE: dict[str, Any] = {
     "at": {**_XY, "description": "Drawn here, in the analysed configuration."},
     "near": {**_XY, "description": "A hint: initial guess and assembly branch."},
@@ -31,6 +24,28 @@ _PLACE: dict[str, Any] = {
     "distance": _NUMBER,
     "offset": {**_XY, "description": "[u, v]: u along from→toward, v to its left."},
 }
+
+_JOINT_COMMON: dict[str, Any] = {
+    "type": {"enum": [t.value for t in KINDS]},
+    "links": {"type": "array", "items": _NAME, "minItems": 2},
+    "description": {"type": "string"},
+    "closure": {"enum": ["form", "force", "self"]},
+    **_PLACE,
+}
+# Every kind's keys, generated from the pair-kind registry (a key two kinds share, such as
+# `path` or `profiles`, has one fragment) …
+_JOINT_KEYS: dict[str, Any] = {}
+for _kind in KINDS.values():
+    for _key, _frag in _kind.keys.items():
+        _JOINT_KEYS.setdefault(_key, {})  # any shape here: each type's `then` below checks it
+# … and, per type, only its own keys (draft-07 if/then), so a `radius` on a gear is flagged.
+_JOINT_KINDS: list[dict[str, Any]] = [
+    {
+        "if": {"properties": {"type": {"const": t.value}}, "required": ["type"]},
+        "then": {"propertyNames": {"enum": [*_JOINT_COMMON, *k.keys]}, "properties": dict(k.keys)},
+    }
+    for t, k in KINDS.items()
+]
 
 SCHEMA: dict[str, Any] = {
     "$schema": "http://json-schema.org/draft-07/schema#",
@@ -81,32 +96,8 @@ SCHEMA: dict[str, Any] = {
                 "type": "object",
                 "required": ["type", "links"],
                 "additionalProperties": False,
-                "properties": {
-                    "type": {"enum": [t.value for t in JointType]},
-                    "links": {"type": "array", "items": _NAME, "minItems": 2},
-                    "description": {"type": "string"},
-                    "closure": {"enum": ["form", "force", "self"]},
-                    **_PLACE,
-                    "path": {
-                        "type": "object",
-                        "required": ["through"],
-                        "additionalProperties": False,
-                        "properties": {"through": _REF, "angle": _NUMBER, "toward": _REF},
-                    },
-                    "point": _NAME,
-                    "radius": _NUMBER,
-                    "normal": _NUMBER,
-                    "pressure_angle": _NUMBER,
-                    "radii": {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
-                    "teeth": {
-                        "type": "array",
-                        "items": {"type": "integer", "minimum": 1},
-                        "minItems": 2,
-                        "maxItems": 2,
-                    },
-                    "module": _NUMBER,
-                    "internal": {"type": "boolean"},
-                },
+                "properties": {**_JOINT_COMMON, **_JOINT_KEYS},
+                "allOf": _JOINT_KINDS,
             },
         },
         "lengths": {"type": "object", "additionalProperties": _NUMBER},

@@ -7,6 +7,7 @@ rad/s), so tests state their mechanisms the way the file format does.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any
 
 from mech.model import Drive, Joint, JointType, Length, Link, Mechanism, Path, Placement, Point, Ref
@@ -49,19 +50,20 @@ def build(
                 angle=p.get("angle"),
                 toward=_ref(p["toward"]) if "toward" in p else None,
             )
+        jtype = JointType(spec.get("type", "revolute"))
+        own: dict[str, Any] = {"path": path, "point": spec.get("point")}
+        own |= {k: spec[k] for k in ("radius", "normal", "pressure_angle", "internal") if k in spec}
+        if "radii" in spec:
+            own["radii"] = tuple(spec["radii"])
+        kind_spec = jtype.kind.spec
+        fields = {k: v for k, v in own.items() if v is not None and hasattr(kind_spec, k)}
         jts.append(
             Joint(
                 name=jname,
-                type=JointType(spec.get("type", "revolute")),
+                type=jtype,
                 links=tuple(spec["links"]),
                 place=_place(spec),
-                path=path,
-                point=spec.get("point"),
-                radius=spec.get("radius"),
-                normal=spec.get("normal"),
-                pressure_angle=spec.get("pressure_angle"),
-                radii=tuple(spec["radii"]) if "radii" in spec else None,
-                internal=spec.get("internal", False),
+                spec=replace(kind_spec, **fields),
             )
         )
     lns = [Length(*k.split("-"), float(v)) for k, v in (lengths or {}).items()]
