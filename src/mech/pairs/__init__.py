@@ -2,7 +2,7 @@
 
 A joint type (``revolute``, ``cam``, ``gear`` …) is the unit of design.  Each
 layer that treats joints differently by type keeps a registry keyed by
-:class:`~mech.model.JointType`, and a test (``tests/test_pairs.py``) walks every
+:class:`~mech.model.JointType`, and a test (``tests/test_pair_kinds.py``) walks every
 type through every registry, so a new kind is a checklist that fails until
 each layer has its entry:
 

@@ -2,7 +2,7 @@
 
 Adding a kind: write its module here (keys, reader, classification — see
 :class:`mech.pairs.base.PairKind`), add it to :data:`KINDS`, then give it an
-entry in each registry ``tests/test_pairs.py`` walks.
+entry in each registry ``tests/test_pair_kinds.py`` walks.
 """
 
 from __future__ import annotations
