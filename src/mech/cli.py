@@ -634,6 +634,84 @@ def draw_command(
         click.echo(dumps(summary))
 
 
+# -- cams -----------------------------------------------------------------------------
+@cli.command(name="cam")
+@file_argument
+@click.option("--rpm", type=float, help="Cam speed in rpm (overrides the file's drive).")
+@click.option(
+    "--direction", type=click.Choice(["cw", "ccw"]), help="The sense the cam turns (overrides the drive)."
+)
+@click.option("--joint", help="The cam joint to analyse, when the file has several with a programme.")
+@click.option(
+    "--step",
+    type=click.FloatRange(min=0.1, max=360.0),
+    default=30.0,
+    show_default=True,
+    help="Cam angle between rows of the motion table, degrees.",
+)
+@click.option(
+    "--samples",
+    type=click.IntRange(min=36, max=100_000),
+    default=1440,
+    show_default=True,
+    help="Cam angles sampled over the turn (points on the profile).",
+)
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Draw the cam profile to scale (.svg).")
+@click.option("--diagram", type=click.Path(dir_okay=False), help="Plot the s–v–a–j diagrams (.svg).")
+@json_option
+@handles_errors
+def cam_command(
+    file: str,
+    rpm: float | None,
+    direction: str | None,
+    joint: str | None,
+    step: float,
+    samples: int,
+    output: str | None,
+    diagram: str | None,
+    as_json: bool,
+) -> None:
+    """Generate a cam's profile from its follower's programme and analyse it.
+
+    The follower's displacement, velocity, acceleration and jerk over the turn,
+    the largest pressure angle and where, the least radius of curvature against
+    the roller (undercut named) or a flat face's cusp; -o draws the profile to
+    scale, --diagram the s–v–a–j diagrams.
+    """
+    from mech.cam.analysis import analyse
+    from mech.cam.mechanism import cam_setup
+    from mech.loader import load
+
+    if rpm is not None and not (rpm > 0 and math.isfinite(rpm)):
+        raise InputError(f"--rpm must be a positive number, not {rpm:g}")
+    for path in (output, diagram):
+        if path is not None and not path.lower().endswith(".svg"):
+            raise InputError(f"{path}: cam drawings are written as .svg")
+    mechanism = load(file)
+    sense = None if direction is None else (1 if direction == "ccw" else -1)
+    omega = None if rpm is None else rpm * 2 * math.pi / 60
+    setup = cam_setup(mechanism, joint, omega=omega, sense=sense)
+    result = analyse(setup.layout, omega=setup.omega, samples=samples)
+    if output is not None or diagram is not None:
+        from mech.draw.cam import diagram_figure, profile_figure
+        from mech.draw.svg import to_svg
+
+        if output is not None:
+            _write(output, to_svg(profile_figure(setup, result, title=mechanism.label)))
+        if diagram is not None:
+            _write(diagram, to_svg(diagram_figure(result, title=mechanism.label)))
+    if as_json:
+        from mech.render.cam import cam_json
+        from mech.render.jsonout import dumps
+
+        click.echo(dumps(cam_json(setup, result, path=file, name=mechanism.name, step_deg=step)))
+        return
+    from mech.render.cam import cam_table
+    from mech.render.console import stdout
+
+    cam_table(setup, result, stdout(), name=mechanism.label, step_deg=step)
+
+
 def main(argv: Sequence[str] | None = None) -> None:
     """Entry point of the ``mech`` console script and ``python -m mech``."""
     cli.main(args=list(argv) if argv is not None else None, prog_name="mech")

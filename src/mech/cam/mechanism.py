@@ -1,0 +1,209 @@
+"""A cam's layout read from a mechanism: where the cam turns and where its follower is.
+
+The programme says how the follower moves; the mechanism's other joints say
+where it is:
+
+* the cam turns about its revolute joint on the ground (placed with ``at``);
+* a translating follower slides on a prismatic joint whose ``path`` is its line
+  (it rises along the path's direction: ``angle``, or ``through`` → ``toward``),
+  and the path's distance from the cam's centre is the offset (a programme's
+  ``offset``, when given, must agree with it);
+* an oscillating follower turns about its revolute joint on the ground; its arm
+  runs from that pivot to the cam joint (the knife edge or the roller's centre),
+  of the length ``lengths`` gives (or as drawn, when the cam joint has ``at``).
+  The cam joint's ``near`` (or ``at``) picks which of the two places where the
+  arm can meet the base circle; without it, the one to the left of the line from
+  the pivot to the cam's centre;
+* the cam's drive gives its sense (counter-clockwise unless it says cw), its
+  speed, and its ``angle``: the rotation from the programme's start.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from mech.cam.profile import CamLayout, evaluate, layout_problem
+from mech.errors import InputError, UnsupportedError
+from mech.model import Joint, JointType, Mechanism, Ref
+
+__all__ = ["CamSetup", "cam_joints", "cam_setup"]
+
+Vec = tuple[float, float]
+
+
+@dataclass(frozen=True, slots=True)
+class CamSetup:
+    """A cam joint with a programme, placed: ``layout`` relative to the cam's ``centre``.
+
+    ``angle``: the cam's rotation from the programme's start at the drawn instant
+    (rad, in its sense); ``omega``: its speed (rad/s, magnitude) or ``None``.
+    """
+
+    joint: Joint
+    cam: str
+    follower: str
+    centre: Vec
+    layout: CamLayout
+    angle: float
+    omega: float | None
+
+
+def cam_joints(mechanism: Mechanism) -> tuple[Joint, ...]:
+    """The cam joints that carry a programme, in file order."""
+    return tuple(j for j in mechanism.joints if j.type is JointType.CAM and j.program is not None)
+
+
+def _fail(joint: Joint, message: str, hint: str | None = None) -> InputError:
+    return InputError(message, where=joint.where, hint=hint)
+
+
+def _coords(mechanism: Mechanism, ref: Ref, joint: Joint) -> Vec:
+    if ref.xy is not None:
+        return ref.xy
+    name = ref.name or ""
+    for j in mechanism.joints:
+        if j.name == name and j.place.at is not None:
+            return j.place.at
+    for p in mechanism.points:
+        if p.name == name and p.place.at is not None:
+            return p.place.at
+    raise _fail(joint, f"the follower's path goes through {name!r}, which is not placed", "give it `at: [x, y]`")
+
+
+def cam_setup(
+    mechanism: Mechanism, joint: str | None = None, *, omega: float | None = None, sense: int | None = None
+) -> CamSetup:
+    """Place the cam with a programme (``joint`` names it when there are several).
+
+    ``omega`` (rad/s, magnitude) and ``sense`` (+1 ccw, −1 cw) override the drive.
+    Raises :class:`~mech.errors.InputError` (located at the cam joint) when the
+    layout cannot be read or is impossible, :class:`~mech.errors.UnsupportedError`
+    when the file has no cam with a programme.
+    """
+    cams = cam_joints(mechanism)
+    if not cams:
+        raise UnsupportedError(
+            "this mechanism has no cam joint with a `program`",
+            where=None,
+            hint="give a cam joint `program: {base_radius, follower, segments}` (cli.md § mech cam)",
+        )
+    if joint is None:
+        if len(cams) > 1:
+            raise UnsupportedError(
+                f"this mechanism has {len(cams)} cams with a programme ({', '.join(j.name for j in cams)})",
+                hint="name one with --joint",
+            )
+        cj = cams[0]
+    else:
+        named = [j for j in cams if j.name == joint]
+        if not named:
+            raise UnsupportedError(
+                f"no cam joint {joint!r} with a programme", hint="cams: " + ", ".join(j.name for j in cams)
+            )
+        cj = named[0]
+    program = cj.program
+    assert program is not None
+    cam, follower = cj.links[0], cj.links[1]
+    ground = mechanism.ground
+    pivots = [
+        j for j in mechanism.joints if j.type is JointType.REVOLUTE and cam in j.links and ground in j.links
+    ]
+    if len(pivots) != 1 or pivots[0].place.at is None:
+        raise _fail(
+            cj,
+            f"the cam {cam} must turn about one revolute joint on {ground} placed with `at`",
+            f"e.g. O: {{type: revolute, links: [{ground}, {cam}], at: [0, 0]}}",
+        )
+    centre = pivots[0].place.at
+    drive = next((d for d in mechanism.drives if d.link == cam), None)
+    angle = drive.angle if drive is not None and drive.angle is not None else 0.0
+    if sense is None:
+        sense = -1 if drive is not None and drive.omega is not None and drive.omega < 0 else 1
+    if omega is None and drive is not None and drive.omega is not None:
+        omega = abs(drive.omega)
+    if program.motion == "translating":
+        slide = next(
+            j
+            for j in mechanism.joints
+            if j.type is JointType.PRISMATIC and j.links[0] == follower and ground in j.links
+        )
+        if slide.path is None:
+            raise _fail(slide, f"the follower's prismatic joint {slide.name} needs a `path`: its line")
+        through = _coords(mechanism, slide.path.through, slide)
+        if slide.path.angle is not None:
+            axis = slide.path.angle
+        else:
+            assert slide.path.toward is not None
+            to = _coords(mechanism, slide.path.toward, slide)
+            if math.dist(to, through) == 0:
+                raise _fail(slide, f"the path of {slide.name} goes toward its own `through` point")
+            axis = math.atan2(to[1] - through[1], to[0] - through[0])
+        # signed offset: positive on the side where the cam's surface moves the way the follower rises
+        nx, ny = -math.sin(axis), math.cos(axis)
+        e_n = (through[0] - centre[0]) * nx + (through[1] - centre[1]) * ny
+        offset = -sense * e_n
+        size = program.base_radius + program.stroke + abs(offset)
+        if program.offset is not None and abs(program.offset - offset) > 1e-6 * size:
+            raise _fail(
+                cj,
+                f"the programme's offset {program.offset:.6g} m disagrees with the path of {slide.name}, "
+                f"which puts the follower's line {offset:.6g} m from the cam's centre "
+                "(positive on the side where the cam's surface moves the way the follower rises)",
+                "move the path, or leave `offset` out and let the path decide",
+            )
+        layout = CamLayout(program, sense=sense, axis=axis, offset=offset)
+    else:
+        turn = next(
+            j
+            for j in mechanism.joints
+            if j.type is JointType.REVOLUTE and follower in j.links and ground in j.links
+        )
+        if turn.place.at is None:
+            raise _fail(turn, f"the follower's pivot {turn.name} must be placed with `at`")
+        pivot = (turn.place.at[0] - centre[0], turn.place.at[1] - centre[1])
+        if program.follower == "flat":
+            arm = program.offset or 0.0
+        else:
+            arm = _arm(mechanism, cj, turn)
+        layout = CamLayout(program, sense=sense, pivot=pivot, arm=arm, branch=1)
+        hint = cj.place.at or cj.place.near
+        if hint is not None and program.follower != "flat" and layout_problem(layout) is None:
+            target = (hint[0] - centre[0], hint[1] - centre[1])
+
+            def miss(branch: int) -> float:
+                st = evaluate(CamLayout(program, sense=sense, pivot=pivot, arm=arm, branch=branch), [angle])
+                return math.dist(tuple(st.point[0]), target)
+
+            if miss(-1) < miss(1):
+                layout = CamLayout(program, sense=sense, pivot=pivot, arm=arm, branch=-1)
+    problem = layout_problem(layout)
+    if problem:
+        raise _fail(cj, problem)
+    if cj.place.at is not None and program.follower != "flat":
+        at = evaluate(layout, [angle]).point[0]
+        drawn = (cj.place.at[0] - centre[0], cj.place.at[1] - centre[1])
+        gap = math.dist(tuple(at), drawn)
+        size = program.base_radius + layout.roller + (program.stroke if not layout.oscillating else 0.0)
+        if gap > 1e-4 * size:
+            raise _fail(
+                cj,
+                f"{cj.name} is drawn {gap:.6g} m from where the programme puts the follower's point "
+                f"at a cam angle of {math.degrees(angle):.6g}° ({at[0] + centre[0]:.6g}, {at[1] + centre[1]:.6g}) m",
+                "leave `at` out (mech places it), or draw it there",
+            )
+    return CamSetup(cj, cam, follower, centre, layout, angle, omega)
+
+
+def _arm(mechanism: Mechanism, cj: Joint, turn: Joint) -> float:
+    """The oscillating arm: pivot to the cam joint, from ``lengths`` or as drawn."""
+    for length in mechanism.lengths:
+        if {length.a, length.b} == {cj.name, turn.name}:
+            return length.value
+    if cj.place.at is not None and turn.place.at is not None:
+        return math.dist(cj.place.at, turn.place.at)
+    raise _fail(
+        cj,
+        f"the oscillating follower's arm from {turn.name} to {cj.name} has no length",
+        f"add `lengths: {{{turn.name}{cj.name}: …}}` (pivot to the knife edge or roller centre)",
+    )

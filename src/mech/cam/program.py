@@ -1,0 +1,173 @@
+"""A cam's motion programme as the file gives it: segments of rise, dwell and return.
+
+These are plain frozen records (no numpy), so that :mod:`mech.model` can hold
+a programme on its ``cam`` joint without importing anything heavy.  The
+follower's motion they describe is evaluated by :func:`follower_motion`.
+
+Angles are in radians, counted from the programme's start in the sense the
+cam turns; a lift is in metres for a translating follower and in radians for
+an oscillating one (its arm's swing).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from mech.errors import Problem, Where
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from mech.cam.laws import Motion
+
+__all__ = [
+    "FOLLOWERS",
+    "LAW_NAMES",
+    "CamProgram",
+    "Segment",
+    "follower_motion",
+    "program_problems",
+]
+
+FOLLOWERS = ("knife", "roller", "flat")
+LAW_NAMES = ("uniform", "shm", "parabolic", "cycloidal")
+FULL_TURN = 2 * math.pi
+_ANGLE_TOL = 1e-9  # rad: the segments' sum is 360° to this
+
+
+@dataclass(frozen=True, slots=True)
+class Segment:
+    """One part of the programme.
+
+    ``kind`` is ``rise``, ``dwell`` or ``return``; ``lift`` the height risen
+    (or fallen) in SI (0 for a dwell); ``over`` the cam angle it takes (rad);
+    ``law`` the motion law of a rise or return (``None`` for a dwell).
+    """
+
+    kind: str
+    over: float
+    lift: float = 0.0
+    law: str | None = None
+    where: Where | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class CamProgram:
+    """What a ``cam`` joint's ``program`` says.
+
+    ``motion`` is ``translating`` (the follower slides on a prismatic joint)
+    or ``oscillating`` (it turns about its pivot); it is not written in the
+    file but follows from the follower's joint to the ground.  ``offset`` is
+    ``None`` when the file does not give it (then the follower's path decides).
+    """
+
+    base_radius: float
+    follower: str
+    segments: tuple[Segment, ...]
+    motion: str = "translating"
+    roller_radius: float | None = None
+    offset: float | None = None
+    where: Where | None = field(default=None, compare=False)
+
+    @property
+    def stroke(self) -> float:
+        """The largest lift over the programme (m or rad)."""
+        lift = peak = 0.0
+        for seg in self.segments:
+            lift += seg.lift if seg.kind == "rise" else -seg.lift if seg.kind == "return" else 0.0
+            peak = max(peak, lift)
+        return peak
+
+    @property
+    def starts(self) -> tuple[float, ...]:
+        """The cam angle (rad) at which each segment starts."""
+        out, at = [], 0.0
+        for seg in self.segments:
+            out.append(at)
+            at += seg.over
+        return tuple(out)
+
+
+def program_problems(segments: tuple[Segment, ...], where: Where | None) -> list[Problem]:
+    """What is wrong with a list of segments, each problem placed at its segment.
+
+    The segments must cover exactly 360°, and the follower must come back to
+    where it started: a return can only fall as far as the follower has risen,
+    and the rises and returns must balance at the end.
+    """
+    problems: list[Problem] = []
+    if not segments:
+        return [Problem("a cam programme needs segments", where, "e.g. [{rise: 30, over: 120, law: shm}, …]")]
+    total = sum(seg.over for seg in segments)
+    if abs(total - FULL_TURN) > _ANGLE_TOL:
+        shown = math.degrees(total)
+        problems.append(
+            Problem(
+                f"the segments cover {shown:.6g}°, not 360°",
+                where,
+                f"{'add' if shown < 360 else 'take away'} {abs(360 - shown):.6g}° "
+                "(a dwell of that much, or longer or shorter segments)",
+            )
+        )
+    lift = 0.0
+    scale = max((seg.lift for seg in segments), default=0.0)
+    tol = 1e-9 * max(scale, 1e-300)
+    for seg in segments:
+        if seg.kind == "rise":
+            lift += seg.lift
+        elif seg.kind == "return":
+            if seg.lift > lift + tol:
+                problems.append(
+                    Problem(
+                        f"this return falls {seg.lift:.6g} but the follower has only risen {lift:.6g} (SI units)",
+                        seg.where,
+                        "a return brings the follower back down: it cannot fall below where it started",
+                    )
+                )
+            lift -= seg.lift
+    if abs(lift) > tol and not problems:
+        problems.append(
+            Problem(
+                f"the follower ends the turn {lift:.6g} (SI units) above where it started",
+                segments[-1].where or where,
+                "the returns must bring it back down by as much as the rises lift it",
+            )
+        )
+    return problems
+
+
+def follower_motion(program: CamProgram, theta: ArrayLike) -> Motion:
+    """The follower's lift and its derivatives against cam angle, at cam angles ``theta`` (rad).
+
+    ``theta`` is the cam's rotation from the programme's start, in the sense it
+    turns; any value is taken modulo one turn.  Returns a
+    :class:`mech.cam.laws.Motion` (``s`` in m or rad, ``ds`` per rad …).  At a
+    boundary between segments the later segment's values are given.
+    """
+    import numpy as np
+
+    from mech.cam.laws import Motion, rise
+
+    th = np.mod(np.asarray(theta, dtype=float), FULL_TURN)
+    s = np.zeros_like(th)
+    ds = np.zeros_like(th)
+    d2s = np.zeros_like(th)
+    d3s = np.zeros_like(th)
+    base = 0.0  # lift at the segment's start
+    for start, seg in zip(program.starts, program.segments, strict=True):
+        mask = (th >= start) & (th < start + seg.over)
+        if seg is program.segments[-1]:
+            mask |= th >= start
+        if seg.kind == "dwell" or seg.law is None:
+            s[mask] = base
+        else:
+            m = rise(seg.law, (th[mask] - start) / seg.over, seg.lift, seg.over)
+            sign = 1.0 if seg.kind == "rise" else -1.0
+            s[mask] = base + sign * m.s
+            ds[mask] = sign * m.ds
+            d2s[mask] = sign * m.d2s
+            d3s[mask] = sign * m.d3s
+            base += sign * seg.lift
+    return Motion(s, ds, d2s, d3s)
