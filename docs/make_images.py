@@ -5,13 +5,18 @@
 Each example with a drive and geometry gets ``<name>.svg``: the configuration
 diagram, the velocity polygon and, where the file allows it, the acceleration
 polygon; the four-bar and the slider crank also get ``<name>_icentres.svg``.
+A cam generated from its programme gets its profile (``<name>.svg``) and its
+s–v–a–j diagrams (``<name>_sva.svg``), as ``mech cam -o … --diagram …`` draws them.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
+from mech.cam.analysis import analyse
+from mech.cam.mechanism import cam_joints, cam_setup
 from mech.draw import draw, save
+from mech.draw.cam import diagram_figure, profile_figure
 from mech.errors import MechError
 from mech.icentres import locate
 from mech.kinematics import solve
@@ -25,6 +30,12 @@ def main() -> None:
     OUT.mkdir(parents=True, exist_ok=True)
     for path in sorted((ROOT / "mechanisms").glob("*.yaml")):
         m = load(path)
+        if cam_joints(m):
+            setup = cam_setup(m)
+            result = analyse(setup.layout, omega=setup.omega)
+            save(profile_figure(setup, result, title=m.label), OUT / f"{path.stem}.svg")
+            save(diagram_figure(result, title=m.label), OUT / f"{path.stem}_sva.svg")
+            continue
         if not (m.drives and m.has_geometry):
             continue
         try:

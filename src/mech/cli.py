@@ -656,8 +656,10 @@ def draw_command(
     show_default=True,
     help="Cam angles sampled over the turn (points on the profile).",
 )
-@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Draw the cam profile to scale (.svg).")
-@click.option("--diagram", type=click.Path(dir_okay=False), help="Plot the s–v–a–j diagrams (.svg).")
+@click.option(
+    "-o", "--output", type=click.Path(dir_okay=False), help="Draw the cam profile to scale (.svg or .png)."
+)
+@click.option("--diagram", type=click.Path(dir_okay=False), help="Plot the s–v–a–j diagrams (.svg or .png).")
 @json_option
 @handles_errors
 def cam_command(
@@ -684,22 +686,19 @@ def cam_command(
 
     if rpm is not None and not (rpm > 0 and math.isfinite(rpm)):
         raise InputError(f"--rpm must be a positive number, not {rpm:g}")
-    for path in (output, diagram):
-        if path is not None and not path.lower().endswith(".svg"):
-            raise InputError(f"{path}: cam drawings are written as .svg")
     mechanism = load(file)
     sense = None if direction is None else (1 if direction == "ccw" else -1)
     omega = None if rpm is None else rpm * 2 * math.pi / 60
     setup = cam_setup(mechanism, joint, omega=omega, sense=sense)
     result = analyse(setup.layout, omega=setup.omega, samples=samples)
     if output is not None or diagram is not None:
+        from mech.draw import save
         from mech.draw.cam import diagram_figure, profile_figure
-        from mech.draw.svg import to_svg
 
         if output is not None:
-            _write(output, to_svg(profile_figure(setup, result, title=mechanism.label)))
+            save(profile_figure(setup, result, title=mechanism.label), output)
         if diagram is not None:
-            _write(diagram, to_svg(diagram_figure(result, title=mechanism.label)))
+            save(diagram_figure(result, title=mechanism.label), diagram)
     if as_json:
         from mech.render.cam import cam_json
         from mech.render.jsonout import dumps

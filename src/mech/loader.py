@@ -1036,6 +1036,7 @@ class _Reader:
             about=about,
             speed=speed,
             accel=accel,
+            direction=direction,
             where=self.where(node),
             relative_to=relative_to,
         )

@@ -288,6 +288,8 @@ class Drive:
     ground, like every angle in ``mech``) whatever ``about`` is, unless
     ``relative_to`` names a link: then they are the driven link's minus that
     link's (θ_b − θ_a, ω_b − ω_a, α_b − α_a).
+    ``direction`` (``cw``/``ccw``) is the sense as written, kept even without a
+    speed (a cam's programme is counted in the sense it turns).
     """
 
     link: str | None = None
@@ -298,6 +300,7 @@ class Drive:
     about: str | None = None
     speed: float | None = None
     accel: float | None = None
+    direction: str | None = None
     where: Where | None = field(default=None, compare=False)
     relative_to: str | None = None
 

@@ -68,7 +68,9 @@ def _coords(mechanism: Mechanism, ref: Ref, joint: Joint) -> Vec:
     for p in mechanism.points:
         if p.name == name and p.place.at is not None:
             return p.place.at
-    raise _fail(joint, f"the follower's path goes through {name!r}, which is not placed", "give it `at: [x, y]`")
+    raise _fail(
+        joint, f"the follower's path goes through {name!r}, which is not placed", "give it `at: [x, y]`"
+    )
 
 
 def cam_setup(
@@ -119,7 +121,10 @@ def cam_setup(
     drive = next((d for d in mechanism.drives if d.link == cam), None)
     angle = drive.angle if drive is not None and drive.angle is not None else 0.0
     if sense is None:
-        sense = -1 if drive is not None and drive.omega is not None and drive.omega < 0 else 1
+        if drive is not None and drive.omega is not None:
+            sense = -1 if drive.omega < 0 else 1
+        else:
+            sense = -1 if drive is not None and drive.direction == "cw" else 1
     if omega is None and drive is not None and drive.omega is not None:
         omega = abs(drive.omega)
     if program.motion == "translating":
@@ -162,10 +167,7 @@ def cam_setup(
         if turn.place.at is None:
             raise _fail(turn, f"the follower's pivot {turn.name} must be placed with `at`")
         pivot = (turn.place.at[0] - centre[0], turn.place.at[1] - centre[1])
-        if program.follower == "flat":
-            arm = program.offset or 0.0
-        else:
-            arm = _arm(mechanism, cj, turn)
+        arm = program.offset or 0.0 if program.follower == "flat" else _arm(mechanism, cj, turn)
         layout = CamLayout(program, sense=sense, pivot=pivot, arm=arm, branch=1)
         hint = cj.place.at or cj.place.near
         if hint is not None and program.follower != "flat" and layout_problem(layout) is None:

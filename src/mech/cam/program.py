@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from mech.errors import Problem, Where
 
@@ -29,6 +29,7 @@ __all__ = [
     "Segment",
     "follower_motion",
     "program_problems",
+    "program_schema",
 ]
 
 FOLLOWERS = ("knife", "roller", "flat")
@@ -88,6 +89,45 @@ class CamProgram:
             out.append(at)
             at += seg.over
         return tuple(out)
+
+
+def program_schema(number: dict[str, Any]) -> dict[str, Any]:
+    """The JSON Schema fragment of a cam joint's ``program`` (``number``: the schema of a number)."""
+    law = {"enum": list(LAW_NAMES)}
+    segment = {
+        "oneOf": [
+            {
+                "type": "object",
+                "required": ["rise", "over", "law"],
+                "additionalProperties": False,
+                "properties": {"rise": number, "over": number, "law": law},
+            },
+            {
+                "type": "object",
+                "required": ["return", "over", "law"],
+                "additionalProperties": False,
+                "properties": {"return": number, "over": number, "law": law},
+            },
+            {
+                "type": "object",
+                "required": ["dwell"],
+                "additionalProperties": False,
+                "properties": {"dwell": number},
+            },
+        ]
+    }
+    return {
+        "type": "object",
+        "required": ["base_radius", "follower", "segments"],
+        "additionalProperties": False,
+        "properties": {
+            "base_radius": number,
+            "follower": {"enum": list(FOLLOWERS)},
+            "roller_radius": number,
+            "offset": number,
+            "segments": {"type": "array", "items": segment, "minItems": 1},
+        },
+    }
 
 
 def program_problems(segments: tuple[Segment, ...], where: Where | None) -> list[Problem]:

@@ -28,7 +28,9 @@ def follower_motion_kind(joints: list[Joint], follower: str, ground: str | None)
     """``translating`` when the follower slides on the ground, ``oscillating`` when it turns
     about a pivot on the ground, ``None`` when neither (or both)."""
     slides = [
-        j for j in joints if j.type is JointType.PRISMATIC and j.links[:1] == (follower,) and ground in j.links
+        j
+        for j in joints
+        if j.type is JointType.PRISMATIC and j.links[:1] == (follower,) and ground in j.links
     ]
     turns = [j for j in joints if j.type is JointType.REVOLUTE and follower in j.links and ground in j.links]
     if len(slides) + len(turns) != 1:
@@ -74,7 +76,9 @@ def _program(reader: Any, joint: Joint, node: Any, joints: list[Joint], ground: 
         if kind != "roller":
             reader.problem(f["roller_radius"][0], f"`roller_radius` belongs to a roller follower, not {kind}")
         else:
-            roller = reader.number(f["roller_radius"][1], "the roller radius", Dimension.LENGTH, positive=True)
+            roller = reader.number(
+                f["roller_radius"][1], "the roller radius", Dimension.LENGTH, positive=True
+            )
     elif kind == "roller":
         reader.problem(f["follower"][1], "a roller follower needs `roller_radius`", "e.g. roller_radius: 10")
     offset = None

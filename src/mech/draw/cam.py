@@ -21,10 +21,10 @@ from mech.cam.analysis import CamAnalysis
 from mech.cam.mechanism import CamSetup
 from mech.cam.profile import evaluate
 from mech.draw.scene import (
-    Figure,
     INK,
     PALETTE,
     Circle,
+    Figure,
     Line,
     Page,
     Poly,
@@ -80,9 +80,10 @@ def profile_figure(setup: CamSetup, a: CamAnalysis, *, title: str = "") -> Figur
     extent = max(xmax - xmin, ymax - ymin)
     scale = nice_scale(extent, room)  # m per cm
     margin = 14.0
-    tf = Transform(scale, (float(xmin), float(ymax)), (margin, margin + 6))
+    drawn = (xmax - xmin) * 10.0 / scale
+    width = max(drawn + 2 * margin, 190.0)
+    tf = Transform(scale, (float(xmin), float(ymax)), ((width - drawn) / 2, margin + 6))
     page = Page()
-    width = max(tf.length(xmax - xmin) + 2 * margin, 190.0)
     height = tf.length(ymax - ymin) + 2 * margin + 18
     page.width, page.height = width, height
     r = tf.length
@@ -91,7 +92,14 @@ def profile_figure(setup: CamSetup, a: CamAnalysis, *, title: str = "") -> Figur
         page.add(Text((width / 2, 6.0), title, size=3.6, bold=True))
     page.add(Circle(centre, r(prog.base_radius), THIN, cls="base-circle"))
     if lay.roller:
-        page.add(Circle(centre, r(lay.prime_radius), Style(stroke="#aaaaaa", width=0.2, dash=(0.6, 0.8)), cls="prime-circle"))
+        page.add(
+            Circle(
+                centre,
+                r(lay.prime_radius),
+                Style(stroke="#aaaaaa", width=0.2, dash=(0.6, 0.8)),
+                cls="prime-circle",
+            )
+        )
         pitch = _rot(a.state.pitch, lay.sense * setup.angle) + np.array([cx, cy])
         page.add(
             Poly(
@@ -125,7 +133,9 @@ def profile_figure(setup: CamSetup, a: CamAnalysis, *, title: str = "") -> Figur
         back = (point[0] - u[0] * 1.2 * reach, point[1] - u[1] * 1.2 * reach)
         page.add(Line(tf(back), tf(top), THIN, cls="line-of-stroke"))
     if prog.follower == "roller":
-        page.add(Circle(tf(point), r(lay.roller), Style(stroke=FOLLOWER, width=0.45, fill="white"), cls="roller"))
+        page.add(
+            Circle(tf(point), r(lay.roller), Style(stroke=FOLLOWER, width=0.45, fill="white"), cls="roller")
+        )
     elif prog.follower == "flat":
         n = (contact[0] - point[0], contact[1] - point[1])
         # the face: along the contact's line, a little beyond the contact either way
@@ -191,13 +201,28 @@ def diagram_figure(a: CamAnalysis, *, title: str = "", jerk: bool = True) -> Fig
             hi = lo + 1.0
         y_of = lambda v, y0=y0, lo=lo, hi=hi: y0 + ph - (v - lo) / (hi - lo) * ph  # noqa: E731
         colour = PALETTE[k % len(PALETTE)]
-        page.add(Poly(((left, y0), (left + pw, y0), (left + pw, y0 + ph), (left, y0 + ph)), style=Style(stroke="#bbbbbb", width=0.2)))
+        page.add(
+            Poly(
+                ((left, y0), (left + pw, y0), (left + pw, y0 + ph), (left, y0 + ph)),
+                style=Style(stroke="#bbbbbb", width=0.2),
+            )
+        )
         page.add(Line((left, y_of(0.0)), (left + pw, y_of(0.0)), Style(stroke="#999999", width=0.2)))
         for s in starts[1:]:
-            page.add(Line((x_of(s), y0), (x_of(s), y0 + ph), Style(stroke="#cccccc", width=0.2, dash=(1.0, 1.0))))
+            page.add(
+                Line((x_of(s), y0), (x_of(s), y0 + ph), Style(stroke="#cccccc", width=0.2, dash=(1.0, 1.0)))
+            )
         pts = _broken(theta, values, x_of, y_of, a.layout.program.starts)
         for run in pts:
-            page.add(Poly(tuple(run), closed=False, style=Style(stroke=colour, width=0.45), cls="diagram", name=label))
+            page.add(
+                Poly(
+                    tuple(run),
+                    closed=False,
+                    style=Style(stroke=colour, width=0.45),
+                    cls="diagram",
+                    name=label,
+                )
+            )
         page.add(Text((left - 2, y0 + 3), f"{fmt(hi, 3)}", size=2.4, anchor="end"))
         page.add(Text((left - 2, y0 + ph - 1), f"{fmt(lo, 3)}", size=2.4, anchor="end"))
         page.add(Text((4, y0 + ph / 2), f"{label} ({unit})", size=2.8, anchor="start", colour=colour))

@@ -89,7 +89,9 @@ def _ext(e: Extreme | None, *, degrees: bool = False) -> dict[str, float] | None
     return {"value": math.degrees(e.value) if degrees else e.value, "theta": math.degrees(e.theta)}
 
 
-def cam_json(setup: CamSetup, a: CamAnalysis, *, path: str, name: str | None, step_deg: float) -> dict[str, Any]:
+def cam_json(
+    setup: CamSetup, a: CamAnalysis, *, path: str, name: str | None, step_deg: float
+) -> dict[str, Any]:
     """The JSON record of ``mech cam`` (structure in cli.md § mech cam)."""
     lay = a.layout
     prog = lay.program
@@ -112,7 +114,9 @@ def cam_json(setup: CamSetup, a: CamAnalysis, *, path: str, name: str | None, st
         "prime_radius": lay.prime_radius,
         "roller_radius": prog.roller_radius,
         "offset": None if lay.oscillating else lay.offset,
-        "pivot": None if lay.pivot is None else [lay.pivot[0] + setup.centre[0], lay.pivot[1] + setup.centre[1]],
+        "pivot": None
+        if lay.pivot is None
+        else [lay.pivot[0] + setup.centre[0], lay.pivot[1] + setup.centre[1]],
         "arm": lay.arm,
         "stroke": a.stroke,
         "segments": segment_rows(a),
@@ -177,12 +181,15 @@ def cam_table(setup: CamSetup, a: CamAnalysis, console: Console, *, name: str, s
         where = (
             f"oscillating about ({(lay.pivot[0] + setup.centre[0]) * mm:.5g}, "
             f"{(lay.pivot[1] + setup.centre[1]) * mm:.5g}) mm, "
-            + (f"face {lay.arm * mm:.5g} mm from the pivot" if prog.follower == "flat" else f"arm {lay.arm * mm:.5g} mm")
+            + (
+                f"face {lay.arm * mm:.5g} mm from the pivot"
+                if prog.follower == "flat"
+                else f"arm {lay.arm * mm:.5g} mm"
+            )
         )
     else:
-        where = (
-            f"translating along {math.degrees(lay.axis) % 360:.4g}°, "
-            + ("in-line" if lay.offset == 0 else f"offset {lay.offset * mm:.5g} mm")
+        where = f"translating along {math.degrees(lay.axis) % 360:.4g}°, " + (
+            "in-line" if lay.offset == 0 else f"offset {lay.offset * mm:.5g} mm"
         )
     roller = f" (roller radius {prog.roller_radius * mm:.5g} mm)" if prog.roller_radius else ""
     console.print(f"  {setup.follower} (the follower): {kind}{roller}, {where}")
@@ -219,7 +226,11 @@ def cam_table(setup: CamSetup, a: CamAnalysis, console: Console, *, name: str, s
     s_unit = "°" if ang else "mm"
     cols = [("θ (°)", "right"), (f"s ({s_unit})", "right")]
     if a.omega is not None:
-        cols += [(f"v ({units['v']})", "right"), (f"a ({units['a']})", "right"), (f"j ({units['j']})", "right")]
+        cols += [
+            (f"v ({units['v']})", "right"),
+            (f"a ({units['a']})", "right"),
+            (f"j ({units['j']})", "right"),
+        ]
     cols += [("pressure angle (°)", "right"), ("ρ (mm)", "right")]
     for col, just in cols:
         mot.add_column(col, justify=just)  # type: ignore[arg-type]
@@ -243,15 +254,27 @@ def cam_table(setup: CamSetup, a: CamAnalysis, console: Console, *, name: str, s
 
     add("largest velocity", a.velocity, units["v"])
     if a.velocity_jumps:
-        res.add_row("acceleration", "∞ (velocity jumps)", ", ".join(f"{math.degrees(t):.4g}" for t in a.velocity_jumps))
+        res.add_row(
+            "acceleration",
+            "∞ (velocity jumps)",
+            ", ".join(f"{math.degrees(t):.4g}" for t in a.velocity_jumps),
+        )
     add("largest acceleration", a.acceleration, units["a"])
     if a.acceleration_jumps:
-        res.add_row("jerk", "∞ (acceleration jumps)", ", ".join(f"{math.degrees(t):.4g}" for t in a.acceleration_jumps))
+        res.add_row(
+            "jerk",
+            "∞ (acceleration jumps)",
+            ", ".join(f"{math.degrees(t):.4g}" for t in a.acceleration_jumps),
+        )
     add("largest jerk", a.jerk, units["j"])
     add("largest pressure angle", a.pressure, "°", 180 / math.pi)
     if prog.follower == "flat":
         add("least radius of curvature of the profile", a.least_radius_any, "mm", mm)
-        verdict = "cusp: the profile folds back (ρ < 0), raise the base circle" if a.cusp else "no cusp (ρ > 0 everywhere)"
+        verdict = (
+            "cusp: the profile folds back (ρ < 0), raise the base circle"
+            if a.cusp
+            else "no cusp (ρ > 0 everywhere)"
+        )
         res.add_row("profile", verdict, "")
         if a.face is not None:
             res.add_row(
