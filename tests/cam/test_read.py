@@ -6,6 +6,7 @@ import math
 
 import pytest
 
+from mech.cam.mechanism import cam_setup, joint_program
 from mech.errors import InputError
 from mech.loader import loads
 
@@ -37,8 +38,7 @@ def problems(text: str) -> list[tuple[int, int, str]]:
 
 
 def test_programme_is_read_in_the_files_units():
-    prog = loads(cam(GOOD)).joint("K").program
-    assert prog is not None
+    prog = cam_setup(loads(cam(GOOD))).layout.program
     assert prog.base_radius == pytest.approx(0.040)
     assert prog.roller_radius == pytest.approx(0.010)
     assert prog.motion == "translating"
@@ -54,19 +54,28 @@ def test_oscillating_followers_rise_is_an_angle():
         "{return: 20, over: 180, law: shm}]}",
         PIVOT,
     )
-    prog = loads(text).joint("K").program
-    assert prog is not None and prog.motion == "oscillating"
+    raw = joint_program(loads(text).joint("K"))
+    assert raw is not None and raw.motion is None  # not known until the follower's joint is
+    assert raw.segments[0].as_length == pytest.approx(0.020)
+    assert raw.segments[0].as_angle == pytest.approx(math.radians(20))
+    prog = cam_setup(loads(text + "lengths: {PK: 80}\n")).layout.program
+    assert prog.motion == "oscillating"
     assert prog.segments[0].lift == pytest.approx(math.radians(20))
 
 
-def test_rise_with_a_unit_of_the_wrong_kind_is_located():
+def test_rise_with_a_unit_of_the_wrong_kind_is_located_at_its_segment():
     text = cam(
         '{base_radius: 40, follower: knife, segments: [{rise: "20 deg", over: 180, law: shm}, '
-        "{return: 20, over: 180, law: shm}]}"
+        '{return: "20 deg", over: 180, law: shm}]}'
     )
-    ((line, col, message),) = problems(text)
-    assert line == 6 and text.splitlines()[5][col - 1 :].startswith('"20 deg"')
-    assert "length" in message
+    m = loads(text)  # a rise in degrees is fine until the follower turns out to slide
+    with pytest.raises(InputError) as info:
+        cam_setup(m)
+    lines = {(p.where.line, p.where.column) for p in info.value.problems}
+    assert len(info.value.problems) == 2
+    for line, col in lines:
+        assert text.splitlines()[line - 1][col - 1 :].startswith(("{rise", "{return"))
+    assert "this follower slides: its rise is a length" in info.value.problems[0].message
 
 
 def test_segments_short_of_a_turn_are_reported_with_what_to_add():
@@ -110,10 +119,19 @@ def test_each_mistake_in_a_programme_is_located(change, start, words):
     assert text.splitlines()[line - 1][col - 1 :].startswith(start)
 
 
-def test_follower_with_neither_slide_nor_pivot_is_refused():
+def test_follower_with_neither_slide_nor_pivot_is_refused_at_the_cam_joint():
     text = cam(GOOD, "  B: {type: revolute, links: [follower, cam]}\n")
-    found = problems(text)
-    assert any("must either slide" in m for _, _, m in found)
+    with pytest.raises(InputError) as info:
+        cam_setup(loads(text))
+    assert "must either slide" in str(info.value)
+    assert info.value.where is not None and info.value.where.line == 6
+
+
+def test_offset_on_an_oscillating_roller_is_refused():
+    text = cam(GOOD, PIVOT) + "lengths: {PK: 80}\n"
+    with pytest.raises(InputError) as info:
+        cam_setup(loads(text))
+    assert "`offset` belongs to a translating follower" in str(info.value)
 
 
 def test_program_on_a_joint_that_is_not_a_cam_is_an_unknown_key():

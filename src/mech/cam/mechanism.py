@@ -22,12 +22,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from mech.cam.profile import CamLayout, evaluate, layout_problem
+from mech.cam.program import CamProgram, resolve
 from mech.errors import InputError, UnsupportedError
 from mech.model import Joint, JointType, Mechanism, Ref
 
-__all__ = ["CamSetup", "cam_joints", "cam_setup"]
+if TYPE_CHECKING:
+    from mech.pairs.specs import Profile
+
+__all__ = ["CamSetup", "cam_joints", "cam_setup", "follower_motion_kind", "joint_program", "program_profiles"]
 
 Vec = tuple[float, float]
 
@@ -49,9 +54,34 @@ class CamSetup:
     omega: float | None
 
 
+def joint_program(joint: Joint) -> CamProgram | None:
+    """A cam joint's programme as the file gives it (``None`` for any other joint)."""
+    program = getattr(joint.spec, "program", None)
+    return program if isinstance(program, CamProgram) else None
+
+
 def cam_joints(mechanism: Mechanism) -> tuple[Joint, ...]:
     """The cam joints that carry a programme, in file order."""
-    return tuple(j for j in mechanism.joints if j.type is JointType.CAM and j.program is not None)
+    return tuple(j for j in mechanism.joints if j.type is JointType.CAM and joint_program(j) is not None)
+
+
+def follower_motion_kind(mechanism: Mechanism, follower: str) -> str | None:
+    """``translating`` when the follower slides on the ground, ``oscillating`` when it turns
+    about a pivot on the ground, ``None`` when neither (or both)."""
+    ground = mechanism.ground
+    slides = [
+        j
+        for j in mechanism.joints
+        if j.type is JointType.PRISMATIC and j.links[:1] == (follower,) and ground in j.links
+    ]
+    turns = [
+        j
+        for j in mechanism.joints
+        if j.type is JointType.REVOLUTE and follower in j.links and ground in j.links
+    ]
+    if len(slides) + len(turns) != 1:
+        return None
+    return "translating" if slides else "oscillating"
 
 
 def _fail(joint: Joint, message: str, hint: str | None = None) -> InputError:
@@ -104,10 +134,26 @@ def cam_setup(
                 f"no cam joint {joint!r} with a programme", hint="cams: " + ", ".join(j.name for j in cams)
             )
         cj = named[0]
-    program = cj.program
-    assert program is not None
+    raw = joint_program(cj)
+    assert raw is not None
     cam, follower = cj.links[0], cj.links[1]
     ground = mechanism.ground
+    motion = follower_motion_kind(mechanism, follower)
+    if motion is None:
+        raise _fail(
+            cj,
+            f"the follower {follower} of {cj.name} must either slide on one prismatic joint "
+            f"with {ground} or turn about one revolute joint on {ground}",
+            "a programme moves the second link of `links: [cam, follower]`: give it a prismatic "
+            "joint (translating) or a pivot (oscillating) on the ground",
+        )
+    if motion == "oscillating" and raw.follower != "flat" and raw.offset is not None:
+        raise _fail(
+            cj,
+            "`offset` belongs to a translating follower (or an oscillating flat face)",
+            "an oscillating follower's place is its pivot and its arm's length",
+        )
+    program = resolve(raw, motion)
     pivots = [
         j for j in mechanism.joints if j.type is JointType.REVOLUTE and cam in j.links and ground in j.links
     ]
@@ -195,6 +241,52 @@ def cam_setup(
                 "leave `at` out (mech places it), or draw it there",
             )
     return CamSetup(cj, cam, follower, centre, layout, angle, omega)
+
+
+def program_profiles(
+    mechanism: Mechanism, joint: Joint, positions: dict[str, tuple[float, float]] | None = None
+) -> dict[str, Profile]:
+    """The profiles a cam's programme gives, in the drawn configuration, keyed by link.
+
+    The cam gets the generated surface as a closed :class:`~mech.pairs.specs.Curve`
+    (720 points, the cam turned by its drive angle); the follower a
+    :class:`~mech.pairs.specs.Knife` at its edge, a :class:`~mech.pairs.specs.Circle`
+    (the roller) or a :class:`~mech.pairs.specs.Line` (the flat face), placed
+    where the programme puts it at that angle.  ``positions`` is not needed:
+    the programme and the layout place everything.
+    """
+    import math as _math
+
+    import numpy as np
+
+    from mech.pairs.specs import Circle, Curve, Knife, Line
+
+    del positions
+    setup = cam_setup(mechanism, joint.name)
+    lay = setup.layout
+    theta = np.linspace(0.0, 2 * _math.pi, 720, endpoint=False)
+    st = evaluate(lay, theta)
+    c, s = _math.cos(lay.sense * setup.angle), _math.sin(lay.sense * setup.angle)
+    ox, oy = setup.centre
+    curve = tuple((float(c * x - s * y + ox), float(s * x + c * y + oy)) for x, y in st.profile)
+    now = evaluate(lay, [setup.angle])
+    point = (float(now.point[0][0] + ox), float(now.point[0][1] + oy))
+    kind = lay.program.follower
+    follower: Profile
+    if kind == "knife":
+        follower = Knife(Ref(xy=point))
+    elif kind == "roller":
+        follower = Circle(Ref(xy=point), lay.roller)
+    else:
+        contact = (float(now.contact[0][0] + ox), float(now.contact[0][1] + oy))
+        if lay.oscillating:
+            assert lay.pivot is not None
+            pivot = (lay.pivot[0] + ox, lay.pivot[1] + oy)
+            direction = _math.atan2(contact[1] - pivot[1], contact[0] - pivot[0])
+            follower = Line(Ref(xy=contact), angle=direction)
+        else:
+            follower = Line(Ref(xy=contact), angle=lay.axis + _math.pi / 2)
+    return {setup.cam: Curve(curve), setup.follower: follower}
 
 
 def _arm(mechanism: Mechanism, cj: Joint, turn: Joint) -> float:

@@ -30,6 +30,7 @@ __all__ = [
     "follower_motion",
     "program_problems",
     "program_schema",
+    "resolve",
 ]
 
 FOLLOWERS = ("knife", "roller", "flat")
@@ -45,6 +46,12 @@ class Segment:
     ``kind`` is ``rise``, ``dwell`` or ``return``; ``lift`` the height risen
     (or fallen) in SI (0 for a dwell); ``over`` the cam angle it takes (rad);
     ``law`` the motion law of a rise or return (``None`` for a dwell).
+
+    The file's bare ``rise: 30`` is 30 mm for a translating follower and 30°
+    for an oscillating one, and which it is follows from the follower's joint
+    to the ground, known only once the whole mechanism is read.  So the reader
+    keeps both readings (``as_length`` in m, ``as_angle`` in rad; one of them
+    ``None`` when the value carries a unit) and :func:`resolve` picks one.
     """
 
     kind: str
@@ -52,6 +59,8 @@ class Segment:
     lift: float = 0.0
     law: str | None = None
     where: Where | None = field(default=None, compare=False)
+    as_length: float | None = None
+    as_angle: float | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -60,14 +69,15 @@ class CamProgram:
 
     ``motion`` is ``translating`` (the follower slides on a prismatic joint)
     or ``oscillating`` (it turns about its pivot); it is not written in the
-    file but follows from the follower's joint to the ground.  ``offset`` is
+    file but follows from the follower's joint to the ground: ``None`` until
+    :func:`resolve` is told which.  ``offset`` is
     ``None`` when the file does not give it (then the follower's path decides).
     """
 
     base_radius: float
     follower: str
     segments: tuple[Segment, ...]
-    motion: str = "translating"
+    motion: str | None = "translating"
     roller_radius: float | None = None
     offset: float | None = None
     where: Where | None = field(default=None, compare=False)
@@ -176,6 +186,44 @@ def program_problems(segments: tuple[Segment, ...], where: Where | None) -> list
             )
         )
     return problems
+
+
+def resolve(program: CamProgram, motion: str) -> CamProgram:
+    """The programme with its lifts read for a ``translating`` or ``oscillating`` follower.
+
+    Raises :class:`~mech.errors.InputError` with every segment whose lift is of
+    the wrong kind (a rise in mm for an oscillating follower …), and with the
+    programme's problems once the lifts are known.
+    """
+    from dataclasses import replace
+
+    from mech.errors import InputError
+
+    angular = motion == "oscillating"
+    problems: list[Problem] = []
+    segments = []
+    for seg in program.segments:
+        if seg.kind == "dwell":
+            segments.append(seg)
+            continue
+        lift = seg.as_angle if angular else seg.as_length
+        if lift is None:
+            noun, other = ("an angle", "a length") if angular else ("a length", "an angle")
+            problems.append(
+                Problem(
+                    f"the {seg.kind} is {other}, but this follower {'turns' if angular else 'slides'}: "
+                    f"its {seg.kind} is {noun}",
+                    seg.where,
+                    "an oscillating follower rises by an angle (deg), a translating one by a length",
+                )
+            )
+            continue
+        segments.append(replace(seg, lift=lift))
+    if not problems:
+        problems = program_problems(tuple(segments), program.where)
+    if problems:
+        raise InputError(problems=problems)
+    return replace(program, motion=motion, segments=tuple(segments))
 
 
 def follower_motion(program: CamProgram, theta: ArrayLike) -> Motion:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from mech.cam.program import program_schema
 from mech.model import JointType
 from mech.pairs.base import NUMBER, PROFILES, Fields, PairKind, Reader, read_profiles
 from mech.pairs.specs import ContactSpec
@@ -17,13 +18,13 @@ from mech.units import Dimension
 
 PROGRAM: dict[str, Any] = {
     "description": "The follower's programme, from which mech generates the cam profile (DESIGN § 1.1).",
-    "type": "object",
+    **program_schema(NUMBER),
 }
 
 
 def _read_program(r: Reader, node: Any, what: str) -> object:
     try:
-        from mech.cam import read_program  # type: ignore[attr-defined]
+        from mech.cam import read_program
     except ImportError:
         raise r.problem(node, f"{what}: cam programmes are not available in this version of mech") from None
     return read_program(r, node, what)
