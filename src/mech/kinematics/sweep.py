@@ -57,6 +57,7 @@ import numpy as np
 
 from mech.errors import GeometryError, InputError, UnsupportedError
 from mech.kinematics.dyads import ACCURATE_COND, SLACK, DyadProgram, numpy_namespace, program
+from mech.kinematics.march import Marcher
 from mech.kinematics.result import Kinematics
 from mech.kinematics.solve import SINGULAR, Compiled, compiled, continuation, instant_pairs, solve
 from mech.model import JointType, Mechanism
@@ -309,6 +310,7 @@ class _Closed:
     """Evaluate the dyad program at any array of angles, with everything a sweep derives."""
 
     method = "closed form"
+    vectorised = True  # evaluate() takes any array of angles: refinement on grids
 
     def __init__(self, comp: Compiled, prog: DyadProgram, omega: float, alpha: float, lvl: int) -> None:
         self.comp, self.prog, self.omega, self.alpha, self.lvl = comp, prog, omega, alpha, lvl
@@ -420,6 +422,17 @@ class _Newton:
         self.links = comp.system.links
         self.slides = tuple(ps.joint for ps in comp.layout.paths)
         self.points = tuple(p for p in comp.system.loc_names if not p.startswith("#"))
+        self.marcher: Marcher | None = None  # set when the series was marched: grids can then be evaluated
+
+    @property
+    def vectorised(self) -> bool:
+        """True when :meth:`evaluate` can refine on grids (the series was marched)."""
+        return self.marcher is not None
+
+    def evaluate(self, phi: np.ndarray) -> dict[str, np.ndarray]:
+        """Every array a sweep needs at angles ``phi`` between the marched steps (see Marcher.evaluate)."""
+        assert self.marcher is not None
+        return self.marcher.evaluate(phi)
 
     def series(self, phi: np.ndarray) -> list[dict[str, Any] | None]:
         """Warm-started continuation along ``phi`` (see :func:`~mech.kinematics.solve.continuation`)."""
@@ -477,7 +490,10 @@ class _Walk:
 
     def __init__(self, backend: _Newton, start: float) -> None:
         self.backend, self.start = backend, float(start)
-        self._begin()
+        marcher = Marcher.make(backend)  # stacked rows: one marched step per probe (mech.kinematics.march)
+        self._fast = None if marcher is None else marcher.walker(self.start)
+        if self._fast is None:
+            self._begin()
 
     def _begin(self) -> None:
         self._route = [self.start]
@@ -488,6 +504,8 @@ class _Walk:
 
     def to(self, angle: float) -> dict[str, Any] | None:
         """The sweep's arrays for one step at ``angle``, or None where it cannot be reached."""
+        if self._fast is not None:
+            return self._fast.to(angle)
         if self.lost:
             self._begin()
             if self.lost:
@@ -833,6 +851,24 @@ def _newton_series(
     k0 = 0
     if drawn is not None and phi.size:
         k0 = int(np.argmin(np.abs(np.remainder(phi - drawn + math.pi, _TWO_PI) - math.pi)))
+    marcher = Marcher.make(backend) if phi.size > 1 else None
+    if marcher is not None:  # many steps at once (mech.kinematics.march); the same walk, outward from k0
+        marched = marcher.series(phi, k0)
+        backend.marcher = marcher  # refinement then evaluates grids between the steps, as the closed form's
+        ok = marched["assembled"]
+        if not ok.all():
+            reached = np.flatnonzero(ok)
+            stops = (
+                [k for k in (reached[0] - 1, reached[-1] + 1) if 0 <= k < phi.size] if reached.size else [k0]
+            )
+            notes.append(
+                "Newton continuation from the drawing cannot reach "
+                + " or ".join(f"{math.degrees(phi[k]):.6g}°" for k in stops)
+                + " (a limit position, or out of reach): the steps beyond are not solved"
+            )
+        if not ok.any():
+            raise GeometryError("the mechanism cannot be moved to any angle asked")
+        return marched
     forward = backend.series(phi[k0:])
     backward = backend.series(phi[: k0 + 1][::-1])[::-1] if k0 > 0 else []
     for part in (forward, backward):  # after a failure, nothing beyond it is trusted
@@ -1034,7 +1070,7 @@ def _dead_centres(
     hi = np.array([b[3] for b in brackets], float)
     keys = [b[1] for b in brackets]
     pos_keys = [f"displacement.{b[0]}" if b[1].startswith("sliding") else f"angle.{b[0]}" for b in brackets]
-    if isinstance(backend, _Closed):
+    if backend.vectorised:
         roots, _ = _zoom(_refiner(backend, names, keys, np.full(len(keys), np.nan)), lo, hi, "root")
         at = _refiner(backend, names, pos_keys, np.full(len(keys), np.nan))(roots[:, None])[:, 0]
     else:  # one bracket at a time along a warm-started walk, on the sweep's branch
@@ -1138,7 +1174,7 @@ def _extremes(
             rows.append((key, mode, k, min(lo, hi), max(lo, hi), float(v[k])))
     sign = np.array([1.0 if r[1] == "max" else -1.0 for r in rows])
     ang, val = np.full(len(rows), np.nan), np.full(len(rows), np.nan)
-    if rows and isinstance(backend, _Closed):
+    if rows and backend.vectorised:
         # minima are maxima of −v: one zoom refines every extreme of every quantity at once
         inner = _refiner(backend, names, [r[0] for r in rows], np.array([r[5] for r in rows]))
         ang, val = _zoom(

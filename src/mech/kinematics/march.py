@@ -1,0 +1,734 @@
+"""Newton sweeps marched in stacks: many steps of a sweep solved at once, warm-started.
+
+A mechanism that does not decompose into dyads (a double parallelogram, a gear
+train) is swept by Newton continuation.  Step by step, each solve costs a
+residual, a Jacobian, one or two linear solves and γ — each a dozen small
+numpy calls, ~200 µs a step whatever the mechanism's size.  Here the sweep is
+*marched*: from the last solved step, the next K steps are predicted at once
+by the Taylor series ``q + q′h + q″h²/2`` (q′, q″ the configuration's
+derivatives along the crank, which the velocity and acceleration solves give
+anyway), Newton corrects all K together on stacked arrays, and the
+velocities and accelerations of all K come from one stacked SVD (which also
+gives each step's condition, so singular steps are judged exactly as one
+solve judges them).  K grows while whole stacks converge, within
+:data:`MAX_SPAN` of crank, and shrinks when a step does not; a step that
+still fails alone, or follows a singular one, is handed to the step-by-step
+continuation of :mod:`.solve`, and the march resumes after it.  Branches are
+kept as continuation keeps them: every step is corrected from a prediction
+off its own branch, and a correction larger than :data:`JUMP` (scaled) is
+refused as a jump.
+
+The stacked residual, Jacobian and γ restate the constraint rows of
+:class:`~mech.kinematics.constraints.System` with a leading axis.  They are
+checked against the system's own at two configurations when first built; a
+system whose rows they do not reproduce (a row kind added later) is swept
+step by step, as before.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import OrderedDict
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from mech.errors import GeometryError
+from mech.kinematics.constraints import System
+
+__all__ = ["MAX_SPAN", "Marcher", "Stacked", "Walker", "march", "stacked"]
+
+#: Largest crank angle one stack may span (rad); continuation's own step limit.
+MAX_SPAN = math.radians(15.0)
+#: Largest Newton correction (scaled: fractions of the mechanism's size) accepted for a step.
+JUMP = 0.05
+_FIRST = 8  # steps in the first stack; doubles while stacks converge whole
+_CACHE: OrderedDict[int, tuple[System, Stacked | None]] = OrderedDict()
+
+
+class Stacked:
+    """Residual, Jacobian and γ of a :class:`System` for K configurations at once (K, …)."""
+
+    def __init__(self, sys_: System) -> None:
+        self.sys = sys_
+        self.n3 = 3 * sys_.n
+        self.m = sys_.m
+        self.k = sys_.pc_i.size
+        self.kl = sys_.ln_s.size
+
+    def _full(self, q: np.ndarray) -> np.ndarray:
+        qf = np.zeros((q.shape[0], self.n3 + 3))
+        qf[:, :-3] = q
+        return qf
+
+    @staticmethod
+    def _rot(qf: np.ndarray, idx: np.ndarray, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        th = qf[:, 3 * idx + 2]
+        c, sn = np.cos(th), np.sin(th)
+        return c * s[:, 0] - sn * s[:, 1], sn * s[:, 0] + c * s[:, 1]
+
+    def phi(self, q: np.ndarray, c_line: np.ndarray, c_ang: np.ndarray) -> np.ndarray:
+        """Φ (K, m); ``c_ang`` (K, angle rows) holds each step's drive target."""
+        s, qf, k, kl = self.sys, self._full(q), self.k, self.kl
+        out = np.empty((q.shape[0], self.m))
+        ax, ay = self._rot(qf, s.pc_i, s.pc_si)
+        bx, by = self._rot(qf, s.pc_j, s.pc_sj)
+        out[:, 0 : 2 * k : 2] = qf[:, 3 * s.pc_i] + ax - qf[:, 3 * s.pc_j] - bx
+        out[:, 1 : 2 * k : 2] = qf[:, 3 * s.pc_i + 1] + ay - qf[:, 3 * s.pc_j + 1] - by
+        r = 2 * k
+        if kl:
+            sx, sy = self._rot(qf, s.ln_s, s.ln_sp)
+            tx, ty = self._rot(qf, s.ln_g, s.ln_t)
+            nx, ny = self._rot(qf, s.ln_g, s.ln_n)
+            dx = qf[:, 3 * s.ln_s] + sx - qf[:, 3 * s.ln_g] - tx
+            dy = qf[:, 3 * s.ln_s + 1] + sy - qf[:, 3 * s.ln_g + 1] - ty
+            out[:, r : r + kl] = nx * dx + ny * dy - c_line
+        r += kl
+        out[:, r:] = qf[:, 2::3] @ s.ang_a.T - c_ang
+        return out
+
+    def jacobian(self, q: np.ndarray) -> np.ndarray:
+        """Φ_q (K, m, 3n)."""
+        s, qf, k, kl = self.sys, self._full(q), self.k, self.kl
+        jac = np.zeros((q.shape[0], self.m, self.n3 + 3))
+        if k:
+            ax, ay = self._rot(qf, s.pc_i, s.pc_si)
+            bx, by = self._rot(qf, s.pc_j, s.pc_sj)
+            rx = np.arange(0, 2 * k, 2)
+            ry = rx + 1
+            i3, j3 = 3 * s.pc_i, 3 * s.pc_j
+            jac[:, rx, i3] = 1.0
+            jac[:, ry, i3 + 1] = 1.0
+            jac[:, rx, i3 + 2] = -ay
+            jac[:, ry, i3 + 2] = ax
+            jac[:, rx, j3] = -1.0
+            jac[:, ry, j3 + 1] = -1.0
+            jac[:, rx, j3 + 2] = by
+            jac[:, ry, j3 + 2] = -bx
+        r0 = 2 * k
+        if kl:
+            rows = np.arange(r0, r0 + kl)
+            sx, sy = self._rot(qf, s.ln_s, s.ln_sp)
+            tx, ty = self._rot(qf, s.ln_g, s.ln_t)
+            nx, ny = self._rot(qf, s.ln_g, s.ln_n)
+            dx = qf[:, 3 * s.ln_s] + sx - qf[:, 3 * s.ln_g] - tx
+            dy = qf[:, 3 * s.ln_s + 1] + sy - qf[:, 3 * s.ln_g + 1] - ty
+            s3, g3 = 3 * s.ln_s, 3 * s.ln_g
+            jac[:, rows, s3] = nx
+            jac[:, rows, s3 + 1] = ny
+            jac[:, rows, s3 + 2] = -nx * sy + ny * sx
+            jac[:, rows, g3] = -nx
+            jac[:, rows, g3 + 1] = -ny
+            jac[:, rows, g3 + 2] = (-ny * dx + nx * dy) - (-nx * ty + ny * tx)
+        r0 += kl
+        if s.ang_c.size:
+            jac[:, r0:, 2::3] = s.ang_a
+        return jac[:, :, :-3]
+
+    def gamma(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
+        """γ (K, m) without drive accelerations."""
+        s, k, kl = self.sys, self.k, self.kl
+        qf, vf = self._full(q), self._full(qd)
+        out = np.zeros((q.shape[0], self.m))
+        if k:
+            ax, ay = self._rot(qf, s.pc_i, s.pc_si)
+            bx, by = self._rot(qf, s.pc_j, s.pc_sj)
+            wi2 = vf[:, 3 * s.pc_i + 2] ** 2
+            wj2 = vf[:, 3 * s.pc_j + 2] ** 2
+            out[:, 0 : 2 * k : 2] = wi2 * ax - wj2 * bx
+            out[:, 1 : 2 * k : 2] = wi2 * ay - wj2 * by
+        if kl:
+            r0 = 2 * k
+            sx, sy = self._rot(qf, s.ln_s, s.ln_sp)
+            tx, ty = self._rot(qf, s.ln_g, s.ln_t)
+            nx, ny = self._rot(qf, s.ln_g, s.ln_n)
+            s3, g3 = 3 * s.ln_s, 3 * s.ln_g
+            dx = qf[:, s3] + sx - qf[:, g3] - tx
+            dy = qf[:, s3 + 1] + sy - qf[:, g3 + 1] - ty
+            ws, wg = vf[:, s3 + 2], vf[:, g3 + 2]
+            ddx = vf[:, s3] - ws * sy - vf[:, g3] + wg * ty
+            ddy = vf[:, s3 + 1] + ws * sx - vf[:, g3 + 1] - wg * tx
+            out[:, r0 : r0 + kl] = (
+                wg**2 * (nx * dx + ny * dy)
+                - 2.0 * wg * (-ny * ddx + nx * ddy)
+                + ws**2 * (nx * sx + ny * sy)
+                - wg**2 * (nx * tx + ny * ty)
+            )
+        return out
+
+    def agrees(self) -> bool:
+        """True when these rows reproduce the system's own at two configurations (to rounding)."""
+        s = self.sys
+        rng = np.random.default_rng(1)
+        q = s.q0 + rng.uniform(-0.2, 0.2, (2, self.n3))
+        qd = rng.uniform(-1.0, 1.0, (2, self.n3))
+        c_ang = np.tile(s.ang_c, (2, 1))
+        mine = (self.phi(q, s.ln_c, c_ang), self.jacobian(q), self.gamma(q, qd))
+        for t in range(2):
+            theirs = (s.phi(q[t], s.ln_c, s.ang_c), s.jacobian(q[t]), s.gamma(q[t], qd[t]))
+            for a, b in zip(mine, theirs, strict=True):
+                if a[t].shape != b.shape or not np.allclose(a[t], b, rtol=1e-12, atol=1e-13):
+                    return False
+        return True
+
+
+def stacked(sys_: System) -> Stacked | None:
+    """The stacked rows of ``sys_`` (cached), or None when they do not reproduce its own."""
+    hit = _CACHE.get(id(sys_))
+    if hit is not None and hit[0] is sys_:
+        return hit[1]
+    form: Stacked | None = Stacked(sys_)
+    try:
+        if not form.agrees():  # type: ignore[union-attr]
+            form = None
+    except (AttributeError, ValueError, IndexError):  # rows laid out otherwise than these expect
+        form = None
+    _CACHE[id(sys_)] = (sys_, form)
+    if len(_CACHE) > 64:
+        _CACHE.popitem(last=False)
+    return form
+
+
+def square_rows(sys_: System) -> np.ndarray | None:
+    """Rows of Φ_q that determine q̇ on their own (drive rows first), or None when there are too many.
+
+    A redundant system (a double parallelogram: 13 rows, 12 unknowns) is
+    consistent, so a square subset of independent rows gives the same
+    solutions; chosen once, at the drawn configuration, greedily by rank.
+    Along the sweep a step where the subset is ill-conditioned is solved on
+    all rows instead (see :class:`_Rates`).
+    """
+    m, n = sys_.m, 3 * sys_.n
+    if m == n:
+        return np.arange(m)
+    if m < n or m > 60:
+        return None
+    jac = sys_.jacobian(sys_.q0)
+    order = [int(r) for r in sys_.drive_rows] + [
+        r for r in range(m) if r not in set(sys_.drive_rows.tolist())
+    ]
+    keep: list[int] = []
+    for r in order:
+        s = np.linalg.svd(jac[[*keep, r]], compute_uv=False)
+        if s[-1] > 1e-8 * s[0]:
+            keep.append(r)
+        if len(keep) == n:
+            return np.array(sorted(keep))
+    return None
+
+
+def _lin(jac: np.ndarray, rhs: np.ndarray, keep: np.ndarray) -> np.ndarray:
+    """Stacked Newton steps: one LU per step on the square subset of rows."""
+    return np.linalg.solve(jac[:, keep, :], rhs[:, keep, None])[..., 0]
+
+
+class _Rates:
+    """Velocities and accelerations of stacked configurations: one stacked inverse of Φ_q each.
+
+    Conditioning is judged once per step: the 1-norm condition number from
+    the inverse bounds the 2-norm one within a factor n either way, so only
+    steps within that factor of :data:`~mech.kinematics.solve.SINGULAR` are
+    judged by an SVD (and solved by it, on all rows, exactly as one solve
+    does); the others are certainly regular.
+    """
+
+    def __init__(
+        self, rows: Stacked, keep: np.ndarray, drive_row: int, rate: float, accel: float, singular: float
+    ):
+        self.rows, self.keep, self.rate, self.accel, self.singular = rows, keep, rate, accel, singular
+        self.drive_row = drive_row
+        self.at = int(np.flatnonzero(keep == drive_row)[0])  # the drive row's place among ``keep``
+
+    def __call__(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(bad, q̇, q̈) for configurations ``q`` (K, 3n): ``bad`` marks the singular ones."""
+        full = self.rows.jacobian(q)
+        jac = full[:, self.keep, :]
+        k, n = q.shape[0], jac.shape[2]
+        try:
+            inv = np.linalg.inv(jac)
+            norm1 = np.abs(jac).sum(axis=1).max(axis=1) * np.abs(inv).sum(axis=1).max(axis=1)
+            unsure = ~(n * norm1 <= self.singular)  # NaN or large: decide by the SVD
+        except np.linalg.LinAlgError:  # one step exactly singular: every step by the SVD
+            inv = np.zeros_like(jac)
+            unsure = np.ones(k, bool)
+        rhs = np.zeros((k, n))
+        rhs[:, self.at] = self.rate
+        qd = np.einsum("kij,kj->ki", inv, rhs)
+        bad = np.zeros(k, bool)
+        svds: dict[int, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
+        for t in np.flatnonzero(unsure).tolist():
+            u, s, vt = np.linalg.svd(full[t], full_matrices=False)
+            svds[t] = (u, s, vt)
+            bad[t] = not (s[-1] > 0 and s[0] / s[-1] <= self.singular)
+            b = np.zeros(full.shape[1])
+            b[self.drive_row] = self.rate
+            qd[t] = _svd_solve(u, s, vt, b)
+        qd = _snap(qd)
+        gamma = self.rows.gamma(q, qd)
+        gamma[:, self.drive_row] += self.accel
+        qdd = np.einsum("kij,kj->ki", inv, gamma[:, self.keep])
+        for t, (u, s, vt) in svds.items():
+            qdd[t] = _svd_solve(u, s, vt, gamma[t])
+        return bad, qd, _snap(qdd)
+
+
+def _svd_solve(u: np.ndarray, s: np.ndarray, vt: np.ndarray, b: np.ndarray) -> np.ndarray:
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return vt.T @ ((u.T @ b) / np.where(s > 0, s, np.inf))
+
+
+def _snap(x: np.ndarray) -> np.ndarray:
+    x[np.abs(x) < 1e-13] = 0.0  # as one solve does: round-off below the solve's accuracy is zero
+    return x
+
+
+def march(backend: Any, phi: np.ndarray, k0: int) -> dict[str, np.ndarray] | None:
+    """The Newton series of a sweep along ``phi``, outward from step ``k0``, in stacks.
+
+    ``backend`` is the sweep's Newton backend (mechanism, compiled data,
+    options, level, point/link/slide names).  Returns the stacked arrays the
+    sweep reads (as step-by-step continuation would give them), or None when
+    this system's rows cannot be stacked: the caller sweeps step by step.
+    """
+    marcher = Marcher.make(backend)
+    return None if marcher is None else marcher.series(phi, k0)
+
+
+class Marcher:
+    """What a marched series or walk of one sweep shares: stacked rows, the drive, the rate solver."""
+
+    def __init__(self, backend: Any, rows: Stacked, keep: np.ndarray) -> None:
+        from mech.kinematics.solve import SINGULAR, _continue, _drives, _omega_ref
+
+        comp = backend.comp
+        sys_ = comp.system
+        self.backend, self.comp, self.sys, self.rows = backend, comp, sys_, rows
+        self.options = backend.options
+        self.lvl = max(backend.lvl, 1)
+        self.drives = _drives(comp.mech, comp.layout, comp.drawn, self.options, self.lvl)
+        drive = self.drives[0]
+        self.omega_ref = _omega_ref(self.drives, comp.drawn.scale)
+        self.rate = drive.omega / self.omega_ref  # type: ignore[operator]
+        self.accel = (drive.alpha or 0.0) / self.omega_ref**2
+        offset = 2 * sys_.pc_i.size + sys_.ln_s.size
+        self.arow = int(sys_.drive_rows[0]) - offset  # the drive's row among the angle rows
+        self.ci = 3 * sys_.link_index[drive.link] + 2
+        self.rates = _Rates(rows, keep, int(sys_.drive_rows[0]), self.rate, self.accel, SINGULAR)
+        self.step_once = _continue
+        self.solved: tuple[np.ndarray, ...] = (np.zeros(0),) * 4 + (np.zeros(0, bool),)
+
+    @classmethod
+    def make(cls, backend: Any) -> Marcher | None:
+        """A marcher for ``backend``'s mechanism, or None: rows that do not stack, not one crank."""
+        sys_ = backend.comp.system
+        rows = stacked(sys_)
+        keep = square_rows(sys_) if rows is not None else None
+        if rows is None or keep is None or sys_.velocity_only or len(sys_.drive_rows) != 1:
+            return None
+        if len(backend.mech.drives) != 1 or backend.mech.drives[0].link is None:
+            return None
+        return cls(backend, rows, keep)
+
+    def start(self, angle: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool] | None:
+        """(q, q̇, q̈, singular) at ``angle``, reached from the drawing as one solve does; None if not."""
+        from mech.kinematics.solve import _move
+
+        base = self.options.with_(angle=float(angle), method="newton")
+        try:
+            q0 = _move(self.comp, tuple(replace(d, angle=float(angle)) for d in self.drives), base)
+        except GeometryError:
+            return None
+        b0, qd0, qdd0 = self.rates(q0[None, :])
+        return q0, qd0[0], qdd0[0], bool(b0[0])
+
+    def fill(
+        self, phi: np.ndarray, k0: int, state: tuple[np.ndarray, np.ndarray, np.ndarray, bool] | None
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """q, q̇, q̈ (n, 3n), solved and singular masks along ``phi``, marched both ways from ``k0``."""
+        n, n3 = phi.size, 3 * self.sys.n
+        q_all = np.full((n, n3), np.nan)
+        qd_all = np.full((n, n3), np.nan)
+        qdd_all = np.full((n, n3), np.nan)
+        ok = np.zeros(n, bool)
+        bad = np.zeros(n, bool)
+        if state is not None:
+            q_all[k0], qd_all[k0], qdd_all[k0], bad[k0] = state
+            ok[k0] = True
+            for order in (np.arange(k0 + 1, n), np.arange(k0 - 1, -1, -1)):
+                _walk(
+                    self.rows,
+                    self.rates,
+                    self.sys,
+                    self.options,
+                    phi,
+                    k0,
+                    order,
+                    self.arow,
+                    self.ci,
+                    self.rate,
+                    self.accel,
+                    self.step_once,
+                    q_all,
+                    qd_all,
+                    qdd_all,
+                    ok,
+                    bad,
+                )
+        return q_all, qd_all, qdd_all, ok, bad
+
+    def series(self, phi: np.ndarray, k0: int) -> dict[str, np.ndarray]:
+        """The sweep's arrays along ``phi``, marched outward from ``k0`` (reached from the drawing).
+
+        The solved steps are kept: :meth:`evaluate` starts from them.
+        """
+        q, qd, qdd, ok, bad = self.fill(phi, k0, self.start(float(phi[k0])))
+        self.solved = (np.asarray(phi, float), q, qd, qdd, ok & ~bad)
+        return _arrays(self.backend, self.comp, q, qd, qdd, ok, bad, self.omega_ref, self.lvl)
+
+    def evaluate(self, angles: np.ndarray) -> dict[str, np.ndarray]:
+        """The sweep's arrays at ``angles`` (any shape) between the steps of the last :meth:`series`.
+
+        Each angle is predicted from the nearest regular solved step — on the
+        sweep's own branch, at most half a step away — and corrected with the
+        others in one stack, so refining every extreme and dead centre of a
+        sweep costs a few stacked solves (as the closed form's grids do), not a
+        continuation per probe.  Angles that do not converge are NaN.
+        """
+        phi, q_s, qd_s, qdd_s, usable = self.solved
+        shape = np.shape(angles)
+        a = np.asarray(angles, float).ravel()
+        cand = np.flatnonzero(usable)
+        n_out, n3 = a.size, 3 * self.sys.n
+        q = np.full((n_out, n3), np.nan)
+        qd = np.full((n_out, n3), np.nan)
+        qdd = np.full((n_out, n3), np.nan)
+        ok = np.zeros(n_out, bool)
+        bad = np.zeros(n_out, bool)
+        if cand.size and n_out:
+            order = np.argsort(phi[cand])
+            sp = phi[cand][order]
+            pos = (
+                np.clip(np.searchsorted(sp, a), 1, max(sp.size - 1, 1))
+                if sp.size > 1
+                else np.zeros(n_out, int)
+            )
+            if sp.size > 1:
+                pos = np.where(np.abs(a - sp[pos - 1]) <= np.abs(a - sp[pos]), pos - 1, pos)
+            anchor = cand[order][pos]
+            h = a - phi[anchor]
+            d1 = qd_s[anchor] / self.rate
+            d2 = (qdd_s[anchor] - self.accel * d1) / self.rate**2
+            pred = q_s[anchor] + h[:, None] * d1 + 0.5 * (h * h)[:, None] * d2
+            sys_ = self.sys
+            c_ang = np.tile(sys_.ang_c, (n_out, 1))
+            c_ang[:, self.arow] = sys_.ang_c[self.arow] + (q_s[anchor, self.ci] - sys_.q0[self.ci]) + h
+            q_n, conv = _newton(
+                self.rows, self.rates.keep, pred, sys_.ln_c, c_ang, self.options.tol, self.options.max_iter
+            )
+            conv &= np.abs(h) <= MAX_SPAN
+            if conv.any():
+                b, v, acc = self.rates(q_n[conv])
+                q[conv], qd[conv], qdd[conv], ok[conv], bad[conv] = q_n[conv], v, acc, True, b
+        out = _arrays(self.backend, self.comp, q, qd, qdd, ok, bad, self.omega_ref, self.lvl)
+        return {k: v.reshape(*shape, *v.shape[1:]) for k, v in out.items()}
+
+    def walker(self, start: float) -> Walker:
+        return Walker(self, start)
+
+
+class Walker:
+    """One marched continuation sent from angle to angle (the sweep's refinement probes).
+
+    It starts where the sweep started and continues along the crank to every
+    angle it is sent to, through intermediate steps of at most half
+    :data:`MAX_SPAN`, so it stays on the sweep's branch (a gear train's wheel
+    is where the sweep had it, not where a solve from the drawing would put
+    it).  Once a step fails the walk is lost and starts again from the start.
+    """
+
+    def __init__(self, marcher: Marcher, start: float) -> None:
+        self.marcher, self.start = marcher, float(start)
+        self.state: tuple[float, tuple[np.ndarray, np.ndarray, np.ndarray, bool]] | None = None
+
+    def to(self, angle: float) -> dict[str, Any] | None:
+        """The sweep's arrays for one step at ``angle`` (per-step shapes), or None where not reached."""
+        mr = self.marcher
+        if self.state is None:
+            first = mr.start(self.start)
+            if first is None:
+                return None
+            self.state = (self.start, first)
+        here, state = self.state
+        pieces = max(1, math.ceil(abs(angle - here) / (0.5 * MAX_SPAN)))
+        route = np.linspace(here, angle, pieces + 1)
+        q, qd, qdd, ok, bad = mr.fill(route, 0, state)
+        if not ok[-1]:
+            self.state = None  # lost: the next probe starts again from the start
+            return None
+        self.state = (float(angle), (q[-1], qd[-1], qdd[-1], bool(bad[-1])))
+        arrays = _arrays(
+            mr.backend, mr.comp, q[-1:], qd[-1:], qdd[-1:], ok[-1:], bad[-1:], mr.omega_ref, mr.lvl
+        )
+        return {k: v[0] for k, v in arrays.items() if k not in ("assembled", "disc", "miss")}
+
+
+def _walk(
+    rows: Stacked,
+    rates: _Rates,
+    sys_: System,
+    options: Any,
+    phi: np.ndarray,
+    k0: int,
+    order: np.ndarray,
+    arow: int,
+    ci: int,
+    rate: float,
+    accel: float,
+    step_once: Any,
+    q_all: np.ndarray,
+    qd_all: np.ndarray,
+    qdd_all: np.ndarray,
+    ok: np.ndarray,
+    bad: np.ndarray,
+) -> None:
+    """March from ``k0`` through the steps ``order`` (one direction), filling the arrays in place."""
+    last, size, i = k0, _FIRST, 0
+    anchor = None if bad[k0] else k0  # the last step with derivatives to predict from
+    ang_rows = [arow]
+
+    def plain(h: float) -> np.ndarray | None:
+        """One step from ``last`` by step-by-step continuation (its own predictor, step halving)."""
+        q = q_all[last]
+        c_last = sys_.ang_c[arow] + (q[ci] - sys_.q0[ci])  # the drive row's target there
+        q_new, _ = step_once(sys_, q, _c_ang(sys_, arow, c_last), sys_.ln_c, ang_rows, np.array([h]), options)
+        return None if q_new is None else q_new[None, :]
+
+    while i < order.size:
+        idx = order[i : i + size]
+        if anchor is None:  # nothing to predict from (a singular start): one plain step
+            q_acc = plain(float(phi[idx[0]] - phi[last]))
+            if q_acc is None:
+                return  # a limit position: nothing beyond is reached
+            got, idx = 1, idx[:1]
+        else:
+            # predict from the last regular step, across a singular one if it came since
+            q = q_all[anchor]
+            c_anchor = sys_.ang_c[arow] + (q[ci] - sys_.q0[ci])
+            d1 = qd_all[anchor] / rate
+            d2 = (qdd_all[anchor] - accel * d1) / rate**2
+            h = phi[idx] - phi[anchor]
+            within = np.abs(h) <= MAX_SPAN
+            cut = idx.size if within.all() else max(1, int(np.argmin(within)))
+            idx, h = idx[:cut], h[:cut]
+            pred = q + h[:, None] * d1 + 0.5 * (h * h)[:, None] * d2
+            c_ang = np.tile(sys_.ang_c, (idx.size, 1))
+            c_ang[:, arow] = c_anchor + h
+            q_acc, conv = _newton(rows, rates.keep, pred, sys_.ln_c, c_ang, options.tol, options.max_iter)
+            got = int(np.argmin(conv)) if not conv.all() else conv.size
+            if got == 0:
+                if size > 1:
+                    size = max(1, size // 4)
+                    continue
+                # one step that does not converge from its prediction: plain continuation decides
+                q_acc = plain(float(phi[idx[0]] - phi[last]))
+                if q_acc is None:
+                    return
+                got = 1
+            q_acc = q_acc[:got]
+        take = idx[:got]
+        b, qd, qdd = rates(q_acc)
+        q_all[take], ok[take], bad[take] = q_acc, True, b
+        qd_all[take], qdd_all[take] = qd, qdd
+        last = int(take[-1])
+        regular = take[~b]
+        if regular.size:
+            anchor = int(regular[-1])
+        i += got
+        size = min(size * 2, 4096) if got == idx.size else max(1, got)
+
+
+def _c_ang(sys_: System, arow: int, c: float) -> np.ndarray:
+    out = sys_.ang_c.copy()
+    out[arow] = c
+    return out
+
+
+def _newton(
+    rows: Stacked,
+    keep: np.ndarray,
+    q: np.ndarray,
+    c_line: np.ndarray,
+    c_ang: np.ndarray,
+    tol: float,
+    max_iter: int,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Stacked Newton–Raphson; (q, converged) with converged False where a step stalls or jumps."""
+    start = q
+    q = q.copy()
+    lost = np.zeros(q.shape[0], bool)
+    prev = np.full(q.shape[0], np.inf)
+    for _ in range(max_iter):
+        r = rows.phi(q, c_line, c_ang)
+        norm = np.max(np.abs(r), axis=1) if r.shape[1] else np.zeros(q.shape[0])
+        done = norm <= tol
+        lost |= ~np.isfinite(norm) | ((norm > 0.5 * prev) & (prev < 1e-3) & ~done)
+        if np.all(done | lost):
+            break
+        prev = norm
+        live = ~(done | lost)
+        try:
+            dq = _lin(rows.jacobian(q[live]), -r[live], keep)
+        except np.linalg.LinAlgError:
+            lost |= live
+            break
+        big = np.max(np.abs(dq), axis=1) > 1.0
+        lost[np.flatnonzero(live)[big]] = True
+        q[live] += np.where(big[:, None], 0.0, dq)
+    # one more correction of the converged steps: within ``tol`` is only tol-accurate, and one
+    # quadratic step from there lands at rounding (a prediction may start within tol already);
+    # kept only where it does not raise the residual (at a singular step it may not help)
+    r = rows.phi(q, c_line, c_ang)
+    norm = np.max(np.abs(r), axis=1) if r.shape[1] else np.zeros(q.shape[0])
+    live = ~lost & np.isfinite(norm)
+    if live.any():
+        try:
+            polished = q[live] + _lin(rows.jacobian(q[live]), -r[live], keep)
+        except np.linalg.LinAlgError:
+            polished = q[live]
+        r_p = rows.phi(polished, c_line, c_ang[live])
+        norm_p = np.max(np.abs(r_p), axis=1) if r_p.shape[1] else np.zeros(polished.shape[0])
+        better = norm_p <= norm[live]
+        where = np.flatnonzero(live)[better]
+        q[where] = polished[better]
+        norm[where] = norm_p[better]
+    jumped = np.max(np.abs(q - start), axis=1) > JUMP
+    return q, (norm <= tol) & ~lost & ~jumped
+
+
+def _arrays(
+    backend: Any,
+    comp: Any,
+    q: np.ndarray,
+    qd: np.ndarray,
+    qdd: np.ndarray,
+    ok: np.ndarray,
+    bad: np.ndarray,
+    omega_ref: float,
+    lvl: int,
+) -> dict[str, np.ndarray]:
+    """The sweep's arrays (SI) from stacked scaled q, q̇, q̈: what step-by-step results would give."""
+    sys_ = comp.system
+    scale, (cx, cy) = sys_.scale, (float(sys_.centre[0]), float(sys_.centre[1]))
+    n_steps = q.shape[0]
+    where = {name: k for k, name in enumerate(sys_.loc_names)}
+    pick = np.array([where[p] for p in backend.points], int)
+    idx, loc = sys_.loc_i, sys_.loc_s  # every located name ('#' ones too: slides may sit on them)
+    zeros = np.zeros((n_steps, 3))
+    qf = np.concatenate([q, zeros], axis=1)
+    th = qf[:, 3 * idx + 2]
+    c, s = np.cos(th), np.sin(th)
+    ox, oy = c * loc[:, 0] - s * loc[:, 1], s * loc[:, 0] + c * loc[:, 1]  # A(θ) s, scaled
+    px = (qf[:, 3 * idx] + ox) * scale + cx
+    py = (qf[:, 3 * idx + 1] + oy) * scale + cy
+    li = np.array([sys_.link_index[lk] for lk in backend.links], int)
+    res: dict[str, np.ndarray] = {
+        "positions": np.stack([px[:, pick], py[:, pick]], axis=-1),
+        "link_angles": np.mod(q[:, 3 * li + 2], 2 * math.pi),
+        "condition": np.where(bad, np.inf, 1.0),
+    }
+    good = ok & ~bad
+    nan_mask = ~good[:, None]
+    v_unit, a_unit = scale * omega_ref, scale * omega_ref**2
+    vx = vy = w = None
+    if lvl >= 1:
+        vf = np.concatenate([qd, zeros], axis=1)
+        w = vf[:, 3 * idx + 2]
+        vx = (vf[:, 3 * idx] - w * oy) * v_unit
+        vy = (vf[:, 3 * idx + 1] + w * ox) * v_unit
+        res["velocities"] = np.where(
+            nan_mask[..., None], np.nan, np.stack([vx[:, pick], vy[:, pick]], axis=-1)
+        )
+        res["omegas"] = np.where(nan_mask, np.nan, qd[:, 3 * li + 2] * omega_ref)
+    if lvl >= 2:
+        af = np.concatenate([qdd, zeros], axis=1)
+        al = af[:, 3 * idx + 2]
+        w2 = w * w  # type: ignore[operator]
+        ax_ = (af[:, 3 * idx] - al * oy - w2 * ox) * a_unit
+        ay_ = (af[:, 3 * idx + 1] + al * ox - w2 * oy) * a_unit
+        res["accelerations"] = np.where(
+            nan_mask[..., None], np.nan, np.stack([ax_[:, pick], ay_[:, pick]], axis=-1)
+        )
+        res["alphas"] = np.where(nan_mask, np.nan, qdd[:, 3 * li + 2] * omega_ref**2)
+    res["displacement"], sliding = _slides(backend, comp, qf, qd, px, py, omega_ref, lvl)
+    if lvl >= 1:
+        res["sliding"] = np.where(nan_mask, np.nan, sliding)
+    for key in list(res):
+        if key != "condition":
+            shape = (n_steps,) + (1,) * (res[key].ndim - 1)
+            res[key] = np.where(ok.reshape(shape), res[key], np.nan)
+    res["assembled"] = ok
+    res["condition"] = np.where(ok, res["condition"], np.nan)
+    res["disc"] = np.where(ok, 1.0, -1.0)[:, None]
+    res["miss"] = np.full((n_steps, 1), np.nan)
+    return res
+
+
+def _slides(
+    backend: Any,
+    comp: Any,
+    qf: np.ndarray,
+    qd: np.ndarray,
+    px: np.ndarray,
+    py: np.ndarray,
+    omega_ref: float,
+    lvl: int,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Displacement (m) and sliding speed (m/s) at every prismatic or slot joint, per step."""
+    sys_, lay, mech = comp.system, comp.layout, backend.mech
+    n_steps = qf.shape[0]
+    if not lay.paths:
+        return np.zeros((n_steps, 0)), np.zeros((n_steps, 0))
+    scale, cx, cy = sys_.scale, float(sys_.centre[0]), float(sys_.centre[1])
+    where = {name: k for k, name in enumerate(sys_.loc_names)}
+    n = sys_.n
+    vf = np.concatenate([qd, np.zeros((n_steps, 3))], axis=1) if lvl >= 1 else None
+    disp, slid = [], []
+    for ps in lay.paths:
+        g, u = sys_.path_dirs[ps.joint]
+        th_g = qf[:, 3 * g + 2]
+        ux = np.cos(th_g) * u[0] - np.sin(th_g) * u[1]
+        uy = np.sin(th_g) * u[0] + np.cos(th_g) * u[1]
+        point = sys_.path_points[ps.joint][1]
+        at_x, at_y = px[:, where[point]], py[:, where[point]]
+        through = ps.path.through
+        if through.xy is not None:
+            tx, ty = through.xy
+        else:
+            k = where[lay.resolve(through.name)]
+            tx, ty = px[:, k], py[:, k]
+        if ps.guide == mech.ground:
+            disp.append((at_x - tx) * ux + (at_y - ty) * uy)
+        else:
+            disp.append(np.full(n_steps, np.nan))
+        if vf is not None:
+            j = next(jt for jt in mech.joints if jt.name == ps.joint)
+            a, b = j.links
+            rel = []
+            for lk in (a, b):
+                i = sys_.link_index.get(lk, n)
+                ox = (qf[:, 3 * i] * scale + cx) if i < n else None
+                oy = (qf[:, 3 * i + 1] * scale + cy) if i < n else None
+                if i == n:  # ground: at rest
+                    rel.append((np.zeros(n_steps), np.zeros(n_steps)))
+                    continue
+                w = vf[:, 3 * i + 2] * omega_ref
+                vx = vf[:, 3 * i] * scale * omega_ref - w * (at_y - oy)
+                vy = vf[:, 3 * i + 1] * scale * omega_ref + w * (at_x - ox)
+                rel.append((vx, vy))
+            slid.append((rel[0][0] - rel[1][0]) * ux + (rel[0][1] - rel[1][1]) * uy)
+    empty = np.zeros((n_steps, 0))
+    return (
+        np.stack(disp, axis=-1) if disp else empty,
+        np.stack(slid, axis=-1) if slid else empty,
+    )

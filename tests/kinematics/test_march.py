@@ -1,0 +1,125 @@
+"""Newton sweeps marched in stacks (mech.kinematics.march) against closed forms derived here."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from builders import four_bar, slider_crank
+
+import mech
+from mech.kinematics import sweep
+from mech.kinematics.march import stacked
+from mech.kinematics.solve import compiled
+from mech.options import SolveOptions
+
+ROOT = Path(__file__).resolve().parents[2]
+NEWTON = SolveOptions(method="newton")
+
+
+def test_double_parallelogram_sweep_translates_its_coupler_at_the_crank_speed():
+    # Khurmi's double parallelogram (mechanisms/double_parallelogram.yaml): cranks AB = EF = DC
+    # = 40 mm, 60 rpm ccw, the coupler translates: every coupler point moves on a 40 mm circle
+    # with v = ω·40 mm and a = ω²·40 mm (centripetal), C about D = (100, 0) mm.
+    m = mech.load(ROOT / "mechanisms" / "double_parallelogram.yaml")
+    phi = np.radians(np.linspace(0.0, 360.0, 721))
+    s = sweep(m, phi, level="acceleration", analyse=False)
+    assert s.method == "newton" and s.assembled.all()
+    w, r = 2 * math.pi, 0.04
+    k = s.points.index("C")
+    assert np.allclose(
+        s.positions[:, k, 0], 0.1 + r * np.cos(phi), rtol=0, atol=1e-6 * 0.14
+    )  # singular steps too
+    away = np.abs(np.sin(phi)) > 0.05  # the flat configurations (0°, 180°) are toggles
+    vx, vy = -w * r * np.sin(phi), w * r * np.cos(phi)
+    ax, ay = -w * w * r * np.cos(phi), -w * w * r * np.sin(phi)
+    assert (
+        np.hypot(s.velocities[away, k, 0] - vx[away], s.velocities[away, k, 1] - vy[away]).max()
+        < 1e-12 * w * r
+    )
+    assert (
+        np.hypot(s.accelerations[away, k, 0] - ax[away], s.accelerations[away, k, 1] - ay[away]).max()
+        < 1e-10 * w * w * r
+    )
+    assert np.allclose(s.omegas[away][:, s.links.index("coupler")], 0.0, atol=1e-12 * w)
+    flat = np.isnan(s.velocities[:, k, 0])
+    assert np.all(np.abs(np.sin(phi[flat])) < 0.01)  # only the flat configurations are refused
+
+
+def test_gear_pair_sweep_turns_the_wheel_at_half_the_pinion_speed_the_other_way():
+    # 20/40 teeth, pinion 1200 rpm cw: wheel ω = +62.83 rad/s, wheel angle falls by half the pinion's turn
+    m = mech.load(ROOT / "mechanisms" / "gear_pair.yaml")
+    phi = np.radians(np.linspace(0.0, 720.0, 2001))  # two turns of the pinion
+    s = sweep(m, phi, level="acceleration", analyse=False)
+    assert s.assembled.all()
+    wheel = s.links.index("wheel")
+    assert np.allclose(s.omegas[:, wheel], 1200 * 2 * math.pi / 60 / 2, rtol=1e-13)
+    assert np.allclose(s.alphas[:, wheel], 0.0, atol=1e-9)
+    turned = s.link_angles[:, wheel] - s.link_angles[0, wheel]
+    assert np.allclose(turned, -(phi - phi[0]) / 2, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("build", "name"),
+    [
+        (lambda: four_bar(angle=math.radians(60), omega=-4 * math.pi, alpha=3.0), "four-bar"),
+        (lambda: slider_crank(), "slider crank"),
+    ],
+)
+def test_newton_sweep_matches_the_closed_form_to_rounding(build, name):
+    m = build()
+    phi = np.radians(np.linspace(-30.0, 330.0, 1441))
+    ref = sweep(m, phi, level="acceleration", analyse=False)
+    got = sweep(m, phi, level="acceleration", analyse=False, options=NEWTON)
+    assert ref.method == "closed form" and got.method == "newton"
+    for key in ("positions", "velocities", "accelerations", "link_angles", "omegas", "alphas", "sliding"):
+        a, b = getattr(got, key), getattr(ref, key)
+        if b.size == 0:  # no slider in a four-bar
+            continue
+        scale = max(float(np.nanmax(np.abs(b))), 1e-300)
+        assert np.nanmax(np.abs(a - b)) < 1e-13 * scale, key
+
+
+def test_newton_sweep_stops_at_a_rockers_limit_as_the_closed_form_finds_it():
+    # a non-Grashof four-bar (crank 0.1 > what the rocker allows): the crank cannot turn fully
+    m = four_bar(a=0.1, b=0.1, c=0.05, d=0.15, angle=math.radians(30), omega=1.0)
+    phi = np.radians(np.linspace(0.0, 360.0, 721))
+    ref = sweep(m, phi, level="velocity", analyse=False)
+    got = sweep(m, phi, level="velocity", analyse=False, options=NEWTON)
+    reached = np.flatnonzero(got.assembled)
+    assert reached.size and np.all(np.diff(reached) == 1)  # one run, holding the drawn 30°
+    assert reached[0] <= 60 <= reached[-1]
+    assert np.all(ref.assembled[reached])  # never where the loop cannot close
+    run_ref = np.flatnonzero(ref.assembled)
+    inside = run_ref[(run_ref >= reached[0] - 1) & (run_ref <= reached[-1] + 1)]
+    assert abs(inside.size - reached.size) <= 2  # up to the limit, within a step either side
+    assert any("cannot reach" in n for n in got.notes)
+
+
+@pytest.mark.parametrize("name", ["double_parallelogram", "gear_pair", "four_bar", "whitworth_quick_return"])
+def test_constraint_rows_stack(name):
+    # the stacked rows must reproduce the system's own, or sweeps fall back to one step at a time
+    m = mech.load(ROOT / "mechanisms" / f"{name}.yaml")
+    assert stacked(compiled(m, None).system) is not None
+
+
+@pytest.mark.parametrize("steps", [12, 360])
+def test_newton_sweep_refines_extremes_and_dead_centres_as_the_closed_form_does(steps):
+    # refinement evaluates grids between the marched steps: coarse or fine, the refined
+    # extremes are the closed form's (which refines its own exact program) to rounding
+    m = four_bar(angle=math.radians(60), omega=-4 * math.pi)
+    phi = np.radians(np.linspace(0.0, 360.0, steps + 1))
+    ref = sweep(m, phi, level="acceleration")
+    got = sweep(m, phi, level="acceleration", options=NEWTON)
+    assert [e.quantity for e in got.extremes] == [e.quantity for e in ref.extremes]
+    for e, r in zip(got.extremes, ref.extremes, strict=True):
+        scale = max(abs(r.max_value), abs(r.min_value))
+        assert abs(e.max_value - r.max_value) <= 1e-12 * scale, e.quantity
+        assert abs(e.min_value - r.min_value) <= 1e-12 * scale, e.quantity
+    assert len(got.dead_centres) == len(ref.dead_centres) == 2
+    for d, r in zip(got.dead_centres, ref.dead_centres, strict=True):
+        assert d.subject == r.subject and abs(d.angle - r.angle) < 1e-10
+    assert got.time_ratio is not None and ref.time_ratio is not None
+    assert got.time_ratio.ratio == pytest.approx(ref.time_ratio.ratio, rel=1e-10)
