@@ -543,3 +543,45 @@ def parse_icentre_name(name: str) -> tuple[int, int] | None:
         return None
     a, b = (int(g) for g in (m.groups()[:2] if m.group(1) else m.groups()[2:]))
     return (a, b) if a != b else None
+
+
+# -- cams given by their follower's programme (mech.cam), DESIGN § 1.1 -----------------------
+def _cam(quantity: str) -> Callable[[Any, tuple[str, ...]], float]:
+    """A cam's own analysis answers these keys (the linkage solver is never started for them)."""
+
+    def compute(an: Any, names: tuple[str, ...]) -> float:
+        from mech.cam.answers import cam_value
+
+        return cam_value(an, quantity, names[0])
+
+    return compute
+
+
+for _kind in (
+    AnswerKind(
+        "pressure_angle.<joint>",
+        Compare.MAGNITUDE,
+        "topology",
+        _D.ANGLE,
+        _cam("pressure_angle"),
+        "a cam's pressure angle at the drive angle",
+    ),
+    AnswerKind(
+        "pressure_angle.<joint>.max",
+        Compare.MAGNITUDE,
+        "topology",
+        _D.ANGLE,
+        _cam("pressure_angle.max"),
+        "a cam's largest pressure angle over the turn",
+    ),
+    AnswerKind(
+        "displacement.<point>",
+        Compare.MAGNITUDE,
+        "topology",
+        _D.LENGTH,
+        _cam("displacement"),
+        "a cam follower's lift from its lowest position (an angle for an oscillating one)",
+        also=(_D.ANGLE,),
+    ),
+):
+    register(_kind)

@@ -351,11 +351,19 @@ class Analysis:
         return max(speeds, default=0.0) / kin.size if kin.size > 0 else 0.0
 
     def scale(self, dimension: Dimension | None) -> float:
-        """The mechanism's natural unit of a quantity: size, ω, ω·size, ω²·size, ω²."""
-        if dimension in (None, Dimension.NUMBER):
+        """The mechanism's natural unit of a quantity: size, ω, ω·size, ω²·size, ω².
+
+        Angles need no solve (their unit is the radian).  A key answered without the
+        linkage solver (a cam's programme, which the instant solver cannot place) gets
+        no rounding floor when that solve fails: its tolerance alone decides.
+        """
+        if dimension in (None, Dimension.NUMBER, Dimension.ANGLE):
             return 1.0
-        size = self.kin.size
-        w = self.omega_ref
+        try:
+            size = self.kin.size
+            w = self.omega_ref
+        except MechError:
+            return 0.0
         return {
             Dimension.LENGTH: size,
             Dimension.ANGULAR_VELOCITY: w,

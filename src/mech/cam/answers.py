@@ -1,0 +1,40 @@
+"""Reference values of the cam answer keys (``pressure_angle.K``, ``pressure_angle.K.max``,
+``displacement.K``) for ``mech check``, registered in :mod:`mech.answers`.
+
+They come from the cam's own analysis (:func:`mech.cam.analysis.analyse`), made
+once per file and shared by every claim about that cam.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+__all__ = ["cam_value"]
+
+
+def cam_value(an: Any, quantity: str, name: str) -> float:
+    """The value of ``quantity`` for the cam joint ``name`` (SI: rad, m).
+
+    ``an`` is :class:`mech.check.Analysis`; a name that is not a cam joint with
+    a programme is :class:`mech.answers.Undefined`.
+    """
+    from mech.answers import Undefined
+    from mech.cam.analysis import analyse
+    from mech.cam.mechanism import cam_joints, cam_setup
+    from mech.cam.profile import evaluate
+
+    if name not in {j.name for j in cam_joints(an.mech)}:
+        raise Undefined(f"cannot be computed: {name} is not a cam joint with a `program`")
+
+    def make() -> Any:
+        setup = cam_setup(an.mech, name)
+        return setup, analyse(setup.layout, omega=setup.omega)
+
+    setup, result = an.cached(f"cam:{name}", make)
+    if quantity == "pressure_angle.max":
+        return float(result.pressure.value)
+    now = evaluate(setup.layout, [setup.angle])
+    if quantity == "pressure_angle":
+        return float(now.pressure[0])
+    assert quantity == "displacement"
+    return float(now.s[0])
