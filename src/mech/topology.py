@@ -18,6 +18,7 @@ Grübler's condition, types of joints); e.g. l = 4, j = 4 gives n = 1.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from mech.model import JointType, Mechanism
 
@@ -147,6 +148,9 @@ class Topology:
     pairs: tuple[PairClass, ...]
     count: DofCount
     chain: str | None
+    #: Four-bar and slider-crank loops whose lengths the file gives (:mod:`mech.properties.grashof`).
+    loops: tuple[Any, ...] = ()
+    length_unit: str = "m"
 
     def link_classes(self) -> dict[str, tuple[str, ...]]:
         """Class name → links of that class, in the order of the classes."""
@@ -191,7 +195,13 @@ def dof(mechanism: Mechanism) -> DofCount:
 
 
 def classify(mechanism: Mechanism) -> Topology:
-    """Classify links, joints and pairs and count the degrees of freedom."""
+    """Classify links, joints and pairs and count the degrees of freedom.
+
+    Where the file gives a four-bar loop's lengths, Grashof's criterion for it
+    comes too (:func:`mech.properties.grashof.linkage_loops`, pure Python).
+    """
+    from mech.properties.grashof import linkage_loops
+
     links = tuple(
         LinkClass(
             name=link.name,
@@ -224,6 +234,8 @@ def classify(mechanism: Mechanism) -> Topology:
         pairs=pairs,
         count=dof(mechanism),
         chain=chain_name(mechanism),
+        loops=linkage_loops(mechanism),
+        length_unit=mechanism.length_unit,
     )
 
 

@@ -211,6 +211,7 @@ _UNITS = {
     "position": "m",
     "displacement": "m",
     "sliding": "m/s",
+    "included": "rad",
 }
 _NEEDS = {"omega": 1, "velocity": 1, "sliding": 1, "alpha": 2, "acceleration": 2}
 
@@ -221,7 +222,8 @@ def quantity_unit(quantity: str) -> str:
     Keys: ``angle.<link>``, ``omega.<link>``, ``alpha.<link>`` (signed, ccw +);
     ``velocity.<point>``, ``acceleration.<point>`` (magnitudes) or with
     ``.x``/``.y`` (components); ``position.<point>.x|y``;
-    ``displacement.<joint>`` and ``sliding.<joint>`` (a slider along its path).
+    ``displacement.<joint>`` and ``sliding.<joint>`` (a slider along its path);
+    ``included.<p>.<q>.<r>``: the angle p–q–r at q, 0 to π (a transmission angle).
     """
     return _UNITS[quantity.split(".", 1)[0]]
 
@@ -235,8 +237,15 @@ def _check_quantity(
         raise InputError(
             f"unknown quantity {key!r}",
             hint="angle.LINK, omega.LINK, alpha.LINK, velocity.POINT[.x|.y], acceleration.POINT[.x|.y], "
-            "position.POINT.x|y, displacement.JOINT, sliding.JOINT",
+            "position.POINT.x|y, displacement.JOINT, sliding.JOINT, included.P.Q.R",
         )
+    if kind == "included":
+        if len(parts) != 4:
+            raise InputError(f"{key}: an included angle names three points, included.P.Q.R (the angle at Q)")
+        for name in parts[1:]:
+            if name not in sw_points:
+                raise InputError(f"{key}: no point named {name}", hint=f"choose from {', '.join(sw_points)}")
+        return
     if _NEEDS.get(kind, 0) > lvl:
         raise InputError(f"{key} needs level {LEVELS[_NEEDS[kind]]} (give --level {LEVELS[_NEEDS[kind]]})")
     name = parts[1]
@@ -265,6 +274,13 @@ def _pick(arrays: dict[str, Any], names: dict[str, tuple[str, ...]], key: str) -
         return arr[..., names["links"].index(name)]
     if kind in ("displacement", "sliding"):
         return arrays[kind][..., names["slides"].index(name)]
+    if kind == "included":  # the angle p–q–r at q, 0 to π
+        pos = arrays["positions"]
+        p, q, r = (pos[..., names["points"].index(n), :] for n in parts[1:4])
+        u, w = p - q, r - q
+        cross = u[..., 0] * w[..., 1] - u[..., 1] * w[..., 0]
+        dot = u[..., 0] * w[..., 0] + u[..., 1] * w[..., 1]
+        return np.abs(np.arctan2(cross, dot))
     arr = arrays[{"position": "positions", "velocity": "velocities", "acceleration": "accelerations"}[kind]]
     v = arr[..., names["points"].index(name), :]
     if comp == "x":

@@ -9,6 +9,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 from mech.render.console import table_box
+from mech.render.properties import loop_dict, loop_lines
 from mech.topology import Topology
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -39,6 +40,7 @@ def topology_dict(t: Topology) -> dict[str, Any]:
         "link_classes": {k: list(v) for k, v in t.link_classes().items()},
         "joint_classes": {k: list(v) for k, v in t.joint_classes().items()},
         "icentres": t.icentres,
+        "loops": [loop_dict(loop) for loop in t.loops],
     }
 
 
@@ -111,6 +113,7 @@ def dof_table(results: Sequence[Topology], console: Console) -> None:
         if t.chain:
             console.print(f"  chain: {t.chain}")
         console.print(f"  instantaneous centres: N = l(l − 1)/2 = {c.l}·{c.l - 1}/2 = {t.icentres}")
+        _print_loops(t, console)
     else:
         console.print(table)
 
@@ -155,3 +158,13 @@ def classify_tables(t: Topology, console: Console) -> None:
         )
     console.print(pairs)
     console.print(f"Kutzbach: {t.count.formula} — {t.count.verdict}")
+    _print_loops(t, console, indent="")
+
+
+def _print_loops(t: Topology, console: Console, indent: str = "  ") -> None:
+    """Grashof's criterion for each four-bar loop, the inversion of each slider-crank loop."""
+    from rich.text import Text
+
+    for loop in t.loops:
+        for line in loop_lines(loop, t.length_unit):
+            console.print(Text(indent + line), soft_wrap=True)
