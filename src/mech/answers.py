@@ -412,6 +412,24 @@ def _distance(an: Any, names: tuple[str, ...]) -> float | AtInfinity:
     return math.dist(points[0], points[1])
 
 
+def _property(name: str) -> Callable[[Any, tuple[str, ...]], Any]:
+    """A linkage-property key computed in :mod:`mech.properties.keys` (imported when first asked)."""
+
+    def compute(an: Any, names: tuple[str, ...]) -> Any:
+        from mech.properties import keys
+
+        return getattr(keys, name)(an, names)
+
+    compute.__name__ = name
+    return compute
+
+
+def _normal_grashof(name: str) -> str:
+    from mech.properties.keys import normal_grashof
+
+    return normal_grashof(name)
+
+
 _D = Dimension
 KINDS: tuple[AnswerKind, ...] = (
     AnswerKind("dof", Compare.COUNT, "topology", _D.NUMBER, _count("n"), "Kutzbach's count"),
@@ -504,6 +522,52 @@ KINDS: tuple[AnswerKind, ...] = (
         _distance,
         "between points",
         distinct=True,
+    ),
+    # linkage properties (mech.properties; DESIGN § 1.1 "Answer keys for linkage properties")
+    AnswerKind(
+        "grashof",
+        Compare.LABEL,
+        "topology",
+        None,
+        _property("grashof"),
+        "Grashof class of the driven four-bar loop",
+        normalise=_normal_grashof,
+    ),
+    AnswerKind(
+        "transmission_angle",
+        Compare.MAGNITUDE,
+        "position",
+        _D.ANGLE,
+        _property("transmission_angle"),
+        "coupler–output interior angle at the instant (0–180°)",
+    ),
+    AnswerKind(
+        "transmission_angle.min",
+        Compare.MAGNITUDE,
+        "position",
+        _D.ANGLE,
+        _property("transmission_angle_min"),
+        "least transmission angle over the cycle",
+    ),
+    AnswerKind(
+        "transmission_angle.max",
+        Compare.MAGNITUDE,
+        "position",
+        _D.ANGLE,
+        _property("transmission_angle_max"),
+        "greatest transmission angle over the cycle",
+    ),
+    AnswerKind(
+        "time_ratio", Compare.MAGNITUDE, "position", _D.NUMBER, _property("time_ratio"), "slow / fast stroke"
+    ),
+    AnswerKind(
+        "stroke.<joint>",
+        Compare.MAGNITUDE,
+        "position",
+        _D.LENGTH,
+        _property("stroke"),
+        "a slider's travel, or a frame pivot's swing",
+        also=(_D.ANGLE,),
     ),
 )
 for _kind in KINDS:

@@ -389,6 +389,33 @@ def icentres(request: Request) -> None:
     icentres_table(result, stdout(), units=request.units)
 
 
+@cli.command(name="properties")
+@kinematic_command()
+def properties_command(request: Request) -> None:
+    """Grashof, transmission angle, limit positions, strokes and time ratio of a linkage.
+
+    Grashof's criterion for every four-bar loop (and the inversion of a
+    slider-crank loop), the transmission angle at the crank angle and its
+    least and greatest values over the cycle with the crank angles where they
+    occur, the output's limit positions, every stroke and swing, and the
+    quick-return time ratio.
+    """
+    from mech.loader import load
+    from mech.properties.summary import linkage_properties
+
+    props = linkage_properties(load(request.file), options=request.options)
+    if request.as_json:
+        from mech.render.jsonout import dumps
+        from mech.render.properties import properties_dict
+
+        click.echo(dumps(properties_dict(props, units=request.units, file=request.file)))
+        return
+    from mech.render.console import stdout
+    from mech.render.properties import properties_table
+
+    properties_table(props, stdout(), units=request.units)
+
+
 @cli.command(name="sweep")
 @click.option(
     "--from", "start", type=float, default=0.0, show_default=True, help="First crank angle, degrees."

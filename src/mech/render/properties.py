@@ -98,3 +98,130 @@ def loop_lines(loop: FourBarLoop | SliderCrankLoop, unit: str) -> list[str]:
 
 def degrees(rad: float) -> float:
     return math.degrees(rad)
+
+
+# -- mech properties ----------------------------------------------------------------------------
+def _deg(rad: float | None) -> float | None:
+    return None if rad is None else math.degrees(rad)
+
+
+def _crank_deg(rad: float) -> float:
+    return math.degrees(rad) % 360.0
+
+
+def properties_dict(props: Any, *, units: Any, file: str | None = None) -> dict[str, Any]:
+    """``mech properties --json``: keys named as the answer keys (angles in degrees, lengths in ``units``)."""
+    length = units.length
+    out: dict[str, Any] = {
+        "file": file,
+        "mechanism": props.mechanism,
+        "units": {"length": length, "angle": "deg"},
+    }
+    out["loops"] = [loop_dict(loop) for loop in props.loops]
+    from mech.properties.grashof import FourBarLoop
+    from mech.properties.keys import _main_loop
+
+    drive = props.transmission.driver if props.transmission else None
+    main = _main_loop(props.loops, drive)
+    out["grashof"] = main.kind if isinstance(main, FourBarLoop) else None
+    t, c = props.transmission, props.cycle
+    if t is not None:
+        out["transmission_angle"] = {
+            "value": _deg(props.mu),
+            "at": t.joint,
+            "between": [t.coupler, t.output],
+            "angle": [t.coupler_joint, t.joint, t.pivot],
+            "min": _deg(c.mu_min) if c else None,
+            "min_crank_angle": _crank_deg(c.mu_min_angle) if c and c.mu_min_angle is not None else None,
+            "max": _deg(c.mu_max) if c else None,
+            "max_crank_angle": _crank_deg(c.mu_max_angle) if c and c.mu_max_angle is not None else None,
+        }
+    else:
+        out["transmission_angle"] = None
+    if c is not None:
+        out["stroke"] = {
+            j: {
+                "subject": s.subject,
+                "value": to_unit(s.value, length) if s.unit == "m" else math.degrees(s.value),
+                "unit": length if s.unit == "m" else "deg",
+                "low": to_unit(s.low, length) if s.unit == "m" else math.degrees(s.low),
+                "low_crank_angle": _crank_deg(s.low_angle),
+                "high": to_unit(s.high, length) if s.unit == "m" else math.degrees(s.high),
+                "high_crank_angle": _crank_deg(s.high_angle),
+            }
+            for j, s in c.strokes.items()
+        }
+        out["time_ratio"] = c.time_ratio
+        out["time_ratio_output"] = c.time_ratio_output
+        out["limit_positions"] = [
+            {
+                "output": lp.output,
+                "crank_angle": _crank_deg(lp.crank_angle),
+                "position": to_unit(lp.value, length) if lp.unit == "m" else math.degrees(lp.value) % 360.0,
+                "unit": length if lp.unit == "m" else "deg",
+            }
+            for lp in c.limits
+        ]
+        out["turns_fully_at"] = list(c.turning)
+    out["cycle_error"] = props.cycle_error
+    return out
+
+
+def properties_table(props: Any, console: Any, *, units: Any) -> None:
+    """``mech properties``: Grashof worked, transmission angle, limit positions, strokes, time ratio."""
+    from rich.table import Table
+    from rich.text import Text
+
+    from mech.render.console import table_box
+
+    d = properties_dict(props, units=units)
+    console.print(Text(props.mechanism, style="bold"))
+    for loop in props.loops:
+        for line in loop_lines(loop, units.length):
+            console.print(Text("  " + line), soft_wrap=True)
+    if not props.loops:
+        console.print("  no four-bar or slider-crank loop")
+    t = d["transmission_angle"]
+    if t is not None:
+        console.print(
+            Text(
+                f"  transmission angle μ = ∠{''.join(t['angle'])} between {t['between'][0]} and {t['between'][1]} "
+                f"at {t['at']}: {t['value']:.4f}° now"
+            ),
+            soft_wrap=True,
+        )
+        if t["min"] is not None:
+            console.print(
+                Text(
+                    f"    least {t['min']:.4f}° at crank {t['min_crank_angle']:.4f}°, "
+                    f"greatest {t['max']:.4f}° at crank {t['max_crank_angle']:.4f}°"
+                ),
+                soft_wrap=True,
+            )
+    if props.cycle is None:
+        console.print(Text(f"  over the cycle: not swept ({props.cycle_error})"), soft_wrap=True)
+        return
+    if d["limit_positions"]:
+        table = Table(box=table_box(console), title="Limit positions (dead centres of the outputs)")
+        for col, just in (("output", "left"), ("crank angle (deg)", "right"), ("position", "right")):
+            table.add_column(col, justify=just)  # type: ignore[arg-type]
+        for lp in d["limit_positions"]:
+            table.add_row(lp["output"], f"{lp['crank_angle']:.4f}", f"{lp['position']:.5g} {lp['unit']}")
+        console.print(table)
+    if d["stroke"]:
+        table = Table(box=table_box(console), title="Strokes (stroke.<joint>)")
+        for col in ("joint", "of", "stroke", "from", "at crank (deg)", "to", "at crank (deg)"):
+            table.add_column(col, justify="left" if col in ("joint", "of") else "right")
+        for j, s in d["stroke"].items():
+            table.add_row(
+                j,
+                s["subject"],
+                f"{s['value']:.5g} {s['unit']}",
+                f"{s['low']:.5g}",
+                f"{s['low_crank_angle']:.4f}",
+                f"{s['high']:.5g}",
+                f"{s['high_crank_angle']:.4f}",
+            )
+        console.print(table)
+    if d["time_ratio"] is not None:
+        console.print(f"  time ratio (slow / fast stroke of {d['time_ratio_output']}): {d['time_ratio']:.6g}")

@@ -1,0 +1,290 @@
+"""Transmission angle, limit positions, strokes and the quick-return time ratio.
+
+The transmission angle μ of a four-bar loop is the interior angle between the
+coupler and the output link at their joint (0–180°): with the crank AB, the
+coupler BC and the output CD pivoted at D, μ = ∠BCD.  Force flows best at
+90° and not at all at 0° or 180° (Norton, *Design of Machinery*, § 3.3;
+Khurmi & Gupta, *Theory of Machines*, § 5.5).  Its least and greatest values
+over the cycle are found by a sweep of the included angle ∠BCD
+(:func:`mech.kinematics.sweep`, quantity ``included.B.C.D``), whose extremes
+are refined between steps to rounding — the same refinement every other
+extreme of a sweep gets.
+
+Limit positions (dead centres of the output: where a rocker or a slider
+reverses) and the quick-return time ratio are the sweep's own; the stroke of
+a slider is the range of its displacement, the swing of a rocker the range of
+its angle.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from mech.errors import UnsupportedError
+from mech.model import JointType, Mechanism
+from mech.options import SolveOptions
+from mech.properties.grashof import FourBarLoop, linkage_loops
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.kinematics import Kinematics, Sweep
+
+__all__ = [
+    "Cycle",
+    "LimitPosition",
+    "Stroke",
+    "Transmission",
+    "cycle",
+    "transmission_angle",
+    "transmission_loop",
+]
+
+Vec = tuple[float, float]
+
+
+@dataclass(frozen=True, slots=True)
+class Transmission:
+    """Where the transmission angle is measured: ∠(coupler_joint, joint, pivot) in ``loop``.
+
+    ``joint`` joins ``coupler`` and ``output``; ``coupler_joint`` is the
+    coupler's other joint in the loop (the crank pin), ``pivot`` the output's
+    pivot on the frame.
+    """
+
+    loop: FourBarLoop
+    driver: str
+    coupler: str
+    output: str
+    coupler_joint: str
+    joint: str
+    pivot: str
+
+    @property
+    def quantity(self) -> str:
+        """The sweep quantity of the angle: ``included.B.C.D``."""
+        return f"included.{self.coupler_joint}.{self.joint}.{self.pivot}"
+
+
+def transmission_loop(mech: Mechanism, positions: Mapping[str, Vec] | None = None) -> Transmission:
+    """The four-bar loop whose crank is driven, with its coupler and output named.
+
+    Raises
+    ------
+    UnsupportedError
+        When no four-bar loop has the driven link beside the frame (a slider
+        crank has no four-bar loop; its transmission is not defined this way).
+    """
+    drive = next((d.link for d in mech.drives if d.link is not None), None)
+    for loop in linkage_loops(mech, positions):
+        if not isinstance(loop, FourBarLoop) or loop.frame is None:
+            continue
+        f = loop.links.index(loop.frame)
+        beside = (loop.links[(f + 1) % 4], loop.links[(f + 3) % 4])
+        if drive is not None and drive not in beside:
+            continue
+        driver = drive or beside[0]
+        k = loop.links.index(driver)
+        toward = 1 if loop.links[(k + 1) % 4] != loop.frame else -1
+        coupler = loop.links[(k + toward) % 4]
+        output = loop.links[(k + 2 * toward) % 4]
+
+        def joint_of(a: str, b: str, loop: FourBarLoop = loop) -> str:
+            for i in range(4):
+                if {loop.links[i], loop.links[(i + 1) % 4]} == {a, b}:
+                    return loop.joints[i]
+            raise AssertionError(f"{a} and {b} are not neighbours in the loop")  # pragma: no cover
+
+        return Transmission(
+            loop=loop,
+            driver=driver,
+            coupler=coupler,
+            output=output,
+            coupler_joint=joint_of(driver, coupler),
+            joint=joint_of(coupler, output),
+            pivot=joint_of(output, loop.frame),
+        )
+    raise UnsupportedError(
+        f"{mech.label} has no four-bar loop of turning pairs with the driven link beside the frame",
+        hint="the transmission angle is the angle between coupler and output of a four-bar loop",
+    )
+
+
+def included_angle(p: Vec, q: Vec, r: Vec) -> float:
+    """The angle p–q–r at q, 0 to π (rad)."""
+    u = (p[0] - q[0], p[1] - q[1])
+    w = (r[0] - q[0], r[1] - q[1])
+    return abs(math.atan2(u[0] * w[1] - u[1] * w[0], u[0] * w[0] + u[1] * w[1]))
+
+
+def transmission_angle(mech: Mechanism, kin: Kinematics) -> tuple[Transmission, float]:
+    """The transmission angle at the instant solved (rad, 0 to π), with where it is measured."""
+    t = transmission_loop(mech, kin.positions)
+    pos = kin.positions
+    return t, included_angle(pos[t.coupler_joint], pos[t.joint], pos[t.pivot])
+
+
+@dataclass(frozen=True, slots=True)
+class LimitPosition:
+    """A dead centre of an output: the drive angle (rad) and the output's position there.
+
+    ``value`` is a slider's displacement along its path (m) or a link's angle (rad).
+    """
+
+    output: str
+    crank_angle: float
+    value: float
+    unit: str
+
+
+@dataclass(frozen=True, slots=True)
+class Stroke:
+    """The travel of a slider (m) or the swing of a link pivoted on the frame (rad) over the cycle.
+
+    ``joint`` is the prismatic joint or the revolute joint on the frame the
+    answer key names; ``subject`` the slider joint or the swinging link;
+    ``low``/``high`` the extreme positions with their drive angles.
+    """
+
+    joint: str
+    subject: str
+    unit: str
+    low: float
+    low_angle: float
+    high: float
+    high_angle: float
+
+    @property
+    def value(self) -> float:
+        return self.high - self.low
+
+
+@dataclass(frozen=True, slots=True)
+class Cycle:
+    """What happens over one turn of the crank.
+
+    ``transmission`` is None when the mechanism has no four-bar loop with the
+    driven crank; ``mu_min``/``mu_max`` (rad) with the drive angles
+    ``mu_min_angle``/``mu_max_angle`` (rad) where they occur.  ``strokes`` are
+    keyed by joint name; ``turning`` lists joints whose link turns right round
+    (no swing).  ``time_ratio`` is slow over fast stroke (≥ 1) of ``time_ratio_output``.
+    """
+
+    sweep: Sweep
+    transmission: Transmission | None
+    mu_min: float | None
+    mu_min_angle: float | None
+    mu_max: float | None
+    mu_max_angle: float | None
+    limits: tuple[LimitPosition, ...]
+    strokes: Mapping[str, Stroke]
+    turning: tuple[str, ...]
+    time_ratio: float | None
+    time_ratio_output: str | None
+    gaps: tuple[tuple[float, float], ...]
+
+
+def _stroke_subjects(mech: Mechanism) -> list[tuple[str, str, str]]:
+    """(joint, kind, subject): prismatic joints on the frame, and revolute joints on the frame."""
+    drive = next((d.link for d in mech.drives if d.link is not None), None)
+    out = []
+    for j in mech.joints:
+        if (j.type is JointType.PRISMATIC and mech.ground in j.links) or j.type is JointType.PRISMATIC:
+            out.append((j.name, "displacement", j.name))
+        elif j.type is JointType.REVOLUTE and mech.ground in j.links and j.order == 2:
+            other = next(lk for lk in j.links if lk != mech.ground)
+            if other != drive:
+                out.append((j.name, "angle", other))
+    return out
+
+
+def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 360) -> Cycle:
+    """Sweep one turn of the crank and read the transmission angle, limits, strokes and time ratio.
+
+    Parameters
+    ----------
+    mech
+        A mechanism with one crank (a turning drive about a frame pivot).
+    options
+        Solver options (``angle`` must be None: the sweep sets it).
+    steps
+        Steps of the sweep; every extreme and dead centre is refined between
+        them, so the default 1° grid gives them to rounding.
+
+    Raises
+    ------
+    UnsupportedError
+        Not one turning drive (the sweep's own message).
+    """
+    import numpy as np
+
+    from mech.kinematics import solve, sweep
+
+    options = (options or SolveOptions()).with_(angle=None)
+    base = solve(mech, "position", options.with_(omega=None, direction=None, alpha=None))
+    try:
+        trans: Transmission | None = transmission_loop(mech, base.positions)
+    except UnsupportedError:
+        trans = None
+    subjects = _stroke_subjects(mech)
+    slides_and_links = [
+        f"displacement.{s}" if kind == "displacement" else f"angle.{s}" for _j, kind, s in subjects
+    ]
+    quantities = ([trans.quantity] if trans else []) + slides_and_links
+    angles = np.linspace(0.0, 2.0 * math.pi, steps + 1)
+    sw = sweep(mech, angles, level="position", options=options, quantities=quantities or None)
+    ext = {e.quantity: e for e in sw.extremes}
+    mu = ext.get(trans.quantity) if trans else None
+    strokes: dict[str, Stroke] = {}
+    turning: list[str] = []
+    for (joint, kind, subject), key in zip(subjects, slides_and_links, strict=True):
+        e = ext.get(key)
+        if e is None:
+            series = sw.series(key)
+            ok = np.isfinite(series)
+            if kind == "angle" and np.any(ok) and float(np.ptp(series[ok])) >= 2 * math.pi - 1e-9:
+                turning.append(joint)
+            elif np.any(ok):  # does not move at all over the cycle
+                v = float(series[ok][0])
+                strokes[joint] = Stroke(
+                    joint, subject, "m" if kind == "displacement" else "rad", v, 0.0, v, 0.0
+                )
+            continue
+        strokes[joint] = Stroke(
+            joint,
+            subject,
+            e.unit,
+            e.min_value,
+            e.min_angle,
+            e.max_value,
+            e.max_angle,
+        )
+    limits = tuple(
+        LimitPosition(
+            e.subject,
+            e.angle,
+            float(e.value) if e.value is not None else math.nan,
+            "m" if e.subject in sw.slides else "rad",
+        )
+        for e in sw.dead_centres
+    )
+    return Cycle(
+        sweep=sw,
+        transmission=trans,
+        mu_min=mu.min_value if mu else None,
+        mu_min_angle=mu.min_angle if mu else None,
+        mu_max=mu.max_value if mu else None,
+        mu_max_angle=mu.max_angle if mu else None,
+        limits=limits,
+        strokes=strokes,
+        turning=tuple(turning),
+        time_ratio=sw.time_ratio.ratio if sw.time_ratio else None,
+        time_ratio_output=sw.time_ratio.output if sw.time_ratio else None,
+        gaps=tuple((g.start, g.end) for g in sw.gaps),
+    )
+
+
+def stroke_joints(mech: Mechanism) -> Sequence[str]:
+    """The joints a ``stroke.<joint>`` key may name."""
+    return [j for j, _k, _s in _stroke_subjects(mech)]

@@ -1,0 +1,119 @@
+"""Reference values of the linkage-property answer keys, for ``mech check`` (DESIGN § 1.1).
+
+Each function is ``compute(an, names)`` of the answer-key registry
+(:mod:`mech.answers`): ``an`` is a :class:`mech.check.Analysis`, ``names`` the
+names the key's placeholders matched.  The registry imports this module only
+when a claim asks for one of these keys, so counting DOF never loads it.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Any
+
+from mech.answers import Undefined
+from mech.properties.grashof import FourBarLoop, linkage_loops
+
+__all__ = [
+    "grashof",
+    "normal_grashof",
+    "stroke",
+    "time_ratio",
+    "transmission_angle",
+    "transmission_angle_max",
+    "transmission_angle_min",
+]
+
+
+def normal_grashof(name: str) -> str:
+    """``Crank Rocker``, ``crank_rocker`` → ``crank-rocker``; ``triple rocker`` → ``non-grashof``."""
+    s = re.sub(r"[\s_–—]+", "-", name.strip().lower())
+    return {
+        "triple-rocker": "non-grashof",
+        "nongrashof": "non-grashof",
+        "drag-link": "double-crank",
+        "rocker-crank": "crank-rocker",
+        "changepoint": "change-point",
+    }.get(s, s)
+
+
+def _main_loop(loops: tuple[Any, ...], drive: str | None) -> FourBarLoop | None:
+    """The four-bar loop of the driven crank (beside the frame), else the first with a frame."""
+    framed = [lp for lp in loops if isinstance(lp, FourBarLoop) and lp.frame is not None]
+    for lp in framed:
+        f = lp.links.index(lp.frame)  # type: ignore[arg-type]
+        if drive in (lp.links[(f + 1) % 4], lp.links[(f + 3) % 4]):
+            return lp
+    return framed[0] if framed else None
+
+
+def grashof(an: Any, names: tuple[str, ...]) -> str:
+    """The Grashof class of the driven four-bar loop (lengths from the file, else from the solve)."""
+    drive = next((d.link for d in an.mech.drives if d.link is not None), None)
+    loop = _main_loop(an.topology.loops, drive)
+    if loop is None:
+        loop = _main_loop(linkage_loops(an.mech, an.kin.positions), drive)
+    if loop is None:
+        raise Undefined(
+            "cannot be computed: the mechanism has no four-bar loop of turning pairs with a fixed link"
+        )
+    return str(loop.kind)
+
+
+def _cycle(an: Any) -> Any:
+    from mech.properties.cycle import cycle
+
+    return an.cached("properties.cycle", lambda: cycle(an.mech, options=an.options.with_(angle=None)))
+
+
+def transmission_angle(an: Any, names: tuple[str, ...]) -> float:
+    """∠(crank pin, coupler–output joint, output pivot) at the instant, rad (0 to π)."""
+    from mech.properties.cycle import transmission_angle as at_instant
+
+    return at_instant(an.mech, an.kin)[1]
+
+
+def _mu(an: Any, which: str) -> float:
+    c = _cycle(an)
+    if c.transmission is None:
+        from mech.properties.cycle import transmission_loop
+
+        transmission_loop(an.mech, an.kin.positions)  # raises the reason
+    value = c.mu_min if which == "min" else c.mu_max
+    if value is None:
+        raise Undefined("cannot be computed: the transmission angle was not found over the cycle")
+    return float(value)
+
+
+def transmission_angle_min(an: Any, names: tuple[str, ...]) -> float:
+    """Least transmission angle over the crank's cycle, rad."""
+    return _mu(an, "min")
+
+
+def transmission_angle_max(an: Any, names: tuple[str, ...]) -> float:
+    """Greatest transmission angle over the crank's cycle, rad."""
+    return _mu(an, "max")
+
+
+def time_ratio(an: Any, names: tuple[str, ...]) -> float:
+    """Slow stroke over fast stroke of the output (≥ 1), over a full turn of the crank."""
+    c = _cycle(an)
+    if c.time_ratio is None:
+        raise Undefined(
+            "cannot be computed: no output with two dead centres over a full, gap-free turn of the crank"
+        )
+    return float(c.time_ratio)
+
+
+def stroke(an: Any, names: tuple[str, ...]) -> float:
+    """A prismatic joint's travel (m), or the swing of the link a frame pivot carries (rad)."""
+    c = _cycle(an)
+    joint = names[0]
+    if joint in c.strokes:
+        return float(c.strokes[joint].value)
+    if joint in c.turning:
+        raise Undefined(f"cannot be computed: the link at {joint} turns right round (no swing)")
+    raise Undefined(
+        f"cannot be computed: {joint} is neither a prismatic joint nor a revolute joint on the frame "
+        "carrying a link other than the crank"
+    )
