@@ -26,7 +26,9 @@ from mech.pairs.specs import (
 
 def _registries() -> dict[str, dict[JointType, object]]:
     """Every per-kind registry, by layer (a new layer's registry is added here)."""
-    return {"model": dict(KINDS)}
+    from mech.kinematics.rows import ROWS
+
+    return {"model": dict(KINDS), "kinematics rows": dict(ROWS)}
 
 
 @pytest.mark.parametrize("jtype", list(JointType), ids=lambda t: t.value)

@@ -780,6 +780,10 @@ def _check_contacts(lay: Layout) -> None:
     for j in lay.contacts:
         if j.place.at is not None or (j.type is JointType.GEAR and _pitch_radii(j) is not None):
             continue
+        if j.profiles or getattr(j.spec, "program", None) is not None:
+            continue  # profiles that touch: the contact point follows from them
+        if j.type is JointType.ROLLING and j.radii is not None:
+            continue
         extra = " or `radii` (or `teeth` with `module`)" if j.type is JointType.GEAR else ""
         problems.append(
             Problem(

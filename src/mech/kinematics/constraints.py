@@ -37,10 +37,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mech.errors import Problem, collect
+from mech.errors import collect
 from mech.kinematics.assemble import Drawn, gear_centre
 from mech.kinematics.layout import Layout, PathSpec
-from mech.model import Joint, JointType
+from mech.kinematics.rows import ROWS, Angle, Build, Locator, OnLine
+from mech.model import Joint
 
 __all__ = ["System", "build_system"]
 
@@ -75,10 +76,18 @@ class System:
     ln_t: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     ln_n: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     ln_c: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    ln_k: np.ndarray | None = None  # per row: coefficient of θ_slider − θ_guide (rolling); None: all 0
     # linear angle rows: a (k, n+1) on θ of all links (ground last), constant c
     ang_a: np.ndarray = field(default_factory=lambda: np.zeros((0, 1)))
     ang_c: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    # distance rows (after the angle rows): ½(|r_i(P) − r_j(Q)|² − d²) = 0
+    ds_i: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
+    ds_si: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    ds_j: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
+    ds_sj: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    ds_d: np.ndarray = field(default_factory=lambda: np.zeros(0))
     # bookkeeping
+    locators: dict[str, Locator] = field(default_factory=dict)  # moving contact point from q (scaled)
     row_names: tuple[str, ...] = ()  # per row: the joint or drive it comes from
     holonomic: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))  # per row
     drive_rows: np.ndarray = field(default_factory=lambda: np.zeros(0, int))  # row per drive (file order)
@@ -100,7 +109,7 @@ class System:
 
     @property
     def m(self) -> int:
-        return 2 * self.pc_i.size + self.ln_s.size + self.ang_c.size
+        return 2 * self.pc_i.size + self.ln_s.size + self.ang_c.size + self.ds_d.size
 
     # -- kinematic functions (scaled) ------------------------------------------------
     def _full(self, q: np.ndarray) -> np.ndarray:
@@ -132,9 +141,25 @@ class System:
             dx = qf[3 * self.ln_s] + sx - qf[3 * self.ln_g] - tx
             dy = qf[3 * self.ln_s + 1] + sy - qf[3 * self.ln_g + 1] - ty
             out[r : r + kl] = nx * dx + ny * dy - c_line
+            if self.ln_k is not None:
+                out[r : r + kl] += self.ln_k * (qf[3 * self.ln_s + 2] - qf[3 * self.ln_g + 2])
         r += kl
-        out[r:] = self.ang_a @ qf[2::3] - c_ang
+        ka = self.ang_c.size
+        out[r : r + ka] = self.ang_a @ qf[2::3] - c_ang
+        r += ka
+        if self.ds_d.size:
+            dx, dy, _, _, _, _ = self._distance(qf)
+            out[r:] = 0.5 * (dx * dx + dy * dy - self.ds_d**2)
         return out
+
+    def _distance(self, qf: np.ndarray) -> tuple[np.ndarray, ...]:
+        """d = r_i(P) − r_j(Q) of the distance rows, with A_i s_i and A_j s_j."""
+        ax, ay = self._rot(qf, self.ds_i, self.ds_si)
+        bx, by = self._rot(qf, self.ds_j, self.ds_sj)
+        i3, j3 = 3 * self.ds_i, 3 * self.ds_j
+        dx = qf[i3] + ax - qf[j3] - bx
+        dy = qf[i3 + 1] + ay - qf[j3 + 1] - by
+        return dx, dy, ax, ay, bx, by
 
     def jacobian(self, q: np.ndarray) -> np.ndarray:
         """Φ_q (m, 3n)."""
@@ -172,9 +197,24 @@ class System:
             jac[rows, g3] = -nx
             jac[rows, g3 + 1] = -ny
             jac[rows, g3 + 2] = (-ny * dx + nx * dy) - (-nx * ty + ny * tx)
+            if self.ln_k is not None:
+                np.add.at(jac, (rows, s3 + 2), self.ln_k)
+                np.add.at(jac, (rows, g3 + 2), -self.ln_k)
         r0 += kl
-        if self.ang_c.size:
-            jac[r0:, 2::3] = self.ang_a
+        ka = self.ang_c.size
+        if ka:
+            jac[r0 : r0 + ka, 2::3] = self.ang_a
+        r0 += ka
+        if self.ds_d.size:
+            rows = np.arange(r0, r0 + self.ds_d.size)
+            dx, dy, ax, ay, bx, by = self._distance(qf)
+            i3, j3 = 3 * self.ds_i, 3 * self.ds_j
+            np.add.at(jac, (rows, i3), dx)
+            np.add.at(jac, (rows, i3 + 1), dy)
+            np.add.at(jac, (rows, i3 + 2), -dx * ay + dy * ax)
+            np.add.at(jac, (rows, j3), -dx)
+            np.add.at(jac, (rows, j3 + 1), -dy)
+            np.add.at(jac, (rows, j3 + 2), dx * by - dy * bx)
         return jac[:, :-3]
 
     def gamma(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
@@ -207,10 +247,22 @@ class System:
                 + ws**2 * (nx * sx + ny * sy)
                 - wg**2 * (nx * tx + ny * ty)
             )
+        if self.ds_d.size:
+            # ½|d|² = const: d·d̈ = −|ḋ|², and d̈ holds −ω_i² A_i s_i + ω_j² A_j s_j besides q̈
+            dx, dy, ax, ay, bx, by = self._distance(qf)
+            i3, j3 = 3 * self.ds_i, 3 * self.ds_j
+            wi, wj = vf[i3 + 2], vf[j3 + 2]
+            ddx = vf[i3] - wi * ay - vf[j3] + wj * by
+            ddy = vf[i3 + 1] + wi * ax - vf[j3 + 1] - wj * bx
+            out[self.m - self.ds_d.size :] = (
+                -(ddx * ddx + ddy * ddy) + dx * (wi**2 * ax - wj**2 * bx) + dy * (wi**2 * ay - wj**2 * by)
+            )
         return out
 
     def point(self, q: np.ndarray, name: str) -> np.ndarray:
         """Scaled global position (2,) of a location in configuration ``q``."""
+        if name in self.locators:
+            return self.locators[name](q)
         if name in self.contact_xy:
             return self.contact_xy[name]
         i, s = self.local[name]
@@ -224,10 +276,13 @@ class System:
 def build_system(lay: Layout, drawn: Drawn) -> System:
     """Compile the constraint rows of ``lay`` about its drawn configuration.
 
+    Each joint's rows come from its kind's entry in :data:`mech.kinematics.rows.ROWS`.
+
     Raises
     ------
     InputError
-        A higher pair lacks what its velocity row needs (its contact point or normal).
+        A higher pair lacks what its rows need (its contact point or normal, or
+        profiles that touch as drawn).
     """
     mech = lay.mech
     scale = drawn.scale
@@ -280,114 +335,26 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
             if name in drive_link_angle and drive_link_angle[name] is not None:
                 theta = drive_link_angle[name]
             elif name in slider_dir:
-                theta = _path_angle(lay, slider_dir[name], pos)
+                theta = path_angle(lay, slider_dir[name], pos)
             else:
                 theta = 0.0
         frames[name] = names[0] if names else ""
         q0[3 * index[name] : 3 * index[name] + 3] = (origin[0], origin[1], theta)
     frames[ground] = ""
 
-    def to_local(link: str, xy: np.ndarray) -> np.ndarray:
-        i = index[link]
-        if i == n:
-            return xy.copy()
-        x, y, th = q0[3 * i : 3 * i + 3]
-        c, s = math.cos(th), math.sin(th)
-        d = xy - (x, y)
-        return np.array([c * d[0] + s * d[1], -s * d[0] + c * d[1]])
-
-    def dir_local(link: str, angle: float) -> np.ndarray:
-        i = index[link]
-        th = 0.0 if i == n else q0[3 * i + 2]
-        return np.array([math.cos(angle - th), math.sin(angle - th)])
-
+    b = Build(lay, pos, index, n, q0, scale, sc, scn, {ps.joint: ps for ps in lay.paths})
     local: dict[str, tuple[int, np.ndarray]] = {}
     for name, carriers in lay.carriers.items():
         if carriers and name in pos:
             moving = [c for c in carriers if c != ground]
             carrier = moving[0] if moving else ground
-            local[name] = (index[carrier], to_local(carrier, scn(name)))
+            local[name] = (index[carrier], b.to_local(carrier, scn(name)))
     contact_xy = {j.name: scn(j.name) for j in lay.contacts if j.name in pos}
 
-    pc: list[tuple[int, np.ndarray, int, np.ndarray, str, bool]] = []
-    ln: list[tuple[int, np.ndarray, int, np.ndarray, np.ndarray, float, str, bool]] = []
-    ang: list[tuple[dict[int, float], float, str, bool]] = []
-    problems: list[Problem] = []
-
     for j in mech.joints:
-        if j.type is JointType.REVOLUTE and j.name in pos:
-            xy = scn(j.name)
-            first = j.links[0]
-            for other in j.links[1:]:
-                pc.append(
-                    (index[first], to_local(first, xy), index[other], to_local(other, xy), j.name, True)
-                )
-
-    path_dirs: dict[str, tuple[int, np.ndarray]] = {}
-    path_points: dict[str, tuple[int, str]] = {}
-    for ps in lay.paths:
-        through = ps.path.through
-        t_xy = sc(through.xy) if through.xy is not None else scn(lay.resolve(through.name))  # type: ignore[arg-type]
-        a = _path_angle(lay, ps, pos)
-        u = dir_local(ps.guide, a)
-        nloc = np.array([-u[1], u[0]])
-        p_xy = scn(ps.point)
-        ln.append(
-            (
-                index[ps.slider],
-                to_local(ps.slider, p_xy),
-                index[ps.guide],
-                to_local(ps.guide, t_xy),
-                nloc,
-                0.0,
-                ps.joint,
-                True,
-            )
-        )
-        path_dirs[ps.joint] = (index[ps.guide], u)
-        path_points[ps.joint] = (index[ps.slider], ps.point)
-        if ps.type is JointType.PRISMATIC:
-            th_s = 0.0 if index[ps.slider] == n else q0[3 * index[ps.slider] + 2]
-            th_g = 0.0 if index[ps.guide] == n else q0[3 * index[ps.guide] + 2]
-            ang.append(({index[ps.slider]: 1.0, index[ps.guide]: -1.0}, th_s - th_g, ps.joint, True))
-
-    for j in lay.contacts:
-        a_link, b_link = j.links
-        holo = _gear_row(lay, j, pos, index, q0, n) if j.type is JointType.GEAR else None
-        if holo is not None:
-            ang.append((holo[0], holo[1], j.name, True))
-            continue
-        if j.name not in pos:
-            problems.append(
-                Problem(
-                    f"{j.type.value} joint {j.name} needs at (the contact point of the "
-                    "instant) for velocities",
-                    j.where,
-                )
-            )
-            continue
-        xy = scn(j.name)
-        if j.type is JointType.ROLLING:
-            pc.append(
-                (index[a_link], to_local(a_link, xy), index[b_link], to_local(b_link, xy), j.name, False)
-            )
-            continue
-        normal = j.normal
-        if normal is None and j.type is JointType.GEAR:
-            normal = _gear_normal(lay, j, pos)
-        if normal is None:
-            problems.append(
-                Problem(
-                    f"{j.type.value} joint {j.name} needs normal (the common normal's angle) for velocities",
-                    j.where,
-                )
-            )
-            continue
-        u = dir_local(b_link, normal)
-        ln.append(
-            (index[a_link], to_local(a_link, xy), index[b_link], to_local(b_link, xy), u, 0.0, j.name, False)
-        )
-    collect(problems, source=mech.source)
+        ROWS[j.type](b, j)
+    collect(b.problems, source=mech.source)
+    pc, ln, ang = b.coincide, b.online, b.angle
 
     # Drives last, in file order: rotary drives are angle rows, slider drives line rows.
     drive_at: list[tuple[str, int]] = []
@@ -395,13 +362,12 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
         name = f"drive {spec.drive.link or spec.drive.joint}"
         if spec.link is not None:
             i, r = index[spec.link], index[spec.reference]  # type: ignore[index]
-            th_r = 0.0 if r == n else q0[3 * r + 2]
-            ang.append(({i: 1.0, r: -1.0}, q0[3 * i + 2] - th_r, name, True))
+            ang.append(Angle({i: 1.0, r: -1.0}, b.theta(spec.link) - b.theta(spec.reference), name))  # type: ignore[arg-type]
             drive_at.append(("ang", len(ang) - 1))
         else:
-            base = next(x for x in ln if x[6] == spec.joint)
-            u = path_dirs[spec.joint][1]
-            ln.append((base[0], base[1], base[2], base[3], u, 0.0, name, True))
+            base = next(x for x in ln if x.joint == spec.joint)
+            u = b.path_dirs[spec.joint][1]
+            ln.append(OnLine(base.slider, base.s, base.guide, base.t, u, 0.0, name))
             drive_at.append(("ln", len(ln) - 1))
     n_pc, kl = len(pc), len(ln)
     drive_rows = [2 * n_pc + (k if kind == "ln" else kl + k) for kind, k in drive_at]
@@ -417,41 +383,52 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
         contact_xy=contact_xy,
     )
     if pc:
-        sys_.pc_i = np.array([p[0] for p in pc])
-        sys_.pc_si = np.array([p[1] for p in pc])
-        sys_.pc_j = np.array([p[2] for p in pc])
-        sys_.pc_sj = np.array([p[3] for p in pc])
+        sys_.pc_i = np.array([p.i for p in pc])
+        sys_.pc_si = np.array([p.si for p in pc])
+        sys_.pc_j = np.array([p.j for p in pc])
+        sys_.pc_sj = np.array([p.sj for p in pc])
     if ln:
-        sys_.ln_s = np.array([x[0] for x in ln])
-        sys_.ln_sp = np.array([x[1] for x in ln])
-        sys_.ln_g = np.array([x[2] for x in ln])
-        sys_.ln_t = np.array([x[3] for x in ln])
-        sys_.ln_n = np.array([x[4] for x in ln])
-        sys_.ln_c = np.zeros(len(ln))
+        sys_.ln_s = np.array([x.slider for x in ln])
+        sys_.ln_sp = np.array([x.s for x in ln])
+        sys_.ln_g = np.array([x.guide for x in ln])
+        sys_.ln_t = np.array([x.t for x in ln])
+        sys_.ln_n = np.array([x.n for x in ln])
+        sys_.ln_c = np.array([x.c for x in ln], float)
+        if any(x.k for x in ln):
+            sys_.ln_k = np.array([x.k for x in ln], float)
     a = np.zeros((len(ang), n + 1))
-    for row, (coef, _, _, _) in enumerate(ang):
-        for col, v in coef.items():
+    for row, rec in enumerate(ang):
+        for col, v in rec.coef.items():
             a[row, col] += v
     sys_.ang_a = a
-    sys_.ang_c = np.array([x[1] for x in ang], float)
+    sys_.ang_c = np.array([x.c for x in ang], float)
+    ds = b.distance
+    if ds:
+        sys_.ds_i = np.array([x.i for x in ds])
+        sys_.ds_si = np.array([x.si for x in ds])
+        sys_.ds_j = np.array([x.j for x in ds])
+        sys_.ds_sj = np.array([x.sj for x in ds])
+        sys_.ds_d = np.array([x.d for x in ds], float)
     names: list[str] = []
     holo_rows: list[bool] = []
     for p in pc:
-        names += [p[4], p[4]]
-        holo_rows += [p[5], p[5]]
-    names += [x[6] for x in ln] + [x[2] for x in ang]
-    holo_rows += [x[7] for x in ln] + [x[3] for x in ang]
+        names += [p.joint, p.joint]
+        holo_rows += [p.holonomic, p.holonomic]
+    for rec in (*ln, *ang, *ds):
+        names.append(rec.joint)
+        holo_rows.append(rec.holonomic)
     sys_.row_names = tuple(names)
     sys_.holonomic = np.array(holo_rows, bool)
     sys_.velocity_only = tuple(dict.fromkeys(n for n, h in zip(names, holo_rows, strict=True) if not h))
     sys_.drive_rows = np.array(drive_rows, int)
-    sys_.path_dirs = path_dirs
-    sys_.path_points = path_points
+    sys_.path_dirs = b.path_dirs
+    sys_.path_points = b.path_points
+    sys_.locators = b.locators
     sys_.loc_names = tuple(local)
     sys_.loc_i = np.array([local[k][0] for k in local], int)
     sys_.loc_s = np.array([local[k][1] for k in local], float).reshape(-1, 2)
     sys_.link_index = {name: i for i, name in enumerate(links)}
-    sys_.joint_names = frozenset(j.name for j in mech.joints if j.type is not JointType.PRISMATIC)
+    sys_.joint_names = frozenset(j.name for j in mech.joints if j.type.kind.located != "none")
     # Slider drives: their constant is the drawn displacement along the path.
     if ln:
         base_phi = sys_.phi(q0, sys_.ln_c, sys_.ang_c)
@@ -461,7 +438,7 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     return sys_
 
 
-def _path_angle(lay: Layout, ps: PathSpec, pos: dict[str, tuple[float, float]]) -> float:
+def path_angle(lay: Layout, ps: PathSpec, pos: dict[str, tuple[float, float]]) -> float:
     """Global direction (rad) of a path in the drawn configuration."""
     if ps.path.toward is not None:
         t = ps.path.through
@@ -484,7 +461,7 @@ def _carrier_of(lay: Layout, link: str, pos: dict[str, tuple[float, float]]) -> 
     return out
 
 
-def _gear_row(
+def gear_row(
     lay: Layout,
     j: Joint,
     pos: dict[str, tuple[float, float]],
@@ -529,7 +506,7 @@ def _gear_row(
     return coef, sum(v * theta[i] for i, v in coef.items())
 
 
-def _gear_normal(lay: Layout, j: Joint, pos: dict[str, tuple[float, float]]) -> float | None:
+def gear_normal(lay: Layout, j: Joint, pos: dict[str, tuple[float, float]]) -> float | None:
     """Line of action of a gear pair: the common tangent turned by the pressure angle."""
     centres = [gear_centre(lay, lk, pos) for lk in j.links]
     if None in centres:

@@ -375,7 +375,8 @@ class Kinematics:
         choices = joint.links if joint else tuple(self.links)
         raise InputError(
             f"{name} is a contact point: the {what} of the points of {' and '.join(choices)} there differ",
-            hint=f"name the link: link={choices[0]!r} or link={choices[-1]!r}",
+            hint=f"say whose point is meant: the point of {choices[0]} or of {choices[-1]} there "
+            "(mech's tables list both)",
         )
 
     # -- queries -----------------------------------------------------------------

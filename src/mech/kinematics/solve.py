@@ -830,6 +830,9 @@ def _fields(
     if not moved:
         for n, p in sys_.contact_xy.items():
             positions[n] = (float(p[0] * scale + cx), float(p[1] * scale + cy))
+    for n, locate in sys_.locators.items():  # profiles in contact: where they touch now
+        p = locate(q)
+        positions[n] = (float(p[0] * scale + cx), float(p[1] * scale + cy))
     if lay.contacts:
         gear_pitch_points(lay, positions)  # a moved gear pair: pitch point from its centres
     for alias, target in lay.alias.items():

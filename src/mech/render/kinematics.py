@@ -50,6 +50,8 @@ def _point_rows(kin: Kinematics) -> Iterator[tuple[str, str | None]]:
             continue
         try:
             kin.velocity(name)
+            if _at_least(kin, "acceleration"):
+                kin.acceleration(name)  # a rolling contact: one velocity, two accelerations
             yield name, None
         except InputError:
             joint = kin.joints.get(name)

@@ -1,0 +1,292 @@
+"""Higher pairs that move: the contact rows of two profiles, and where they touch.
+
+Each link of a ``cam``, ``contact`` or ``rolling`` joint may carry a curve
+(:mod:`mech.pairs.specs`): a circle, a straight line, a point (knife edge).
+Two such curves in contact give holonomic rows in the shapes of
+:mod:`mech.kinematics.rows`, so the pair moves, sweeps and accelerates like
+any lower pair, and the curvature terms come with the row shape:
+
+==================  =========================================================  ===========
+profiles            contact condition                                          row
+==================  =========================================================  ===========
+circle – line       the centre stays ±r from the line (a flat face, the        OnLine, c = ±r
+                    ground under a wheel)
+point – line        the knife edge stays on the line                           OnLine, c = 0
+circle – circle     centres r₁ + r₂ apart (|r₁ − r₂| inside): an eccentric     Distance
+                    cam and a roller
+point – circle      the knife edge stays r from the centre                     Distance
+==================  =========================================================  ===========
+
+A circle–line pair gives exactly the curvature term of a point on a line (the
+centre of curvature moves rigidly with the circle), and a circle–circle pair
+that of two points at a fixed distance: these are the classical equivalent
+linkages (Uicker, Pennock & Shigley, *Theory of Machines and Mechanisms*,
+§ 3.10), exact for all positions because the radii of curvature are constant.
+
+``rolling`` adds no slip: for a circle on a line, ``u·(r_c − r_T) + s·r·(θ_c − θ_line)
+= const`` (the arc rolled equals the distance travelled; ``s`` the side of the
+line the circle is on).  Two rolling circles whose centres are pinned to one
+carrier give the gear-pair row instead (their centre distance is already fixed).
+
+``radii: [r1, r2]`` is shorthand for circles about each link's pivot; ``null`` is
+a straight line tangent to the other circle where the pair is drawn (at ``at``,
+or under the circle's centre when the joint has no ``at``).
+
+A closed ``curve`` is read and drawn, but does not move yet (a clear refusal).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from mech.errors import Problem
+from mech.kinematics.rows import Angle, Build, Distance, OnLine
+from mech.model import Joint, JointType, Ref
+from mech.pairs.specs import Circle, Curve, Knife, Line, Profile
+
+__all__ = ["drawn_profiles", "moving_contact"]
+
+#: Largest gap (relative to the mechanism's size) between profiles drawn in contact.
+TOUCH = 1e-6
+
+
+@dataclass(frozen=True, slots=True)
+class _Geo:
+    """A profile as drawn, scaled: ``p`` the centre, point or line's through-point; ``u`` a line's direction."""
+
+    link: str
+    kind: str  # circle | line | point
+    p: np.ndarray
+    r: float = 0.0
+    u: np.ndarray | None = None
+
+
+def drawn_profiles(lay: object, j: Joint, positions: dict[str, tuple[float, float]]) -> dict[str, Profile]:
+    """The profiles of ``j`` keyed by link: given, from ``radii``, or from a cam's programme."""
+    spec = j.spec
+    program = getattr(spec, "program", None)
+    if program is not None:
+        from mech.cam import program_profiles  # type: ignore[attr-defined]
+
+        return dict(program_profiles(lay.mech, j, positions))  # type: ignore[attr-defined]
+    if j.profiles:
+        return dict(j.profiles)
+    radii = j.radii if j.type is JointType.ROLLING else None
+    if radii is None:
+        return {}
+    from mech.kinematics.assemble import gear_centre
+
+    out: dict[str, Profile] = {}
+    for link, r in zip(j.links, radii, strict=True):
+        if r is None:
+            continue
+        c = gear_centre(lay, link, positions)  # type: ignore[arg-type]
+        if c is None:
+            return {}
+        out[link] = Circle(Ref(xy=c), r)
+    for link, r in zip(j.links, radii, strict=True):
+        if r is not None:
+            continue
+        other = next(lk for lk in j.links if lk != link)
+        circle = out[other]
+        assert isinstance(circle, Circle) and circle.centre.xy is not None
+        cx, cy = circle.centre.xy
+        at = j.place.at if j.place.at is not None else (cx, cy - circle.radius)
+        # the line is tangent to the circle at the contact point: perpendicular to centre → contact
+        angle = math.atan2(at[1] - cy, at[0] - cx) + math.pi / 2.0
+        out[link] = Line(Ref(xy=at), angle=angle)
+    return out
+
+
+def _geo(b: Build, j: Joint, link: str, prof: Profile) -> _Geo | None:
+    def where(ref: Ref, what: str) -> np.ndarray | None:
+        if ref.name is not None:
+            name = b.lay.resolve(ref.name)
+            if link not in b.lay.carriers.get(name, ()) or name not in b.pos:
+                b.problems.append(
+                    Problem(
+                        f"the {what} of the profile of {link} in joint {j.name} is {ref.name!r}, "
+                        f"which is not a drawn point of {link}",
+                        j.where,
+                        f"name a joint or point of {link}, or give coordinates [x, y]",
+                    )
+                )
+                return None
+        return b.where(ref)
+
+    if isinstance(prof, Circle):
+        p = where(prof.centre, "centre")
+        return None if p is None else _Geo(link, "circle", p, prof.radius / b.scale)
+    if isinstance(prof, Knife):
+        p = where(prof.point, "point")
+        return None if p is None else _Geo(link, "point", p)
+    if isinstance(prof, Line):
+        p = where(prof.through, "through-point")
+        if p is None:
+            return None
+        if prof.toward is not None:
+            q = where(prof.toward, "toward-point")
+            if q is None:
+                return None
+            u = q - p
+            u = u / (math.hypot(*u) or 1.0)
+        else:
+            a = prof.angle or 0.0
+            u = np.array([math.cos(a), math.sin(a)])
+        return _Geo(link, "line", p, u=u)
+    assert isinstance(prof, Curve)
+    b.problems.append(
+        Problem(
+            f"joint {j.name}: a `curve` profile is drawn but does not move yet",
+            j.where,
+            "give circles, lines or points as profiles, or analyse the instant with `at` and `normal`",
+        )
+    )
+    return None
+
+
+def _at(b: Build, link: str, s: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+    """Global scaled position of local point ``s`` of ``link`` as a function of q."""
+    i = b.index[link]
+    if i == b.n:
+        return lambda q: s
+
+    def f(q: np.ndarray) -> np.ndarray:
+        x, y, th = q[3 * i : 3 * i + 3]
+        c, sn = math.cos(th), math.sin(th)
+        return np.array([x + c * s[0] - sn * s[1], y + sn * s[0] + c * s[1]])
+
+    return f
+
+
+def _dir(b: Build, link: str, u: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+    i = b.index[link]
+    if i == b.n:
+        return lambda q: u
+
+    def f(q: np.ndarray) -> np.ndarray:
+        th = q[3 * i + 2]
+        c, sn = math.cos(th), math.sin(th)
+        return np.array([c * u[0] - sn * u[1], sn * u[0] + c * u[1]])
+
+    return f
+
+
+def moving_contact(b: Build, j: Joint) -> bool:
+    """Add the rows of ``j``'s profiles to ``b``; False when ``j`` has none (the instant rows apply)."""
+    profiles = drawn_profiles(b.lay, j, b.pos)
+    if not profiles:
+        return False
+    missing = [lk for lk in j.links if lk not in profiles]
+    if missing:
+        b.problems.append(
+            Problem(
+                f"joint {j.name} gives a profile for {', '.join(lk for lk in j.links if lk in profiles)} "
+                f"but not for {', '.join(missing)}",
+                j.where,
+                "a pair moves when each of its links has a curve: add the other profile",
+            )
+        )
+        return True
+    geos = [_geo(b, j, lk, profiles[lk]) for lk in j.links]
+    if None in geos:
+        return True
+    ga, gb = geos
+    assert ga is not None and gb is not None
+    kinds = {ga.kind, gb.kind}
+    unit = b.lay.mech.length_unit
+    from mech.units import to_unit
+
+    def gap_problem(gap: float, how: str) -> None:
+        b.problems.append(
+            Problem(
+                f"the profiles of joint {j.name} are drawn {to_unit(gap * b.scale, unit):.4g} {unit} "
+                f"apart ({how}); they must touch",
+                j.where,
+                "place the links so that the curves touch in the drawing",
+            )
+        )
+
+    if "line" in kinds and len(kinds) == 2:
+        other, line = (ga, gb) if gb.kind == "line" else (gb, ga)
+        assert line.u is not None
+        n = np.array([-line.u[1], line.u[0]])
+        dist = float(n @ (other.p - line.p))
+        side = 1.0 if dist >= 0 else -1.0
+        want = side * other.r
+        if abs(dist - want) > TOUCH:
+            gap_problem(abs(dist - want), f"{other.kind} and line")
+            return True
+        s_loc = b.to_local(other.link, other.p)
+        t_loc = b.to_local(line.link, line.p)
+        n_loc = _rotate_into(b, line.link, n)
+        u_loc = np.array([n_loc[1], -n_loc[0]])
+        io, il = b.index[other.link], b.index[line.link]
+        b.online.append(OnLine(io, s_loc, il, t_loc, n_loc, want, j.name))
+        if j.type is JointType.ROLLING:
+            if other.kind != "circle":
+                b.problems.append(Problem(f"rolling joint {j.name}: a point cannot roll", j.where))
+                return True
+            k = side * other.r
+            c0 = float(line.u @ (other.p - line.p)) + k * (b.theta(other.link) - b.theta(line.link))
+            b.online.append(OnLine(io, s_loc, il, t_loc, u_loc, c0, j.name, k=k))
+        centre, normal = _at(b, other.link, s_loc), _dir(b, line.link, n_loc)
+        b.locators[j.name] = lambda q: centre(q) - want * normal(q)
+        return True
+    if kinds <= {"circle", "point"} and "circle" in kinds:
+        dist = float(math.hypot(*(gb.p - ga.p)))
+        outer = ga.r + gb.r
+        inner = abs(ga.r - gb.r)
+        d = outer if abs(dist - outer) <= abs(dist - inner) else inner
+        if abs(dist - d) > TOUCH:
+            gap_problem(abs(dist - d), "centres")
+            return True
+        sa, sb = b.to_local(ga.link, ga.p), b.to_local(gb.link, gb.p)
+        ca, cb = _at(b, ga.link, sa), _at(b, gb.link, sb)
+        if j.type is JointType.ROLLING:
+            from mech.kinematics.constraints import gear_row
+
+            holo = gear_row(b.lay, j, b.pos, b.index, b.q0, b.n)
+            if holo is None:
+                b.problems.append(
+                    Problem(
+                        f"rolling joint {j.name}: two circles roll here only with both centres pinned "
+                        "to one link (a carrier or the frame)",
+                        j.where,
+                    )
+                )
+                return True
+            b.angle.append(Angle(holo[0], holo[1], j.name))
+        else:
+            b.distance.append(Distance(b.index[ga.link], sa, b.index[gb.link], sb, d, j.name))
+        ra, rb = ga.r, gb.r
+
+        def contact(q: np.ndarray) -> np.ndarray:
+            pa, pb = ca(q), cb(q)
+            w = pb - pa
+            e = w / (math.hypot(*w) or 1.0)
+            if d == outer or ra >= rb:
+                return pa + ra * e  # outside each other, or b inside a: on a toward b
+            return pb - rb * e  # a inside b: on b, beyond a
+
+        b.locators[j.name] = contact
+        return True
+    b.problems.append(
+        Problem(
+            f"joint {j.name}: a {ga.kind} and a {gb.kind} do not touch at one point",
+            j.where,
+            "give a circle or point against a line or circle",
+        )
+    )
+    return True
+
+
+def _rotate_into(b: Build, link: str, v: np.ndarray) -> np.ndarray:
+    """A global direction as drawn, in ``link``'s frame (no translation)."""
+    th = b.theta(link)
+    c, s = math.cos(th), math.sin(th)
+    return np.array([c * v[0] + s * v[1], -s * v[0] + c * v[1]])

@@ -1,0 +1,185 @@
+"""Higher pairs that move: profiles in contact, checked over whole sweeps against closed forms.
+
+Each reference is derived independently of the solver:
+
+* eccentric circular cam (eccentricity e, radius R) with a flat-faced translating follower whose
+  face is normal to its line of stroke through the cam pivot: the face stays R above the
+  eccentric's centre, so s = e·sin θ + R exactly, v = eω cos θ, a = −eω² sin θ;
+* the same cam with an in-line roller follower of radius r: the roller centre stays R + r from
+  the eccentric's centre — a slider crank of crank e and rod R + r (Norton, *Design of
+  Machinery*, § 4.6): s = e sin θ + √((R + r)² − e² cos² θ), v, a by differentiating;
+* a wheel of radius r rolling without slip on straight ground, its centre driven along the
+  ground by a slider crank: ω_wheel = −v_B / r, α_wheel = −a_B / r, and the wheel's point at the
+  contact has zero velocity and acceleration ω² r towards the centre;
+* a gear pair on fixed axes at constant speed: ω₂/ω₁ = −r₁/r₂, α = 0, and the pitch point's
+  acceleration on each gear is centripetal, ω_i² r_i towards its own centre.
+"""
+
+from __future__ import annotations
+
+import math
+import textwrap
+
+import numpy as np
+import pytest
+
+from mech.errors import InputError
+from mech.kinematics import solve
+from mech.kinematics.sweep import sweep
+from mech.loader import loads
+
+E, R, RR = 0.015, 0.040, 0.010  # eccentricity, cam radius, roller radius (m)
+W = 31.41592653589793  # 300 rpm ccw
+
+
+def _cam(follower: str, point: str, drawn_y: float) -> str:
+    return textwrap.dedent(
+        f"""
+        name: eccentric cam
+        units: {{length: mm, angle: deg}}
+        links: [frame, cam, follower]
+        joints:
+          O: {{type: revolute, links: [frame, cam], at: [0, 0]}}
+          S: {{type: prismatic, links: [follower, frame], path: {{through: [0, 0], angle: 90}}, point: {point}}}
+          K: {{type: cam, links: [cam, follower],
+              profiles: {{cam: {{circle: {{centre: E, radius: 40}}}}, follower: {follower}}}}}
+        points:
+          E: {{link: cam, at: [{15 * math.cos(math.radians(30))!r}, 7.5]}}
+          {point}: {{link: follower, at: [0, {drawn_y!r}]}}
+        drive: {{link: cam, angle: 30, rpm: 300, direction: ccw}}
+        """
+    )
+
+
+def _slider_crank(a: float, rod: float, th: np.ndarray, w: float) -> tuple[np.ndarray, ...]:
+    """Vertical in-line slider crank: crank a at angle θ from +x, rod ``rod``; s, ṡ, s̈ (ω constant)."""
+    h = np.sqrt(rod**2 - (a * np.cos(th)) ** 2)
+    s = a * np.sin(th) + h
+    ds = a * np.cos(th) + a**2 * np.cos(th) * np.sin(th) / h
+    d2s = -a * np.sin(th) + a**2 * np.cos(2 * th) / h - a**4 * (np.cos(th) * np.sin(th)) ** 2 / h**3
+    return s, ds * w, d2s * w**2
+
+
+ANGLES = np.radians(np.arange(0.0, 360.0, 7.5))
+
+
+def test_flat_faced_follower_on_an_eccentric_cam_lifts_e_sin_theta_over_the_turn():
+    mech = loads(_cam("{line: {through: F, angle: 0}}", "F", 47.5), path="cam.yaml")
+    sw = sweep(mech, ANGLES, level="acceleration", analyse=False)
+    assert sw.assembled.all()
+    k = sw.points.index("F")
+    y = sw.positions[:, k, 1]
+    assert y - R == pytest.approx(E * np.sin(ANGLES), abs=1e-12)
+    assert sw.velocities[:, k, 1] == pytest.approx(E * W * np.cos(ANGLES), abs=1e-10)
+    assert sw.accelerations[:, k, 1] == pytest.approx(-E * W**2 * np.sin(ANGLES), abs=1e-8)
+    assert np.abs(sw.positions[:, k, 0]).max() < 1e-15
+
+
+def test_roller_follower_on_an_eccentric_cam_is_a_slider_crank_of_crank_e_and_rod_r_plus_roller():
+    y0 = 7.5 + math.sqrt(50.0**2 - (15 * math.cos(math.radians(30))) ** 2)
+    mech = loads(_cam("{circle: {centre: C, radius: 10}}", "C", y0), path="cam.yaml")
+    sw = sweep(mech, ANGLES, level="acceleration", analyse=False)
+    s, v, a = _slider_crank(E, R + RR, ANGLES, W)
+    k = sw.points.index("C")
+    assert sw.positions[:, k, 1] == pytest.approx(s, abs=1e-12)
+    assert sw.velocities[:, k, 1] == pytest.approx(v, abs=1e-10)
+    assert sw.accelerations[:, k, 1] == pytest.approx(a, abs=1e-8)
+
+
+def test_contact_point_lies_on_both_profiles_where_the_cam_is_drawn():
+    mech = loads(_cam("{line: {through: F, angle: 0}}", "F", 47.5), path="cam.yaml")
+    kin = solve(mech, "acceleration")
+    ex, ey = kin.positions["E"]
+    kx, ky = kin.positions["K"]
+    assert (kx, ky) == pytest.approx((ex, ey + R), abs=1e-15)  # under the face, above the centre
+    # the follower's point at K moves with the follower; the cam's with the cam (ω × r)
+    vx, vy = kin.velocity("K", link="cam")
+    assert (vx, vy) == pytest.approx((-W * ky, W * kx), rel=1e-12)
+
+
+def test_profiles_drawn_apart_are_a_located_error_with_the_gap():
+    with pytest.raises(InputError) as err:
+        solve(loads(_cam("{line: {through: F, angle: 0}}", "F", 48.5), path="cam.yaml"), "velocity")
+    text = str(err.value)
+    assert "cam.yaml:8:" in text and "1 mm apart" in text
+
+
+WHEEL = textwrap.dedent(
+    """
+    name: rolling wheel
+    units: {length: mm, angle: deg}
+    links: [frame, crank, rod, wheel]
+    joints:
+      O: {type: revolute, links: [frame, crank], at: [0, 30]}
+      A: {type: revolute, links: [crank, rod]}
+      B: {type: revolute, links: [rod, wheel], at: [88.10249675906654, 30]}
+      W: {type: rolling, links: [wheel, frame], radii: [30, null]}
+    lengths: {OA: 20, AB: 80}
+    drive: {link: crank, angle: 60, rpm: 120, direction: ccw}
+    """
+)
+
+
+def test_wheel_rolling_on_the_ground_turns_by_its_centre_travel_over_radius():
+    sw = sweep(loads(WHEEL, path="wheel.yaml"), ANGLES, level="acceleration", analyse=False)
+    w = 4 * math.pi
+    # horizontal slider crank: x_B = a cos θ + √(L² − a² sin² θ), with a = 20 mm, L = 80 mm
+    a, rod = 0.020, 0.080
+    h = np.sqrt(rod**2 - (a * np.sin(ANGLES)) ** 2)
+    x = a * np.cos(ANGLES) + h
+    dx = (-a * np.sin(ANGLES) - a**2 * np.sin(ANGLES) * np.cos(ANGLES) / h) * w
+    d2x = (
+        -a * np.cos(ANGLES)
+        - a**2 * np.cos(2 * ANGLES) / h
+        - a**4 * (np.sin(ANGLES) * np.cos(ANGLES)) ** 2 / h**3
+    ) * w**2
+    kb, lw = sw.points.index("B"), sw.links.index("wheel")
+    assert sw.positions[:, kb, 0] == pytest.approx(x, abs=1e-12)
+    assert sw.omegas[:, lw] == pytest.approx(-dx / 0.030, abs=1e-9)
+    assert sw.alphas[:, lw] == pytest.approx(-d2x / 0.030, abs=1e-6)
+    # the arc rolled is the distance travelled
+    turned = sw.link_angles[:, lw] - sw.link_angles[0, lw]
+    assert turned == pytest.approx(-(x - x[0]) / 0.030, abs=1e-10)
+
+
+def test_rolling_wheel_contact_point_has_zero_velocity_and_centripetal_acceleration():
+    kin = solve(loads(WHEEL, path="wheel.yaml"), "acceleration")
+    omega = kin.links["wheel"].omega
+    assert kin.velocity("W") == pytest.approx((0.0, 0.0), abs=1e-14)
+    ax, ay = kin.acceleration("W", link="wheel")
+    assert (ax, ay) == pytest.approx((0.0, omega**2 * 0.030), rel=1e-12)
+    assert kin.acceleration("W", link="frame") == (0.0, 0.0)
+
+
+GEARS = textwrap.dedent(
+    """
+    units: {length: mm, angle: deg}
+    links: [frame, pinion, wheel]
+    joints:
+      O1: {type: revolute, links: [frame, pinion], at: [0, 0]}
+      O2: {type: revolute, links: [frame, wheel], at: [150, 0]}
+      mesh: {type: gear, links: [pinion, wheel], teeth: [20, 40], module: 5}
+    drive: {link: pinion, angle: 0, rpm: 1200, direction: cw}
+    """
+)
+
+
+def test_gear_pair_at_constant_speed_keeps_its_ratio_and_centripetal_pitch_accelerations():
+    mech = loads(GEARS, path="gears.yaml")
+    w1 = -1200 * 2 * math.pi / 60
+    sw = sweep(mech, ANGLES, level="acceleration", analyse=False)
+    lw = sw.links.index("wheel")
+    assert sw.omegas[:, lw] == pytest.approx(np.full(ANGLES.size, -w1 * 50 / 100), rel=1e-12)
+    assert np.abs(sw.alphas).max() < 1e-9 * w1**2
+    for deg in (0.0, 77.0, 200.0):
+        kin = solve(mech, "acceleration", _at(deg))
+        assert kin.acceleration("mesh", link="pinion") == pytest.approx((-(w1**2) * 0.050, 0.0), rel=1e-12)
+        assert kin.acceleration("mesh", link="wheel") == pytest.approx(
+            ((w1 / 2) ** 2 * 0.100, 0.0), rel=1e-12
+        )
+
+
+def _at(deg: float):
+    from mech.options import SolveOptions
+
+    return SolveOptions(angle=math.radians(deg))
