@@ -26,9 +26,16 @@ from mech.pairs.specs import (
 
 def _registries() -> dict[str, dict[JointType, object]]:
     """Every per-kind registry, by layer (a new layer's registry is added here)."""
+    from mech.draw.config import GLYPHS
+    from mech.icentres.inspection import RULES
     from mech.kinematics.rows import ROWS
 
-    return {"model": dict(KINDS), "kinematics rows": dict(ROWS)}
+    return {
+        "model": dict(KINDS),
+        "kinematics rows": dict(ROWS),
+        "I-centre rules": dict(RULES),
+        "drawing glyphs": dict(GLYPHS),
+    }
 
 
 @pytest.mark.parametrize("jtype", list(JointType), ids=lambda t: t.value)

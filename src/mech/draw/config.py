@@ -39,7 +39,7 @@ from mech.draw.scene import (
 )
 from mech.model import JointType, Mechanism
 
-__all__ = ["View", "configuration", "display_name", "link_colours", "link_members"]
+__all__ = ["GLYPHS", "View", "configuration", "display_name", "link_colours", "link_members"]
 
 Vec = tuple[float, float]
 
@@ -48,6 +48,22 @@ PIN_R = 1.3
 BLOCK = (9.0, 5.5)  # slider block, mm along × across the path
 TITLE_H = 9.0
 FOOT_H = 11.0
+#: Joint type → the glyph it is drawn with: ``pin`` (open circle; a triangle on a hatched base
+#: at a ground pivot), ``slider`` (a block on its guide, line of stroke dash-dotted), ``slot``
+#: (two lines along the path round the pin), ``pitch`` (pitch circles about each pivot, the
+#: contact point), ``contact`` (common normal and tangent at the contact point), ``none`` (not
+#: drawn: the planar solvers refuse the kind).  A pair with profiles draws them on its links.
+GLYPHS: dict[JointType, str] = {
+    JointType.REVOLUTE: "pin",
+    JointType.PRISMATIC: "slider",
+    JointType.SLOT: "slot",
+    JointType.ROLLING: "pitch",
+    JointType.GEAR: "pitch",
+    JointType.CAM: "contact",
+    JointType.CONTACT: "contact",
+    JointType.SCREW: "none",
+    JointType.SPHERICAL: "none",
+}
 _SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 
@@ -85,7 +101,7 @@ def link_members(
                     members[link].append(name)
     for j in mech.joints:
         geom = kin.joints.get(j.name)
-        if j.type in (JointType.PRISMATIC, JointType.SLOT) and geom is not None and geom.point in pos:
+        if GLYPHS[j.type] in ("slider", "slot") and geom is not None and geom.point in pos:
             guide = j.links[1]
             if guide != mech.ground and geom.point not in members[guide]:
                 members[guide].append(geom.point)
@@ -215,7 +231,7 @@ def _directions(mech: Mechanism, kin: Any, pos: Mapping[str, Vec]) -> dict[str, 
     out: dict[str, Vec] = {}
     for j in mech.joints:
         geom = kin.joints.get(j.name)
-        if geom is None or geom.direction is None or j.type not in (JointType.PRISMATIC, JointType.SLOT):
+        if geom is None or geom.direction is None or GLYPHS[j.type] not in ("slider", "slot"):
             continue
         u = geom.direction
         guide = j.links[1]
@@ -254,7 +270,7 @@ def _guides(
     items: list[Item] = []
     centre = _centre(pos)
     for j in mech.joints:
-        if j.type is not JointType.PRISMATIC or j.links[1] != mech.ground or j.name not in directions:
+        if GLYPHS[j.type] != "slider" or j.links[1] != mech.ground or j.name not in directions:
             continue
         point = kin.joints[j.name].point
         if point not in pos:
@@ -348,7 +364,7 @@ def _ground_pivots(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transf
     """A small triangle under each ground pivot, standing on a hatched base."""
     items: list[Item] = []
     for j in mech.joints:
-        if j.type is JointType.REVOLUTE and mech.ground in j.links and j.name in pos:
+        if GLYPHS[j.type] == "pin" and mech.ground in j.links and j.name in pos:
             x, y = tr(pos[j.name])
             tri = ((x, y), (x - 3.2, y + 5.0), (x + 3.2, y + 5.0))
             items.append(Poly(tri, True, Style(INK, 0.35, fill="#ffffff"), "ground-pivot", j.name))
@@ -375,7 +391,7 @@ def _blocks(
         c = tr(pos[point])
         du = _page_dir(directions[j.name])
         nv = (-du[1], du[0])
-        if j.type is JointType.PRISMATIC:
+        if GLYPHS[j.type] == "slider":
             a, b = BLOCK[0] / 2, BLOCK[1] / 2
             corners = tuple(
                 (c[0] + du[0] * sa * a + nv[0] * sb * b, c[1] + du[1] * sa * a + nv[1] * sb * b)
@@ -400,12 +416,13 @@ def _contacts(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform) 
     """Higher pairs at the drawn instant: pitch circles of gears, the common normal of cams."""
     items: list[Item] = []
     for j in mech.joints:
-        if j.type not in (JointType.CAM, JointType.GEAR, JointType.CONTACT, JointType.ROLLING):
+        if GLYPHS[j.type] not in ("contact", "pitch"):
             continue
         if j.name not in pos:
             continue
         c = tr(pos[j.name])
-        if j.type in (JointType.GEAR, JointType.ROLLING):
+        items.extend(_profiles(mech, kin, j, pos, tr))
+        if GLYPHS[j.type] == "pitch" and not _profile_list(mech, j, pos[j.name]):
             for link in j.links:
                 centre = _pivot_of(mech, link, pos)
                 if centre is not None:
@@ -446,7 +463,7 @@ def _contacts(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform) 
             )
         colours = link_colours(mech)
         for link in j.links:
-            if j.type in (JointType.GEAR, JointType.ROLLING):
+            if GLYPHS[j.type] == "pitch" or _profile_list(mech, j, pos[j.name]):
                 continue
             body = [n for n, links in kin.carriers.items() if link in links and n in pos]
             for n in body:  # the profile is unknown: show which points the contact belongs to
@@ -457,6 +474,61 @@ def _contacts(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform) 
                 items.extend(_follower(mech, kin, link, pos[j.name], tr, colours.get(link, INK)))
         items.append(Circle(c, 0.9, Style(INK, 0.3, fill=INK), "contact", j.name))
     return items
+
+
+def _profiles(mech: Mechanism, kin: Any, j: Any, pos: Mapping[str, Vec], tr: Transform) -> list[Item]:
+    """Each link's profile where it is now: a circle about its centre, a flat face along the tangent.
+
+    A knife edge is the contact dot itself; a closed curve is not drawn yet.
+    """
+    from mech.pairs.specs import Circle as CircleProfile
+    from mech.pairs.specs import Line as LineProfile
+
+    items: list[Item] = []
+    colours = link_colours(mech)
+    contact = pos.get(j.name)
+    for link, prof in _profile_list(mech, j, contact):
+        colour = colours.get(link, INK)
+        if isinstance(prof, CircleProfile):
+            centre = prof.centre.xy if prof.centre.name is None else pos.get(prof.centre.name)
+            if centre is None:
+                continue
+            pc = tr(centre)
+            r_page = tr((centre[0] + prof.radius, centre[1]))[0] - pc[0]
+            items.append(Circle(pc, abs(r_page), Style(colour, 0.6), "profile", link))
+        elif isinstance(prof, LineProfile) and contact is not None:
+            geom = kin.joints.get(j.name)
+            if geom is None or geom.direction is None:
+                continue
+            c, u = tr(contact), _page_dir(geom.direction)
+            items.append(
+                Line(
+                    (c[0] - 12 * u[0], c[1] - 12 * u[1]),
+                    (c[0] + 12 * u[0], c[1] + 12 * u[1]),
+                    Style(colour, 1.0),
+                    "profile",
+                    link,
+                )
+            )
+    return items
+
+
+def _profile_list(mech: Mechanism, j: Any, contact: Vec | None) -> list[tuple[str, Any]]:
+    """The profiles to draw: given, or a rolling pair's ``radii`` (circles about each link's pin)."""
+    from mech.model import Ref
+    from mech.pairs.specs import Circle as CircleProfile
+    from mech.pairs.specs import Line as LineProfile
+
+    if j.profiles or j.type is not JointType.ROLLING or j.radii is None:
+        return list(j.profiles)
+    out: list[tuple[str, Any]] = []
+    for link, r in zip(j.links, j.radii, strict=True):
+        pins = [k.name for k in mech.joints_of(link) if GLYPHS[k.type] == "pin"]
+        if r is not None and len(pins) == 1:
+            out.append((link, CircleProfile(Ref(name=pins[0]), r)))
+        elif r is None and contact is not None:
+            out.append((link, LineProfile(Ref(xy=contact), 0.0)))
+    return out
 
 
 def _follower_rods(mech: Mechanism, kin: Any, pos: Mapping[str, Vec]) -> list[tuple[str, Vec, Vec]]:
@@ -470,7 +542,7 @@ def _follower_rods(mech: Mechanism, kin: Any, pos: Mapping[str, Vec]) -> list[tu
     x0, y0, x1, y1 = bbox(pts) if pts else (0.0, 0.0, 0.0, 0.0)
     length = 0.6 * max(x1 - x0, y1 - y0, 1e-9)
     for j in mech.joints:
-        if j.type not in (JointType.CAM, JointType.CONTACT) or j.name not in pos:
+        if GLYPHS[j.type] != "contact" or j.profiles or j.name not in pos:
             continue
         for link in j.links:
             if link == mech.ground or any(link in links and n in pos for n, links in kin.carriers.items()):
@@ -479,7 +551,7 @@ def _follower_rods(mech: Mechanism, kin: Any, pos: Mapping[str, Vec]) -> list[tu
                 (
                     g
                     for g in mech.joints
-                    if g.type is JointType.PRISMATIC
+                    if GLYPHS[g.type] == "slider"
                     and g.links[0] == link
                     and g.name in kin.joints
                     and kin.joints[g.name].direction
@@ -520,7 +592,7 @@ def _contact_partners(mech: Mechanism, link: str) -> list[str]:
     return [
         lk
         for j in mech.joints
-        if j.type in (JointType.CAM, JointType.CONTACT) and link in j.links
+        if GLYPHS[j.type] == "contact" and link in j.links
         for lk in j.links
         if lk != link
     ]
@@ -530,7 +602,16 @@ def _circle_extents(mech: Mechanism, pos: Mapping[str, Vec]) -> list[Vec]:
     """Corners of the boxes round gears' pitch circles, so the view holds them."""
     out: list[Vec] = []
     for j in mech.joints:
-        if j.type in (JointType.GEAR, JointType.ROLLING) and j.name in pos:
+        for _link, prof in _profile_list(mech, j, pos.get(j.name)):
+            centre = getattr(prof, "centre", None)
+            if centre is not None:
+                c = centre.xy if centre.name is None else pos.get(centre.name)
+                if c is not None:
+                    out += [
+                        (c[0] - prof.radius, c[1] - prof.radius),
+                        (c[0] + prof.radius, c[1] + prof.radius),
+                    ]
+        if GLYPHS[j.type] == "pitch" and j.name in pos:
             for link in j.links:
                 c = _pivot_of(mech, link, pos)
                 if c is not None:
@@ -541,7 +622,7 @@ def _circle_extents(mech: Mechanism, pos: Mapping[str, Vec]) -> list[Vec]:
 
 def _pivot_of(mech: Mechanism, link: str, pos: Mapping[str, Vec]) -> Vec | None:
     for j in mech.joints:
-        if j.type is JointType.REVOLUTE and link in j.links and mech.ground in j.links and j.name in pos:
+        if GLYPHS[j.type] == "pin" and link in j.links and mech.ground in j.links and j.name in pos:
             return pos[j.name]
     return None
 
@@ -597,9 +678,9 @@ def _pins_and_points(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Tran
     items: list[Item] = []
     pins = set()
     for j in mech.joints:
-        if j.type is JointType.REVOLUTE and j.name in pos:
+        if GLYPHS[j.type] == "pin" and j.name in pos:
             pins.add(j.name)
-        elif j.type is JointType.SLOT:
+        elif GLYPHS[j.type] == "slot":
             point = kin.joints[j.name].point if j.name in kin.joints else None
             if point in pos:
                 pins.add(point)

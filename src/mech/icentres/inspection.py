@@ -22,17 +22,17 @@ Machines*, §6.6):
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Literal
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Literal
 
 from mech.icentres.homogeneous import Frame, Hom, ideal, line_along, unit
-from mech.model import JointType, Mechanism
+from mech.model import Joint, JointType, Mechanism
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.kinematics import Kinematics
 
-__all__ = ["Contact", "Fact", "Instant", "Pin", "Slide", "facts", "instant_of"]
+__all__ = ["RULES", "Contact", "Fact", "Instant", "Pin", "Slide", "facts", "instant_of"]
 
 Vec = tuple[float, float]
 
@@ -225,46 +225,98 @@ def instant_of(mech: Mechanism, kin: Kinematics) -> Instant:
         positions.values()
     )
     frame = Frame(_centre(located), kin.size if kin.size > 0 else 1.0)
-    pins: list[Pin] = []
-    slides: list[Slide] = []
-    contacts: list[Contact] = []
+    seen = _Seen(mech, positions, joints)
     for j in mech.joints:
-        geom = joints.get(j.name)
-        where = geom.point if geom is not None and geom.point else j.name
-        at = positions.get(where)
-        if j.type is JointType.REVOLUTE:
-            if at is not None:
-                pins.append(Pin(j.name, tuple(j.links), at))
-        elif j.type in (JointType.PRISMATIC, JointType.SLOT):
-            u = geom.direction if geom is not None and geom.direction is not None else None
-            if u is None and j.path is not None:
-                u = _path_direction(j.path, positions)
-            if u is None:
-                continue
-            slides.append(Slide(j.name, j.links[0], j.links[1], u, at, slot=j.type is JointType.SLOT))
-        elif j.type in (JointType.ROLLING, JointType.CAM, JointType.GEAR, JointType.CONTACT):
-            if at is None and j.place.at is not None:
-                at = j.place.at
-            if at is None:
-                continue
-            a, b = j.links[0], j.links[1]
-            if j.type is JointType.ROLLING:
-                contacts.append(Contact(j.name, j.type.value, (a, b), at))
-                continue
-            normal: Vec | None = None
-            if geom is not None and geom.direction is not None:
-                tx, ty = geom.direction  # the common tangent: the normal turned +90°
-                normal = (ty, -tx)
-            elif j.normal is not None:
-                normal = _angle(j.normal)
-            elif j.type is JointType.GEAR:
-                normal = _line_of_action(mech, j.links, j.pressure_angle or 0.0, positions)
-            if normal is None:
-                # A gear with no line of action: its pitch point is where the pitch circles roll.
-                contacts.append(Contact(j.name, j.type.value, (a, b), at))
-            else:
-                contacts.append(Contact(j.name, j.type.value, (a, b), at, normal))
-    return Instant(links, frame, tuple(pins), tuple(slides), tuple(contacts))
+        RULES[j.type](seen, j)
+    return Instant(links, frame, tuple(seen.pins), tuple(seen.slides), tuple(seen.contacts))
+
+
+@dataclass
+class _Seen:
+    """What the inspection rules read (the solved instant) and what they find."""
+
+    mech: Mechanism
+    positions: Mapping[str, Vec]
+    joints: Mapping[str, Any]
+    pins: list[Pin] = field(default_factory=list)
+    slides: list[Slide] = field(default_factory=list)
+    contacts: list[Contact] = field(default_factory=list)
+
+    def at(self, j: Joint) -> Vec | None:
+        geom = self.joints.get(j.name)
+        return self.positions.get(geom.point if geom is not None and geom.point else j.name)
+
+
+def _pin(seen: _Seen, j: Joint) -> None:
+    """A pin is the I-centre of the links it joins (a ternary pin: of each pair)."""
+    at = seen.at(j)
+    if at is not None:
+        seen.pins.append(Pin(j.name, tuple(j.links), at))
+
+
+def _slide(seen: _Seen, j: Joint) -> None:
+    """A straight path: the I-centre at infinity perpendicular to it (a slot: on the normal through the pin)."""
+    geom = seen.joints.get(j.name)
+    u = geom.direction if geom is not None and geom.direction is not None else None
+    if u is None and j.path is not None:
+        u = _path_direction(j.path, seen.positions)
+    if u is None:
+        return
+    seen.slides.append(Slide(j.name, j.links[0], j.links[1], u, seen.at(j), slot=j.type is JointType.SLOT))
+
+
+def _contact_at(seen: _Seen, j: Joint) -> Vec | None:
+    at = seen.at(j)
+    return j.place.at if at is None else at
+
+
+def _rolling(seen: _Seen, j: Joint) -> None:
+    """Pure rolling: the point of contact."""
+    at = _contact_at(seen, j)
+    if at is not None:
+        seen.contacts.append(Contact(j.name, j.type.value, (j.links[0], j.links[1]), at))
+
+
+def _normal_contact(seen: _Seen, j: Joint) -> None:
+    """A cam, gear or point contact: somewhere on the common normal (Kennedy finishes it)."""
+    at = _contact_at(seen, j)
+    if at is None:
+        return
+    a, b = j.links[0], j.links[1]
+    geom = seen.joints.get(j.name)
+    normal: Vec | None = None
+    if geom is not None and geom.direction is not None:
+        tx, ty = geom.direction  # the common tangent: the normal turned +90°
+        normal = (ty, -tx)
+    elif j.normal is not None:
+        normal = _angle(j.normal)
+    elif j.type is JointType.GEAR:
+        normal = _line_of_action(
+            mech=seen.mech, links=j.links, pressure_angle=j.pressure_angle or 0.0, positions=seen.positions
+        )
+    if normal is None:
+        # A gear with no line of action: its pitch point is where the pitch circles roll.
+        seen.contacts.append(Contact(j.name, j.type.value, (a, b), at))
+    else:
+        seen.contacts.append(Contact(j.name, j.type.value, (a, b), at, normal))
+
+
+def _none(seen: _Seen, j: Joint) -> None:
+    """Screw and spherical pairs: no planar I-centre (the planar solvers refuse them first)."""
+
+
+#: Joint type → the inspection rule that reads its I-centre (or line) from the instant.
+RULES: dict[JointType, Callable[[_Seen, Joint], None]] = {
+    JointType.REVOLUTE: _pin,
+    JointType.PRISMATIC: _slide,
+    JointType.SLOT: _slide,
+    JointType.ROLLING: _rolling,
+    JointType.CAM: _normal_contact,
+    JointType.CONTACT: _normal_contact,
+    JointType.GEAR: _normal_contact,
+    JointType.SCREW: _none,
+    JointType.SPHERICAL: _none,
+}
 
 
 def _line_of_action(

@@ -236,6 +236,7 @@ def moving_contact(b: Build, j: Joint) -> bool:
             b.online.append(OnLine(io, s_loc, il, t_loc, u_loc, c0, j.name, k=k))
         centre, normal = _at(b, other.link, s_loc), _dir(b, line.link, n_loc)
         b.locators[j.name] = lambda q: centre(q) - want * normal(q)
+        b.normals[j.name] = normal
         return True
     if kinds <= {"circle", "point"} and "circle" in kinds:
         dist = float(math.hypot(*(gb.p - ga.p)))
@@ -274,6 +275,12 @@ def moving_contact(b: Build, j: Joint) -> bool:
             return pb - rb * e  # a inside b: on b, beyond a
 
         b.locators[j.name] = contact
+
+        def normal(q: np.ndarray) -> np.ndarray:
+            w = cb(q) - ca(q)
+            return w / (math.hypot(*w) or 1.0)
+
+        b.normals[j.name] = normal
         return True
     b.problems.append(
         Problem(

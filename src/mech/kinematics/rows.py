@@ -122,6 +122,7 @@ class Build:
     path_dirs: dict[str, tuple[int, np.ndarray]] = field(default_factory=dict)
     path_points: dict[str, tuple[int, str]] = field(default_factory=dict)
     locators: dict[str, Locator] = field(default_factory=dict)  # moving contact point, from q
+    normals: dict[str, Locator] = field(default_factory=dict)  # its common normal (unit), from q
 
     def theta(self, link: str) -> float:
         i = self.index[link]

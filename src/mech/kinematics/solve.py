@@ -884,6 +884,9 @@ def _fields(
             c_g, s_g = math.cos(th_g), math.sin(th_g)
             direction = (c_g * u[0] - s_g * u[1], s_g * u[0] + c_g * u[1])
             point = sys_.path_points[j.name][1]
+        elif j.name in sys_.normals:  # profiles in contact: the common tangent now
+            nx, ny = sys_.normals[j.name](q)
+            direction = (-float(ny), float(nx))
         elif j.type in CONTACT_TYPES and j.normal is not None:
             direction = (-math.sin(j.normal), math.cos(j.normal))
         at = positions.get(point) or all_pos.get(point)  # type: ignore[arg-type]
