@@ -47,11 +47,11 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass
 from enum import Enum
 from functools import lru_cache
 from typing import Any
 
+from mech._records import dataclass
 from mech.units import Dimension
 
 __all__ = [

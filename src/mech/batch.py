@@ -27,10 +27,11 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import field
 from pathlib import Path
 from typing import Any
 
+from mech._records import dataclass
 from mech.check import ERROR, FAIL, Analysis, FileResult, InternalError, Verdict, check, error_result
 from mech.errors import InputError, MechError, Problem, Where
 from mech.options import SolveOptions

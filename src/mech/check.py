@@ -39,9 +39,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import TYPE_CHECKING, Any
 
+from mech._records import dataclass
 from mech.answers import LEVELS, AnswerKey, AtInfinity, Compare, Undefined, parse_key
 from mech.errors import MechError, Problem, Where
 from mech.model import Claim, Mechanism, Tolerance

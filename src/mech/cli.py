@@ -10,7 +10,6 @@ from __future__ import annotations
 import math
 import sys
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from enum import IntEnum
 from functools import wraps
 from typing import Any, TypeVar
@@ -18,6 +17,7 @@ from typing import Any, TypeVar
 import click
 
 from mech import __version__
+from mech._records import dataclass
 from mech.errors import InputError, MechError
 from mech.options import OutputUnits, SolveOptions
 

@@ -10,7 +10,8 @@ catch what they already know.  Only the command line maps errors to exit codes:
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+
+from mech._records import dataclass
 
 
 @dataclass(frozen=True, slots=True)

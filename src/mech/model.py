@@ -12,10 +12,11 @@ angular velocities in rad/s with counter-clockwise positive.
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from dataclasses import field
 from enum import Enum
 from typing import TYPE_CHECKING
 
+from mech._records import dataclass
 from mech.errors import Where
 
 if TYPE_CHECKING:

@@ -7,8 +7,9 @@ no layer below the CLI sees a flag.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
+from mech._records import dataclass
 from mech.units import MAGNITUDE_RANGE
 
 __all__ = ["OutputUnits", "SolveOptions"]

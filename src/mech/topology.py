@@ -17,9 +17,9 @@ Grübler's condition, types of joints); e.g. l = 4, j = 4 gives n = 1.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any
 
+from mech._records import dataclass
 from mech.model import JointType, Mechanism
 
 __all__ = ["DofCount", "LinkClass", "PairClass", "Topology", "classify", "dof"]

@@ -9,8 +9,9 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
 from enum import Enum
+
+from mech._records import dataclass
 
 __all__ = [
     "MAGNITUDE_RANGE",

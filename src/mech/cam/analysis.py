@@ -17,11 +17,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
+from mech._records import dataclass
 from mech.cam.profile import CamLayout, CamState, evaluate
 from mech.cam.program import FULL_TURN, follower_motion
 

@@ -21,9 +21,9 @@ where it is:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from mech._records import dataclass
 from mech.cam.profile import CamLayout, evaluate, layout_problem
 from mech.cam.program import CamProgram, resolve
 from mech.errors import InputError, UnsupportedError

@@ -36,11 +36,11 @@ own frame is the fixed frame at the programme's start (θ = 0).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from mech._records import dataclass
 from mech.cam.program import CamProgram, follower_motion
 
 __all__ = ["CamLayout", "CamState", "evaluate", "layout_problem"]

@@ -12,9 +12,10 @@ an oscillating one (its arm's swing).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import TYPE_CHECKING, Any
 
+from mech._records import dataclass
 from mech.errors import Problem, Where
 
 if TYPE_CHECKING:

@@ -15,10 +15,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from mech._records import dataclass
 from mech.draw.raster import DPI, use_matplotlib
 
 __all__ = ["Series", "animate", "extremes", "sweep_plot"]

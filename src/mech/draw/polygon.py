@@ -31,9 +31,9 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
 from typing import Any
 
+from mech._records import dataclass
 from mech.draw.config import display_name, link_colours, link_members
 from mech.draw.scene import (
     INK,

@@ -24,7 +24,8 @@ Reference: Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., §2.2
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+
+from mech._records import dataclass
 
 __all__ = [
     "AT_INFINITY",

@@ -23,9 +23,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import TYPE_CHECKING, Any, Literal
 
+from mech._records import dataclass
 from mech.icentres.homogeneous import Frame, Hom, ideal, line_along, unit
 from mech.model import Joint, JointType, Mechanism
 

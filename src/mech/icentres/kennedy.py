@@ -30,8 +30,8 @@ Mechanisms*, §3.17-3.18.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
 
+from mech._records import dataclass
 from mech.answers import icentre_name
 from mech.icentres.homogeneous import Hom, join, meet, norm, unit
 from mech.icentres.inspection import Fact

@@ -26,10 +26,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import field
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Protocol
 
+from mech._records import dataclass
 from mech.icentres.homogeneous import Hom, at_infinity, separation, unit
 from mech.icentres.inspection import Instant, facts, instant_of
 from mech.icentres.kennedy import Found, kennedy, name

@@ -31,10 +31,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 
 import numpy as np
 
+from mech._records import dataclass
 from mech.errors import GeometryError, InputError, Problem, Where
 from mech.kinematics.geometry import circle_circle, circle_line
 from mech.kinematics.layout import Layout

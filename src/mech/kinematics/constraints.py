@@ -33,10 +33,11 @@ Everything is scaled: lengths by ``scale`` (the drawn size), time by
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 
 import numpy as np
 
+from mech._records import dataclass
 from mech.errors import collect
 from mech.kinematics.assemble import Drawn, gear_centre
 from mech.kinematics.layout import Layout, PathSpec

@@ -62,9 +62,10 @@ from __future__ import annotations
 
 import math
 from collections import OrderedDict
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Any
 
+from mech._records import dataclass
 from mech.kinematics.constraints import System
 from mech.kinematics.layout import Layout
 from mech.model import JointType

@@ -19,8 +19,9 @@ constraints and results.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
+from mech._records import dataclass
 from mech.errors import Problem, UnsupportedError, collect
 from mech.model import Drive, Joint, JointType, Mechanism, Path
 

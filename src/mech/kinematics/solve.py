@@ -27,12 +27,13 @@ from __future__ import annotations
 import math
 from collections import OrderedDict
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from types import MappingProxyType
 from typing import Any
 
 import numpy as np
 
+from mech._records import dataclass
 from mech.errors import GeometryError, InputError, UnsupportedError
 from mech.kinematics.assemble import Drawn, assemble, gear_pitch_points
 from mech.kinematics.blocks import BlockForm, block_form

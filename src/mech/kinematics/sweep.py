@@ -50,11 +50,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
+from mech._records import dataclass
 from mech.errors import GeometryError, InputError, UnsupportedError
 from mech.kinematics.dyads import ACCURATE_COND, SLACK, DyadProgram, numpy_namespace, program
 from mech.kinematics.march import Marcher

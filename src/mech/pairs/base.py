@@ -13,9 +13,10 @@ rest of the file.  Nothing here imports numpy.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import TYPE_CHECKING, Any, Protocol
 
+from mech._records import dataclass
 from mech.model import Path, Ref, Vec
 from mech.pairs.specs import Circle, Curve, JointSpec, Knife, Line, Profile, Profiles
 from mech.units import Dimension

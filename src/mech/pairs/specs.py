@@ -35,8 +35,9 @@ This module imports nothing from :mod:`mech` at run time (annotations only).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
+
+from mech._records import dataclass
 
 if TYPE_CHECKING:
     from mech.model import Path, Ref, Vec
