@@ -87,10 +87,11 @@ def _provisional(segments: tuple[Segment, ...]) -> tuple[Segment, ...] | None:
     from dataclasses import replace
 
     moving = [s for s in segments if s.kind != "dwell"]
-    if all(s.as_length is not None for s in moving):
-        return tuple(s if s.kind == "dwell" else replace(s, lift=s.as_length) for s in segments)
-    if all(s.as_angle is not None for s in moving):
-        return tuple(s if s.kind == "dwell" else replace(s, lift=s.as_angle) for s in segments)
+    for reading in ("as_length", "as_angle"):
+        lifts = [getattr(s, reading) for s in moving]
+        if all(lift is not None for lift in lifts):
+            it = iter(lifts)
+            return tuple(s if s.kind == "dwell" else replace(s, lift=float(next(it))) for s in segments)
     return None  # a rise in mm and a return in degrees: reported when the follower is known
 
 

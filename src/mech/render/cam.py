@@ -235,7 +235,8 @@ def cam_table(setup: CamSetup, a: CamAnalysis, console: Console, *, name: str, s
     for col, just in cols:
         mot.add_column(col, justify=just)  # type: ignore[arg-type]
     for r in motion_rows(a, step_deg):
-        cells = [f"{r['theta']:.4g}", f"{(math.degrees(r['s']) if ang else r['s'] * mm):.5g}"]
+        lift_now = float(r["s"] or 0.0)
+        cells = [f"{r['theta']:.4g}", f"{(math.degrees(lift_now) if ang else lift_now * mm):.5g}"]
         if a.omega is not None:
             cells += [_fmt(r["v"]), _fmt(r["a"]), _fmt(r["j"])]
         rho = r["rho"]
