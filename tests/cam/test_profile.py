@@ -13,6 +13,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from mech.cam.analysis import analyse
 from mech.cam.profile import CamLayout, evaluate
@@ -270,3 +272,82 @@ def test_largest_velocity_and_acceleration_are_the_laws_peaks():
     assert math.degrees(a.velocity.theta) == pytest.approx(225.0, abs=1e-3)
     assert a.acceleration_jumps == pytest.approx((0.0, D(120)))
     assert a.velocity_jumps == ()
+
+
+@pytest.mark.parametrize(("sense", "branch"), [(1, 1), (-1, 1), (1, -1), (-1, -1)])
+def test_oscillating_flat_face_rests_on_the_profile_at_the_programmes_angle(sense, branch):
+    """The face, a line fixed to the arm at distance c from the pivot, is turned until it
+    rests on the profile polygon (the cam on its far side, just touching); its turn from
+    the start must be the programme's lift.  Cases with a cusp (ρ < 0) cannot be followed
+    and are left out by checking the analysis says so."""
+    face = 0.01
+    prog = CamProgram(
+        base_radius=R_B,
+        follower="flat",
+        motion="oscillating",
+        segments=(
+            Segment("rise", D(120), D(15), "cycloidal"),
+            Segment("dwell", D(30)),
+            Segment("return", D(150), D(15), "shm"),
+            Segment("dwell", D(60)),
+        ),
+    )
+    pivot = np.array([0.1, 0.04])
+    layout = CamLayout(prog, sense=sense, pivot=(0.1, 0.04), arm=face, branch=branch)
+    a = analyse(layout, samples=3600)
+    assert not a.cusp  # a mild programme: the profile is convex everywhere
+    d = float(np.hypot(*pivot))
+    delta = math.atan2(pivot[1], pivot[0])
+    g0 = delta + branch * math.acos((R_B + face) / d)  # the face's normal at the start
+    rise_sign = 1.0 if -math.sin(g0 - delta) > 0 else -1.0  # turning this way lifts the face off O
+
+    def gap(poly: np.ndarray, g: float) -> float:
+        m = np.array([math.cos(g), math.sin(g)])
+        return float(np.max(poly @ m)) - (float(m @ pivot) - face)
+
+    for th, s in zip(CHECK_ANGLES[::2], follower_motion(prog, CHECK_ANGLES[::2]).s, strict=True):
+        poly = turned(a.state.profile, sense * th)
+        lo, hi = g0 + rise_sign * (s - 0.05), g0 + rise_sign * (s + 0.05)
+        glo = gap(poly, lo)
+        assert glo * gap(poly, hi) < 0
+        for _ in range(50):
+            mid = (lo + hi) / 2
+            if (gap(poly, mid) > 0) == (glo > 0):
+                lo = mid
+            else:
+                hi = mid
+        assert rise_sign * ((lo + hi) / 2 - g0) == pytest.approx(s, abs=1e-5), math.degrees(th)
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    rise_law=st.sampled_from(["shm", "parabolic", "cycloidal"]),
+    return_law=st.sampled_from(["shm", "parabolic", "cycloidal"]),
+    lift=st.floats(0.005, 0.03),
+    rise_deg=st.floats(90.0, 180.0),
+    offset=st.floats(-0.01, 0.01),
+    sense=st.sampled_from([1, -1]),
+)
+def test_any_roller_programme_without_undercut_is_followed_exactly(
+    rise_law, return_law, lift, rise_deg, offset, sense
+):
+    """Law: whatever the programme, a roller that the analysis says is not undercut rests on the
+    generated profile at the programme's lift."""
+    prog = CamProgram(
+        base_radius=R_B,
+        follower="roller",
+        roller_radius=R_R,
+        segments=(
+            Segment("rise", D(rise_deg), lift, rise_law),
+            Segment("dwell", D(20)),
+            Segment("return", D(340 - rise_deg), lift, return_law),
+        ),
+    )
+    layout = CamLayout(prog, sense=sense, axis=D(90), offset=offset)
+    a = analyse(layout, samples=3600)
+    assume(not a.undercut)
+    rp = R_B + R_R
+    start = math.sqrt(rp**2 - offset**2)
+    for th, s in zip(CHECK_ANGLES[::4], follower_motion(prog, CHECK_ANGLES[::4]).s, strict=True):
+        got = lift_on_polygon(turned(a.state.profile, sense * th), "roller", D(90), -sense * offset, start)
+        assert got == pytest.approx(s, abs=1e-5 * SIZE)
