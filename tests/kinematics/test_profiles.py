@@ -183,3 +183,42 @@ def _at(deg: float):
     from mech.options import SolveOptions
 
     return SolveOptions(angle=math.radians(deg))
+
+
+def _circle_as_curve(n: int) -> str:
+    """The eccentric's circle (centre E as drawn, radius 40 mm) given as n points of a closed curve."""
+    ex, ey = 15 * math.cos(math.radians(30)), 7.5
+    return ", ".join(
+        f"[{ex + 40 * math.cos(2 * math.pi * k / n)!r}, {ey + 40 * math.sin(2 * math.pi * k / n)!r}]"
+        for k in range(n)
+    )
+
+
+@pytest.mark.parametrize("n", [90, 360])
+def test_curve_profile_through_a_circles_points_moves_a_flat_follower_like_the_circle(n):
+    # The periodic cubic spline through n points of a circle is within O(h⁴) of it in position
+    # and O(h²) in curvature (h = 2π/n; de Boor, ch. IV): s = e sin θ + R within those orders.
+    doc = _cam("{line: {through: F, angle: 0}}", "F", 47.5).replace(
+        "cam: {circle: {centre: E, radius: 40}}", "cam: {curve: [" + _circle_as_curve(n) + "]}"
+    )
+    sw = sweep(loads(doc, path="cam.yaml"), ANGLES, level="acceleration", analyse=False)
+    h = 2 * math.pi / n
+    k = sw.points.index("F")
+    assert sw.positions[:, k, 1] - R == pytest.approx(E * np.sin(ANGLES), abs=E * h**4)
+    assert sw.velocities[:, k, 1] == pytest.approx(E * W * np.cos(ANGLES), abs=E * W * h**3)
+    assert sw.accelerations[:, k, 1] == pytest.approx(-E * W**2 * np.sin(ANGLES), abs=E * W**2 * h**2)
+
+
+def test_curve_profile_against_a_roller_is_the_slider_crank_within_the_splines_accuracy():
+    n = 360
+    y0 = 7.5 + math.sqrt(50.0**2 - (15 * math.cos(math.radians(30))) ** 2)
+    doc = _cam("{circle: {centre: C, radius: 10}}", "C", y0).replace(
+        "cam: {circle: {centre: E, radius: 40}}", "cam: {curve: [" + _circle_as_curve(n) + "]}"
+    )
+    sw = sweep(loads(doc, path="cam.yaml"), ANGLES, level="acceleration", analyse=False)
+    s, v, a = _slider_crank(E, R + RR, ANGLES, W)
+    h = 2 * math.pi / n
+    k = sw.points.index("C")
+    assert sw.positions[:, k, 1] == pytest.approx(s, abs=E * h**4)
+    assert sw.velocities[:, k, 1] == pytest.approx(v, abs=E * W * h**3)
+    assert sw.accelerations[:, k, 1] == pytest.approx(a, abs=E * W**2 * h**2)

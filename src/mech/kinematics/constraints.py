@@ -40,6 +40,7 @@ import numpy as np
 from mech._records import dataclass
 from mech.errors import collect
 from mech.kinematics.assemble import Drawn, gear_centre
+from mech.kinematics.curves import CurveRow, curve_row
 from mech.kinematics.layout import Layout, PathSpec
 from mech.kinematics.rows import ROWS, Angle, Build, Locator, OnLine
 from mech.model import Joint
@@ -87,6 +88,8 @@ class System:
     ds_j: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
     ds_sj: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     ds_d: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    # curve rows (last): a closed spline profile against a point or a line (mech.kinematics.curves)
+    cv: tuple[CurveRow, ...] = ()
     # bookkeeping
     locators: dict[str, Locator] = field(default_factory=dict)  # moving contact point from q (scaled)
     normals: dict[str, Locator] = field(default_factory=dict)  # its common normal (unit) from q
@@ -111,7 +114,7 @@ class System:
 
     @property
     def m(self) -> int:
-        return 2 * self.pc_i.size + self.ln_s.size + self.ang_c.size + self.ds_d.size
+        return 2 * self.pc_i.size + self.ln_s.size + self.ang_c.size + self.ds_d.size + len(self.cv)
 
     # -- kinematic functions (scaled) ------------------------------------------------
     def _full(self, q: np.ndarray) -> np.ndarray:
@@ -149,9 +152,12 @@ class System:
         ka = self.ang_c.size
         out[r : r + ka] = self.ang_a @ qf[2::3] - c_ang
         r += ka
-        if self.ds_d.size:
+        kd = self.ds_d.size
+        if kd:
             dx, dy, _, _, _, _ = self._distance(qf)
-            out[r:] = 0.5 * (dx * dx + dy * dy - self.ds_d**2)
+            out[r : r + kd] = 0.5 * (dx * dx + dy * dy - self.ds_d**2)
+        for k, row in enumerate(self.cv):
+            out[r + kd + k] = curve_row(row, qf)[0]
         return out
 
     def _distance(self, qf: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -217,6 +223,10 @@ class System:
             np.add.at(jac, (rows, j3), -dx)
             np.add.at(jac, (rows, j3 + 1), -dy)
             np.add.at(jac, (rows, j3 + 2), dx * by - dy * bx)
+        r0 += self.ds_d.size
+        for k, row in enumerate(self.cv):
+            for col, v in curve_row(row, qf)[1].items():
+                jac[r0 + k, col] += v
         return jac[:, :-3]
 
     def gamma(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
@@ -256,9 +266,12 @@ class System:
             wi, wj = vf[i3 + 2], vf[j3 + 2]
             ddx = vf[i3] - wi * ay - vf[j3] + wj * by
             ddy = vf[i3 + 1] + wi * ax - vf[j3 + 1] - wj * bx
-            out[self.m - self.ds_d.size :] = (
+            end = self.m - len(self.cv)
+            out[end - self.ds_d.size : end] = (
                 -(ddx * ddx + ddy * ddy) + dx * (wi**2 * ax - wj**2 * bx) + dy * (wi**2 * ay - wj**2 * by)
             )
+        for k, row in enumerate(self.cv):
+            out[self.m - len(self.cv) + k] = curve_row(row, qf, vf)[2]
         return out
 
     def point(self, q: np.ndarray, name: str) -> np.ndarray:
@@ -416,7 +429,8 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     for p in pc:
         names += [p.joint, p.joint]
         holo_rows += [p.holonomic, p.holonomic]
-    for rec in (*ln, *ang, *ds):
+    sys_.cv = tuple(b.curves)
+    for rec in (*ln, *ang, *ds, *b.curves):
         names.append(rec.joint)
         holo_rows.append(rec.holonomic)
     sys_.row_names = tuple(names)

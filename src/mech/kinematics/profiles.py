@@ -32,7 +32,8 @@ carrier give the gear-pair row instead (their centre distance is already fixed).
 a straight line tangent to the other circle where the pair is drawn (at ``at``,
 or under the circle's centre when the joint has no ``at``).
 
-A closed ``curve`` is read and drawn, but does not move yet (a clear refusal).
+A closed ``curve`` (a periodic cubic spline through its points, see
+:mod:`mech.kinematics.curves`) moves against a point, a circle or a line.
 """
 
 from __future__ import annotations
@@ -63,6 +64,7 @@ class _Geo:
     p: np.ndarray
     r: float = 0.0
     u: np.ndarray | None = None
+    pts: np.ndarray | None = None  # a curve's points, scaled global
 
 
 def drawn_profiles(lay: object, j: Joint, positions: dict[str, tuple[float, float]]) -> dict[str, Profile]:
@@ -139,14 +141,8 @@ def _geo(b: Build, j: Joint, link: str, prof: Profile) -> _Geo | None:
             u = np.array([math.cos(a), math.sin(a)])
         return _Geo(link, "line", p, u=u)
     assert isinstance(prof, Curve)
-    b.problems.append(
-        Problem(
-            f"joint {j.name}: a `curve` profile is drawn but does not move yet",
-            j.where,
-            "give circles, lines or points as profiles, or analyse the instant with `at` and `normal`",
-        )
-    )
-    return None
+    pts = np.array([b.sc(xy) for xy in prof.points])
+    return _Geo(link, "curve", pts.mean(axis=0), pts=pts)
 
 
 def _at(b: Build, link: str, s: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
@@ -211,6 +207,8 @@ def moving_contact(b: Build, j: Joint) -> bool:
             )
         )
 
+    if "curve" in kinds:
+        return _curve_contact(b, j, ga, gb, gap_problem)
     if "line" in kinds and len(kinds) == 2:
         other, line = (ga, gb) if gb.kind == "line" else (gb, ga)
         assert line.u is not None
@@ -297,3 +295,57 @@ def _rotate_into(b: Build, link: str, v: np.ndarray) -> np.ndarray:
     th = b.theta(link)
     c, s = math.cos(th), math.sin(th)
     return np.array([c * v[0] + s * v[1], -s * v[0] + c * v[1]])
+
+
+def _curve_contact(b: Build, j: Joint, ga: _Geo, gb: _Geo, gap_problem: Callable[[float, str], None]) -> bool:
+    """A closed curve against a point, a circle (its centre kept ±r off the curve) or a line."""
+    from mech.kinematics.curves import CurveRow, Spline, curve_row
+
+    curve, other = (ga, gb) if ga.kind == "curve" else (gb, ga)
+    if other.kind == "curve" or j.type is JointType.ROLLING:
+        b.problems.append(
+            Problem(
+                f"joint {j.name}: a curve moves against a point, a circle or a line "
+                + ("(not rolling)" if j.type is JointType.ROLLING else "(not another curve)"),
+                j.where,
+            )
+        )
+        return True
+    assert curve.pts is not None
+    spline = Spline(np.array([b.to_local(curve.link, p) for p in curve.pts]))
+    ic, io = b.index[curve.link], b.index[other.link]
+    qf0 = np.append(b.q0, (0.0, 0.0, 0.0))
+    if other.kind == "line":
+        assert other.u is not None
+        n = np.array([-other.u[1], other.u[0]])
+        reach = curve.pts @ n - float(n @ other.p)
+        if abs(reach.max()) < abs(reach.min()):  # the curve lies on the other side: face it
+            n = -n
+        row = CurveRow(
+            ic,
+            spline,
+            io,
+            "line",
+            b.to_local(other.link, other.p),
+            _rotate_into(b, other.link, n),
+            0.0,
+            j.name,
+        )
+        gap = abs(curve_row(row, qf0)[0])
+    else:
+        probe = CurveRow(ic, spline, io, "point", b.to_local(other.link, other.p), None, 0.0, j.name)
+        f0 = curve_row(probe, qf0)[0]
+        want = math.copysign(other.r, f0) if other.r else 0.0
+        row = CurveRow(ic, spline, io, "point", probe.s, None, want, j.name)
+        gap = abs(f0 - want)
+    if gap > TOUCH:
+        gap_problem(gap, f"curve and {other.kind}")
+        return True
+    b.curves.append(row)
+
+    def full(q: np.ndarray) -> np.ndarray:
+        return np.append(q, (0.0, 0.0, 0.0))
+
+    b.locators[j.name] = lambda q: curve_row(row, full(q))[3]
+    b.normals[j.name] = lambda q: curve_row(row, full(q))[4]
+    return True

@@ -35,6 +35,7 @@ from mech.errors import Problem, UnsupportedError
 from mech.model import Joint, JointType
 
 if TYPE_CHECKING:
+    from mech.kinematics.curves import CurveRow
     from mech.kinematics.layout import Layout, PathSpec
 
 __all__ = ["ROWS", "Angle", "Build", "Coincide", "Distance", "OnLine"]
@@ -118,6 +119,7 @@ class Build:
     online: list[OnLine] = field(default_factory=list)
     angle: list[Angle] = field(default_factory=list)
     distance: list[Distance] = field(default_factory=list)
+    curves: list[CurveRow] = field(default_factory=list)
     problems: list[Problem] = field(default_factory=list)
     path_dirs: dict[str, tuple[int, np.ndarray]] = field(default_factory=dict)
     path_points: dict[str, tuple[int, str]] = field(default_factory=dict)
