@@ -83,6 +83,11 @@ def motion_rows(a: CamAnalysis, step_deg: float) -> list[dict[str, float | None]
     return rows
 
 
+def _denoise(x: float, over: np.ndarray) -> float:
+    """Rounding noise (below 1e-9 of the quantity's largest value over the turn) as the zero it is."""
+    return 0.0 if abs(x) <= 1e-9 * float(np.max(np.abs(over))) else x
+
+
 def _ext(e: Extreme | None, *, degrees: bool = False) -> dict[str, float] | None:
     if e is None:
         return None
@@ -133,8 +138,8 @@ def cam_json(
         "at": {
             "theta": math.degrees(setup.angle),
             "s": float(now.s[0]),
-            "v": None if w is None else float(now.ds[0] * w),
-            "a": None if w is None else float(now.d2s[0] * w**2),
+            "v": None if w is None else _denoise(float(now.ds[0]), a.state.ds) * w,
+            "a": None if w is None else _denoise(float(now.d2s[0]), a.state.d2s) * w**2,
             "pressure_angle": float(math.degrees(now.pressure[0])),
             "point": [float(now.point[0][0] + setup.centre[0]), float(now.point[0][1] + setup.centre[1])],
         },
@@ -298,7 +303,10 @@ def cam_table(setup: CamSetup, a: CamAnalysis, console: Console, *, name: str, s
     now = evaluate(lay, [setup.angle])
     drawn = f"  at θ = {math.degrees(setup.angle):.4g}°: s = {lift(float(now.s[0]))}"
     if a.omega is not None:
-        drawn += f", v = {_fmt(float(now.ds[0] * a.omega))} {units['v']}, a = {_fmt(float(now.d2s[0] * a.omega**2))} {units['a']}"
+        # rounding noise (1e-14 where a law's acceleration is zero) is the zero it is
+        v_now = _denoise(float(now.ds[0]), a.state.ds)
+        a_now = _denoise(float(now.d2s[0]), a.state.d2s)
+        drawn += f", v = {_fmt(v_now * a.omega)} {units['v']}, a = {_fmt(a_now * a.omega**2)} {units['a']}"
     drawn += f", pressure angle {math.degrees(float(now.pressure[0])):.4g}°"
     console.print(drawn)
     if a.omega is None:
