@@ -40,10 +40,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
 
+from mech._records import dataclass
 from mech.errors import Problem
 from mech.kinematics.rows import Angle, Build, Distance, OnLine
 from mech.model import Joint, JointType, Ref

@@ -26,11 +26,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from mech._records import dataclass
 from mech.errors import Problem, UnsupportedError
 from mech.model import Joint, JointType
 

@@ -20,9 +20,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from mech._records import dataclass
 from mech.errors import UnsupportedError
 from mech.model import JointType, Mechanism
 from mech.options import SolveOptions

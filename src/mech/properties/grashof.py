@@ -31,8 +31,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
 
+from mech._records import dataclass
 from mech.model import Joint, JointType, Mechanism
 
 __all__ = ["GRASHOF_CLASSES", "FourBarLoop", "SliderCrankLoop", "four_bar_loops", "linkage_loops"]

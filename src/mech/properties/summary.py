@@ -9,9 +9,9 @@ kept instead.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any
 
+from mech._records import dataclass
 from mech.errors import MechError, UnsupportedError
 from mech.model import Mechanism
 from mech.options import SolveOptions

@@ -1,0 +1,74 @@
+"""Start-up: each command imports only what it uses (checked on sys.modules, never on time).
+
+The light commands are run as a user runs them, in a fresh interpreter, and
+the modules they leave loaded are compared with the ones they must not need:
+numpy and rich where no number is solved or no table drawn, the analyses
+another command owns, and standard-library modules that cost milliseconds
+(pathlib pulls urllib.parse and ipaddress; difflib is only for misspelt names).
+Timings are measured by tests/benchmarks/bench_issue_table.py, not here.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+FOUR_BAR = str(Path(__file__).resolve().parents[1] / "mechanisms" / "four_bar.yaml")
+
+COSTLY_STDLIB = ("pathlib", "urllib.parse", "ipaddress", "difflib", "tempfile", "logging", "asyncio", "email")
+OTHER_ANALYSES = ("mech.kinematics", "mech.icentres", "mech.draw", "mech.check", "mech.batch", "matplotlib")
+
+
+def loaded_by(*argv: str) -> set[str]:
+    """Modules loaded after ``mech ARGV`` in a fresh interpreter (its output discarded)."""
+    code = (
+        "import io, json, sys\n"
+        "from contextlib import redirect_stdout\n"
+        "from mech.cli import main\n"
+        "with redirect_stdout(io.StringIO()):\n"
+        "    try:\n"
+        "        main(sys.argv[1:])\n"
+        "    except SystemExit as exit:\n"
+        "        assert not exit.code, exit.code\n"
+        "print(json.dumps(sorted(sys.modules)))\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code, *argv], capture_output=True, text=True, check=False)
+    assert done.returncode == 0, done.stderr
+    return set(json.loads(done.stdout))
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [("dof", "--json", FOUR_BAR), ("classify", "--json", FOUR_BAR)],
+    ids=["dof --json", "classify --json"],
+)
+def test_counting_commands_with_json_import_neither_numpy_nor_rich(argv):
+    mods = loaded_by(*argv)
+    assert "mech.loader" in mods  # it did run
+    unwanted = {"numpy", "rich", *COSTLY_STDLIB, *OTHER_ANALYSES}
+    assert not (mods & unwanted), sorted(mods & unwanted)
+
+
+def test_dof_table_imports_rich_but_not_numpy():
+    mods = loaded_by("dof", FOUR_BAR)
+    assert "rich" in mods
+    assert not (mods & {"numpy", *COSTLY_STDLIB, *OTHER_ANALYSES}), sorted(mods & {"numpy", *OTHER_ANALYSES})
+
+
+def test_velocity_json_imports_numpy_but_no_rich_drawing_or_checking():
+    mods = loaded_by("velocity", FOUR_BAR, "--rpm", "600", "--json")
+    assert "numpy" in mods and "mech.kinematics" in mods
+    unwanted = {
+        "rich",
+        *COSTLY_STDLIB,
+        "mech.icentres",
+        "mech.draw",
+        "mech.check",
+        "mech.batch",
+        "matplotlib",
+    }
+    assert not (mods & unwanted), sorted(mods & unwanted)
