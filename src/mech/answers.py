@@ -569,6 +569,30 @@ KINDS: tuple[AnswerKind, ...] = (
         "a slider's travel, or a frame pivot's swing",
         also=(_D.ANGLE,),
     ),
+    AnswerKind(
+        "mechanical_advantage.<out>",
+        Compare.MAGNITUDE,
+        "velocity",
+        _D.NUMBER,
+        _property("mechanical_advantage"),
+        "output load over input effort (1/m for a point output of a crank)",
+    ),
+    AnswerKind(
+        "input_torque",
+        Compare.SIGNED,
+        "velocity",
+        _D.TORQUE,
+        _property("input_torque"),
+        "torque on the input link balancing the loads (ccw +)",
+    ),
+    AnswerKind(
+        "input_force",
+        Compare.SIGNED,
+        "velocity",
+        _D.FORCE,
+        _property("input_force"),
+        "force on a slider drive balancing the loads",
+    ),
 )
 for _kind in KINDS:
     register(_kind)

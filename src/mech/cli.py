@@ -390,8 +390,14 @@ def icentres(request: Request) -> None:
 
 
 @cli.command(name="properties")
+@click.option(
+    "--output",
+    "outputs",
+    multiple=True,
+    help="A link or point whose mechanical advantage to give (repeatable; default: every moving link).",
+)
 @kinematic_command()
-def properties_command(request: Request) -> None:
+def properties_command(request: Request, outputs: tuple[str, ...]) -> None:
     """Grashof, transmission angle, limit positions, strokes and time ratio of a linkage.
 
     Grashof's criterion for every four-bar loop (and the inversion of a
@@ -403,7 +409,7 @@ def properties_command(request: Request) -> None:
     from mech.loader import load
     from mech.properties.summary import linkage_properties
 
-    props = linkage_properties(load(request.file), options=request.options)
+    props = linkage_properties(load(request.file), options=request.options, outputs=outputs)
     if request.as_json:
         from mech.render.jsonout import dumps
         from mech.render.properties import properties_dict

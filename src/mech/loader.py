@@ -35,6 +35,7 @@ from mech.model import (
     JointType,
     Length,
     Link,
+    Load,
     Mechanism,
     Placement,
     Point,
@@ -68,6 +69,7 @@ _TOP_KEYS = (
     "points",
     "answers",
     "asks",
+    "loads",
 )
 _PLACE_KEYS = ("at", "near", "from", "toward", "distance", "offset")
 _COMMON_JOINT_KEYS = ("type", "links", "closure", "description", *_PLACE_KEYS)
@@ -357,6 +359,9 @@ class _Reader:
         asks: tuple[str, ...] = ()
         if "asks" in top:
             asks = self.guard(lambda: self._asks(top["asks"][1], links, joints, points), ())
+        loads: tuple[Load, ...] = ()
+        if "loads" in top:
+            loads = self.guard(lambda: self._loads(top["loads"][1], link_names, joints, points), ())
         self.fail()
         return Mechanism(
             name=name,
@@ -369,6 +374,7 @@ class _Reader:
             drives=tuple(drives),
             answers=tuple(answers),
             asks=asks,
+            loads=loads,
             tolerance=tolerance,
             length_unit=self.length_unit,
             angle_unit=self.angle_unit,
@@ -1127,6 +1133,38 @@ class _Reader:
                 f"{akey.family} relates two different names",
             )
         return akey
+
+    def _loads(
+        self, node: yaml.Node, links: list[str], joints: list[Joint], points: list[Point]
+    ) -> tuple[Load, ...]:
+        """``loads: {P: {force: [0, -500]}, rocker: {torque: "20 N m"}}`` (DESIGN § 1.1)."""
+        located = {j.name for j in joints if j.located_on} | {p.name for p in points}
+        out = []
+        for name, (knode, vnode) in self.mapping(node, "loads").items():
+            fields = self.mapping(vnode, f"the load on {name}", allowed=("force", "torque"))
+            if name in links:
+                if "torque" not in fields or "force" in fields:
+                    self.problem(knode, f"{name} is a link: load it with a torque", 'e.g. {torque: "20 N m"}')
+                    continue
+                torque = self.number(fields["torque"][1], f"the torque on {name}", Dimension.TORQUE)
+                out.append(Load(name, torque=torque, where=self.where(knode)))
+            elif name in located:
+                if "force" not in fields or "torque" in fields:
+                    self.problem(knode, f"{name} is a point: load it with a force", "e.g. {force: [0, -500]}")
+                    continue
+                items = self.sequence(fields["force"][1], f"the force at {name}")
+                if len(items) != 2:
+                    self.problem(fields["force"][1], f"the force at {name} must be a pair [Fx, Fy] (N)")
+                    continue
+                fx, fy = (self.number(n, f"the force at {name}", Dimension.FORCE) for n in items)
+                out.append(Load(name, force=(fx, fy), where=self.where(knode)))
+            else:
+                self.problem(
+                    knode,
+                    f"loads names {name!r}, which is neither a link nor a point",
+                    _did_you_mean(name, set(links) | located),
+                )
+        return tuple(out)
 
     def _asks(
         self, node: yaml.Node, links: tuple[Link, ...], joints: list[Joint], points: list[Point]

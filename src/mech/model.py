@@ -30,6 +30,7 @@ __all__ = [
     "JointType",
     "Length",
     "Link",
+    "Load",
     "Mechanism",
     "Path",
     "Placement",
@@ -317,6 +318,20 @@ class Tolerance:
         return f"{self.value * 100:g}%" if self.relative else f"{self.value:g}"
 
 
+@dataclass(frozen=True, slots=True)
+class Load:
+    """An external load for mechanical advantage and the input torque (no friction).
+
+    ``target`` names a point or joint (a ``force`` (Fx, Fy) in N, in the
+    file's frame) or a link (a ``torque`` in N·m, counter-clockwise positive).
+    """
+
+    target: str
+    force: Vec | None = None
+    torque: float | None = None
+    where: Where | None = field(default=None, compare=False)
+
+
 ClaimValue = float | Vec | str | int
 
 
@@ -360,6 +375,7 @@ class Mechanism:
     length_unit: str = "m"
     angle_unit: str = "deg"
     asks: tuple[str, ...] = ()  # answer keys a student must answer (when `answers` carries no values)
+    loads: tuple[Load, ...] = ()  # forces at points, torques on links (DESIGN § 1.1 "Loads")
     source: str | None = field(default=None, repr=False, compare=False)
 
     # -- lookups -----------------------------------------------------------------

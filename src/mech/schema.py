@@ -116,6 +116,19 @@ SCHEMA: dict[str, Any] = {
                 {"type": "array", "items": {"$ref": "#/definitions/drive"}, "minItems": 1},
             ]
         },
+        "loads": {
+            "type": "object",
+            "description": "Loads for mechanical advantage and the input torque: {P: {force: [Fx, Fy]}} (N) "
+            "at a point, {link: {torque: T}} (N m, ccw +) on a link.",
+            "additionalProperties": {
+                "type": "object",
+                "additionalProperties": False,
+                "properties": {
+                    "force": {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
+                    "torque": _NUMBER,
+                },
+            },
+        },
         "asks": {
             "type": "array",
             "items": {"type": "string"},

@@ -41,6 +41,8 @@ class Dimension(str, Enum):
     ACCELERATION = "m/s^2"
     ANGULAR_ACCELERATION = "rad/s^2"
     TIME = "s"
+    FORCE = "N"
+    TORQUE = "N m"
     NUMBER = "1"
 
     @property
@@ -96,6 +98,17 @@ _UNITS: dict[str, tuple[Dimension, float]] = {
     "rad/s^2": (Dimension.ANGULAR_ACCELERATION, 1.0),
     "deg/s^2": (Dimension.ANGULAR_ACCELERATION, _DEG),
     "rpm/s": (Dimension.ANGULAR_ACCELERATION, _TWO_PI / 60.0),
+    # force and torque (loads)
+    "N": (Dimension.FORCE, 1.0),
+    "kN": (Dimension.FORCE, 1e3),
+    "lbf": (Dimension.FORCE, 4.4482216152605),
+    "Nm": (Dimension.TORQUE, 1.0),
+    "N·m": (Dimension.TORQUE, 1.0),
+    "N.m": (Dimension.TORQUE, 1.0),
+    "Nmm": (Dimension.TORQUE, 1e-3),
+    "N·mm": (Dimension.TORQUE, 1e-3),
+    "kNm": (Dimension.TORQUE, 1e3),
+    "kN·m": (Dimension.TORQUE, 1e3),
     # time
     "s": (Dimension.TIME, 1.0),
     "ms": (Dimension.TIME, 1e-3),

@@ -16,6 +16,9 @@ from mech.properties.grashof import FourBarLoop, linkage_loops
 
 __all__ = [
     "grashof",
+    "input_force",
+    "input_torque",
+    "mechanical_advantage",
     "normal_grashof",
     "stroke",
     "time_ratio",
@@ -117,3 +120,39 @@ def stroke(an: Any, names: tuple[str, ...]) -> float:
         f"cannot be computed: {joint} is neither a prismatic joint nor a revolute joint on the frame "
         "carrying a link other than the crank"
     )
+
+
+def mechanical_advantage(an: Any, names: tuple[str, ...]) -> float:
+    """Output load over input effort (velocity solution; the I-centre route agrees to rounding)."""
+    from mech.properties.advantage import mechanical_advantage as ma
+
+    out = names[0]
+    return float(
+        an.cached(
+            f"properties.ma.{out}",
+            lambda: ma(an.mech, an.kin, out, icentres=an.icentres, options=an.options, virtual_work=False),
+        ).value
+    )
+
+
+def _effort(an: Any, kind: str) -> float:
+    from mech.properties.advantage import input_effort
+
+    effort = an.cached("properties.effort", lambda: input_effort(an.mech, an.kin, virtual_work=False))
+    if effort.kind != kind:
+        other = "input_force" if kind == "torque" else "input_torque"
+        raise Undefined(
+            f"cannot be computed: the drive is {'a slider' if kind == 'torque' else 'a turning link'}; "
+            f"answer {other} instead"
+        )
+    return float(effort.value)
+
+
+def input_torque(an: Any, names: tuple[str, ...]) -> float:
+    """The torque on the input link that balances the file's loads (N·m, ccw +), no friction."""
+    return _effort(an, "torque")
+
+
+def input_force(an: Any, names: tuple[str, ...]) -> float:
+    """The force along a slider drive's path that balances the file's loads (N), no friction."""
+    return _effort(an, "force")

@@ -40,10 +40,19 @@ class LinkageProperties:
     cycle_error: str | None
     kin: Any
     length_unit: str = "m"
+    advantages: tuple[Any, ...] = ()
+    effort: Any = None
+    advantage_error: str | None = None
 
 
-def linkage_properties(mech: Mechanism, *, options: SolveOptions | None = None) -> LinkageProperties:
-    """Solve ``mech`` at its instant and over the crank's cycle, and collect its properties."""
+def linkage_properties(
+    mech: Mechanism, *, options: SolveOptions | None = None, outputs: tuple[str, ...] = ()
+) -> LinkageProperties:
+    """Solve ``mech`` at its instant and over the crank's cycle, and collect its properties.
+
+    ``outputs`` are the links or points whose mechanical advantage to give
+    (default: every moving link but the driver, and every loaded point).
+    """
     from mech.kinematics import solve
 
     options = options or SolveOptions()
@@ -63,7 +72,11 @@ def linkage_properties(mech: Mechanism, *, options: SolveOptions | None = None) 
         result = cycle(mech, options=options.with_(angle=None))
     except MechError as error:
         why = error.problems[0].message if error.problems else str(error)
+    advantages, effort, ma_why = _advantages(mech, options, outputs)
     return LinkageProperties(
+        advantages=advantages,
+        effort=effort,
+        advantage_error=ma_why,
         mechanism=mech.label,
         loops=loops,
         transmission=trans,
@@ -73,3 +86,47 @@ def linkage_properties(mech: Mechanism, *, options: SolveOptions | None = None) 
         kin=kin,
         length_unit=mech.length_unit,
     )
+
+
+def _advantages(
+    mech: Mechanism, options: SolveOptions, outputs: tuple[str, ...]
+) -> tuple[tuple[Any, ...], Any, str | None]:
+    """Mechanical advantages of the outputs and the input effort balancing the loads, or why not.
+
+    They are ratios, independent of the drive's speed: a drive with no speed is turned at 1 rad/s.
+    """
+    from mech.kinematics import solve
+    from mech.properties.advantage import input_effort, mechanical_advantage, virtual_displacements
+
+    try:
+        if (
+            len(mech.drives) == 1
+            and mech.drives[0].link
+            and options.omega is None
+            and mech.drives[0].omega is None
+        ):
+            options = options.with_(omega=1.0)
+        kin = solve(mech, "velocity", options)
+        from mech.icentres import locate
+
+        try:
+            ics = locate(mech, kin)
+        except MechError:
+            ics = None
+        disp = virtual_displacements(mech, kin, options=options) if kin.drives[0].link else None
+        drive = kin.drives[0].link
+        names = list(outputs) or [lk.name for lk in mech.moving_links if lk.name != drive]
+        if not outputs:
+            names += [ld.target for ld in mech.loads if ld.force is not None and ld.target not in names]
+        out = tuple(
+            mechanical_advantage(mech, kin, n, icentres=ics, options=options, displacements=disp)
+            if ics is not None
+            else mechanical_advantage(mech, kin, n, options=options, displacements=disp)
+            for n in names
+        )
+        effort = input_effort(mech, kin, options=options, displacements=disp) if mech.loads else None
+    except MechError as error:
+        if outputs:
+            raise
+        return (), None, error.problems[0].message if error.problems else str(error)
+    return out, effort, None

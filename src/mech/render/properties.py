@@ -164,6 +164,34 @@ def properties_dict(props: Any, *, units: Any, file: str | None = None) -> dict[
         ]
         out["turns_fully_at"] = list(c.turning)
     out["cycle_error"] = props.cycle_error
+    out["mechanical_advantage"] = {
+        a.output: {
+            "value": a.value,
+            "unit": a.unit,
+            "kind": a.kind,
+            "driver": a.driver,
+            "velocity_ratio": a.velocity_ratio,
+            "by_icentres": a.by_icentres,
+            "by_virtual_work": a.by_virtual_work,
+            "construction": a.construction,
+        }
+        for a in props.advantages
+    }
+    e = props.effort
+    out["input_torque"] = e.value if e is not None and e.kind == "torque" else None
+    out["input_force"] = e.value if e is not None and e.kind == "force" else None
+    out["input_effort"] = (
+        None
+        if e is None
+        else {
+            "driver": e.driver,
+            "kind": e.kind,
+            "value": e.value,
+            "by_virtual_work": e.by_virtual_work,
+            "terms": {name: -t for name, t in e.terms},
+        }
+    )
+    out["advantage_error"] = props.advantage_error
     return out
 
 
@@ -198,6 +226,7 @@ def properties_table(props: Any, console: Any, *, units: Any) -> None:
                 ),
                 soft_wrap=True,
             )
+    _advantage_tables(props, d, console)
     if props.cycle is None:
         console.print(Text(f"  over the cycle: not swept ({props.cycle_error})"), soft_wrap=True)
         return
@@ -225,3 +254,37 @@ def properties_table(props: Any, console: Any, *, units: Any) -> None:
         console.print(table)
     if d["time_ratio"] is not None:
         console.print(f"  time ratio (slow / fast stroke of {d['time_ratio_output']}): {d['time_ratio']:.6g}")
+
+
+def _advantage_tables(props: Any, d: dict[str, Any], console: Any) -> None:
+    """Mechanical advantage three ways, the I-centre ratio written out, and the input effort."""
+    from rich.table import Table
+    from rich.text import Text
+
+    from mech.render.console import table_box
+
+    if props.advantage_error:
+        console.print(Text(f"  mechanical advantage: not computed ({props.advantage_error})"), soft_wrap=True)
+    if props.advantages:
+        table = Table(
+            box=table_box(console), title="Mechanical advantage (output load / input effort, no friction)"
+        )
+        for col in ("output", "by I-centres", "virtual work", "velocity solution", "unit"):
+            table.add_column(col, justify="left" if col in ("output", "unit") else "right")
+
+        def fmt(v: float | None) -> str:
+            return "—" if v is None else f"{v:.6g}"
+
+        for a in props.advantages:
+            table.add_row(a.output, fmt(a.by_icentres), fmt(a.by_virtual_work), fmt(a.value), a.unit)
+        console.print(table)
+        for a in props.advantages:
+            console.print(Text(f"  {a.output}: {a.construction}"), soft_wrap=True)
+    e = props.effort
+    if e is not None:
+        unit = "N·m, ccw +" if e.kind == "torque" else "N, along the drive's path"
+        vw = "" if e.by_virtual_work is None else f" (virtual work: {e.by_virtual_work:.6g})"
+        console.print(
+            Text(f"  input {e.kind} on {e.driver} balancing the loads: {e.value:.6g} {unit}{vw}"),
+            soft_wrap=True,
+        )
