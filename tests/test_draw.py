@@ -265,3 +265,37 @@ def test_save_by_extension(tmp_path):
     m, kin = _solve(MECHANISMS / "four_bar.yaml", "position")
     save(draw(m, kin), tmp_path / "a.svg")
     assert (tmp_path / "a.svg").read_text(encoding="utf-8").startswith("<?xml")
+
+
+def test_profiles_are_drawn_on_their_links_where_the_pair_has_moved():
+    from mech.draw.config import configuration
+    from mech.options import SolveOptions
+
+    m = load(MECHANISMS / "eccentric_cam.yaml")
+    kin = solve(m, "velocity", SolveOptions(angle=math.radians(120)))
+    page = configuration(m, kin)
+    profiles = [i for i in page.items if getattr(i, "cls", None) == "profile"]
+    circles = [i for i in profiles if hasattr(i, "r")]
+    assert {i.name for i in profiles} == {"cam", "follower"} and len(circles) == 1
+    # the disc is drawn about E where E is now, not where the file drew it
+    (circle,) = circles
+    (dot,) = [i for i in page.items if getattr(i, "cls", None) == "point" and i.name == "E"]
+    assert circle.centre == pytest.approx(dot.centre)
+    assert kin.positions["E"][0] == pytest.approx(0.015 * math.cos(math.radians(120)), abs=1e-15)
+
+
+def test_a_programmed_cams_surface_is_drawn_turned_with_the_cam():
+    from mech.draw.config import configuration
+    from mech.options import SolveOptions
+
+    m = load(MECHANISMS / "cam_roller_program.yaml")
+    drawn = configuration(m, solve(m, "position"))
+    turned = configuration(m, solve(m, "position", SolveOptions(angle=math.radians(150))))
+
+    def surface(page):
+        (poly,) = [i for i in page.items if getattr(i, "cls", None) == "profile" and hasattr(i, "points")]
+        return poly
+
+    a, b = surface(drawn), surface(turned)
+    assert len(a.points) == len(b.points) == 720
+    assert a.points != b.points  # carried round with the cam, not left as drawn

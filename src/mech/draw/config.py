@@ -187,7 +187,7 @@ def configuration(
     if view is None:
         pts = (
             list(pos.values())
-            + _circle_extents(mech, pos)
+            + _circle_extents(mech, kin, pos, frame=positions is not None)
             + [e for _, _, e in _follower_rods(mech, kin, pos)]
         )
         pts += [c.point for c in reachable(icentres, pts)]
@@ -200,7 +200,7 @@ def configuration(
     directions = _directions(mech, kin, pos)
     page.extend(_guides(mech, kin, pos, tr, directions, view))
     page.extend(_links(mech, members, pos, tr, colours))
-    page.extend(_contacts(mech, kin, pos, tr))
+    page.extend(_contacts(mech, kin, pos, tr, frame=positions is not None))
     page.extend(_ground_pivots(mech, kin, pos, tr))
     page.extend(_blocks(mech, kin, pos, tr, directions, colours))
     page.extend(_pins_and_points(mech, kin, pos, tr))
@@ -412,7 +412,9 @@ def _blocks(
     return items
 
 
-def _contacts(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform) -> list[Item]:
+def _contacts(
+    mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform, *, frame: bool = False
+) -> list[Item]:
     """Higher pairs at the drawn instant: pitch circles of gears, the common normal of cams."""
     items: list[Item] = []
     for j in mech.joints:
@@ -421,8 +423,8 @@ def _contacts(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform) 
         if j.name not in pos:
             continue
         c = tr(pos[j.name])
-        items.extend(_profiles(mech, kin, j, pos, tr))
-        if GLYPHS[j.type] == "pitch" and not _profile_list(mech, j, pos[j.name]):
+        items.extend(_profiles(mech, kin, j, pos, tr, frame=frame))
+        if GLYPHS[j.type] == "pitch" and not _profile_list(mech, kin, j, pos[j.name]):
             for link in j.links:
                 centre = _pivot_of(mech, link, pos)
                 if centre is not None:
@@ -463,7 +465,7 @@ def _contacts(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform) 
             )
         colours = link_colours(mech)
         for link in j.links:
-            if GLYPHS[j.type] == "pitch" or _profile_list(mech, j, pos[j.name]):
+            if GLYPHS[j.type] == "pitch" or _profile_list(mech, kin, j, pos[j.name]):
                 continue
             body = [n for n, links in kin.carriers.items() if link in links and n in pos]
             for n in body:  # the profile is unknown: show which points the contact belongs to
@@ -476,26 +478,38 @@ def _contacts(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform) 
     return items
 
 
-def _profiles(mech: Mechanism, kin: Any, j: Any, pos: Mapping[str, Vec], tr: Transform) -> list[Item]:
-    """Each link's profile where it is now: a circle about its centre, a flat face along the tangent.
+def _profiles(
+    mech: Mechanism, kin: Any, j: Any, pos: Mapping[str, Vec], tr: Transform, *, frame: bool = False
+) -> list[Item]:
+    """Each link's profile where it is now: a circle about its centre, a flat face along the
+    tangent at the contact, a closed curve (a cam's surface) carried with its link.
 
-    A knife edge is the contact dot itself; a closed curve is not drawn yet.
+    A knife edge is the contact dot itself.  Profiles given by coordinates (as drawn) are
+    carried by their link's motion from the drawing; in an animation frame (``frame``) only
+    those placed by named points are drawn.
     """
     from mech.pairs.specs import Circle as CircleProfile
+    from mech.pairs.specs import Curve as CurveProfile
     from mech.pairs.specs import Line as LineProfile
 
     items: list[Item] = []
     colours = link_colours(mech)
     contact = pos.get(j.name)
-    for link, prof in _profile_list(mech, j, contact):
+    for link, prof in _profile_list(mech, kin, j, contact):
         colour = colours.get(link, INK)
+        move = None if frame else _carried(mech, kin, link)
         if isinstance(prof, CircleProfile):
-            centre = prof.centre.xy if prof.centre.name is None else pos.get(prof.centre.name)
+            centre = pos.get(prof.centre.name) if prof.centre.name is not None else None
+            if centre is None and prof.centre.xy is not None and move is not None:
+                centre = move(prof.centre.xy)
             if centre is None:
                 continue
             pc = tr(centre)
             r_page = tr((centre[0] + prof.radius, centre[1]))[0] - pc[0]
             items.append(Circle(pc, abs(r_page), Style(colour, 0.6), "profile", link))
+        elif isinstance(prof, CurveProfile) and move is not None:
+            pts = tuple(tr(move(p)) for p in prof.points)
+            items.append(Poly(pts, True, Style(colour, 0.6), "profile", link))
         elif isinstance(prof, LineProfile) and contact is not None:
             geom = kin.joints.get(j.name)
             if geom is None or geom.direction is None:
@@ -513,12 +527,46 @@ def _profiles(mech: Mechanism, kin: Any, j: Any, pos: Mapping[str, Vec], tr: Tra
     return items
 
 
-def _profile_list(mech: Mechanism, j: Any, contact: Vec | None) -> list[tuple[str, Any]]:
-    """The profiles to draw: given, or a rolling pair's ``radii`` (circles about each link's pin)."""
+def _carried(mech: Mechanism, kin: Any, link: str) -> Any:
+    """A function taking a point of ``link`` as drawn to where the link has carried it in ``kin``."""
+    if link == mech.ground:
+        return lambda p: p
+    try:
+        from mech.kinematics.solve import compiled
+
+        sys_ = compiled(mech, None).system
+    except Exception:  # the drawing itself is refused elsewhere, with its message
+        return None
+    i = sys_.link_index.get(link)
+    state = kin.links.get(link)
+    if i is None or state is None:
+        return None
+    x0, y0, th0 = sys_.q0[3 * i : 3 * i + 3]
+    ox, oy = x0 * sys_.scale + sys_.centre[0], y0 * sys_.scale + sys_.centre[1]
+    turn = state.angle - th0
+    c, s = math.cos(turn), math.sin(turn)
+    nx, ny = state.origin
+
+    def move(p: Vec) -> Vec:
+        dx, dy = p[0] - ox, p[1] - oy
+        return (nx + c * dx - s * dy, ny + s * dx + c * dy)
+
+    return move
+
+
+def _profile_list(mech: Mechanism, kin: Any, j: Any, contact: Vec | None) -> list[tuple[str, Any]]:
+    """The profiles to draw: given, a cam programme's, or a rolling pair's ``radii`` (circles about each pin)."""
     from mech.model import Ref
     from mech.pairs.specs import Circle as CircleProfile
     from mech.pairs.specs import Line as LineProfile
 
+    if getattr(j.spec, "program", None) is not None:
+        try:
+            from mech.cam import program_profiles
+
+            return list(program_profiles(mech, j).items())
+        except Exception:  # the programme's own error is reported by the analysis
+            return []
     if j.profiles or j.type is not JointType.ROLLING or j.radii is None:
         return list(j.profiles)
     out: list[tuple[str, Any]] = []
@@ -598,11 +646,15 @@ def _contact_partners(mech: Mechanism, link: str) -> list[str]:
     ]
 
 
-def _circle_extents(mech: Mechanism, pos: Mapping[str, Vec]) -> list[Vec]:
+def _circle_extents(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], *, frame: bool = False) -> list[Vec]:
     """Corners of the boxes round gears' pitch circles, so the view holds them."""
     out: list[Vec] = []
     for j in mech.joints:
-        for _link, prof in _profile_list(mech, j, pos.get(j.name)):
+        for link, prof in _profile_list(mech, kin, j, pos.get(j.name)):
+            points = getattr(prof, "points", None)
+            move = None if frame else _carried(mech, kin, link)
+            if points is not None and move is not None:
+                out += [move(p) for p in points]
             centre = getattr(prof, "centre", None)
             if centre is not None:
                 c = centre.xy if centre.name is None else pos.get(centre.name)
