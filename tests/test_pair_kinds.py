@@ -28,11 +28,13 @@ def _registries() -> dict[str, dict[JointType, object]]:
     """Every per-kind registry, by layer (a new layer's registry is added here)."""
     from mech.draw.config import GLYPHS
     from mech.icentres.inspection import RULES
+    from mech.kinematics.dyads import DYADS
     from mech.kinematics.rows import ROWS
 
     return {
         "model": dict(KINDS),
         "kinematics rows": dict(ROWS),
+        "closed-form dyads": dict(DYADS),
         "I-centre rules": dict(RULES),
         "drawing glyphs": dict(GLYPHS),
     }

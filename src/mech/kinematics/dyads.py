@@ -70,7 +70,7 @@ from mech.kinematics.constraints import System
 from mech.kinematics.layout import Layout
 from mech.model import JointType
 
-__all__ = ["DyadProgram", "FastState", "program"]
+__all__ = ["DYADS", "DyadProgram", "FastState", "program"]
 
 #: A relative discriminant above −this is a tangency within rounding (assembled).
 SLACK = 1e-12
@@ -330,6 +330,22 @@ def program(comp: Any) -> DyadProgram | None:
     return prog
 
 
+#: Joint type → the closed-form dyads that can close it (the pair-kind registry of this layer),
+#: or None: a mechanism with such a joint is solved by Newton.  A higher pair's contact rows
+#: (profiles, gears) have equivalent linkages, but they are left to Newton here.
+DYADS: dict[JointType, str | None] = {
+    JointType.REVOLUTE: "pin of an rrr or rrp dyad, or a crank's pivot",
+    JointType.PRISMATIC: "path of an rrp or rpr dyad; the slider's angle by pose_angle",
+    JointType.SLOT: "path of an rrp or rpr dyad",
+    JointType.ROLLING: None,
+    JointType.CAM: None,
+    JointType.CONTACT: None,
+    JointType.GEAR: None,
+    JointType.SCREW: None,
+    JointType.SPHERICAL: None,
+}
+
+
 class _NoDecomposition(Exception):
     pass
 
@@ -340,7 +356,7 @@ def _fmt(x: float) -> str:
 
 def _build(lay: Layout, sys_: System, drive_angles: tuple[float | None, ...]) -> DyadProgram:
     """Find the dyad decomposition and generate its code."""
-    if len(lay.drives) != 1 or lay.contacts or sys_.velocity_only:
+    if len(lay.drives) != 1 or sys_.velocity_only or any(DYADS[j.type] is None for j in lay.mech.joints):
         raise _NoDecomposition
     spec = lay.drives[0]
     if spec.link is None or spec.reference != lay.mech.ground or drive_angles[0] is None:
