@@ -466,6 +466,15 @@ def properties_command(request: Request, outputs: tuple[str, ...]) -> None:
     type=click.Path(dir_okay=False),
     help="Animate the cycle to a GIF (needs matplotlib).",
 )
+@click.option(
+    "--path",
+    "paths",
+    multiple=True,
+    help="A point whose path to trace (repeatable): its x and y become quantities (CSV columns, extent).",
+)
+@click.option(
+    "--svg", "svg_path", type=click.Path(dir_okay=False), help="Draw the --path curves alone to an SVG file."
+)
 @kinematic_command()
 def sweep_command(
     request: Request,
@@ -478,6 +487,8 @@ def sweep_command(
     method: str,
     plot_path: str | None,
     gif_path: str | None,
+    paths: tuple[str, ...],
+    svg_path: str | None,
 ) -> None:
     """Solve over a range of crank angles: gaps, toggles, dead centres, extremes, time ratio.
 
@@ -489,6 +500,9 @@ def sweep_command(
         raise InputError("--angle does not apply to a sweep", hint="give the range with --from and --to")
     if not (math.isfinite(start) and math.isfinite(stop)) or start == stop:
         raise InputError("--from and --to must be two different finite angles (degrees)")
+    if svg_path and not paths:
+        raise InputError("--svg draws the --path curves: name a point with --path")
+    quantities = tuple(quantities) + tuple(f"position.{p}.{c}" for p in paths for c in ("x", "y"))
     if plot_path or gif_path:
         from mech.draw.raster import use_matplotlib
 
@@ -520,6 +534,8 @@ def sweep_command(
             render.sweep_plot_file(plot_path, result, units=units, quantities=quantities)
         if gif_path:
             render.sweep_animation_file(gif_path, mechanism, result)
+        if svg_path:
+            _path_svg(svg_path, mechanism, result, paths, request.options)
         if request.as_json:
             from mech.render.jsonout import dumps
 
@@ -533,6 +549,24 @@ def sweep_command(
     from mech.render.console import stdout
 
     render.sweep_table(result, stdout(), units=units)
+
+
+def _path_svg(path: str, mechanism: Any, result: Any, points: tuple[str, ...], options: SolveOptions) -> None:
+    """``mech sweep --path P --svg FILE``: the swept paths alone, to scale."""
+    from mech.draw import save
+    from mech.draw.config import curves_figure
+    from mech.kinematics import solve
+
+    curves = [
+        (
+            f"path of {p}",
+            [(float(x), float(y)) for x, y in result.positions[:, result.points.index(p), :]],
+            "path",
+        )
+        for p in points
+    ]
+    kin = solve(mechanism, "position", options.with_(omega=None, direction=None, alpha=None, angle=None))
+    save(curves_figure(mechanism, kin, curves, title=f"{mechanism.label}: paths"), path)
 
 
 # -- checking answers -----------------------------------------------------------------
@@ -641,9 +675,19 @@ def _write(path: str, text: str) -> None:
 )
 @click.option("--acceleration", is_flag=True, help="Add the acceleration polygon with its components.")
 @click.option("--icentres", "with_icentres", is_flag=True, help="Mark the I-centres on the configuration.")
+@click.option("--path", "paths", multiple=True, help="Trace a point's path over the cycle (repeatable).")
+@click.option(
+    "--centrodes", multiple=True, help="Draw a link's fixed and moving centrodes over the cycle (repeatable)."
+)
 @kinematic_command(alpha=True)
 def draw_command(
-    request: Request, output: str, velocity: bool, acceleration: bool, with_icentres: bool
+    request: Request,
+    output: str,
+    velocity: bool,
+    acceleration: bool,
+    with_icentres: bool,
+    paths: tuple[str, ...],
+    centrodes: tuple[str, ...],
 ) -> None:
     """Draw the configuration diagram to scale, with polygons and I-centres on request.
 
@@ -660,6 +704,8 @@ def draw_command(
         acceleration=acceleration,
         icentres=with_icentres,
         units=request.units,
+        paths=paths,
+        centrodes=centrodes,
     )
     if request.as_json:
         from mech.render.jsonout import dumps

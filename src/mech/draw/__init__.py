@@ -16,7 +16,7 @@ package is imported only by ``mech draw`` (and sweeps that plot), never by
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -41,6 +41,7 @@ def draw(
     acceleration: bool = False,
     icentres: Iterable[Any] | None = None,
     units: OutputUnits | None = None,
+    curves: Sequence[tuple[str, Sequence[tuple[float, float]], str]] = (),
 ) -> Figure:
     """The configuration diagram, with the asked polygons beside it and I-centres over it.
 
@@ -58,6 +59,10 @@ def draw(
         I-centres (from :func:`mech.icentres.locate`) to mark on the configuration.
     units
         Units of the polygons' scales and values (default SI: m/s, m/s²).
+    curves
+        Loci traced on the configuration: ``(label, points, kind)`` with kind
+        ``path``, ``fixed centrode`` or ``moving centrode``
+        (:mod:`mech.properties.paths`).
 
     Returns
     -------
@@ -65,7 +70,7 @@ def draw(
         Panels side by side under a header naming the mechanism and its state.
     """
     centres = list(icentres) if icentres is not None else []
-    panels = [configuration(mech, kin, icentres=centres)]
+    panels = [configuration(mech, kin, icentres=centres, curves=curves)]
     if velocity:
         panels.append(polygon_figure(mech, velocity_polygon(mech, kin), units=units))
     if acceleration:

@@ -154,6 +154,7 @@ def configuration(
     icentres: Sequence[Any] = (),
     title: str = "Configuration diagram",
     room: Vec = (130.0, 95.0),
+    curves: Sequence[tuple[str, Sequence[Vec], str]] = (),
 ) -> Figure:
     """The configuration diagram of ``mech`` as solved in ``kin``.
 
@@ -173,6 +174,12 @@ def configuration(
     icentres
         I-centres to overlay (objects with ``name``, ``point``, ``at_infinity``,
         ``direction``); see :mod:`mech.draw.icentres`.
+    curves
+        Loci to trace, each ``(label, points, kind)``: a point's path
+        (``kind="path"``), a fixed or moving centrode (``"fixed centrode"``,
+        ``"moving centrode"``).  Points are world coordinates (m); a NaN breaks
+        the curve.  Parts far outside the mechanism (a centrode running off to
+        infinity) are cut at twice its extent.
 
     Returns
     -------
@@ -191,6 +198,7 @@ def configuration(
             + [e for _, _, e in _follower_rods(mech, kin, pos)]
         )
         pts += [c.point for c in reachable(icentres, pts)]
+        pts += [q for _label, curve, _kind in curves for q in _near(curve, pts)]
         view = fit_view(pts, room)
     tr = view.transform()
     width, height = view.size
@@ -198,6 +206,8 @@ def configuration(
     page.add(Text((MARGIN - 6, 5.5), title, 3.4, "start", bold=True, cls="title"))
 
     directions = _directions(mech, kin, pos)
+    if curves:
+        page.extend(_curves(curves, tr, view))
     page.extend(_guides(mech, kin, pos, tr, directions, view))
     page.extend(_links(mech, members, pos, tr, colours))
     page.extend(_contacts(mech, kin, pos, tr, frame=positions is not None))
@@ -216,7 +226,86 @@ def configuration(
     return page.figure(title)
 
 
+def curves_figure(
+    mech: Mechanism,
+    kin: Any,
+    curves: Sequence[tuple[str, Sequence[Vec], str]],
+    *,
+    title: str = "Coupler curves",
+    room: Vec = (130.0, 95.0),
+) -> Figure:
+    """The traced curves alone, to scale, with the frame's pivots for reference."""
+    pos = dict(kin.positions)
+    pivots = [pos[j.name] for j in mech.joints if mech.ground in j.links and j.name in pos]
+    pts = [q for _label, curve, _kind in curves for q in curve if math.isfinite(q[0]) and math.isfinite(q[1])]
+    view = fit_view(pts + pivots, room)
+    tr = view.transform()
+    width, height = view.size
+    page = Page(width, height)
+    page.add(Text((MARGIN - 6, 5.5), title, 3.4, "start", bold=True, cls="title"))
+    page.extend(_curves(curves, tr, view))
+    page.extend(_ground_pivots(mech, kin, pos, tr))
+    for j in mech.joints:
+        if mech.ground in j.links and j.name in pos:
+            x, y = tr(pos[j.name])
+            page.add(Text((x + 3.0, y + 9.0), display_name(j.name), 3.0, "start", cls="label"))
+    factor = _unit_factor(mech.length_unit)
+    page.extend(scale_bar((MARGIN - 6, height - 7), view.scale / factor, mech.length_unit))
+    return page.figure(title)
+
+
 # -- pieces ---------------------------------------------------------------------------
+_CURVE_STYLE = {
+    "path": Style(stroke="#1f77b4", width=0.3),
+    "fixed centrode": Style(stroke="#2ca02c", width=0.3, dash=(1.6, 0.8)),
+    "moving centrode": Style(stroke="#d62728", width=0.3, dash=(0.6, 0.6)),
+}
+
+
+def _near(curve: Sequence[Vec], around: Sequence[Vec]) -> list[Vec]:
+    """The finite points of a curve within twice the extent of ``around`` from its centre."""
+    fin = [p for p in around if math.isfinite(p[0]) and math.isfinite(p[1])]
+    if not fin:
+        return []
+    x0, y0, x1, y1 = bbox(fin)
+    cx, cy, r = (x0 + x1) / 2, (y0 + y1) / 2, max(x1 - x0, y1 - y0, 1e-12)
+    return [
+        (float(p[0]), float(p[1]))
+        for p in curve
+        if math.isfinite(p[0]) and math.isfinite(p[1]) and abs(p[0] - cx) <= r and abs(p[1] - cy) <= r
+    ]
+
+
+def _curves(curves: Sequence[tuple[str, Sequence[Vec], str]], tr: Transform, view: View) -> list[Item]:
+    """Polylines of loci, broken at NaN and where they leave the view; a label at their last point."""
+    items: list[Item] = []
+    for label, curve, kind in curves:
+        style = _CURVE_STYLE.get(kind, _CURVE_STYLE["path"])
+        runs: list[list[Vec]] = [[]]
+        for p in curve:
+            x, y = float(p[0]), float(p[1])
+            inside = (
+                math.isfinite(x)
+                and math.isfinite(y)
+                and view.xmin <= x <= view.xmax
+                and view.ymin <= y <= view.ymax
+            )
+            if inside:
+                runs[-1].append(tr((x, y)))
+            elif runs[-1]:
+                runs.append([])
+        drawn = [run for run in runs if len(run) >= 2]
+        for run in drawn:
+            items.append(Poly(tuple(run), closed=False, style=style, cls=kind.replace(" ", "-"), name=label))
+        if drawn:  # the label beside the middle of the longest piece
+            longest = max(drawn, key=len)
+            at = longest[len(longest) // 2]
+            items.append(
+                Text((at[0] + 1.5, at[1] - 1.0), label, 2.6, "start", style.stroke or INK, cls="curve-label")
+            )
+    return items
+
+
 def _unit_factor(unit: str) -> float:
     from mech.units import unit_factor
 

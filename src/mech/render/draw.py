@@ -24,6 +24,8 @@ def draw_file(
     acceleration: bool = False,
     icentres: bool = False,
     units: OutputUnits | None = None,
+    paths: tuple[str, ...] = (),
+    centrodes: tuple[str, ...] = (),
 ) -> dict[str, Any]:
     """Draw ``file`` into ``output`` (.svg or .png); returns a summary for ``--json``.
 
@@ -57,7 +59,10 @@ def draw_file(
 
         located = locate(mech, kin)
         centres = list(getattr(located, "centres", located))
-    figure = draw(mech, kin, velocity=velocity, acceleration=acceleration, icentres=centres, units=units)
+    curves = loci(mech, options, paths=paths, centrodes=centrodes)
+    figure = draw(
+        mech, kin, velocity=velocity, acceleration=acceleration, icentres=centres, units=units, curves=curves
+    )
     save(figure, output)
     scales = [t.text for t in figure.items if isinstance(t, Text) and t.cls == "scale"]
     return {
@@ -66,6 +71,7 @@ def draw_file(
         "size_mm": [round(figure.width, 1), round(figure.height, 1)],
         "scales": scales,
         "icentres": [c.name for c in centres] if centres is not None else None,
+        "curves": [{"label": label, "kind": kind} for label, _pts, kind in curves],
         "notes": list(kin.notes),
     }
 
@@ -74,3 +80,28 @@ def _has_speed(mech: Any, options: SolveOptions) -> bool:
     if options.omega is not None or options.speed is not None:
         return True
     return bool(mech.drives) and all(d.omega is not None or d.speed is not None for d in mech.drives)
+
+
+def loci(
+    mech: Any, options: SolveOptions, *, paths: tuple[str, ...] = (), centrodes: tuple[str, ...] = ()
+) -> list[tuple[str, list[tuple[float, float]], str]]:
+    """The curves ``mech draw --path/--centrodes`` traces: point paths, fixed and moving centrodes."""
+    if not (paths or centrodes):
+        return []
+    from mech.properties.paths import centrodes as find_centrodes
+    from mech.properties.paths import point_path
+
+    sweep_options = options.with_(angle=None)
+    out: list[tuple[str, list[tuple[float, float]], str]] = []
+    for name in paths:
+        path = point_path(mech, name, options=sweep_options)
+        out.append((f"path of {name}", [(float(x), float(y)) for x, y in path.xy], "path"))
+    for link in centrodes:
+        c = find_centrodes(mech, link, options=options)
+        out.append(
+            (f"fixed centrode of {link}", [(float(x), float(y)) for x, y in c.fixed], "fixed centrode")
+        )
+        out.append(
+            (f"moving centrode of {link}", [(float(x), float(y)) for x, y in c.moving_now], "moving centrode")
+        )
+    return out
