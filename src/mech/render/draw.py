@@ -65,15 +65,17 @@ def draw_file(
     )
     save(figure, output)
     scales = [t.text for t in figure.items if isinstance(t, Text) and t.cls == "scale"]
-    return {
+    summary: dict[str, Any] = {
         "file": file,
         "output": output,
         "size_mm": [round(figure.width, 1), round(figure.height, 1)],
         "scales": scales,
         "icentres": [c.name for c in centres] if centres is not None else None,
-        "curves": [{"label": label, "kind": kind} for label, _pts, kind in curves],
         "notes": list(kin.notes),
     }
+    if curves:  # only when asked: the summary's keys stay as they were for other drawings
+        summary["curves"] = [{"label": label, "kind": kind} for label, _pts, kind in curves]
+    return summary
 
 
 def _has_speed(mech: Any, options: SolveOptions) -> bool:
