@@ -134,3 +134,11 @@ def test_schema_joint_keys_come_from_the_registry(run):
     assert validator.is_valid(doc)
     doc["joints"]["W"]["radius"] = 5  # a pin's key on a rolling pair
     assert not validator.is_valid(doc)
+
+
+@pytest.mark.parametrize("jtype", list(JointType), ids=lambda t: t.value)
+def test_every_kind_says_what_the_solvers_make_of_it(jtype):
+    k = KINDS[jtype]
+    assert k.role in ("pin", "path", "contact", "spatial")
+    assert (k.role == "spatial") == (not k.planar)
+    assert k.located in ("all", "first", "none")

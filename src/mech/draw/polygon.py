@@ -53,7 +53,7 @@ from mech.draw.scene import (
     scale_bar,
     text_box,
 )
-from mech.model import JointType, Mechanism
+from mech.model import Mechanism
 from mech.options import OutputUnits
 from mech.units import unit_factor
 
@@ -170,7 +170,7 @@ def _build(mech: Mechanism, kin: Any, kind: str) -> PolygonData:
     guided = {}
     for j in mech.joints:
         geom = kin.joints.get(j.name)
-        if j.type in (JointType.PRISMATIC, JointType.SLOT) and geom is not None and j.links[1] != ground:
+        if j.type.kind.role == "path" and geom is not None and j.links[1] != ground:
             guided[(geom.point, j.links[1])] = j
     for link in mech.links:
         for name in members[link.name]:
@@ -196,11 +196,7 @@ def _build(mech: Mechanism, kin: Any, kind: str) -> PolygonData:
                     order.append(key)
             if key not in link_keys[link.name]:
                 link_keys[link.name].append(key)
-    contacts = [
-        j
-        for j in mech.joints
-        if j.type in (JointType.CAM, JointType.GEAR, JointType.CONTACT, JointType.ROLLING) and j.name in pos
-    ]
+    contacts = [j for j in mech.joints if j.type.kind.role == "contact" and j.name in pos]
     for j in contacts:
         for link in j.links:
             if link == ground:

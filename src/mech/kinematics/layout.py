@@ -28,7 +28,7 @@ from mech.model import Drive, Joint, JointType, Mechanism, Path
 __all__ = ["DriveSpec", "Layout", "PathSpec", "layout"]
 
 #: Joint types whose location is a contact point of the instant, not fixed in a link.
-CONTACT_TYPES = frozenset({JointType.ROLLING, JointType.CAM, JointType.GEAR, JointType.CONTACT})
+CONTACT_TYPES = frozenset(t for t in JointType if t.kind.role == "contact")
 
 
 @dataclass(frozen=True, slots=True)
@@ -124,14 +124,15 @@ def layout(mech: Mechanism) -> Layout:
     alias: dict[str, str] = {}
     point_names = {p.name for p in mech.points}
     for j in mech.joints:
-        if j.type is JointType.REVOLUTE:
+        role = j.type.kind.role
+        if role == "pin":
             carriers[j.name] = tuple(j.links)
-        elif j.type is JointType.SLOT:
+        elif role == "path" and j.type.kind.located == "first":  # a slot: the pin is a point
             if j.point is not None:
                 alias[j.name] = j.point
             else:
                 carriers[j.name] = (j.links[0],)
-        elif j.type in CONTACT_TYPES:
+        elif role == "contact":
             carriers[j.name] = ()
     for p in mech.points:
         carriers[p.name] = (p.link,)
@@ -145,7 +146,7 @@ def layout(mech: Mechanism) -> Layout:
 
     paths: list[PathSpec] = []
     for j in mech.joints:
-        if j.type not in (JointType.PRISMATIC, JointType.SLOT):
+        if j.type.kind.role != "path":
             continue
         if len(j.links) != 2:
             problems.append(Problem(f"{j.type.value} joint {j.name} must join exactly two links", j.where))
@@ -160,7 +161,7 @@ def layout(mech: Mechanism) -> Layout:
                 )
             )
             continue
-        if j.type is JointType.SLOT:
+        if j.type.kind.located == "first":  # a slot: its own pin, unless it names one
             point = j.point if j.point is not None else j.name
         elif j.point is not None:
             point = j.point
@@ -247,7 +248,7 @@ def _drive_spec(
         except KeyError:
             problems.append(Problem(f"drive: no joint named {d.joint}", d.where))
             return None
-        if j.type not in (JointType.PRISMATIC, JointType.SLOT):
+        if j.type.kind.role != "path":
             problems.append(
                 Problem(
                     f"drive: joint {d.joint} is a {j.type.value} joint; a slider drive needs a "

@@ -94,6 +94,10 @@ class PairKind:
         ``"all"``, ``"first"`` (a slot's pin) or ``"none"`` (a prismatic pair).
     max_links
         How many links one joint of this type may join (None: any number).
+    role
+        What the position solvers make of it: ``pin`` (a point fixed in every link it
+        joins), ``path`` (a point of the first link on a line of the second), ``contact``
+        (a higher pair whose contact point is fixed in neither link), ``spatial`` (refused).
     """
 
     type: JointType
@@ -107,6 +111,7 @@ class PairKind:
     closure: str = "self"
     located: str = "all"
     max_links: int | None = 2
+    role: str = "contact"
     notes: tuple[str, ...] = field(default=())
 
 

@@ -23,5 +23,6 @@ REVOLUTE = PairKind(
     higher=False,
     motion="turning",
     line_contact=False,
-    max_links=None,  # a ternary joint is one pin through three links
+    max_links=None,
+    role="pin",  # a ternary joint is one pin through three links
 )

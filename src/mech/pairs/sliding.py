@@ -28,7 +28,8 @@ PRISMATIC = PairKind(
     higher=False,
     motion="sliding",
     line_contact=False,
-    located="none",  # a pair, not a point: its `point` is the slider's
+    located="none",
+    role="path",  # a pair, not a point: its `point` is the slider's
 )
 
 SLOT = PairKind(
@@ -39,5 +40,6 @@ SLOT = PairKind(
     higher=True,
     motion="sliding and turning (pin in slot)",
     line_contact=True,
-    located="first",  # the pin's centre: a point of the pin link, moving along the slot
+    located="first",
+    role="path",  # the pin's centre: a point of the pin link, moving along the slot
 )

@@ -20,6 +20,7 @@ SCREW = PairKind(
     motion="screw",
     line_contact=False,
     planar=False,
+    role="spatial",
 )
 
 SPHERICAL = PairKind(
@@ -31,4 +32,5 @@ SPHERICAL = PairKind(
     motion="spherical",
     line_contact=False,
     planar=False,
+    role="spatial",
 )
