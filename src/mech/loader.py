@@ -1032,6 +1032,10 @@ class _Reader:
         accel = self.optional(
             f, acc_key, lambda n: self.number(n, "the slider acceleration", Dimension.ACCELERATION)
         )
+        if angle is not None and sign < 0 and link is not None and _turns_a_programme(link, joints):
+            # a cam's drive angle is its turn from the programme's start in the sense it turns
+            # (DESIGN § 1.1); the model keeps every angle counter-clockwise, so a cw turn is negative
+            angle = -angle
         return Drive(
             link=link,
             joint=joint,
@@ -1308,6 +1312,14 @@ def _located_on(joints: list[Joint], points: list[Point]) -> dict[str, set[str]]
     for p in points:
         out[p.name] = {p.link}
     return out
+
+
+def _turns_a_programme(link: str, joints: list[Joint]) -> bool:
+    """True when ``link`` is the cam of a cam joint that gives its follower's programme."""
+    return any(
+        j.type is JointType.CAM and j.links[:1] == (link,) and getattr(j.spec, "program", None) is not None
+        for j in joints
+    )
 
 
 def is_null(node: yaml.Node | None) -> bool:

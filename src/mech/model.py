@@ -291,7 +291,10 @@ class Drive:
     ``relative_to`` names a link: then they are the driven link's minus that
     link's (θ_b − θ_a, ω_b − ω_a, α_b − α_a).
     ``direction`` (``cw``/``ccw``) is the sense as written, kept even without a
-    speed (a cam's programme is counted in the sense it turns).
+    speed (a cam's programme is counted in the sense it turns).  The file's
+    ``angle`` of a cam with a programme is its turn from the programme's start
+    in the sense it turns; ``angle`` here is that turn counter-clockwise, like
+    every angle (negative for a cam turning clockwise).
     """
 
     link: str | None = None

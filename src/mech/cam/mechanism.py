@@ -165,7 +165,10 @@ def cam_setup(
         )
     centre = pivots[0].place.at
     drive = next((d for d in mechanism.drives if d.link == cam), None)
+    # the model keeps the cam's turn counter-clockwise; the programme counts it in the drive's sense
+    drawn_cw = drive is not None and drive.direction == "cw"
     angle = drive.angle if drive is not None and drive.angle is not None else 0.0
+    angle = -angle if drawn_cw else angle
     if sense is None:
         if drive is not None and drive.omega is not None:
             sense = -1 if drive.omega < 0 else 1
