@@ -319,21 +319,43 @@ def _solve_options(
         raise InputError(f"{exc}") from None
 
 
-def _kinematics(request: Request, level: str) -> None:
+def _kinematics(request: Request, level: str, explain: bool = False) -> None:
     from mech.kinematics import solve
     from mech.loader import load
 
-    kin = solve(load(request.file), level=level, options=request.options)
+    mech = load(request.file)
+    kin = solve(mech, level=level, options=request.options)
+    construction = None
+    if explain:
+        from mech.explain import explain as write_out
+
+        construction = write_out(mech, kin, kind=level)
     if request.as_json:
         from mech.render.jsonout import dumps
         from mech.render.kinematics import kinematics_json
 
-        click.echo(dumps(kinematics_json(kin, units=request.units)))
+        record = kinematics_json(kin, units=request.units)
+        if construction is not None:
+            from mech.explain import construction_dict
+
+            record["construction"] = construction_dict(construction)
+        click.echo(dumps(record))
         return
     from mech.render.console import stdout
     from mech.render.kinematics import kinematics_table
 
-    kinematics_table(kin, stdout(), units=request.units)
+    console = stdout()
+    kinematics_table(kin, console, units=request.units)
+    if construction is not None:
+        from rich.text import Text
+
+        console.print()
+        console.print(Text(construction.text()), soft_wrap=True)
+
+
+_EXPLAIN_OPTION = click.option(
+    "--explain", is_flag=True, help="Write the construction out step by step, as the lecture notes draw it."
+)
 
 
 @cli.command()
@@ -344,27 +366,30 @@ def position(request: Request) -> None:
 
 
 @cli.command()
+@_EXPLAIN_OPTION
 @kinematic_command()
-def velocity(request: Request) -> None:
+def velocity(request: Request, explain: bool) -> None:
     """Velocities of every point and link at the crank angle and speed.
 
     Absolute velocities of joints and points, angular velocities of links,
     relative velocities along links (the velocity polygon's ab, bc …), sliding
     velocities in slides and slots, and rubbing velocities at pins with a radius.
     """
-    _kinematics(request, "velocity")
+    _kinematics(request, "velocity", explain)
 
 
 @cli.command()
+@_EXPLAIN_OPTION
 @kinematic_command(alpha=True)
-def acceleration(request: Request) -> None:
+def acceleration(request: Request, explain: bool) -> None:
     """Accelerations (normal, tangential, Coriolis) of every point and link."""
-    _kinematics(request, "acceleration")
+    _kinematics(request, "acceleration", explain)
 
 
 @cli.command()
+@_EXPLAIN_OPTION
 @kinematic_command()
-def icentres(request: Request) -> None:
+def icentres(request: Request, explain: bool) -> None:
     """Locate all n(n−1)/2 instantaneous centres at the crank angle.
 
     Primary I-centres by inspection (pins, sliders, rolling contacts), the
@@ -381,12 +406,26 @@ def icentres(request: Request) -> None:
         from mech.render.icentres import icentres_dict
         from mech.render.jsonout import dumps
 
-        click.echo(dumps(icentres_dict(result, units=request.units, file=request.file)))
+        record = icentres_dict(result, units=request.units, file=request.file)
+        if explain:
+            from mech.explain import explain_icentres
+
+            record["construction"] = explain_icentres(result)
+        click.echo(dumps(record))
         return
     from mech.render.console import stdout
     from mech.render.icentres import icentres_table
 
-    icentres_table(result, stdout(), units=request.units)
+    console = stdout()
+    icentres_table(result, console, units=request.units)
+    if explain:
+        from rich.text import Text
+
+        from mech.explain import explain_icentres
+
+        console.print()
+        for line in explain_icentres(result, unit=request.units.length):
+            console.print(Text(line), soft_wrap=True)
 
 
 @cli.command(name="properties")

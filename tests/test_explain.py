@@ -1,0 +1,164 @@
+"""The construction written out (mech.explain; --explain on velocity, acceleration, icentres).
+
+The polygon is rebuilt from the explained steps alone — each known vector laid from its start
+with its magnitude and direction, each pair of lines intersected, each image scaled and turned —
+and must land every image on the solver's velocity (acceleration).  The notes' Example 3.1 (the
+crank and slotted lever) and Khurmi's four-bar read in the notes' order with the computed numbers.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+
+from mech.explain import Construction, explain, explain_icentres
+from mech.kinematics import solve
+from mech.loader import load
+
+EXAMPLES = [
+    "mechanisms/four_bar.yaml",
+    "mechanisms/slider_crank.yaml",
+    "mechanisms/offset_slider_crank.yaml",
+    "mechanisms/crank_slotted_lever.yaml",
+    "mechanisms/khurmi_four_bar_acceleration.yaml",
+    "mechanisms/watt_six_bar.yaml",
+    "mechanisms/stephenson_six_bar.yaml",
+    "mechanisms/crank_slotted_lever_quick_return.yaml",
+]
+
+
+def rebuild(c: Construction) -> dict[str, tuple[float, float]]:
+    """The polygon's points from the steps' data alone."""
+    pts = {c.pole: (0.0, 0.0)}
+    for s in c.steps:
+        for k in s.known:
+            x, y = pts[k.start]
+            pts[k.end] = (x + k.magnitude * math.cos(k.direction), y + k.magnitude * math.sin(k.direction))
+        if s.image is not None:
+            a, b, ratio, angle = s.image
+            dx, dy = pts[b][0] - pts[a][0], pts[b][1] - pts[a][1]
+            ca, sa = math.cos(angle), math.sin(angle)
+            pts[s.result] = (pts[a][0] + ratio * (ca * dx - sa * dy), pts[a][1] + ratio * (sa * dx + ca * dy))
+        elif s.lines:
+            (p, u), (q, w) = ((pts[ln.through], ln.direction) for ln in s.lines)
+            d1, d2 = (math.cos(u), math.sin(u)), (math.cos(w), math.sin(w))
+            den = d1[0] * d2[1] - d1[1] * d2[0]
+            t = ((q[0] - p[0]) * d2[1] - (q[1] - p[1]) * d2[0]) / den
+            pts[s.result] = (p[0] + t * d1[0], p[1] + t * d1[1])
+        else:
+            assert s.result in pts, f"step {s.number} locates {s.result} from nothing"
+    return pts
+
+
+def point_of(label: str) -> str:
+    return label.rstrip("′").upper()
+
+
+@pytest.mark.parametrize("path", EXAMPLES)
+@pytest.mark.parametrize("kind", ["velocity", "acceleration"])
+def test_polygon_rebuilt_from_the_steps_alone_is_the_solution(path, kind):
+    mech = load(path)
+    kin = solve(mech, "acceleration")
+    c = explain(mech, kin, kind=kind)
+    pts = rebuild(c)
+    scale = max(
+        math.hypot(*(kin.velocity(n) if kind == "velocity" else kin.acceleration(n))) for n in kin.positions
+    )
+    checked = 0
+    for s in c.steps:
+        name = point_of(s.result)
+        if name in kin.positions and not any(ch in s.result for ch in "₀₁₂₃₄₅₆₇₈₉"):
+            want = kin.velocity(name) if kind == "velocity" else kin.acceleration(name)
+            got = pts[s.result]
+            assert math.dist(got, want) <= 1e-9 * scale, (s.number, s.result)
+            checked += 1
+        for m in s.measured:  # what is read off the polygon is what the rebuilt polygon shows
+            assert math.dist(pts[m.start], pts[m.end]) == pytest.approx(
+                m.magnitude, rel=1e-9, abs=1e-12 * scale
+            )
+    assert checked >= 2
+
+
+def test_notes_example_3_1_reads_like_the_notes():
+    mech = load("mechanisms/crank_slotted_lever.yaml")
+    c = explain(mech, solve(mech, "velocity"))
+    texts = [s.text for s in c.steps]
+    # Step 1: the fixed points at one pole, oa ⊥ O2A = ω × O2A (notes: 20π × 0.12 = 7.53 m/s)
+    assert texts[0].startswith("O1, O2 are fixed points, so they are taken as the single point o")
+    assert "draw vector oa perpendicular to O2A" in texts[0]
+    assert "ω × O2A = 62.83 rad/s × 0.12 m = 7.54 m/s" in texts[0]
+    # Step 2: along the slot from a, ⊥ O1A from o, meeting at the lever's point a₄ (the notes' c)
+    assert "from a draw a line parallel to the slot" in texts[1]
+    assert "from o draw a line ⊥ O1A" in texts[1] and "intersect at a₄" in texts[1]
+    # Step 3: b by proportion o1b / o1c = O1B / O1C (notes: 5.55 m/s by measurement; 5.523 with this geometry)
+    assert (
+        texts[2].startswith("Locate b by the velocity image of lever") and "ob = v_B = 5.523 m/s" in texts[2]
+    )
+    assert c.results == (
+        "Angular velocity of lever: ω = v_BO1 / O1B = 5.523 / 0.6 = 9.204 rad/s (counter-clockwise)",
+    )
+    assert len(c.steps) == 3
+
+
+def test_four_bar_reads_like_the_notes():
+    mech = load("mechanisms/four_bar.yaml")  # Khurmi Ex. 7.1: vB 0.503, vC 0.385 m/s, ω_CD 4.8 rad/s cw
+    c = explain(mech, solve(mech, "velocity"))
+    first, second = (s.text for s in c.steps)
+    assert "draw vector ob perpendicular to AB" in first and "0.5027 m/s" in first
+    assert "from b draw a line ⊥ BC" in second and "from o draw a line ⊥ DC" in second
+    assert "They intersect at c" in second and "oc = v_CD = 0.3828 m/s" in second
+    assert "Angular velocity of rocker: ω = v_DC / CD = 0.3828 / 0.08 = 4.785 rad/s (clockwise)" in c.results
+
+
+def test_acceleration_steps_give_normal_and_coriolis_components():
+    mech = load("mechanisms/crank_slotted_lever.yaml")  # Coriolis 2ωv = 98.48 m/s² (file's closed form)
+    c = explain(mech, solve(mech, "acceleration"), kind="acceleration")
+    assert "normal (centripetal) acceleration ω²·O2A" in c.steps[0].text
+    (cor,) = [k for k in c.steps[1].known if k.what.startswith("Coriolis")]
+    assert cor.magnitude == pytest.approx(98.48, rel=1e-3)
+    assert "2ωv = 2 × 9.204 rad/s × 5.35 m/s = 98.48 m/s²" in c.steps[1].text
+
+
+def test_kennedy_circle_diagram_names_each_diagonal_and_its_triangles():
+    from mech.icentres import locate
+
+    mech = load("mechanisms/four_bar.yaml")
+    lines = explain_icentres(locate(mech, solve(mech, "velocity")), unit="mm")
+    assert lines[1].startswith("By inspection") and "1–2: I12 pin A" in lines[1]
+    assert lines[2].startswith("1. Draw the diagonal 1–3: it closes the triangles 1-2-3 and 1-3-4")
+    assert "meet at (212.1, 367.3) mm" in lines[2]  # the file's I13 = (212.05, 367.29) mm
+    assert "meet at (-92.23, 0) mm" in lines[3]
+
+
+def test_explain_options_on_the_command_line(run):
+    out = run("velocity", "mechanisms/slider_crank.yaml", "--explain")
+    assert (
+        out.exit_code == 0
+        and "Step 2. The velocity of B with respect to A is perpendicular to AB" in out.output
+    )
+    record = json.loads(run("acceleration", "mechanisms/four_bar.yaml", "--explain", "--json").output)
+    assert (
+        record["construction"]["kind"] == "acceleration" and record["construction"]["steps"][0]["step"] == 1
+    )
+    ic = run("icentres", "mechanisms/four_bar.yaml", "--explain")
+    assert "Kennedy's circle diagram" in ic.output
+
+
+def test_explain_refuses_what_does_not_decompose(run):
+    result = run("velocity", "mechanisms/cam_follower.yaml", "--explain")
+    assert result.exit_code == 2 and "does not decompose into a crank and dyads" in result.stderr
+
+
+def test_a_crank_with_angular_acceleration_adds_its_tangential_component():
+    from mech.options import SolveOptions
+
+    mech = load("mechanisms/four_bar.yaml")
+    kin = solve(mech, "acceleration", SolveOptions(alpha=50.0))
+    c = explain(mech, kin, kind="acceleration")
+    (tangential,) = [k for k in c.steps[0].known if k.what.startswith("tangential")]
+    assert tangential.magnitude == pytest.approx(50.0 * 0.04, rel=1e-12)  # α·AB
+    pts = rebuild(c)
+    for name in ("B", "C"):
+        assert math.dist(pts[name.lower() + "′"], kin.acceleration(name)) <= 1e-9 * 10
