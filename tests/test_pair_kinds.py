@@ -142,3 +142,10 @@ def test_every_kind_says_what_the_solvers_make_of_it(jtype):
     assert k.role in ("pin", "path", "contact", "spatial")
     assert (k.role == "spatial") == (not k.planar)
     assert k.located in ("all", "first", "none")
+
+
+def test_a_profile_naming_a_point_of_another_link_is_a_located_error():
+    with pytest.raises(InputError) as err:
+        _joint("{type: cam, links: [a, b], profiles: {a: {circle: {centre: Q, radius: 4}}, b: {point: Q}}}")
+    text = str(err.value)
+    assert "t.yaml:7:" in text and "'Q', which is not a point of a" in text

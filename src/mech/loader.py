@@ -860,6 +860,17 @@ class _Reader:
                                 f"add `point: <name>` ({', '.join(others) or 'give the slider a joint or point'})",
                             )
                         )
+            for link, prof in j.profiles:
+                for ref in (getattr(prof, k, None) for k in ("centre", "through", "toward", "point")):
+                    name = getattr(ref, "name", None)
+                    if name is not None and link not in located.get(name, set()):
+                        self.problems.append(
+                            Problem(
+                                f"the profile of {link} in joint {j.name} names {name!r}, which is not a point of {link}",
+                                w,
+                                f"a profile is fixed in its link: name a joint or point of {link}, or give coordinates",
+                            )
+                        )
         for p in points:
             for ref in (p.place.origin, p.place.toward):
                 if ref is not None and p.link not in located.get(ref, set()):
