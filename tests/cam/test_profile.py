@@ -351,3 +351,46 @@ def test_any_roller_programme_without_undercut_is_followed_exactly(
     for th, s in zip(CHECK_ANGLES[::4], follower_motion(prog, CHECK_ANGLES[::4]).s, strict=True):
         got = lift_on_polygon(turned(a.state.profile, sense * th), "roller", D(90), -sense * offset, start)
         assert got == pytest.approx(s, abs=1e-5 * SIZE)
+
+
+def uniform_programme(follower: str) -> CamProgram:
+    return CamProgram(
+        base_radius=R_B,
+        follower=follower,
+        roller_radius=R_R if follower == "roller" else None,
+        segments=(
+            Segment("rise", D(120), 0.03, "uniform"),
+            Segment("dwell", D(30)),
+            Segment("return", D(150), 0.03, "uniform"),
+            Segment("dwell", D(60)),
+        ),
+    )
+
+
+def test_roller_cannot_follow_the_corner_where_uniform_velocity_stops():
+    """At the end of a uniform rise the pitch curve has a corner pointing out: radius zero.
+
+    Placed on the generated profile, the roller rounds the corner instead of following the
+    programme (checked on the polygon alone), and the analysis calls that an undercut.
+    """
+    layout = CamLayout(uniform_programme("roller"), sense=1, axis=D(90))
+    a = analyse(layout, samples=3600)
+    assert a.undercut
+    assert a.least_radius is not None and a.least_radius.value == 0.0
+    assert math.degrees(a.least_radius.theta) == pytest.approx(120.0)
+    start = R_B + R_R
+    th = D(121.0)  # just past the corner, on the dwell
+    got = lift_on_polygon(turned(a.state.profile, th), "roller", D(90), 0.0, start)
+    assert got > 0.03 + 1e-5  # held up by the corner: the programme says 30 mm exactly
+    # a knife edge follows the same corner exactly
+    k = analyse(CamLayout(uniform_programme("knife"), sense=1, axis=D(90)), samples=3600)
+    assert not k.undercut
+    assert lift_on_polygon(turned(k.state.profile, th), "knife", D(90), 0.0, R_B) == pytest.approx(
+        0.03, abs=1e-5 * SIZE
+    )
+
+
+def test_flat_face_cannot_follow_uniform_velocity_stopping():
+    a = analyse(CamLayout(uniform_programme("flat"), sense=1, axis=D(90)), samples=3600)
+    assert a.cusp
+    assert a.least_radius_any.value == -math.inf

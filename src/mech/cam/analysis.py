@@ -47,7 +47,9 @@ class CamAnalysis:
     (signed: positive when the cam pushes the follower up).  ``least_radius``: the
     least radius of curvature of the convex pitch curve (of the profile, for a
     flat face); ``undercut`` when it is below the roller's radius; ``cusp`` when a
-    flat face's profile has a negative radius somewhere.  ``velocity_jumps`` and
+    flat face's profile has a negative radius somewhere (a corner where the lift's rate falls at
+    once, as at the end of a uniform-velocity rise, counts as radius 0 for a roller and −∞ for
+    a flat face: neither can follow it).  ``velocity_jumps`` and
     ``acceleration_jumps`` are the cam angles where the acceleration or the jerk is
     infinite.  ``face`` is the flat face's contact span either side of its axis
     (least, greatest), the face width it needs.
@@ -96,8 +98,9 @@ def _largest(f: Callable[[FloatArray], FloatArray], theta: FloatArray, values: F
     return Extreme(sign * e.value, e.theta)
 
 
-def _jumps(layout: CamLayout, which: int) -> tuple[float, ...]:
-    """Cam angles where derivative ``which`` (1 velocity, 2 acceleration) of the lift jumps."""
+def _jumps(layout: CamLayout, which: int, *, drops: bool = False) -> tuple[float, ...]:
+    """Cam angles where derivative ``which`` (1 velocity, 2 acceleration) of the lift jumps
+    (only where it falls, with ``drops``)."""
     prog = layout.program
     starts = np.array(prog.starts)
     eps = 1e-9
@@ -106,7 +109,11 @@ def _jumps(layout: CamLayout, which: int) -> tuple[float, ...]:
     sample = follower_motion(prog, np.linspace(0, FULL_TURN, 721))[which]
     scale = max(float(np.max(np.abs(sample))), float(np.max(np.abs(after))), 1e-300)
     # a derivative of order 'which' changes by about f^(which+1)·eps across eps: far below 1e-6 of its scale
-    return tuple(float(t) for t, b, a in zip(starts, before, after, strict=True) if abs(a - b) > 1e-6 * scale)
+    return tuple(
+        float(t)
+        for t, b, a in zip(starts, before, after, strict=True)
+        if abs(a - b) > 1e-6 * scale and not (drops and a > b)
+    )
 
 
 def analyse(layout: CamLayout, *, omega: float | None = None, samples: int = 1440) -> CamAnalysis:
@@ -140,6 +147,15 @@ def analyse(layout: CamLayout, *, omega: float | None = None, samples: int = 144
     if np.isfinite(positive).any():
         least = _refine(rho, theta, int(np.argmin(positive)), maximise=False)
     least_any = _refine(rho_any, theta, int(np.argmin(state.rho)), maximise=False)
+    # Where the lift's rate falls at once (the end of a uniform-velocity rise, the start of its
+    # return), the pitch curve has a corner pointing away from the cam: radius zero.  A roller
+    # cannot follow it (it rolls round the corner instead) and a flat face's profile would need
+    # a negative radius there; a knife edge follows a corner.
+    drops = _jumps(layout, 1, drops=True)
+    if drops and prog.follower != "knife":
+        corner = Extreme(0.0 if not flat else -math.inf, drops[0])
+        least = corner
+        least_any = corner if flat else least_any
     undercut = bool(prog.follower == "roller" and least is not None and least.value < layout.roller)
     cusp = bool(flat and least_any.value <= 0)
 

@@ -276,8 +276,11 @@ def cam_table(setup: CamSetup, a: CamAnalysis, console: Console, *, name: str, s
     add("largest pressure angle", a.pressure, "°", 180 / math.pi)
     if prog.follower == "flat":
         add("least radius of curvature of the profile", a.least_radius_any, "mm", mm)
+        corner = a.least_radius_any.value == -math.inf
         verdict = (
-            "cusp: the profile folds back (ρ < 0), raise the base circle"
+            "cusp: a corner where the velocity falls at once; use a law without velocity jumps"
+            if corner
+            else "cusp: the profile folds back (ρ < 0), raise the base circle"
             if a.cusp
             else "no cusp (ρ > 0 everywhere)"
         )
@@ -292,8 +295,12 @@ def cam_table(setup: CamSetup, a: CamAnalysis, console: Console, *, name: str, s
         add("least radius of curvature of the pitch curve (convex)", a.least_radius, "mm", mm)
         if prog.follower == "roller":
             assert prog.roller_radius is not None
+            corner = a.least_radius is not None and a.least_radius.value == 0.0
             verdict = (
-                f"undercut: ρ_min < roller radius {prog.roller_radius * mm:.4g} mm (the profile loops; "
+                "undercut: a corner where the velocity falls at once (the roller rounds it); "
+                "use a law without velocity jumps"
+                if a.undercut and corner
+                else f"undercut: ρ_min < roller radius {prog.roller_radius * mm:.4g} mm (the profile loops; "
                 "use a smaller roller or a larger base circle)"
                 if a.undercut
                 else f"no undercut: ρ_min ≥ roller radius {prog.roller_radius * mm:.4g} mm"
