@@ -222,3 +222,29 @@ def test_curve_profile_against_a_roller_is_the_slider_crank_within_the_splines_a
     assert sw.positions[:, k, 1] == pytest.approx(s, abs=E * h**4)
     assert sw.velocities[:, k, 1] == pytest.approx(v, abs=E * W * h**3)
     assert sw.accelerations[:, k, 1] == pytest.approx(a, abs=E * W**2 * h**2)
+
+
+RACK = textwrap.dedent(
+    """
+    units: {length: mm, angle: deg}
+    links: [frame, pinion, rack]
+    joints:
+      O: {type: revolute, links: [frame, pinion], at: [0, 0]}
+      S: {type: prismatic, links: [rack, frame], path: {through: [0, -50], angle: 0}, point: P}
+      G: {type: gear, links: [pinion, rack],
+          profiles: {pinion: {circle: {centre: O, radius: 50}}, rack: {line: {through: P, angle: 0}}}}
+    points:
+      P: {link: rack, at: [0, -50]}
+    drive: {link: pinion, angle: 0, rpm: 600, direction: ccw}
+    """
+)
+
+
+def test_rack_and_pinion_rack_travels_the_pitch_arc_at_constant_speed():
+    # The pitch line rolls on the pitch circle: x_rack = r θ, v = r ω, a = 0 at constant ω.
+    sw = sweep(loads(RACK, path="rack.yaml"), ANGLES, level="acceleration", analyse=False)
+    k = sw.points.index("P")
+    w = 600 * 2 * math.pi / 60
+    assert sw.positions[:, k, 0] == pytest.approx(0.050 * ANGLES, abs=1e-12)
+    assert sw.velocities[:, k, 0] == pytest.approx(np.full(ANGLES.size, 0.050 * w), rel=1e-12)
+    assert np.abs(sw.accelerations[:, k, :]).max() < 1e-9 * 0.050 * w**2

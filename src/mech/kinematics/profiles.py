@@ -23,7 +23,8 @@ that of two points at a fixed distance: these are the classical equivalent
 linkages (Uicker, Pennock & Shigley, *Theory of Machines and Mechanisms*,
 § 3.10), exact for all positions because the radii of curvature are constant.
 
-``rolling`` adds no slip: for a circle on a line, ``u·(r_c − r_T) + s·r·(θ_c − θ_line)
+``rolling`` adds no slip (a ``gear`` with profiles only that: its teeth, not a second
+contact row, keep a rack's pitch line on the pinion's pitch circle, h = 1): for a circle on a line, ``u·(r_c − r_T) + s·r·(θ_c − θ_line)
 = const`` (the arc rolled equals the distance travelled; ``s`` the side of the
 line the circle is on).  Two rolling circles whose centres are pinned to one
 carrier give the gear-pair row instead (their centre distance is already fixed).
@@ -145,6 +146,11 @@ def _geo(b: Build, j: Joint, link: str, prof: Profile) -> _Geo | None:
     return _Geo(link, "curve", pts.mean(axis=0), pts=pts)
 
 
+def _rolls(j: Joint) -> bool:
+    """Rolling and gear pairs roll their profiles (pitch curves) without slip; cams and contacts slide."""
+    return j.type in (JointType.ROLLING, JointType.GEAR)
+
+
 def _at(b: Build, link: str, s: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
     """Global scaled position of local point ``s`` of ``link`` as a function of q."""
     i = b.index[link]
@@ -224,10 +230,11 @@ def moving_contact(b: Build, j: Joint) -> bool:
         n_loc = _rotate_into(b, line.link, n)
         u_loc = np.array([n_loc[1], -n_loc[0]])
         io, il = b.index[other.link], b.index[line.link]
-        b.online.append(OnLine(io, s_loc, il, t_loc, n_loc, want, j.name))
-        if j.type is JointType.ROLLING:
+        if j.type is not JointType.GEAR:  # teeth keep the pitch line tangent: a gear adds only no-slip (h = 1)
+            b.online.append(OnLine(io, s_loc, il, t_loc, n_loc, want, j.name))
+        if _rolls(j):
             if other.kind != "circle":
-                b.problems.append(Problem(f"rolling joint {j.name}: a point cannot roll", j.where))
+                b.problems.append(Problem(f"{j.type.value} joint {j.name}: a point cannot roll", j.where))
                 return True
             k = side * other.r
             c0 = float(line.u @ (other.p - line.p)) + k * (b.theta(other.link) - b.theta(line.link))
@@ -246,14 +253,14 @@ def moving_contact(b: Build, j: Joint) -> bool:
             return True
         sa, sb = b.to_local(ga.link, ga.p), b.to_local(gb.link, gb.p)
         ca, cb = _at(b, ga.link, sa), _at(b, gb.link, sb)
-        if j.type is JointType.ROLLING:
+        if _rolls(j):
             from mech.kinematics.constraints import gear_row
 
             holo = gear_row(b.lay, j, b.pos, b.index, b.q0, b.n)
             if holo is None:
                 b.problems.append(
                     Problem(
-                        f"rolling joint {j.name}: two circles roll here only with both centres pinned "
+                        f"{j.type.value} joint {j.name}: two circles roll here only with both centres pinned "
                         "to one link (a carrier or the frame)",
                         j.where,
                     )
@@ -302,11 +309,11 @@ def _curve_contact(b: Build, j: Joint, ga: _Geo, gb: _Geo, gap_problem: Callable
     from mech.kinematics.curves import CurveRow, Spline, curve_row
 
     curve, other = (ga, gb) if ga.kind == "curve" else (gb, ga)
-    if other.kind == "curve" or j.type is JointType.ROLLING:
+    if other.kind == "curve" or _rolls(j):
         b.problems.append(
             Problem(
                 f"joint {j.name}: a curve moves against a point, a circle or a line "
-                + ("(not rolling)" if j.type is JointType.ROLLING else "(not another curve)"),
+                + ("(not rolling)" if _rolls(j) else "(not another curve)"),
                 j.where,
             )
         )

@@ -271,6 +271,10 @@ def _gear(b: Build, j: Joint) -> None:
     if holo is not None:
         b.angle.append(Angle(holo[0], holo[1], j.name))
         return
+    from mech.kinematics.profiles import moving_contact
+
+    if j.profiles and moving_contact(b, j):  # pitch curves that roll: a rack and pinion
+        return
     normal = j.normal if j.normal is not None else gear_normal(b.lay, j, b.pos)
     _instant_normal(b, j, normal)
 
