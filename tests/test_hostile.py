@@ -896,7 +896,7 @@ def test_check_sense_is_checked_and_bare_mm_number_gets_hint(tmp_path):
     text = (EXAMPLES / "four_bar.yaml").read_text(encoding="utf-8").split("answers:")[0]
     f = tmp_path / "a.yaml"
     f.write_text(text + 'answers:\n  omega.rocker: 4.785 rad/s ccw\n  velocity.C: "383"\n', encoding="utf-8")
-    p = mech("check", str(f), "-j", "1")
+    p = mech("check", str(f), "-j", "1", "-v")
     assert p.returncode == 1
     assert "wrong sense" in p.stdout and "mm" in p.stdout
 

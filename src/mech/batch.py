@@ -1,53 +1,83 @@
-"""Checking many files at once: folders, answer sheets, parallel processes, one report.
+"""Checking many files at once: folders, answer sheets, worker processes, one report.
 
 ``mech check`` is a thin layer over :func:`run`:
 
 1. :func:`find_problem_files` walks files and folders (recursively, ``*.yaml``
-   and ``*.yml``, the suffix in any case) into one sorted list.
+   and ``*.yml``, the suffix in any case) into one sorted list.  Every entry
+   with such a name is a row, even when it is not a regular file: a FIFO, a
+   device, a dangling or looping symbolic link, an unreadable file each become
+   an error row (:func:`probe`), never a silent gap or a hung read.
 2. With ``answers``, :func:`read_sheets` reads one sheet (one student) or a
    folder of sheets (a class; the student is the sheet's path without its
    suffix).  A sheet maps a problem — its file stem, file name, path under a
    folder given, or ``name`` — to an answers mapping in the same grammar as a
-   file's own ``answers``.  Paths are resolved here (:class:`_Index`), names
-   in the worker that loads the file; a key naming several files, or a
-   problem named by several keys, is an error row, never graded twice.
+   file's own ``answers``.
 3. Each problem file is loaded and solved **once**, however many students
-   answered it, and every student's claims are checked against that one
-   solution (:class:`mech.check.Analysis`).  With ``jobs > 1`` problems are
-   spread over a process pool; results are sorted, so the report is the same
-   whatever order they finish in.
-4. :class:`Report` holds every row, counts them and owns the exit status.
+   answered it (:class:`mech.check.Analysis`), in worker processes that can be
+   killed (:mod:`mech.batchpool`): a file past ``timeout`` seconds is its own
+   error row and the others finish.  Results come back in sorted order, as
+   soon as they are ready, so a report can be streamed.
+4. :class:`Report` holds every row, counts them, scores students and owns the
+   exit status.
 
-A file's exception becomes its row: a malformed problem file, an unreadable
-sheet, a sheet entry that names no problem, each is one error row, and the
-rest of the batch still runs.
+**Scores mean the same for everyone.**  The questions of a problem are fixed by
+the teacher: the keys of its ``answers``, else its ``asks``.  Each student gets,
+for each problem, exactly one scored verdict per question — pass, fail (wrong,
+or not answered) or error (the sheet's entry for it could not be read) — so a
+student's score is passed questions over asked questions, the same denominator
+for every student.  A sheet key that is not a question is reported as ignored,
+never scored.  A problem file that cannot be read, or asks nothing, is the
+teacher's error: one row (``excluded``), reported once, and left out of every
+score.
+
+**A sheet error costs only what it touches**: each answer of a sheet entry is
+read on its own (:func:`mech.loader.parse_answer_entries`), so a bad key or
+value is an error for that question alone, located ``line:column``.
 """
 
 from __future__ import annotations
 
+import errno
 import os
+import stat
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import field
+from dataclasses import field, replace
 from pathlib import Path
 from typing import Any
 
 from mech._records import dataclass
-from mech.check import ERROR, FAIL, Analysis, FileResult, InternalError, Verdict, check, error_result
+from mech.check import (
+    ERROR,
+    FAIL,
+    IGNORED,
+    Analysis,
+    FileResult,
+    InternalError,
+    Verdict,
+    check,
+    error_result,
+)
 from mech.errors import InputError, MechError, Problem, Where
 from mech.options import SolveOptions
 
 __all__ = [
+    "DEFAULT_TIMEOUT",
     "CheckOptions",
     "Report",
     "Sheet",
     "SheetEntry",
     "StudentScore",
     "find_problem_files",
+    "probe",
+    "questions_of",
     "read_sheets",
     "run",
 ]
 
 SUFFIXES = (".yaml", ".yml")
+
+#: Seconds one problem file may take (load, solve, every student's claims) before it is an error row.
+DEFAULT_TIMEOUT = 30.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -62,71 +92,94 @@ class CheckOptions:
         An answer sheet, or a folder of sheets (one per student); None to
         check the answers the problem files carry.
     jobs
-        Worker processes; None means one per CPU core, 1 means no pool.
+        Worker processes; None means one per CPU core, 1 means none (this process).
     solve
         Solver options (Newton's tolerance); drives come from the files.
+    timeout
+        Seconds a problem file may take before it is an error row (None: no limit).
     """
 
     paths: tuple[str, ...]
     answers: str | None = None
     jobs: int | None = None
     solve: SolveOptions = field(default_factory=SolveOptions)
+    timeout: float | None = DEFAULT_TIMEOUT
 
     def __post_init__(self) -> None:
         if self.jobs is not None and self.jobs < 1:
             raise ValueError(f"jobs must be at least 1, not {self.jobs}")
+        if self.timeout is not None and not self.timeout > 0:
+            raise ValueError(f"timeout must be positive, not {self.timeout}")
         if not self.paths:
             raise ValueError("no files or folders to check")
 
     @property
     def workers(self) -> int:
-        return self.jobs if self.jobs is not None else (os.cpu_count() or 1)
+        from mech.batchpool import cpu_count
+
+        return self.jobs if self.jobs is not None else cpu_count()
 
 
 @dataclass(frozen=True, slots=True)
 class StudentScore:
-    """One student's totals over every problem: the row a gradebook wants."""
+    """One student's totals over every problem that counts: the row a gradebook wants.
+
+    ``asked`` is the number of questions over every problem that is not
+    excluded: the same for every student.  ``ignored`` counts sheet keys that
+    are not questions (reported, not scored).
+    """
 
     student: str
     problems: int
+    asked: int
     passed: int
     failed: int
     errors: int
+    ignored: int = 0
 
     @property
     def total(self) -> int:
-        return self.passed + self.failed + self.errors
+        return self.asked
 
     @property
     def score(self) -> float:
-        """Fraction of answers that passed (0 with no answers)."""
-        return self.passed / self.total if self.total else 0.0
+        """Passed questions over asked questions (0 when nothing is asked)."""
+        return self.passed / self.asked if self.asked else 0.0
 
 
 @dataclass(frozen=True, slots=True)
 class Report:
-    """Every row of a batch check, sorted; the counts and the exit status.
+    """Every row of a batch check, sorted; the counts, the scores and the exit status.
 
-    ``results`` holds one :class:`~mech.check.FileResult` per problem file (per
-    student and problem file with answer sheets, plus rows for sheets that
-    could not be used); ``skipped`` the files that carried no answers.
+    ``results`` holds one :class:`~mech.check.FileResult` per problem file
+    (per student and problem file with answer sheets), including files with
+    nothing to check (``skipped``), problem files left out of scoring
+    (``excluded``: once without a student — the teacher's row — and once per
+    student), and rows about sheets themselves (``sheet``).
     """
 
     results: tuple[FileResult, ...]
-    skipped: tuple[str, ...] = ()
     students: tuple[str, ...] = ()
 
     @classmethod
     def of(cls, results: Iterable[FileResult], *, students: Sequence[str] = ()) -> Report:
         """A report from results in any order (e.g. gathered from a Dask or Ray cluster)."""
-        rows = list(results)
-        kept = sorted((r for r in rows if not r.skipped), key=lambda r: (r.student or "", r.path))
-        skipped = sorted(r.path for r in rows if r.skipped)
-        return cls(tuple(kept), tuple(skipped), tuple(sorted(students)))
+        rows = sorted(results, key=_row_order)
+        return cls(tuple(rows), tuple(sorted(students)))
 
     @property
     def verdicts(self) -> tuple[Verdict, ...]:
         return tuple(v for r in self.results for v in r.verdicts)
+
+    @property
+    def skipped(self) -> tuple[str, ...]:
+        """Problem files with nothing to check."""
+        return tuple(r.path for r in self.results if r.skipped and r.student is None)
+
+    @property
+    def teacher(self) -> tuple[FileResult, ...]:
+        """Problem files left out of every score (cannot be read, ask nothing): the teacher's rows."""
+        return tuple(r for r in self.results if r.excluded and r.student is None)
 
     @property
     def passed(self) -> int:
@@ -141,55 +194,71 @@ class Report:
         return sum(r.errors for r in self.results)
 
     @property
+    def ignored(self) -> int:
+        return sum(r.ignored for r in self.results)
+
+    @property
     def total(self) -> int:
+        """Scored verdicts (pass, fail, error)."""
         return sum(r.total for r in self.results)
 
     @property
     def files(self) -> int:
-        """Problem files checked or skipped (a sheet's own rows are not problem files)."""
-        return len({r.path for r in self.results if not r.sheet}) + len(self.skipped)
+        """Problem files checked, skipped or excluded (a sheet's own rows are not problem files)."""
+        return len({r.path for r in self.results if not r.sheet})
 
     @property
     def exit_status(self) -> int:
-        """0 when every answer passed (and there was at least one), 1 otherwise."""
+        """0 when every scored answer passed (and there was one) and no file was in error; else 1."""
         return 0 if self.total and self.passed == self.total else 1
 
     def scores(self) -> tuple[StudentScore, ...]:
         """Per-student totals, sorted by student (empty without answer sheets)."""
-        out = []
-        for student in self.students:
-            rows = [r for r in self.results if r.student == student]
-            out.append(
-                StudentScore(
-                    student=student,
-                    problems=len({r.path for r in rows if not r.sheet}),
-                    passed=sum(r.passed for r in rows),
-                    failed=sum(r.failed for r in rows),
-                    errors=sum(r.errors for r in rows),
-                )
-            )
-        return tuple(out)
+        acc = {
+            s: [0, 0, 0, 0, 0, 0] for s in self.students
+        }  # problems, asked, passed, failed, errors, ignored
+        for r in self.results:
+            if r.student is None or r.student not in acc:
+                continue
+            a = acc[r.student]
+            a[5] += r.ignored
+            if r.sheet or r.excluded:
+                continue
+            a[0] += 1
+            a[1] += r.total
+            a[2] += r.passed
+            a[3] += r.failed
+            a[4] += r.errors
+        return tuple(StudentScore(s, *acc[s]) for s in self.students)
+
+
+def _row_order(r: FileResult) -> tuple[str, int, str]:
+    # the teacher's rows and files checked on their own first, then each student's rows by path
+    return (r.student or "", 1 if r.sheet else 0, r.path)
 
 
 # -- files ----------------------------------------------------------------------------------
 def find_problem_files(paths: Iterable[str]) -> tuple[str, ...]:
-    """Every ``*.yaml``/``*.yml`` file named or under a named folder, sorted, without repeats.
+    """Every ``*.yaml``/``*.yml`` entry named or under a named folder, sorted, without repeats.
 
-    The suffix is matched in any case (``hw.YAML`` is found too).
+    The suffix is matched in any case (``hw.YAML`` is found too).  Entries that
+    are not regular files (a FIFO, a dangling symbolic link …) are listed too:
+    each becomes an error row, see :func:`probe`.  Hidden files and folders
+    are skipped; symbolic links to folders are not followed (no loops).
 
     Raises
     ------
     InputError
         When a path does not exist, or nothing to check is found.
     """
+    paths = list(paths)
     found: set[str] = set()
     problems = []
     for raw in paths:
-        path = Path(raw)
-        if path.is_dir():
-            found.update(str(p) for p in _yaml_files(path))
-        elif path.is_file():
-            found.add(str(path))
+        if os.path.isdir(raw):
+            found.update(_yaml_files(raw))
+        elif os.path.lexists(raw):
+            found.add(raw)
         else:
             problems.append(Problem(f"no such file or folder: {raw}", Where(raw), "check the path"))
     if problems:
@@ -202,15 +271,74 @@ def find_problem_files(paths: Iterable[str]) -> tuple[str, ...]:
     return tuple(sorted(found))
 
 
-def _yaml_files(root: Path) -> list[Path]:
-    """``*.yaml``/``*.yml`` files under ``root`` (suffix in any case), hidden folders skipped."""
-    return sorted(
-        p for p in root.rglob("*") if p.suffix.lower() in SUFFIXES and p.is_file() and not _hidden(p, root)
+def _yaml_files(root: str) -> list[str]:
+    """``*.yaml``/``*.yml`` entries under ``root`` (suffix in any case), hidden ones skipped."""
+    out: list[str] = []
+    stack = [root]
+    while stack:
+        folder = stack.pop()
+        try:
+            entries = list(os.scandir(folder))
+        except OSError:
+            continue
+        for e in entries:
+            if e.name.startswith("."):
+                continue
+            if e.is_dir(follow_symlinks=False):
+                stack.append(e.path)
+            elif os.path.splitext(e.name)[1].lower() in SUFFIXES and not _linked_folder(e):
+                out.append(e.path)
+    return sorted(out)
+
+
+def _linked_folder(e: os.DirEntry[str]) -> bool:
+    try:
+        return e.is_symlink() and e.is_dir()
+    except OSError:
+        return False
+
+
+def probe(path: str) -> str | None:
+    """Why ``path`` cannot be read as a problem file without opening it, or None when it can.
+
+    A FIFO would block the read forever, a device could be endless: neither is
+    opened.  Dangling and looping symbolic links are named as such.
+    """
+    try:
+        st = os.stat(path)
+    except FileNotFoundError:
+        if os.path.islink(path):
+            return f"a symbolic link to {os.readlink(path)}, which does not exist"
+        return "no such file (it was removed while checking)"
+    except OSError as exc:
+        if exc.errno == errno.ELOOP:
+            return "a symbolic link loop (the link leads back to itself)"
+        return f"cannot be read: {exc.strerror}"
+    mode = st.st_mode
+    if stat.S_ISREG(mode):
+        return None
+    if stat.S_ISDIR(mode):
+        return "a folder, not a file"
+    if stat.S_ISFIFO(mode):
+        return "a FIFO (named pipe), not a file: not read"
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        return "a device, not a file: not read"
+    if stat.S_ISSOCK(mode):
+        return "a socket, not a file: not read"
+    return "not a regular file: not read"
+
+
+def special_result(path: str, reason: str, *, student: str | None = None) -> FileResult:
+    """The error row of a path that is not a readable regular file."""
+    error = InputError(
+        f"this path is {reason}", where=Where(path), hint="problem files are regular YAML files"
     )
+    return error_result(path, error, student=student)
 
 
-def _hidden(path: Path, root: Path) -> bool:
-    return any(part.startswith(".") for part in path.relative_to(root).parts)
+def questions_of(mech: Any) -> tuple[str, ...]:
+    """A problem's questions: its ``answers`` keys, else its ``asks`` (DESIGN.md § 1.1)."""
+    return tuple(c.key for c in mech.answers) or tuple(mech.asks)
 
 
 @dataclass(frozen=True, slots=True)
@@ -299,7 +427,7 @@ def read_sheets(path: str) -> tuple[Sheet, ...]:
     """
     root = Path(path)
     if root.is_dir():
-        files = _yaml_files(root)
+        files = [Path(p) for p in _yaml_files(path)]
         if not files:
             raise InputError(f"no answer sheets (*.yaml, *.yml) in {path}", where=Where(path))
         by_student: dict[str, list[Path]] = {}
@@ -333,6 +461,9 @@ def _read_sheet(path: Path, student: str) -> Sheet:
     def failed(error: InputError, text: str = "") -> Sheet:
         return Sheet(student, name, text, error=error_result(name, error, student=student, sheet=True))
 
+    why = probe(name)
+    if why is not None:
+        return failed(InputError(f"the answer sheet {name} is {why}", where=Where(name)))
     try:
         text = path.read_bytes().decode("utf-8-sig")
     except (OSError, UnicodeDecodeError) as exc:
@@ -385,6 +516,7 @@ class _Submission:
     entries: tuple[SheetEntry, ...]  # entries naming this problem file (and no other) by path
     ambiguous: tuple[tuple[SheetEntry, tuple[str, ...]], ...]  # entries naming it and others: candidates
     unresolved: tuple[SheetEntry, ...]  # entries naming no file by path: maybe a problem's `name`
+    unreadable: bool = False  # the sheet could not be read: nothing on it is graded
 
 
 @dataclass(frozen=True, slots=True)
@@ -401,44 +533,86 @@ class _Done:
 
 
 # -- the worker -----------------------------------------------------------------------------
-def _run_tasks(tasks: Sequence[_Task]) -> list[_Done]:
-    """Check a chunk of problems (one process-pool job)."""
-    return [_run_task(task) for task in tasks]
-
-
 def _run_task(task: _Task) -> _Done:
     try:
         return _check_task(task)
     except Exception as exc:  # a bug: this file's rows say so, the batch goes on
-        error = InternalError.of(exc)
-        rows = [Verdict("file", ERROR, message=str(error))]
-        students = [s.student for s in task.submissions] if task.submissions is not None else [None]
-        return _Done(tuple(FileResult(task.path, verdicts=tuple(rows), student=s) for s in students))
+        return _lost(task, str(InternalError.of(exc)))
+
+
+def _lost_task(task: _Task, why: str) -> _Done:
+    """The rows of a problem file whose check did not finish: past the time limit, or a crash."""
+    if why == "timeout":
+        message = "not checked: it took longer than the time limit (--timeout)"
+    else:
+        message = "mech crashed while checking this file (a bug in mech or its YAML parser: please report it)"
+    return _lost(task, message)
+
+
+def _lost(task: _Task, message: str) -> _Done:
+    row = FileResult(task.path, verdicts=(Verdict("file", ERROR, message=message, where=Where(task.path)),))
+    if task.submissions is None:
+        return _Done((row,))
+    return _Done(_exclude(task, row))
+
+
+def _exclude(task: _Task, teacher: FileResult) -> tuple[FileResult, ...]:
+    """A problem left out of every score: the teacher's row, and a not-scored row per student."""
+    why = teacher.verdicts[0].message if teacher.verdicts else "the problem asks nothing"
+    rows = [replace(teacher, excluded=True)]
+    for sub in task.submissions or ():
+        keys = [(k, w) for e in sub.entries if e.node is not None for k, w in _entry_keys(e)]
+        verdicts = tuple(
+            Verdict(k, IGNORED, message=f"not scored: the problem file is excluded ({why})", where=w)
+            for k, w in keys
+        )
+        rows.append(FileResult(task.path, teacher.name, verdicts, student=sub.student, excluded=True))
+    return tuple(rows)
+
+
+def _entry_keys(entry: SheetEntry) -> list[tuple[str, Where]]:
+    out = []
+    for knode, _ in entry.node.value:
+        out.append(
+            (
+                str(knode.value),
+                Where(entry.where.path, knode.start_mark.line + 1, knode.start_mark.column + 1),
+            )
+        )
+    return out
 
 
 def _check_task(task: _Task) -> _Done:
+    if task.submissions is None:
+        from mech.check import check_file
+
+        return _Done((check_file(task.path, options=task.solve),))
     from mech.loader import load
 
+    why = probe(task.path)
+    if why is not None:
+        return _Done(_exclude(task, special_result(task.path, why)))
     try:
         mech = load(task.path)
     except MechError as error:
-        if task.submissions is None:
-            return _Done((error_result(task.path, error),))
-        return _Done(tuple(error_result(task.path, error, student=s.student) for s in task.submissions))
-    if task.submissions is None:
-        if not mech.answers:
-            return _Done((FileResult(task.path, mech.name, skipped=True),))
-        return _Done((FileResult(task.path, mech.name, check(mech, options=task.solve)),))
-    return _check_sheets(task, mech)
+        return _Done(_exclude(task, error_result(task.path, error)))
+    questions = questions_of(mech)
+    if not questions:
+        error = InputError(
+            f"{task.path} asks nothing: it has neither `answers` nor `asks`, so no student can be graded on it",
+            where=Where(task.path),
+            hint="list its questions: `asks: [omega.rocker, velocity.C]` (or give `answers`)",
+        )
+        return _Done(_exclude(task, replace(error_result(task.path, error), name=mech.name)))
+    return _check_sheets(task, mech, questions)
 
 
-def _check_sheets(task: _Task, mech: Any) -> _Done:
-    """Every student's claims on one problem, against one shared solution."""
-    from mech.loader import parse_answers
-
+def _check_sheets(task: _Task, mech: Any, questions: tuple[str, ...]) -> _Done:
+    """Every student's answers to one problem, against one shared solution."""
     analysis = Analysis(mech, options=task.solve)
-    teacher = {c.key: c for c in mech.answers}
-    parsed: list[tuple[_Submission, SheetEntry | None, Any]] = []
+    analysis.need(questions)
+    teacher_tol = {c.key: c.tolerance for c in mech.answers if c.tolerance is not None}
+    results = []
     used: list[tuple[str, str, str]] = []
     for sub in task.submissions or ():
         entries = list(sub.entries)
@@ -446,66 +620,131 @@ def _check_sheets(task: _Task, mech: Any) -> _Done:
             if mech.name is not None and e.key == mech.name:
                 entries.append(e)
                 used.append((sub.student, e.key, task.path))
-        if len(entries) > 1:
-            parsed.append((sub, None, _twice(task.path, entries, sub.source)))
-            continue
-        if not entries:
-            error = (
-                _ambiguous(sub.ambiguous[0][0], sub.ambiguous[0][1], sub.source) if sub.ambiguous else None
-            )
-            parsed.append((sub, None, error))
-            continue
-        entry = entries[0]
-        if entry.problem is not None:
-            problem = Problem(entry.problem, entry.where, "see cli.md § mech check")
-            parsed.append((sub, entry, InputError(problems=[problem], source=sub.source)))
-            continue
-        if entry.empty:
-            parsed.append((sub, entry, None))
-            continue
-        try:
-            _refuse_tolerance(entry.node, sub)
-            claims, _ = parse_answers(entry.node, mech, path=sub.sheet, source=sub.source)
-        except InputError as error:
-            parsed.append((sub, entry, error))
-            continue
-        parsed.append((sub, entry, claims))
-    analysis.need([c for _, _, claims in parsed if isinstance(claims, tuple) for c in claims])
-    results = []
-    for sub, entry, claims in parsed:
-        if isinstance(claims, MechError):
-            results.append(error_result(task.path, claims, student=sub.student, name=mech.name))
-            continue
-        where = entry.where if entry is not None else Where(sub.sheet)
-        if claims is None:
-            # not answered: nothing on the sheet, or an empty entry; one row per question if the
-            # problem file sets them, so that leaving a problem out never scores better than trying it
-            why = (
-                "the sheet's entry for this problem is empty"
-                if entry
-                else "the sheet has no answers for this problem"
-            )
-            verdicts = [Verdict(key, FAIL, message=f"not answered: {why}", where=where) for key in teacher]
-            verdicts = verdicts or [Verdict("answers", FAIL, message=f"not answered: {why}", where=where)]
-            results.append(FileResult(task.path, mech.name, tuple(verdicts), student=sub.student))
-            continue
-        # tolerances are the teacher's: per answer from the problem file, else the file's
-        with_tol = tuple(
-            c
-            if c.key not in teacher or teacher[c.key].tolerance is None
-            else _with_tolerance(c, teacher[c.key].tolerance)
-            for c in claims
-        )
-        verdicts = list(check(mech, with_tol, tolerance=mech.tolerance, analysis=analysis))
-        answered = {c.key for c in claims}
-        verdicts += [
-            Verdict(key, FAIL, message="not answered", where=where) for key in teacher if key not in answered
-        ]
-        results.append(FileResult(task.path, mech.name, tuple(verdicts), student=sub.student))
+        verdicts = _grade(sub, entries, task.path, mech, questions, teacher_tol, analysis)
+        results.append(FileResult(task.path, mech.name, verdicts, student=sub.student))
     return _Done(tuple(results), tuple(used))
 
 
-def _twice(path: str, entries: Sequence[SheetEntry], source: str) -> InputError:
+def _everyone(
+    questions: Sequence[str], status: str, message: str, where: Where | None
+) -> tuple[Verdict, ...]:
+    return tuple(Verdict(q, status, message=message, where=where) for q in questions)
+
+
+def _grade(
+    sub: _Submission,
+    entries: Sequence[SheetEntry],
+    path: str,
+    mech: Any,
+    questions: tuple[str, ...],
+    teacher_tol: dict[str, Any],
+    analysis: Analysis,
+) -> tuple[Verdict, ...]:
+    """Exactly one scored verdict per question, in the problem's order, then the ignored keys."""
+    if sub.unreadable:
+        return _everyone(questions, ERROR, "not graded: the answer sheet could not be read", Where(sub.sheet))
+    if len(entries) > 1:
+        e = _twice(path, entries)
+        return _everyone(questions, ERROR, e.problems[0].message, e.problems[0].where)
+    if not entries:
+        if sub.ambiguous:
+            e = _ambiguous(sub.ambiguous[0][0], sub.ambiguous[0][1])
+            return _everyone(questions, ERROR, e.problems[0].message, e.problems[0].where)
+        return _everyone(
+            questions, FAIL, "not answered: the sheet has no answers for this problem", Where(sub.sheet)
+        )
+    entry = entries[0]
+    if entry.problem is not None:
+        return _everyone(questions, ERROR, f"not graded: {entry.problem}", entry.where)
+    if entry.empty:
+        return _everyone(
+            questions, FAIL, "not answered: the sheet's entry for this problem is empty", entry.where
+        )
+    from mech.loader import parse_answer_entries
+
+    asked = set(questions)
+    own_tolerance = _own_tolerances(entry.node, sub.sheet)
+    claims: dict[str, Any] = {}
+    errors: dict[str, Verdict] = {}
+    first: dict[str, Where] = {}
+    ignored: list[Verdict] = []
+    for key, where, got in parse_answer_entries(entry.node, mech, path=sub.sheet, source=sub.source):
+        if key not in asked:
+            if key == "tolerance":
+                reason = "an answer sheet cannot set a tolerance (the problem file sets it)"
+            elif isinstance(got, InputError):
+                reason = got.problems[0].message + (
+                    f" ({got.problems[0].hint})" if got.problems[0].hint else ""
+                )
+            else:
+                reason = f"not a question of this problem (it asks {', '.join(questions)})"
+            written = "" if isinstance(got, InputError) else got.text
+            ignored.append(
+                Verdict(key, IGNORED, claimed=written, message=f"ignored, not scored: {reason}", where=where)
+            )
+            continue
+        if key in first:
+            errors[key] = Verdict(
+                key,
+                ERROR,
+                message=f"answered twice on this sheet (lines {first[key].line} and {where.line}): neither is graded",
+                where=where,
+            )
+            claims.pop(key, None)
+            continue
+        first[key] = where
+        if isinstance(got, InputError):
+            p = got.problems[0]
+            more = len(got.problems) - 1
+            text = (
+                p.message + (f" ({p.hint})" if p.hint else "") + (f" (and {more} more)" if more > 0 else "")
+            )
+            errors[key] = Verdict(
+                key, ERROR, claimed="", message=f"not graded: {text}", where=p.where or where
+            )
+        elif key in own_tolerance:
+            errors[key] = Verdict(
+                key,
+                ERROR,
+                claimed=got.text,
+                message="not graded: an answer sheet cannot set a tolerance (the problem file sets it)",
+                where=own_tolerance[key],
+            )
+        else:
+            tol = teacher_tol.get(key)
+            claims[key] = replace(got, tolerance=tol)
+    checked = dict(
+        zip(
+            claims,
+            check(mech, tuple(claims.values()), tolerance=mech.tolerance, analysis=analysis),
+            strict=True,
+        )
+    )
+    out = []
+    for q in questions:
+        if q in errors:
+            out.append(errors[q])
+        elif q in checked:
+            out.append(checked[q])
+        else:
+            out.append(Verdict(q, FAIL, message="not answered", where=entry.where))
+    return tuple(out) + tuple(ignored)
+
+
+def _own_tolerances(node: Any, sheet: str) -> dict[str, Where]:
+    """Keys of a sheet entry written ``{value: …, tolerance: …}``: where their tolerance is."""
+    import yaml
+
+    out = {}
+    for knode, vnode in node.value:
+        if isinstance(vnode, yaml.MappingNode):
+            for k, _ in vnode.value:
+                if getattr(k, "value", None) == "tolerance":
+                    out[str(knode.value)] = Where(sheet, k.start_mark.line + 1, k.start_mark.column + 1)
+    return out
+
+
+def _twice(path: str, entries: Sequence[SheetEntry]) -> InputError:
     """One problem answered by two entries of a sheet: neither is graded (which one was meant?)."""
     entries = sorted(entries, key=lambda e: (e.where.line, e.where.column))
     keys = " and ".join(f"`{e.key}` (line {e.where.line})" for e in entries)
@@ -513,46 +752,17 @@ def _twice(path: str, entries: Sequence[SheetEntry], source: str) -> InputError:
         f"{Path(path).name} is answered twice on this sheet: by {keys}; neither is graded",
         where=entries[-1].where,
         hint="keep one entry per problem (a problem's stem, file name, path and `name` all name it)",
-        source=source,
     )
 
 
-def _ambiguous(entry: SheetEntry, candidates: Sequence[str], source: str) -> InputError:
+def _ambiguous(entry: SheetEntry, candidates: Sequence[str]) -> InputError:
     """A sheet key that names several problem files: it is graded against none of them."""
     return InputError(
         f"`{entry.key}` names {len(candidates)} problem files ({', '.join(candidates)}); it is graded "
         "against none of them",
         where=entry.where,
         hint=f"name one by its path under the problems folder (`{candidates[0]}:`) or by its `name`",
-        source=source,
     )
-
-
-def _with_tolerance(claim: Any, tolerance: Any) -> Any:
-    from dataclasses import replace
-
-    return replace(claim, tolerance=tolerance)
-
-
-def _refuse_tolerance(node: Any, sub: _Submission) -> None:
-    """A sheet may not set its own tolerance: the problem file (the teacher) does."""
-    import yaml
-
-    problems = []
-    for knode, vnode in node.value:
-        spots = [knode] if knode.value == "tolerance" else []
-        if isinstance(vnode, yaml.MappingNode):
-            spots += [k for k, _ in vnode.value if k.value == "tolerance"]
-        problems += [
-            Problem(
-                "an answer sheet cannot set a tolerance",
-                Where(sub.sheet, k.start_mark.line + 1, k.start_mark.column + 1),
-                "tolerances are set in the problem file; write `key: value` only",
-            )
-            for k in spots
-        ]
-    if problems:
-        raise InputError(problems=problems, source=sub.source)
 
 
 # -- the batch ------------------------------------------------------------------------------
@@ -560,13 +770,14 @@ def run(
     options: CheckOptions,
     *,
     on_start: Callable[[int], None] | None = None,
-    on_result: Callable[[FileResult], None] | None = None,
+    on_file: Callable[[tuple[FileResult, ...]], None] | None = None,
 ) -> Report:
     """Check every problem file under ``options.paths``; see the module docstring.
 
-    ``on_start`` is called once with the number of rows to come (files, times
-    students with sheets) and ``on_result`` with each row as it lands (in
-    completion order), for a progress bar; the returned :class:`Report` is sorted.
+    ``on_start`` is called once with the number of problem files, and
+    ``on_file`` with each problem file's rows (every student's, with sheets)
+    as soon as it and every file sorted before it are done: the order of the
+    final report, so a caller can stream it.
 
     Raises
     ------
@@ -579,18 +790,24 @@ def run(
     index = _Index.of(files, options.paths)
     tasks, extra = _plan(files, sheets, options.solve, index)
     if on_start is not None:
-        on_start(sum(len(t.submissions) if t.submissions is not None else 1 for t in tasks))
-    done = _execute(tasks, options.workers, on_result)
+        on_start(len(tasks))
+    from mech.batchpool import run_jobs
+
     results = list(extra)
     used: list[tuple[str, str, str]] = []
-    for d in done:
-        results += d.results
-        used += d.used
+    chunk = max(1, min(32, len(tasks) // (options.workers * 8)))
+    for done in run_jobs(
+        tasks, _run_task, _lost_task, workers=options.workers, timeout=options.timeout, chunk=chunk
+    ):
+        if on_file is not None:
+            on_file(done.results)
+        results += done.results
+        used += done.used
     if sheets is not None:
         results = _shared_names(results, sheets, index, used)
         results += _unmatched(sheets, index, {(student, key) for student, key, _ in used})
     report = Report.of(results, students=[s.student for s in sheets] if sheets is not None else ())
-    if not report.results:
+    if not report.total and not report.errors:
         raise InputError(
             f"no answers to check: none of the {len(files)} file{'s' if len(files) != 1 else ''} has an `answers` section",
             hint="add answers to the files, or give students' sheets with --answers",
@@ -605,12 +822,11 @@ def _plan(
     if sheets is None:
         return [_Task(f, None, solve) for f in files], []
     extra = [s.error for s in sheets if s.error is not None]
-    usable = [s for s in sheets if s.error is None]
     # per student: the entries naming one file, several files (with their labels), or none
     alone: list[dict[str, list[SheetEntry]]] = []
     shared: list[dict[str, list[tuple[SheetEntry, tuple[str, ...]]]]] = []
     unresolved: list[tuple[SheetEntry, ...]] = []
-    for s in usable:
+    for s in sheets:
         one: dict[str, list[SheetEntry]] = {}
         several: dict[str, list[tuple[SheetEntry, tuple[str, ...]]]] = {}
         for e in s.entries:
@@ -625,8 +841,16 @@ def _plan(
     tasks = []
     for f in files:
         subs = tuple(
-            _Submission(s.student, s.path, s.source, tuple(one.get(f, ())), tuple(several.get(f, ())), loose)
-            for s, one, several, loose in zip(usable, alone, shared, unresolved, strict=True)
+            _Submission(
+                s.student,
+                s.path,
+                s.source,
+                tuple(one.get(f, ())),
+                tuple(several.get(f, ())),
+                loose,
+                unreadable=s.error is not None,
+            )
+            for s, one, several, loose in zip(sheets, alone, shared, unresolved, strict=True)
         )
         tasks.append(_Task(f, subs, solve))
     return tasks, extra
@@ -635,7 +859,7 @@ def _plan(
 def _shared_names(
     results: list[FileResult], sheets: Sequence[Sheet], index: _Index, used: Sequence[tuple[str, str, str]]
 ) -> list[FileResult]:
-    """A sheet key that is the `name` of several problem files: an error row for each of them."""
+    """A sheet key that is the `name` of several problem files: each of them is graded as an error."""
     named: dict[tuple[str, str], list[str]] = {}
     for student, key, path in used:
         named.setdefault((student, key), []).append(path)
@@ -643,18 +867,28 @@ def _shared_names(
     if not clashes:
         return results
     by_student = {s.student: s for s in sheets}
-    replace: dict[tuple[str, str], FileResult] = {}
+    swap: dict[tuple[str, str], InputError] = {}
     for (student, key), paths in clashes.items():
-        sheet = by_student[student]
-        entry = next(e for e in sheet.entries if e.key == key)
-        error = _ambiguous(entry, [index.labels[p] for p in paths], sheet.source)
+        entry = next(e for e in by_student[student].entries if e.key == key)
+        error = _ambiguous(entry, [index.labels[p] for p in paths])
         for path in paths:
-            replace[(student, path)] = error_result(path, error, student=student)
-    return [replace.get((r.student or "", r.path), r) if not r.sheet else r for r in results]
+            swap[(student, path)] = error
+    out = []
+    for r in results:
+        error = swap.get((r.student or "", r.path)) if not r.sheet and not r.excluded else None
+        if error is None:
+            out.append(r)
+            continue
+        p = error.problems[0]
+        verdicts = tuple(
+            Verdict(v.key, ERROR, message=p.message, where=p.where) if v.scored else v for v in r.verdicts
+        )
+        out.append(replace(r, verdicts=verdicts))
+    return out
 
 
 def _unmatched(sheets: Sequence[Sheet], index: _Index, used: set[tuple[str, str]]) -> list[FileResult]:
-    """An error row for every sheet entry that names no problem file, or whose key is not text."""
+    """An ignored row for every sheet entry that names no problem file, or whose key is not text."""
     out = []
     for s in sheets:
         if s.error is not None:
@@ -662,8 +896,8 @@ def _unmatched(sheets: Sequence[Sheet], index: _Index, used: set[tuple[str, str]
         rows = [
             Verdict(
                 written,
-                ERROR,
-                message=f"a problem is named by text (its file name, stem, path or `name`), not by {kind}",
+                IGNORED,
+                message=f"ignored: a problem is named by text (its file name, stem, path or `name`), not by {kind}",
                 where=where,
             )
             for written, kind, where in s.bad_keys
@@ -671,8 +905,8 @@ def _unmatched(sheets: Sequence[Sheet], index: _Index, used: set[tuple[str, str]
         rows += [
             Verdict(
                 e.key,
-                ERROR,
-                message=f"no problem file is named {e.key!r} (by file name, stem, path or `name`)",
+                IGNORED,
+                message=f"ignored: no problem file is named {e.key!r} (by file name, stem, path or `name`)",
                 where=e.where,
             )
             for e in s.entries
@@ -680,67 +914,3 @@ def _unmatched(sheets: Sequence[Sheet], index: _Index, used: set[tuple[str, str]
         ]
         out += [FileResult(s.path, verdicts=(v,), student=s.student, sheet=True) for v in rows]
     return out
-
-
-def _execute(
-    tasks: Sequence[_Task], workers: int, on_result: Callable[[FileResult], None] | None
-) -> list[_Done]:
-    """Run tasks serially (one worker, or too few tasks to pay for a pool) or in a process pool."""
-
-    def landed(done: _Done) -> None:
-        if on_result is not None:
-            for r in done.results:
-                on_result(r)
-
-    if workers <= 1 or len(tasks) < 2:
-        out = []
-        for task in tasks:
-            d = _run_task(task)
-            landed(d)
-            out.append(d)
-        return out
-    from concurrent.futures import ProcessPoolExecutor, as_completed
-    from concurrent.futures.process import BrokenProcessPool
-
-    workers = min(workers, len(tasks))
-    # chunks amortise pickling and process hand-off; several per worker keep the load balanced
-    size = max(1, min(32, len(tasks) // (workers * 8)))
-    chunks = [tasks[i : i + size] for i in range(0, len(tasks), size)]
-    out = []
-    lost: list[_Task] = []
-    with ProcessPoolExecutor(max_workers=workers) as pool:
-        futures = {pool.submit(_run_tasks, chunk): chunk for chunk in chunks}
-        for future in as_completed(futures):
-            try:
-                done = future.result()
-            except BrokenProcessPool:
-                lost.extend(futures[future])  # a worker died: these files get a second chance below
-                continue
-            for d in done:
-                landed(d)
-                out.append(d)
-    for task in lost:
-        d = _run_isolated(task)
-        landed(d)
-        out.append(d)
-    return out
-
-
-def _run_isolated(task: _Task) -> _Done:
-    """Check one file in a process of its own, so that a crash there is that file's error row.
-
-    Used only after a worker died (the interpreter itself crashed on some file): every
-    file of the lost chunks is checked again alone, and the one that crashes again is
-    reported, while the others get their verdicts.
-    """
-    from concurrent.futures import ProcessPoolExecutor
-    from concurrent.futures.process import BrokenProcessPool
-
-    try:
-        with ProcessPoolExecutor(max_workers=1) as pool:
-            return pool.submit(_run_task, task).result()
-    except BrokenProcessPool:
-        message = "mech crashed while checking this file (a bug in mech or its YAML parser: please report it)"
-        rows = (Verdict("file", ERROR, message=message),)
-        students = [s.student for s in task.submissions] if task.submissions is not None else [None]
-        return _Done(tuple(FileResult(task.path, verdicts=rows, student=st) for st in students))

@@ -56,6 +56,7 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = [
     "ERROR",
     "FAIL",
+    "IGNORED",
     "PASS",
     "Analysis",
     "FileResult",
@@ -69,6 +70,9 @@ __all__ = [
 PASS = "pass"
 FAIL = "fail"
 ERROR = "error"
+#: A sheet key that is not a question of its problem (or a sheet entry naming no problem):
+#: reported, never scored.
+IGNORED = "ignored"
 
 #: Errors below this fraction of the mechanism's own scale are rounding, not a wrong answer.
 NOISE = 1e-6
@@ -106,6 +110,10 @@ class Verdict:
         One sentence a student can act on.
     where
         Where the claim was written (file or sheet, line, column).
+    diagnosis
+        For a failed answer, the usual mistake the claim matches, computed
+        (``"the opposite sense"``, ``"the other assembly branch (C below AD)"``);
+        None when it matches none of them.
     """
 
     key: str
@@ -118,10 +126,16 @@ class Verdict:
     tolerance: str | None = None
     message: str = ""
     where: Where | None = field(default=None, compare=False)
+    diagnosis: str | None = None
 
     @property
     def passed(self) -> bool:
         return self.status == PASS
+
+    @property
+    def scored(self) -> bool:
+        """Counted in a score (pass, fail, error); an ignored sheet key is not."""
+        return self.status != IGNORED
 
 
 @dataclass(frozen=True, slots=True)
@@ -130,10 +144,13 @@ class FileResult:
 
     A file that cannot be read or checked at all is *one* error verdict with
     key ``file``; its located problems are kept in ``problems`` for JSON.
-    ``skipped`` is True for a file with no answers to check.  ``sheet`` is
-    True for a row about an answer sheet itself (a sheet that cannot be read,
-    an entry that names no problem file): ``path`` is then the sheet's, and
-    the row is not a problem file in the counts.
+    ``skipped`` is True for a file with nothing to check (no answers; with
+    sheets, a problem that asks nothing).  ``sheet`` is True for a row about an
+    answer sheet itself (a sheet that cannot be read, an entry that names no
+    problem file): ``path`` is then the sheet's, and the row is not a problem
+    file in the counts.  ``excluded`` is True for a problem file left out of
+    every score (with sheets: it cannot be read, or asks nothing — the
+    teacher's error, reported once).
     """
 
     path: str
@@ -143,10 +160,15 @@ class FileResult:
     problems: tuple[Problem, ...] = ()
     skipped: bool = False
     sheet: bool = False
+    excluded: bool = False
 
     @property
     def passed(self) -> int:
         return sum(v.status == PASS for v in self.verdicts)
+
+    @property
+    def ignored(self) -> int:
+        return sum(v.status == IGNORED for v in self.verdicts)
 
     @property
     def failed(self) -> int:
@@ -158,7 +180,8 @@ class FileResult:
 
     @property
     def total(self) -> int:
-        return len(self.verdicts)
+        """Scored verdicts (ignored sheet keys are not counted)."""
+        return sum(v.status != IGNORED for v in self.verdicts)
 
     @property
     def ok(self) -> bool:
@@ -195,10 +218,15 @@ def check_file(path: str, *, options: SolveOptions | None = None) -> FileResult:
 
     The function to map over many machines (Dask ``client.map``, Ray): it
     takes a path and returns a picklable, frozen result; a file that cannot
-    be read becomes its error row instead of an exception.
+    be read becomes its error row instead of an exception, and a file with no
+    answers a ``skipped`` row (``mech check`` runs the same function).
     """
+    from mech.batch import probe, special_result
     from mech.loader import load
 
+    why = probe(path)  # a FIFO or a device is never opened; a dangling link is named
+    if why is not None:
+        return special_result(path, why)
     try:
         mech = load(path)
     except MechError as error:

@@ -7,6 +7,7 @@ Exit status: 0 success, 1 a failed check, 2 bad input or usage.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import sys
 from collections.abc import Callable, Sequence
@@ -636,7 +637,17 @@ def _path_svg(path: str, mechanism: Any, result: Any, points: tuple[str, ...], o
     type=click.Path(dir_okay=False),
     help="Also write a CSV gradebook (student, problem …).",
 )
-@click.option("-q", "--quiet", is_flag=True, help="List only answers that failed or could not be computed.")
+@click.option("-q", "--quiet", is_flag=True, help="List only files, students and answers that did not pass.")
+@click.option(
+    "-v", "--verbose", is_flag=True, help="List every answer (default: one line per file, or per student)."
+)
+@click.option(
+    "--timeout",
+    type=click.FloatRange(min=0, min_open=True),
+    default=30.0,
+    show_default=True,
+    help="Seconds one problem file may take before it is an error row (the others finish).",
+)
 @json_option
 @handles_errors
 def check_command(
@@ -647,57 +658,131 @@ def check_command(
     gradescope: str | None,
     csv_path: str | None,
     quiet: bool,
+    verbose: bool,
+    timeout: float,
     as_json: bool,
 ) -> None:
     """Check claimed answers against computed ones: files, folders, answer sheets.
 
-    Every file under PATHS (recursively, *.yaml and *.yml) with an `answers`
-    section is analysed, computing only what the answers ask; each answer
-    passes, fails (with the computed value and the error) or is an error (it
-    could not be computed, or the file could not be read).  Exit status 0 when
-    all pass, 1 when any fails or errors, 2 on a usage error.
+    Every file under PATHS (recursively, *.yaml and *.yml) is a row: its
+    answers are checked, computing only what they ask; each answer passes,
+    fails (with the computed value, the error and the mistake it matches) or
+    is an error (it could not be computed, or the file could not be read).
+    Exit status 0 when all pass, 1 when any fails or errors, 2 on a usage
+    error, 130 when interrupted (no report file is left behind).
     """
     import os
 
-    from mech.batch import CheckOptions, run
+    from mech.batch import CheckOptions
 
     if gradescope and answers and os.path.isdir(answers):
         raise click.UsageError(
             "--gradescope writes one submission's results.json; for a folder of sheets use --csv or --json"
         )
-    options = CheckOptions(paths=tuple(paths), answers=answers, jobs=jobs)
-    from mech.render.check import progress
+    targets = [
+        (o, p) for o, p in (("--junit", junit), ("--gradescope", gradescope), ("--csv", csv_path)) if p
+    ]
+    seen: dict[str, str] = {}
+    for option, path in targets:
+        key = os.path.normcase(os.path.realpath(path))
+        if key in seen:
+            raise click.UsageError(
+                f"{seen[key]} and {option} both write {path}: give each report its own file"
+            )
+        seen[key] = option
+    options = CheckOptions(paths=tuple(paths), answers=answers, jobs=jobs, timeout=timeout)
+    try:
+        _check(options, targets, quiet=quiet, verbose=verbose, as_json=as_json)
+    except KeyboardInterrupt:
+        # a report that is old (from a previous run) or partial must not pass for this run's
+        for _, path in targets:
+            with contextlib.suppress(OSError):
+                os.unlink(path)
+        click.echo("mech check: interrupted; no report written", err=True)
+        sys.exit(130)
 
-    with progress() as (start, advance):
-        report = run(options, on_start=start, on_result=advance)
+
+def _check(
+    options: Any, targets: list[tuple[str, str]], *, quiet: bool, verbose: bool, as_json: bool
+) -> None:
+    """Run the batch, streaming a plain report when piped or large, then write the report files."""
+    import os
+
+    from mech.batch import run
+    from mech.render.check import LARGE_BATCH, Stream
+
+    stream: list[Stream] = []
+    bar: Any = None
+
+    def start(total: int) -> None:
+        nonlocal bar
+        if as_json:
+            return
+        if not sys.stdout.isatty() or os.environ.get("NO_COLOR") or total > LARGE_BATCH:
+            stream.append(Stream(sys.stdout, verbose=verbose, quiet=quiet))
+        if sys.stderr.isatty() and not os.environ.get("NO_COLOR"):
+            from mech.render.check import progress
+
+            bar = progress()
+            begin, advance = bar.__enter__()
+            begin(total)
+            bar.advance = advance
+
+    def landed(rows: Any) -> None:
+        if bar is not None:
+            bar.advance(rows)
+        if stream:
+            stream[0].file(rows)
+
+    try:
+        report = run(options, on_start=start, on_file=landed)
+    finally:
+        if bar is not None:
+            bar.__exit__(None, None, None)
     from mech.render import check as render
 
-    outputs = (
-        (junit, render.junit_xml),
-        (gradescope, lambda r: render.dumps(render.gradescope_dict(r)) + "\n"),
-        (csv_path, render.csv_text),
-    )
-    for target, make in outputs:
-        if target:
-            _write(target, make(report))
+    outputs = {
+        "--junit": render.junit_xml,
+        "--gradescope": lambda r: render.dumps(render.gradescope_dict(r)) + "\n",
+        "--csv": render.csv_text,
+    }
+    for option, path in targets:
+        _write(path, outputs[option](report))
     if as_json:
         click.echo(render.dumps(render.report_dict(report)))
+    elif stream:
+        stream[0].end(report)
     else:
         from mech.render.console import stdout
 
-        render.check_table(report, stdout(), quiet=quiet)
+        render.check_table(report, stdout(), quiet=quiet, verbose=verbose)
     sys.exit(report.exit_status)
 
 
 def _write(path: str, text: str) -> None:
-    """Write a report file; a path that cannot be written is bad input (exit 2)."""
+    """Write a report file atomically (a temporary file renamed into place); exit 2 if it cannot be."""
+    import os
+    import tempfile
+
     from mech.errors import Where
 
+    folder = os.path.dirname(os.path.abspath(path))
+    tmp = None
     try:
-        with open(path, "w", encoding="utf-8", newline="") as f:
+        fd, tmp = tempfile.mkstemp(prefix=".mech-", suffix=".tmp", dir=folder)
+        with os.fdopen(fd, "w", encoding="utf-8", newline="") as f:
             f.write(text)
+        mask = os.umask(0)
+        os.umask(mask)
+        os.chmod(tmp, 0o666 & ~mask)  # mkstemp makes it private; a report is an ordinary file
+        os.replace(tmp, path)
+        tmp = None
     except OSError as exc:
         raise InputError(f"cannot write {path}: {exc.strerror}", where=Where(path)) from None
+    finally:
+        if tmp is not None:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
 
 
 # -- drawings -------------------------------------------------------------------------

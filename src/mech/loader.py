@@ -52,7 +52,7 @@ from mech.units import (
     unit_factor,
 )
 
-__all__ = ["load", "loads", "parse_answers"]
+__all__ = ["load", "loads", "parse_answer_entries", "parse_answers"]
 
 _YamlLoader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
@@ -174,6 +174,46 @@ def parse_answers(
     )
     reader.fail()
     return tuple(claims), tolerance
+
+
+def parse_answer_entries(
+    node: yaml.MappingNode, mechanism: Mechanism, *, path: str, source: str | None = None
+) -> list[tuple[str, Where, Claim | InputError]]:
+    """Each entry of an answers mapping read on its own: ``(key, where, claim or its error)``.
+
+    For answer sheets, where one bad key must cost only that key: every entry
+    is validated as :func:`parse_answers` would (same grammar, names, units),
+    but a problem becomes that entry's :class:`InputError` instead of failing
+    the mapping.  Keys are returned as written, repeats and ``tolerance``
+    included (the caller decides what they mean on a sheet).
+    """
+    reader = _Reader(source or "", path)
+    kinds = names_by_kind(
+        (link.name for link in mechanism.links),
+        (j.name for j in mechanism.joints),
+        (p.name for p in mechanism.points),
+        len(mechanism.links),
+    )
+    out: list[tuple[str, Where, Claim | InputError]] = []
+    for knode, vnode in node.value:
+        reader.problems = []
+        key = str(knode.value) if isinstance(knode, yaml.ScalarNode) else _text(knode)
+        claim: Claim | None = None
+        try:
+            if not isinstance(knode, yaml.ScalarNode):
+                raise reader.problem(
+                    knode, f"an answer key is text such as omega.rocker, not {node_kind(knode)}"
+                )
+            claim = reader._claim(key, knode, vnode, kinds)
+        except _Skip:
+            pass
+        if reader.problems or claim is None:
+            problems = reader.problems or [Problem("unreadable answer", reader.where(knode))]
+            error = InputError(problems=problems, source=source)
+            out.append((key, reader.where(knode), error))
+        else:
+            out.append((key, reader.where(knode), claim))
+    return out
 
 
 # --------------------------------------------------------------------------------------

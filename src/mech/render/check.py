@@ -1,7 +1,14 @@
-"""``mech check`` reports: a rich table, JSON, JUnit XML, Gradescope results.json and CSV.
+"""``mech check`` reports: a table or a streamed plain listing, JSON, JUnit XML, Gradescope, CSV.
 
-Every format is made from the same :class:`~mech.batch.Report`, so they
-cannot disagree.  Nothing here computes a verdict.
+Every format is made from the same :class:`~mech.batch.Report` (or, streamed,
+from the same rows as they land), so they cannot disagree.  Nothing here
+computes a verdict.  rich is imported only by the table for a terminal: a
+streamed plain report (piped, or a large batch) starts without it.
+
+Every file and every student is a row in every format: a file with nothing to
+check is a skipped row (JUnit ``<skipped/>``), a problem file left out of the
+scores is listed once at the top, a sheet key that is not a question is an
+ignored row (reported, never scored).
 """
 
 from __future__ import annotations
@@ -10,22 +17,23 @@ import csv
 import io
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from typing import Any
+from typing import IO, TYPE_CHECKING, Any
 from xml.etree import ElementTree as ET
 
-from rich.console import Console
-from rich.table import Table
-from rich.text import Text
-
-from mech.batch import Report
-from mech.check import ERROR, FAIL, PASS, FileResult, Verdict
+from mech.batch import Report, StudentScore
+from mech.check import ERROR, FAIL, IGNORED, PASS, FileResult, Verdict
 from mech.errors import InputError
-from mech.render.console import is_plain, table_box
 from mech.render.jsonout import dumps, error_dict
 from mech.render.safe import printable, xml_safe
 
+if TYPE_CHECKING:  # pragma: no cover
+    from rich.console import Console
+    from rich.text import Text
+
 __all__ = [
+    "LARGE_BATCH",
     "PROGRESS_THRESHOLD",
+    "Stream",
     "check_table",
     "csv_text",
     "dumps",
@@ -36,11 +44,18 @@ __all__ = [
     "summary_line",
 ]
 
-#: A progress bar appears only for more rows than this (and only on a terminal).
+#: A progress bar appears only for more problem files than this (and only on a terminal).
 PROGRESS_THRESHOLD = 20
+#: More problem files than this are listed as a streamed plain report even on a terminal.
+LARGE_BATCH = 200
 
-_MARK = {PASS: ("✓ pass", "green"), FAIL: ("✗ fail", "red"), ERROR: ("! error", "yellow")}
-_PLAIN = {PASS: "pass", FAIL: "FAIL", ERROR: "ERROR"}
+_MARK = {
+    PASS: ("✓ pass", "green"),
+    FAIL: ("✗ fail", "red"),
+    ERROR: ("! error", "yellow"),
+    IGNORED: ("– ignored", "dim"),
+}
+_PLAIN = {PASS: "pass", FAIL: "FAIL", ERROR: "ERROR", IGNORED: "ignored"}
 
 
 def _plural(n: int, word: str) -> str:
@@ -48,13 +63,20 @@ def _plural(n: int, word: str) -> str:
 
 
 def summary_line(report: Report) -> str:
-    """``12 passed, 3 failed, 1 error in 5 files`` (pytest's order), with skipped files."""
+    """``12 passed, 3 failed, 1 error in 5 files`` (pytest's order), then what was not scored."""
     text = f"{report.passed} passed, {report.failed} failed, {_plural(report.errors, 'error')}"
     text += f" in {_plural(report.files, 'file')}"
     if report.students:
         text += f", {_plural(len(report.students), 'student')}"
+    notes = []
     if report.skipped:
-        text += f" ({_plural(len(report.skipped), 'file')} without answers skipped)"
+        notes.append(f"{_plural(len(report.skipped), 'file')} with nothing to check")
+    if report.teacher:
+        notes.append(f"{_plural(len(report.teacher), 'problem file')} excluded from every score")
+    if report.ignored:
+        notes.append(f"{_plural(report.ignored, 'sheet key')} ignored")
+    if notes:
+        text += f" ({'; '.join(notes)})"
     return text
 
 
@@ -62,30 +84,194 @@ def _label(r: FileResult) -> str:
     return f"{r.student}: {r.path}" if r.student is not None else r.path
 
 
-# -- the table ------------------------------------------------------------------------------
-def check_table(report: Report, console: Console, *, quiet: bool = False) -> None:
-    """Answers one per row (files grouped), or one row per student for a class; then the summary.
+def _message(v: Verdict) -> str:
+    """The verdict's message, with its diagnosis when it has one."""
+    if v.diagnosis:
+        return f"{v.message} — matches {v.diagnosis}"
+    return v.message
 
-    ``quiet`` lists only answers that failed or could not be computed.
+
+def _state(r: FileResult) -> str:
+    if r.skipped:
+        return "SKIP"
+    if r.excluded:
+        return "EXCLUDED"
+    if r.errors:
+        return "ERROR"
+    if r.failed:
+        return "FAIL"
+    return "PASS"
+
+
+def _first_issue(r: FileResult) -> str:
+    if r.skipped:
+        return "nothing to check (no answers)"
+    bad = [v for v in r.verdicts if v.status in (FAIL, ERROR)]
+    if not bad:
+        return ""
+    v = bad[0]
+    more = f" (+{len(bad) - 1} more)" if len(bad) > 1 else ""
+    return f"{v.key}: {_message(v)}{more}"
+
+
+# -- streamed plain report --------------------------------------------------------------------
+class Stream:
+    """A plain report written as rows land: one line per file (or student), details on request.
+
+    Without answer sheets each problem file is written as soon as it (and every
+    file before it) is done; with sheets the teacher's excluded files come first,
+    then one line per student once every problem is graded.
     """
-    if len(report.students) > 1:
-        _class_table(report, console)
-    else:
+
+    def __init__(self, out: IO[str], *, verbose: bool = False, quiet: bool = False) -> None:
+        self.out, self.verbose, self.quiet = out, verbose, quiet
+
+    def _write(self, text: str) -> None:
+        self.out.write(printable(text) + "\n")
+
+    def file(self, rows: tuple[FileResult, ...]) -> None:
+        """Write one problem file's rows (without sheets: one row)."""
+        for r in rows:
+            if r.student is not None or r.excluded:
+                return  # sheets: the excluded files, then the per-student lines, come at the end
+            if self.quiet and not (r.failed or r.errors):
+                continue
+            self._file_line(r)
+        self.out.flush()
+
+    def _file_line(self, r: FileResult) -> None:
+        state = _state(r)
+        head = f"{state:<5} {r.path}"
+        if r.skipped:
+            self._write(f"{head}  nothing to check (no answers)")
+            return
+        self._write(
+            f"{head}  {r.passed}/{r.total}"
+            + (f"  {_first_issue(r)}" if not self.verbose and r.total > r.passed else "")
+        )
+        if self.verbose:
+            self._answers(r)
+
+    def _answers(self, r: FileResult) -> None:
+        for v in r.verdicts:
+            if self.quiet and v.status == PASS:
+                continue
+            claimed = f" {v.claimed}" if v.claimed else ""
+            self._write(f"    {_PLAIN[v.status]:<7} {v.key}{claimed}: {_message(v)}")
+
+    def end(self, report: Report) -> None:
+        """The teacher's excluded files, every student (with sheets), the closing line."""
+        if report.students:
+            self._teacher(report)
+            for s in report.scores():
+                if self.quiet and s.passed == s.asked:
+                    continue
+                self._write(_student_line(s))
+                if self.verbose:
+                    for r in report.results:
+                        if r.student == s.student and (r.verdicts or r.sheet):
+                            self._write(f"  {r.path}" + ("  (sheet)" if r.sheet else ""))
+                            self._answers(r)
+        self._write(summary_line(report))
+        self.out.flush()
+
+    def _teacher(self, report: Report) -> None:
+        if not report.teacher:
+            return
+        self._write("excluded from every score (the problem file cannot be graded):")
+        for r in report.teacher:
+            self._write(f"  EXCLUDED {r.path}: {r.verdicts[0].message if r.verdicts else ''}")
+
+
+def _student_line(s: StudentScore) -> str:
+    notes = []
+    if s.failed:
+        notes.append(f"{s.failed} failed")
+    if s.errors:
+        notes.append(f"{_plural(s.errors, 'error')}")
+    if s.ignored:
+        notes.append(f"{_plural(s.ignored, 'sheet key')} ignored")
+    tail = f"  ({', '.join(notes)})" if notes else ""
+    return f"{s.student}  {s.passed}/{s.asked}  {100 * s.score:.0f}%{tail}"
+
+
+# -- the table (a terminal) ------------------------------------------------------------------
+def check_table(report: Report, console: Console, *, quiet: bool = False, verbose: bool = False) -> None:
+    """The report as rich tables: files (or students) by default, every answer with ``verbose``.
+
+    ``quiet`` lists only what did not pass.
+    """
+    from rich.text import Text
+
+    if report.teacher:
+        _teacher_table(report, console)
+    if report.students:
+        _class_table(report, console, quiet=quiet)
+    elif not verbose:
+        _files_table(report, console, quiet=quiet)
+    if verbose:
         _answers_table(report, console, quiet=quiet)
     style = "green" if report.exit_status == 0 else "red"
     console.print(Text(summary_line(report), style="bold " + style))
 
 
-def _status(v: Verdict, console: Console) -> Text:
+def _box(console: Console) -> Any:
+    from mech.render.console import table_box
+
+    return table_box(console)
+
+
+def _status(status: str, console: Console) -> Text:
+    from rich.text import Text
+
+    from mech.render.console import is_plain
+
     if is_plain(console):
-        return Text(_PLAIN[v.status])
-    text, style = _MARK[v.status]
+        return Text(_PLAIN[status])
+    text, style = _MARK[status]
     return Text(text, style=style)
+
+
+def _teacher_table(report: Report, console: Console) -> None:
+    from rich.table import Table
+
+    table = Table(box=_box(console), title="excluded from every score (the problem file cannot be graded)")
+    table.add_column("problem file", overflow="fold")
+    table.add_column("why", overflow="fold")
+    for r in report.teacher:
+        table.add_row(printable(r.path), printable(r.verdicts[0].message if r.verdicts else ""))
+    console.print(table)
+
+
+def _files_table(report: Report, console: Console, *, quiet: bool) -> None:
+    from rich.table import Table
+
+    table = Table(box=_box(console))
+    table.add_column("file", overflow="fold")
+    table.add_column("result", no_wrap=True)
+    table.add_column("passed", justify="right", no_wrap=True)
+    table.add_column("first problem", overflow="fold")
+    rows = 0
+    for r in report.results:
+        if quiet and not (r.failed or r.errors):
+            continue
+        state = _state(r)
+        status = {"PASS": PASS, "FAIL": FAIL, "ERROR": ERROR}.get(state)
+        shown = _status(status, console) if status else state.lower()
+        table.add_row(
+            printable(r.path), shown, "" if r.skipped else f"{r.passed}/{r.total}", printable(_first_issue(r))
+        )
+        rows += 1
+    if rows:
+        console.print(table)
 
 
 def _answers_table(report: Report, console: Console, *, quiet: bool) -> None:
     """One row per answer under a row naming its file (a file column would squeeze the reasons)."""
-    table = Table(box=table_box(console))
+    from rich.table import Table
+    from rich.text import Text
+
+    table = Table(box=_box(console))
     table.add_column("answer", overflow="fold")
     table.add_column("claimed", overflow="fold")
     table.add_column("verdict", no_wrap=True)
@@ -101,36 +287,43 @@ def _answers_table(report: Report, console: Console, *, quiet: bool) -> None:
         previous = None
         for v in shown:
             # one reason (a solve that failed) repeated down a file is said once
-            message = "〃 (as above)" if v.status == ERROR and v.message == previous else v.message
-            previous = v.message
+            message = _message(v)
+            text = "〃 (as above)" if v.status == ERROR and message == previous else message
+            previous = message
             table.add_row(
-                "  " + printable(v.key), printable(v.claimed), _status(v, console), printable(message)
+                "  " + printable(v.key), printable(v.claimed), _status(v.status, console), printable(text)
             )
             rows += 1
     if rows:
         console.print(table)
 
 
-def _class_table(report: Report, console: Console) -> None:
-    table = Table(box=table_box(console))
+def _class_table(report: Report, console: Console, *, quiet: bool) -> None:
+    from rich.table import Table
+
+    table = Table(box=_box(console))
     for name, justify in (
         ("student", "left"),
         ("problems", "right"),
-        ("answers", "right"),
+        ("asked", "right"),
         ("passed", "right"),
         ("failed", "right"),
         ("errors", "right"),
+        ("ignored", "right"),
         ("score", "right"),
     ):
         table.add_column(name, justify=justify)  # type: ignore[arg-type]
     for s in report.scores():
+        if quiet and s.passed == s.asked:
+            continue
         table.add_row(
             printable(s.student),
             str(s.problems),
-            str(s.total),
+            str(s.asked),
             str(s.passed),
             str(s.failed),
             str(s.errors),
+            str(s.ignored),
             f"{100 * s.score:.0f}%",
         )
     console.print(table)
@@ -139,13 +332,16 @@ def _class_table(report: Report, console: Console) -> None:
 # -- progress -------------------------------------------------------------------------------
 @contextmanager
 def progress(console: Console | None = None) -> Iterator[tuple[Callable[[int], None], Callable[[Any], None]]]:
-    """``(start, advance)`` callbacks for :func:`mech.batch.run`'s ``on_start``/``on_result``.
+    """``(start, advance)`` callbacks for :func:`mech.batch.run`'s ``on_start``/``on_file``.
 
     The bar is drawn on stderr only when stderr is a terminal, NO_COLOR is not
-    set and the batch has more than :data:`PROGRESS_THRESHOLD` rows; otherwise
+    set and the batch has more than :data:`PROGRESS_THRESHOLD` files; otherwise
     both are no-ops, so piped, plain and CI output stays clean.
     """
-    console = console or Console(stderr=True, markup=False)
+    if console is None:
+        from rich.console import Console
+
+        console = Console(stderr=True, markup=False)
     state: dict[str, Any] = {}
 
     def start(total: int) -> None:
@@ -193,22 +389,46 @@ def verdict_dict(v: Verdict) -> dict[str, Any]:
         "allowed": v.allowed,
         "tolerance": v.tolerance,
         "message": v.message,
+        "diagnosis": v.diagnosis,
         "line": v.where.line if v.where and v.where.line else None,
         "column": v.where.column if v.where and v.where.line else None,
         "source": v.where.path if v.where else None,
     }
 
 
+def _file_dict(r: FileResult) -> dict[str, Any]:
+    record: dict[str, Any] = {
+        "file": r.path,
+        "name": r.name,
+        "student": r.student,
+        "status": _state(r).lower(),
+        "passed": r.passed,
+        "failed": r.failed,
+        "errors": r.errors,
+        "ignored": r.ignored,
+        "total": r.total,
+        "skipped": r.skipped,
+        "excluded": r.excluded,
+        "sheet": r.sheet,
+        "answers": [verdict_dict(v) for v in r.verdicts],
+    }
+    if r.problems:
+        record["error"] = error_dict(InputError(problems=r.problems))
+    return record
+
+
 def report_dict(report: Report) -> dict[str, Any]:
-    """The whole report as JSON: summary, per-student scores (with sheets), per-file answers."""
+    """The whole report as JSON: summary, excluded problem files, per-student scores, every row."""
     out: dict[str, Any] = {
         "summary": {
             "passed": report.passed,
             "failed": report.failed,
             "errors": report.errors,
+            "ignored": report.ignored,
             "total": report.total,
             "files": report.files,
             "skipped": list(report.skipped),
+            "excluded": [r.path for r in report.teacher],
             "exit_status": report.exit_status,
             "text": summary_line(report),
         }
@@ -218,29 +438,17 @@ def report_dict(report: Report) -> dict[str, Any]:
             {
                 "student": s.student,
                 "problems": s.problems,
+                "asked": s.asked,
                 "passed": s.passed,
                 "failed": s.failed,
                 "errors": s.errors,
-                "total": s.total,
+                "ignored": s.ignored,
+                "total": s.asked,
                 "score": round(s.score, 6),
             }
             for s in report.scores()
         ]
-    results = []
-    for r in report.results:
-        record: dict[str, Any] = {
-            "file": r.path,
-            "name": r.name,
-            "student": r.student,
-            "passed": r.passed,
-            "failed": r.failed,
-            "errors": r.errors,
-            "answers": [verdict_dict(v) for v in r.verdicts],
-        }
-        if r.problems:
-            record["error"] = error_dict(InputError(problems=r.problems))
-        results.append(record)
-    out["results"] = results
+    out["results"] = [_file_dict(r) for r in report.results]
     return out
 
 
@@ -249,39 +457,55 @@ def junit_xml(report: Report) -> str:
     """JUnit XML for CI: one ``testsuite`` per file (and student), one ``testcase`` per answer.
 
     The structure is the common denominator of the Ant/Jenkins JUnit schemas
-    that CI servers read: ``testsuites`` (tests, failures, errors) holding
-    ``testsuite`` (name, tests, failures, errors, skipped) holding ``testcase``
-    (classname, name) with a ``failure`` (a wrong answer) or ``error`` (an
-    answer that could not be computed, or a file that could not be read)
-    child carrying ``message`` and ``type``.
+    that CI servers read: ``testsuites`` (tests, failures, errors, skipped)
+    holding ``testsuite`` (name, tests, failures, errors, skipped) holding
+    ``testcase`` (classname, name) with a ``failure`` (a wrong answer),
+    ``error`` (an answer that could not be computed, or a file that could not
+    be read) or ``skipped`` (nothing to check; a problem file excluded from the
+    scores; an ignored sheet key) child carrying ``message``.
     """
-    root = ET.Element(
-        "testsuites",
-        name="mech check",
-        tests=str(report.total),
-        failures=str(report.failed),
-        errors=str(report.errors),
-    )
+    skipped_total = 0
+    suites = []
     for r in report.results:
-        suite = ET.SubElement(
-            root,
-            "testsuite",
-            name=_label(r),
-            tests=str(r.total),
-            failures=str(r.failed),
-            errors=str(r.errors),
-            skipped="0",
-        )
+        suite = ET.Element("testsuite", name=_label(r))
         classname = _classname(r)
+        skipped = 0
+        if r.skipped or (r.excluded and not r.verdicts):
+            case = ET.SubElement(suite, "testcase", classname=classname, name="answers", time="0")
+            why = (
+                "nothing to check (no answers)"
+                if r.skipped
+                else "the problem file is excluded from every score"
+            )
+            ET.SubElement(case, "skipped", message=why)
+            skipped += 1
         for v in r.verdicts:
             case = ET.SubElement(suite, "testcase", classname=classname, name=v.key, time="0")
             if v.status == FAIL:
-                node = ET.SubElement(case, "failure", message=v.message, type="WrongAnswer")
+                node = ET.SubElement(case, "failure", message=_message(v), type="WrongAnswer")
                 node.text = _details(v)
             elif v.status == ERROR:
                 kind = "FileError" if v.key == "file" else "CannotCompute"
                 node = ET.SubElement(case, "error", message=v.message, type=kind)
                 node.text = "\n".join(_problem_lines(r)) if v.key == "file" and r.problems else _details(v)
+            elif v.status == IGNORED:
+                ET.SubElement(case, "skipped", message=v.message)
+                skipped += 1
+        suite.set("tests", str(len(suite)))
+        suite.set("failures", str(r.failed))
+        suite.set("errors", str(r.errors))
+        suite.set("skipped", str(skipped))
+        skipped_total += skipped
+        suites.append(suite)
+    root = ET.Element(
+        "testsuites",
+        name="mech check",
+        tests=str(sum(len(s) for s in suites)),
+        failures=str(report.failed),
+        errors=str(report.errors),
+        skipped=str(skipped_total),
+    )
+    root.extend(suites)
     ET.indent(root)
     return xml_safe('<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n")
 
@@ -295,6 +519,8 @@ def _classname(r: FileResult) -> str:
 
 def _details(v: Verdict) -> str:
     lines = [f"{v.where}: {v.key}: {v.claimed}" if v.where else f"{v.key}: {v.claimed}", v.message]
+    if v.diagnosis:
+        lines.append(f"matches {v.diagnosis}")
     if v.error is not None and v.allowed is not None:
         lines.append(f"error {v.error:.6g}, allowed {v.allowed:.6g} ({v.tolerance})")
     return "\n".join(lines)
@@ -311,43 +537,85 @@ def gradescope_dict(report: Report) -> dict[str, Any]:
     Follows the autograder specification (gradescope-autograders.readthedocs.io,
     "Output format"): a top-level ``score`` and ``output``, and ``tests`` with
     ``name``, ``number``, ``score``, ``max_score``, ``status``
-    (``"passed"``/``"failed"``) and ``output``.  An answer that could not be
-    computed is a failed test whose output says why.  One submission (one
-    student) per file: the caller refuses a class of sheets.
+    (``"passed"``/``"failed"``) and ``output``.  Tests are named by the file
+    (and the problem's ``name``).  An answer that could not be computed is a
+    failed test whose output says why; a file with nothing to check, an
+    excluded problem file and an ignored sheet key are tests worth 0 points
+    that say so.  One submission (one student) per file: the caller refuses a
+    class of sheets.
     """
     tests = []
     for i, r in enumerate(report.results, 1):
-        for k, v in enumerate(r.verdicts, 1):
-            tests.append(
-                {
-                    "name": f"{r.name or r.path}: {v.key}",
-                    "number": f"{i}.{k}",
-                    "score": 1.0 if v.passed else 0.0,
-                    "max_score": 1.0,
-                    "status": "passed" if v.passed else "failed",
-                    "output": _gradescope_output(v),
-                }
+        title = r.path + (f" ({r.name})" if r.name else "")
+        if r.skipped or (r.excluded and not r.verdicts):
+            why = (
+                "nothing to check (no answers)"
+                if r.skipped
+                else "excluded from the score (the problem file cannot be graded)"
             )
-    return {"score": float(report.passed), "output": summary_line(report), "tests": tests}
+            tests.append(_gs(f"{title}", f"{i}", 0.0, 0.0, "passed", why))
+        for k, v in enumerate(r.verdicts, 1):
+            points = 1.0 if v.scored and not r.excluded and not r.sheet else 0.0
+            tests.append(
+                _gs(
+                    f"{title}: {v.key}",
+                    f"{i}.{k}",
+                    points if v.passed else 0.0,
+                    points,
+                    "passed" if v.passed or v.status == IGNORED else "failed",
+                    _gradescope_output(v),
+                )
+            )
+    score = float(sum(t["score"] for t in tests))
+    return {"score": score, "output": summary_line(report), "tests": tests}
+
+
+def _gs(name: str, number: str, score: float, max_score: float, status: str, output: str) -> dict[str, Any]:
+    return {
+        "name": name,
+        "number": number,
+        "score": score,
+        "max_score": max_score,
+        "status": status,
+        "output": output,
+    }
 
 
 def _gradescope_output(v: Verdict) -> str:
     claimed = f"claimed {v.claimed}: " if v.claimed else ""
     if v.status == ERROR:
-        return f"{claimed}could not be checked: {v.message}"
-    return f"{claimed}{v.message}"
+        return f"{claimed}could not be checked: {_message(v)}"
+    return f"{claimed}{_message(v)}"
 
 
 # -- CSV ------------------------------------------------------------------------------------
-CSV_COLUMNS = ("student", "problem", "passed", "total", "score")
+CSV_COLUMNS = ("student", "problem", "passed", "total", "score", "status")
 
 
 def csv_text(report: Report) -> str:
-    """One row per student and problem for a gradebook (Moodle, Canvas): ``score`` is a percentage."""
+    """One row per student and problem for a gradebook (Moodle, Canvas): ``score`` is a percentage.
+
+    ``status`` says what the row is: ``graded``, ``nothing to check``,
+    ``excluded`` (the problem file is the teacher's error: no score, not a 0)
+    or ``sheet`` (a row about the sheet itself: ignored keys, unreadable sheet).
+    """
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(CSV_COLUMNS)
     for r in report.results:
-        score = 100.0 * r.passed / r.total if r.total else 0.0
-        writer.writerow([r.student or "", r.path, r.passed, r.total, f"{score:.1f}"])
+        if r.excluded:
+            why = (
+                r.verdicts[0].message
+                if r.student is None and r.verdicts
+                else "the problem file cannot be graded"
+            )
+            writer.writerow([r.student or "", r.path, "", "", "", f"excluded: {why}"])
+        elif r.skipped:
+            writer.writerow([r.student or "", r.path, "", "", "", "nothing to check"])
+        elif r.sheet:
+            notes = "; ".join(f"{v.key}: {v.message}" for v in r.verdicts)
+            writer.writerow([r.student or "", r.path, "", "", "", f"sheet: {notes}"])
+        else:
+            score = 100.0 * r.passed / r.total if r.total else 0.0
+            writer.writerow([r.student or "", r.path, r.passed, r.total, f"{score:.1f}", "graded"])
     return buffer.getvalue()

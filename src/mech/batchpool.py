@@ -1,0 +1,271 @@
+"""Run many small jobs with a time limit each, in this process or in worker processes we can kill.
+
+Why not :class:`concurrent.futures.ProcessPoolExecutor`: it cannot stop one job
+that runs too long (the pool can only be shut down whole), and a worker that
+dies takes every job in flight with it.  ``mech check`` needs one file past its
+``--timeout`` to become that file's error row while the others finish.
+
+Two limits protect a batch:
+
+* **soft**: each job runs under ``SIGALRM`` (:func:`time_limit`), which raises
+  :class:`JobTimeout` inside the job after ``timeout`` seconds, so the job
+  becomes its timeout row and the worker goes on with the next one;
+* **hard** (worker processes only): a job still running ``timeout + grace``
+  seconds after it started (stuck in C code the alarm cannot interrupt) has its
+  worker killed; that job gets its timeout row, the jobs that worker still
+  held are handed to a fresh worker.  A worker that dies (a crash in C code)
+  costs the job it was running, and the others are run again.
+
+Results are handed back **in job order** as soon as every earlier job is done,
+so a caller can stream a sorted report while later jobs still run.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import threading
+import time
+from collections import deque
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from typing import Any, Generic, TypeVar
+
+__all__ = ["JobTimeout", "run_jobs", "time_limit"]
+
+T = TypeVar("T")
+R = TypeVar("R")
+
+
+class JobTimeout(BaseException):
+    """A job ran past its time limit.
+
+    A ``BaseException``, so that the ``except Exception`` that turns a bug in
+    one analysis into its error row does not swallow the limit.
+    """
+
+
+@contextmanager
+def time_limit(seconds: float | None) -> Iterator[None]:
+    """Raise :class:`JobTimeout` in this (main) thread after ``seconds``; no-op where it cannot."""
+    usable = (
+        seconds is not None
+        and seconds > 0
+        and hasattr(signal, "setitimer")
+        and threading.current_thread() is threading.main_thread()
+    )
+    if not usable:
+        yield
+        return
+
+    def expired(signum: int, frame: Any) -> None:
+        raise JobTimeout
+
+    previous = signal.signal(signal.SIGALRM, expired)
+    signal.setitimer(signal.ITIMER_REAL, seconds)  # type: ignore[arg-type]
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+class _Limited(Generic[T, R]):
+    """``work(job)`` under the soft limit; ``on_timeout(job)`` when it expires."""
+
+    def __init__(
+        self, work: Callable[[T], R], on_timeout: Callable[[T, str], R], timeout: float | None
+    ) -> None:
+        self.work, self.on_timeout, self.timeout = work, on_timeout, timeout
+
+    def __call__(self, job: T) -> R:
+        try:
+            with time_limit(self.timeout):
+                return self.work(job)
+        except JobTimeout:
+            return self.on_timeout(job, "timeout")
+
+
+def run_jobs(
+    jobs: Sequence[T],
+    work: Callable[[T], R],
+    on_lost: Callable[[T, str], R],
+    *,
+    workers: int = 1,
+    timeout: float | None = None,
+    chunk: int = 1,
+) -> Iterator[R]:
+    """``work(job)`` for every job, yielded in job order; ``on_lost(job, why)`` for a lost job.
+
+    ``why`` is ``"timeout"`` (past ``timeout`` seconds) or ``"crash"`` (its
+    worker died).  ``work`` and the jobs must be picklable for ``workers > 1``
+    (module-level functions, plain data).  Closing the iterator early (or
+    Ctrl-C) kills every worker.
+    """
+    limited = _Limited(work, on_lost, timeout)
+    if workers <= 1 or len(jobs) < 2:
+        for job in jobs:
+            yield limited(job)
+        return
+    yield from _Pool(jobs, limited, on_lost, min(workers, len(jobs)), timeout, max(1, chunk)).results()
+
+
+# -- the pool -----------------------------------------------------------------------------------
+def _worker(conn: Any, slot: int, board: Any, limited: _Limited[Any, Any], jobs: Sequence[Any]) -> None:
+    """Run the chunks of job indices the parent sends; say on ``board`` which job runs since when."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle: it kills us
+    try:
+        while True:
+            indices = conn.recv()
+            if indices is None:
+                return
+            out = []
+            for index in indices:
+                board[2 * slot] = index
+                board[2 * slot + 1] = time.monotonic()
+                out.append((index, limited(jobs[index])))
+            board[2 * slot] = -1.0
+            conn.send(out)
+    except (EOFError, BrokenPipeError, KeyboardInterrupt):
+        return
+
+
+class _Slot:
+    __slots__ = ("conn", "held", "proc")
+
+    def __init__(self, proc: Any, conn: Any) -> None:
+        self.proc, self.conn = proc, conn
+        self.held: list[int] = []
+
+
+class _Pool(Generic[T, R]):
+    def __init__(
+        self,
+        jobs: Sequence[T],
+        limited: _Limited[T, R],
+        on_lost: Callable[[T, str], R],
+        workers: int,
+        timeout: float | None,
+        chunk: int,
+    ) -> None:
+        import multiprocessing as mp
+
+        methods = mp.get_all_start_methods()
+        # fork: a worker starts in milliseconds with mech already imported; the parent has no threads
+        self.ctx = mp.get_context("fork" if "fork" in methods else "spawn")
+        self.jobs, self.limited, self.on_lost = jobs, limited, on_lost
+        self.timeout = timeout
+        self.grace = None if timeout is None else 2.0 + 0.5 * timeout
+        self.board = self.ctx.Array("d", [-1.0, 0.0] * workers, lock=False)
+        self.queue: deque[list[int]] = deque(
+            list(range(i, min(i + chunk, len(jobs)))) for i in range(0, len(jobs), chunk)
+        )
+        self.slots: list[_Slot | None] = [None] * workers
+        self.done: dict[int, R] = {}
+
+    def _start(self, slot: int) -> _Slot:
+        parent, child = self.ctx.Pipe()
+        proc = self.ctx.Process(
+            target=_worker, args=(child, slot, self.board, self.limited, self.jobs), daemon=True
+        )
+        proc.start()
+        child.close()
+        self.board[2 * slot] = -1.0
+        s = _Slot(proc, parent)
+        self.slots[slot] = s
+        return s
+
+    def _lose(self, slot: int, why: str) -> None:
+        """A worker is dead or killed: its current job is lost, the rest go back to the queue."""
+        s = self.slots[slot]
+        assert s is not None
+        current = int(self.board[2 * slot])
+        if s.proc.is_alive():
+            s.proc.kill()
+        s.proc.join()
+        s.conn.close()
+        self.slots[slot] = None
+        rest = [i for i in s.held if i != current and i not in self.done]
+        if current >= 0 and current in s.held:
+            self.done[current] = self.on_lost(self.jobs[current], why)
+        elif not rest and s.held:  # died between jobs with nothing left: the first is the culprit
+            self.done[s.held[0]] = self.on_lost(self.jobs[s.held[0]], why)
+        if rest:
+            self.queue.appendleft(rest)
+
+    def results(self) -> Iterator[R]:
+        from multiprocessing.connection import wait
+
+        emitted = 0
+        try:
+            while emitted < len(self.jobs):
+                for slot, s in enumerate(self.slots):
+                    if (s is None or not s.held) and self.queue:
+                        s = s or self._start(slot)
+                        s.held = self.queue.popleft()
+                        s.conn.send(s.held)
+                busy = {s.conn: i for i, s in enumerate(self.slots) if s is not None and s.held}
+                ready = wait(list(busy), timeout=0.25) if busy else []
+                for conn in ready:
+                    slot = busy[conn]  # type: ignore[index]
+                    s = self.slots[slot]
+                    assert s is not None
+                    try:
+                        got = conn.recv()  # type: ignore[union-attr]
+                    except (EOFError, OSError):
+                        self._lose(slot, "crash")
+                        continue
+                    for index, result in got:
+                        self.done[index] = result
+                    s.held = []
+                self._police()
+                while emitted in self.done:
+                    yield self.done.pop(emitted)
+                    emitted += 1
+        finally:
+            self._close()
+
+    def _police(self) -> None:
+        """Kill a worker whose job is past the hard limit, or notice one that died."""
+        now = time.monotonic()
+        for slot, s in enumerate(self.slots):
+            if s is None or not s.held:
+                continue
+            if not s.proc.is_alive() and not s.conn.poll():
+                self._lose(slot, "crash")
+            elif (
+                self.grace is not None
+                and self.timeout is not None
+                and self.board[2 * slot] >= 0
+                and now - self.board[2 * slot + 1] > self.timeout + self.grace
+            ):
+                self._lose(slot, "timeout")
+
+    def _close(self) -> None:
+        for s in self.slots:
+            if s is None:
+                continue
+            try:
+                if s.proc.is_alive() and not s.held:
+                    s.conn.send(None)
+            except (OSError, ValueError):
+                pass
+        deadline = time.monotonic() + 1.0
+        for s in self.slots:
+            if s is None:
+                continue
+            if s.held:
+                s.proc.kill()
+            s.proc.join(max(0.0, deadline - time.monotonic()))
+            if s.proc.is_alive():
+                s.proc.kill()
+                s.proc.join()
+            s.conn.close()
+
+
+def cpu_count() -> int:
+    """CPUs this process may run on (the affinity mask where there is one)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        return os.cpu_count() or 1

@@ -1,0 +1,312 @@
+"""Grading a class with answer sheets: fair scores, located sheet errors, every row in every format.
+
+The class below is built so that each student's score can be worked by hand:
+
+* ``p1.yaml`` — the slider crank of ``tests/test_check.py`` (crank 0.1 m at 90°,
+  ω = 10 rad/s ccw, rod 0.3 m): the rod translates, so |v_B| = ω r = 1.0 m/s
+  and ω_rod = 0.  Its ``answers`` keys are the questions (the values in it are
+  not used): velocity.B, omega.rod.
+* ``p2.yaml`` — a four-bar count with ``asks: [dof, links.binary]``: Kutzbach
+  gives n = 3(4 − 1) − 2·4 = 1, and every link carries two joints: 4 binary.
+* ``p3.yaml`` — malformed YAML (the teacher's mistake) and ``p4.yaml`` — asks
+  nothing: both are left out of every score.
+
+So every student is asked 4 questions; a score is passed/4.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from pathlib import Path
+from xml.etree import ElementTree as ET
+
+import pytest
+
+from mech.batch import CheckOptions, Report, run
+from mech.check import ERROR, FAIL, IGNORED, PASS
+
+SLIDER = """\
+name: Slider crank
+links: [frame, crank, rod, piston]
+joints:
+  O: {type: revolute, links: [frame, crank], at: [0, 0]}
+  A: {type: revolute, links: [crank, rod]}
+  B: {type: revolute, links: [rod, piston], near: [0.3, 0]}
+  P: {type: prismatic, links: [piston, frame], path: {through: [0, 0], angle: 0}}
+lengths: {OA: 0.1, AB: 0.3}
+drive: {link: crank, angle: 90, omega: 10, direction: ccw}
+answers: {velocity.B: 0, omega.rod: 5}
+"""
+
+FOUR_BAR = """\
+name: Four-bar count
+links: [frame, crank, coupler, rocker]
+joints:
+  A: {type: revolute, links: [frame, crank]}
+  B: {type: revolute, links: [crank, coupler]}
+  C: {type: revolute, links: [coupler, rocker]}
+  D: {type: revolute, links: [rocker, frame]}
+"""
+
+QUESTIONS = {"p1.yaml": ("velocity.B", "omega.rod"), "p2.yaml": ("dof", "links.binary")}
+
+SHEETS = {
+    # every answer right; an answer to an excluded problem is ignored, not scored
+    "alice": "p1: {velocity.B: 1 m/s, omega.rod: 0}\np2: {dof: 1, links.binary: 4}\np3: {dof: 1}\n",
+    # answers only the easy key
+    "bob": "p2: {dof: 1}\n",
+    # one bad key (a speed given for ω) and keys that are not questions
+    "carol": (
+        "p1:\n  velocity.B: 1 m/s\n  omega.rod: 4 m/s\n"
+        "p2: {dof: 1, links.binary: 4, tolerance: 50%, chain: four-bar}\n"
+    ),
+    # not YAML
+    "dave": "p1: [\n",
+    # a wrong value, a misspelt point, a problem that does not exist
+    "erin": "p1: {velocity.B: 2 m/s, velocity.Z: 1, omega.rod: 0}\np9: {dof: 1}\n",
+}
+
+# which questions each student gets right, worked from the closed forms above
+RIGHT = {
+    "alice": {"velocity.B", "omega.rod", "dof", "links.binary"},
+    "bob": {"dof"},
+    "carol": {"velocity.B", "dof", "links.binary"},
+    "dave": set(),
+    "erin": {"omega.rod"},
+}
+
+
+@pytest.fixture
+def classroom(tmp_path: Path) -> Path:
+    problems = tmp_path / "problems"
+    problems.mkdir()
+    (problems / "p1.yaml").write_text(SLIDER)
+    (problems / "p2.yaml").write_text(FOUR_BAR + "asks: [dof, links.binary]\n")
+    (problems / "p3.yaml").write_text("links: [frame, crank\njoints: {\n")
+    (problems / "p4.yaml").write_text(FOUR_BAR.replace("Four-bar count", "No questions"))
+    sheets = tmp_path / "sheets"
+    sheets.mkdir()
+    for student, text in SHEETS.items():
+        (sheets / f"{student}.yaml").write_text(text)
+    return tmp_path
+
+
+def grade(classroom: Path, **kw: object) -> Report:
+    return run(CheckOptions((str(classroom / "problems"),), answers=str(classroom / "sheets"), jobs=1, **kw))
+
+
+def test_every_student_is_scored_passed_over_asked(classroom: Path) -> None:
+    report = grade(classroom)
+    asked = sum(len(q) for q in QUESTIONS.values())
+    got = {s.student: (s.passed, s.asked) for s in report.scores()}
+    assert got == {st: (len(right), asked) for st, right in RIGHT.items()}
+    for s in report.scores():
+        assert s.score == pytest.approx(len(RIGHT[s.student]) / asked)
+
+
+def test_the_denominator_is_the_same_for_every_student(classroom: Path) -> None:
+    scores = grade(classroom).scores()
+    assert {s.asked for s in scores} == {4}
+    assert {s.problems for s in scores} == {2}
+    # and each row of a counted problem holds exactly one scored verdict per question
+    for r in grade(classroom).results:
+        if r.student is not None and not r.sheet and not r.excluded:
+            name = Path(r.path).name
+            assert tuple(v.key for v in r.verdicts if v.scored) == QUESTIONS[name], r
+
+
+def test_broken_or_empty_problem_files_are_reported_once_and_excluded(classroom: Path) -> None:
+    report = grade(classroom)
+    teacher = {Path(r.path).name: r for r in report.teacher}
+    assert set(teacher) == {"p3.yaml", "p4.yaml"}
+    assert teacher["p3.yaml"].verdicts[0].status == ERROR
+    assert teacher["p3.yaml"].problems[0].where.line == 2  # located: where the unclosed list breaks
+    assert "asks nothing" in teacher["p4.yaml"].verdicts[0].message
+    # no student row for an excluded problem is scored
+    for r in report.results:
+        if r.student is not None and Path(r.path).name in ("p3.yaml", "p4.yaml"):
+            assert r.excluded and r.total == 0, r
+    alice_p3 = next(r for r in report.results if r.student == "alice" and r.path.endswith("p3.yaml"))
+    assert [v.status for v in alice_p3.verdicts] == [IGNORED]
+
+
+def test_a_student_answering_only_the_easy_key_scores_a_quarter(classroom: Path) -> None:
+    bob = {s.student: s for s in grade(classroom).scores()}["bob"]
+    assert (bob.passed, bob.failed, bob.errors, bob.asked) == (1, 3, 0, 4)
+
+
+def test_a_bad_key_costs_only_that_question_and_is_located(classroom: Path) -> None:
+    report = grade(classroom)
+    p1 = next(r for r in report.results if r.student == "carol" and r.path.endswith("p1.yaml"))
+    statuses = {v.key: v.status for v in p1.verdicts}
+    assert statuses == {"velocity.B": PASS, "omega.rod": ERROR}
+    bad = next(v for v in p1.verdicts if v.key == "omega.rod")
+    assert bad.where.path.endswith("carol.yaml") and (bad.where.line, bad.where.column) == (3, 14)
+    assert "m/s" in bad.message
+
+
+def test_sheet_keys_that_are_not_questions_are_ignored_and_reported(classroom: Path) -> None:
+    report = grade(classroom)
+    carol_p2 = next(r for r in report.results if r.student == "carol" and r.path.endswith("p2.yaml"))
+    ignored = {v.key: v for v in carol_p2.verdicts if v.status == IGNORED}
+    assert set(ignored) == {"tolerance", "chain"}
+    assert "cannot set a tolerance" in ignored["tolerance"].message
+    assert "not a question" in ignored["chain"].message
+    erin_p1 = next(r for r in report.results if r.student == "erin" and r.path.endswith("p1.yaml"))
+    z = next(v for v in erin_p1.verdicts if v.key == "velocity.Z")
+    assert z.status == IGNORED and "unknown point 'Z'" in z.message and z.where.line == 1
+    sheet_rows = [r for r in report.results if r.sheet and r.student == "erin"]
+    assert [(v.key, v.status, v.where.line) for r in sheet_rows for v in r.verdicts] == [("p9", IGNORED, 2)]
+
+
+def test_every_problem_in_every_sheet_is_reported_in_one_run(classroom: Path) -> None:
+    report = grade(classroom)
+    located = {
+        (Path(v.where.path).stem, v.key)
+        for r in report.results
+        for v in r.verdicts
+        if v.status in (ERROR, IGNORED) and v.where is not None and v.where.line
+    }
+    assert {
+        ("carol", "omega.rod"),
+        ("carol", "tolerance"),
+        ("carol", "chain"),
+        ("erin", "velocity.Z"),
+        ("erin", "p9"),
+        ("alice", "dof"),
+    } <= located
+    dave = next(r for r in report.results if r.sheet and r.student == "dave")
+    assert dave.problems[0].where.line == 2 and dave.verdicts[0].status == ERROR
+
+
+def test_an_unreadable_sheet_scores_zero_over_the_same_questions(classroom: Path) -> None:
+    dave = {s.student: s for s in grade(classroom).scores()}["dave"]
+    assert (dave.passed, dave.errors, dave.asked) == (0, 4, 4)
+
+
+def test_the_teachers_tolerance_is_used(classroom: Path) -> None:
+    (classroom / "problems" / "p1.yaml").write_text(
+        SLIDER.replace("velocity.B: 0", "velocity.B: {value: 0, tolerance: 20%}")
+    )
+    (classroom / "sheets" / "bob.yaml").write_text("p1: {velocity.B: 1.15 m/s}\n")  # 15% off 1.0 m/s
+    bob = next(r for r in grade(classroom).results if r.student == "bob" and r.path.endswith("p1.yaml"))
+    assert [v.status for v in bob.verdicts] == [PASS, FAIL]  # velocity.B within 20%; omega.rod not answered
+
+
+def test_a_problem_answered_twice_on_a_sheet_is_an_error_for_its_questions(classroom: Path) -> None:
+    (classroom / "sheets" / "bob.yaml").write_text("p2: {dof: 1}\np2.yaml: {dof: 1}\n")
+    bob = next(r for r in grade(classroom).results if r.student == "bob" and r.path.endswith("p2.yaml"))
+    assert [v.status for v in bob.verdicts] == [ERROR, ERROR]
+    assert "answered twice" in bob.verdicts[0].message
+
+
+def test_one_key_answered_twice_in_an_entry_costs_that_question(classroom: Path) -> None:
+    (classroom / "sheets" / "bob.yaml").write_text("p2:\n  dof: 1\n  links.binary: 4\n  dof: 1\n")
+    bob = next(r for r in grade(classroom).results if r.student == "bob" and r.path.endswith("p2.yaml"))
+    assert {v.key: v.status for v in bob.verdicts} == {"dof": ERROR, "links.binary": PASS}
+
+
+# -- formats --------------------------------------------------------------------------------------
+def test_csv_has_a_row_per_student_and_problem_and_says_excluded(classroom: Path) -> None:
+    from mech.render.check import csv_text
+
+    rows = list(csv.DictReader(io.StringIO(csv_text(grade(classroom)))))
+    assert list(rows[0]) == ["student", "problem", "passed", "total", "score", "status"]
+    alice = {Path(r["problem"]).name: r for r in rows if r["student"] == "alice"}
+    assert (alice["p1.yaml"]["passed"], alice["p1.yaml"]["total"], alice["p1.yaml"]["score"]) == (
+        "2",
+        "2",
+        "100.0",
+    )
+    for name in ("p3.yaml", "p4.yaml"):
+        assert alice[name]["score"] == "" and alice[name]["status"].startswith("excluded")
+    teacher = [r for r in rows if r["student"] == "" and r["status"].startswith("excluded")]
+    assert sorted(Path(r["problem"]).name for r in teacher) == ["p3.yaml", "p4.yaml"]
+    for student in SHEETS:
+        assert {Path(r["problem"]).name for r in rows if r["student"] == student} >= {
+            "p1.yaml",
+            "p2.yaml",
+            "p3.yaml",
+            "p4.yaml",
+        }
+
+
+def test_junit_has_a_suite_for_every_row(classroom: Path) -> None:
+    from mech.render.check import junit_xml
+
+    report = grade(classroom)
+    root = ET.fromstring(junit_xml(report))
+    suites = root.findall("testsuite")
+    assert len(suites) == len(report.results)
+    assert int(root.get("failures")) == report.failed and int(root.get("errors")) == report.errors
+    excluded = [s for s in suites if s.get("name").endswith("p4.yaml") and ":" in s.get("name")]
+    assert excluded and all(s.find("testcase/skipped") is not None for s in excluded)
+
+
+def test_json_lists_scores_and_excluded_files(classroom: Path) -> None:
+    from mech.render.check import report_dict
+
+    data = json.loads(json.dumps(report_dict(grade(classroom))))
+    assert [Path(p).name for p in data["summary"]["excluded"]] == ["p3.yaml", "p4.yaml"]
+    students = {s["student"]: s for s in data["students"]}
+    assert students["carol"]["score"] == pytest.approx(0.75) and students["carol"]["ignored"] == 2
+
+
+def test_cli_class_lists_excluded_files_first_then_one_line_per_student(run, classroom: Path) -> None:
+    result = run("check", str(classroom / "problems"), "--answers", str(classroom / "sheets"))
+    assert result.exit_code == 1
+    lines = result.output.splitlines()
+    assert lines[0].startswith("excluded from every score")
+    assert sum("p3.yaml" in ln for ln in lines) == 1  # reported once
+    students = [ln for ln in lines if ln.split(" ")[0] in SHEETS]
+    assert [ln.split()[:3] for ln in students] == [
+        ["alice", "4/4", "100%"],
+        ["bob", "1/4", "25%"],
+        ["carol", "3/4", "75%"],
+        ["dave", "0/4", "0%"],
+        ["erin", "1/4", "25%"],
+    ]
+
+
+def test_cli_refuses_gradescope_for_a_class(run, classroom: Path) -> None:
+    result = run(
+        "check", str(classroom / "problems"), "--answers", str(classroom / "sheets"), "--gradescope", "r.json"
+    )
+    assert result.exit_code == 2
+
+
+def test_cli_writes_every_format(run, classroom: Path, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    out.mkdir()
+    result = run(
+        "check",
+        str(classroom / "problems"),
+        "--answers",
+        str(classroom / "sheets"),
+        "--junit",
+        str(out / "junit.xml"),
+        "--csv",
+        str(out / "grades.csv"),
+        "--json",
+    )
+    assert result.exit_code == 1
+    data = json.loads(result.stdout)
+    assert [s["student"] for s in data["students"]] == sorted(SHEETS)
+    assert ET.parse(out / "junit.xml").getroot().tag == "testsuites"
+    assert (out / "grades.csv").read_text().startswith("student,problem,passed,total,score,status")
+    assert not [p for p in out.iterdir() if p.name.startswith(".mech-")]  # no temporary file left
+
+
+def test_cli_gradescope_for_one_sheet_names_tests_by_file(run, classroom: Path, tmp_path: Path) -> None:
+    out = tmp_path / "results.json"
+    sheet = classroom / "sheets" / "carol.yaml"
+    result = run("check", str(classroom / "problems"), "--answers", str(sheet), "--gradescope", str(out))
+    assert result.exit_code == 1
+    data = json.loads(out.read_text())
+    assert data["score"] == 3.0
+    assert sum(t["max_score"] for t in data["tests"]) == 4.0  # the questions; ignored keys are worth 0
+    names = [t["name"] for t in data["tests"]]
+    assert any(n.startswith(str(classroom / "problems" / "p1.yaml")) for n in names)
+    assert any("p4.yaml" in n for n in names)  # excluded, but a row
