@@ -406,15 +406,26 @@ class Analysis:
 def _verdict(claim: Claim, analysis: Analysis, default: Tolerance) -> Verdict:
     akey = parse_key(claim.key)
     base = Verdict(claim.key, ERROR, claimed=claim.text or str(claim.value), where=claim.where)
+    tolerance = claim.tolerance or default
     try:
         value = akey.kind.compute(analysis, akey.names)
-        return _COMPARE[akey.compare](claim, akey, value, analysis, claim.tolerance or default, base)
+        verdict = _COMPARE[akey.compare](claim, akey, value, analysis, tolerance, base)
     except MechError as error:
         return _replace(base, status=ERROR, message=f"cannot be computed: {_reason(error)}")
     except (Undefined, InternalError) as why:
         return _replace(base, status=ERROR, message=str(why))
     except Exception as exc:  # a bug in a key's computation: this row says so, the others stand
         return _replace(base, status=ERROR, message=str(InternalError.of(exc)))
+    if verdict.status == FAIL:
+        from mech.diagnose import diagnose
+
+        try:
+            found = diagnose(claim, akey, value, analysis, tolerance)
+        except Exception:  # a diagnosis is a bonus: it never costs the verdict
+            found = None
+        if found:
+            verdict = _replace(verdict, diagnosis=found)
+    return verdict
 
 
 class InternalError(Exception):
