@@ -230,7 +230,8 @@ def moving_contact(b: Build, j: Joint) -> bool:
         n_loc = _rotate_into(b, line.link, n)
         u_loc = np.array([n_loc[1], -n_loc[0]])
         io, il = b.index[other.link], b.index[line.link]
-        if j.type is not JointType.GEAR:  # teeth keep the pitch line tangent: a gear adds only no-slip (h = 1)
+        # a gear's teeth keep its pitch line tangent: it adds only no slip (h = 1)
+        if j.type is not JointType.GEAR:
             b.online.append(OnLine(io, s_loc, il, t_loc, n_loc, want, j.name))
         if _rolls(j):
             if other.kind != "circle":
