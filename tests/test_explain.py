@@ -26,6 +26,11 @@ EXAMPLES = [
     "mechanisms/watt_six_bar.yaml",
     "mechanisms/stephenson_six_bar.yaml",
     "mechanisms/crank_slotted_lever_quick_return.yaml",
+    "mechanisms/whitworth_quick_return.yaml",
+    "mechanisms/khurmi_six_link_slider.yaml",
+    "mechanisms/khurmi_slider_crank_cg.yaml",
+    "mechanisms/gate_four_bar_translating_coupler.yaml",
+    "mechanisms/beer_johnston_engine.yaml",
 ]
 
 

@@ -159,6 +159,7 @@ class _Builder:
         self.ground = mech.ground
         self.fixed = {n for n in kin.positions if any(lk == mech.ground for lk in self._carriers(n))}
         self.steps: list[Step] = []
+        self.scale = 1.0  # SI units per cm of the drawing, set once the extent is known
         self.at: dict[str, Vec] = {"o" + self.mark: (0.0, 0.0)}  # polygon points by label (SI, from the pole)
         self.done: set[str] = set()  # mechanism points whose image is drawn
         self.counter = 0
@@ -552,7 +553,7 @@ def explain(mech: Mechanism, kin: Any, *, kind: str = "velocity") -> Constructio
     b = _Builder(mech, kin, acc)
     values = [b.value(n) for n in kin.positions]
     extent = max((_mag(v) for v in values), default=1.0)
-    b.scale = nice_scale(extent, 100.0)  # type: ignore[attr-defined]
+    b.scale = nice_scale(extent, 100.0)
     for line in prog.steps:
         m = _STEP.match(line)
         if m is None or line.startswith("pose"):
@@ -592,7 +593,7 @@ def explain(mech: Mechanism, kin: Any, *, kind: str = "velocity") -> Constructio
             results.append(
                 f"Angular acceleration of {link.name}: α = a^t_{n1}{n0} / {n0}{n1} = {_g(abs(rate) * length)} / {_g(length)} = {_g(abs(rate))} rad/s² ({sense})"
             )
-    return Construction(mech.label, kind, b.unit, b.scale, "o" + b.mark, tuple(b.steps), tuple(results))  # type: ignore[attr-defined]
+    return Construction(mech.label, kind, b.unit, b.scale, "o" + b.mark, tuple(b.steps), tuple(results))
 
 
 _KENNEDY = re.compile(r"^Kennedy: I(\S+)–I(\S+) ∩ I(\S+)–I(\S+)$")

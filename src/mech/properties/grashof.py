@@ -220,7 +220,7 @@ def _rings(
         neighbours.setdefault(b, set()).add(a)
     order = {link.name: link.index for link in mech.links}
     seen: set[frozenset[str]] = set()
-    rings = []
+    rings: list[tuple[tuple[str, ...], tuple[Joint, ...]]] = []
     for a in sorted(neighbours, key=lambda n: (not mech.link(n).is_ground, order[n])):
         nb = sorted(neighbours[a], key=order.__getitem__)
         for i, b in enumerate(nb):
@@ -231,8 +231,8 @@ def _rings(
                         continue  # a triangle or a loop with diagonals is not a four-bar
                     seen.add(ring)
                     links = (a, b, c, d)
-                    joints = tuple(pairs[frozenset((links[k], links[(k + 1) % 4]))][0] for k in range(4))
-                    rings.append((links, joints))
+                    ring_joints = tuple(pairs[frozenset((links[k], links[(k + 1) % 4]))][0] for k in range(4))
+                    rings.append((links, ring_joints))
     return rings
 
 
