@@ -167,3 +167,13 @@ def test_a_crank_with_angular_acceleration_adds_its_tangential_component():
     pts = rebuild(c)
     for name in ("B", "C"):
         assert math.dist(pts[name.lower() + "′"], kin.acceleration(name)) <= 1e-9 * 10
+
+
+def test_kennedy_circle_drawing_has_a_chord_per_icentre(tmp_path, run):
+    out = tmp_path / "k.svg"
+    result = run("icentres", "mechanisms/watt_six_bar.yaml", "--circle", str(out))
+    assert result.exit_code == 0
+    svg = out.read_text()
+    # 15 I-centres of six links: 7 pins by inspection, 8 diagonals by Kennedy's theorem
+    assert svg.count('class="kennedy-primary"') == 7
+    assert svg.count('class="kennedy-diagonal"') == 8

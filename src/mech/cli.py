@@ -389,8 +389,14 @@ def acceleration(request: Request, explain: bool) -> None:
 
 @cli.command()
 @_EXPLAIN_OPTION
+@click.option(
+    "--circle",
+    "circle_path",
+    type=click.Path(dir_okay=False),
+    help="Draw Kennedy's circle diagram to an .svg or .png file.",
+)
 @kinematic_command()
-def icentres(request: Request, explain: bool) -> None:
+def icentres(request: Request, explain: bool, circle_path: str | None) -> None:
     """Locate all n(n−1)/2 instantaneous centres at the crank angle.
 
     Primary I-centres by inspection (pins, sliders, rolling contacts), the
@@ -403,6 +409,11 @@ def icentres(request: Request, explain: bool) -> None:
 
     mechanism = load(request.file)
     result = locate(mechanism, solve(mechanism, level="velocity", options=request.options))
+    if circle_path:
+        from mech.draw import save
+        from mech.draw.kennedy import circle_diagram
+
+        save(circle_diagram(result, title=f"{mechanism.label}: Kennedy's circle diagram"), circle_path)
     if request.as_json:
         from mech.render.icentres import icentres_dict
         from mech.render.jsonout import dumps

@@ -1,0 +1,72 @@
+"""Kennedy's circle diagram as a drawing: the links numbered round a circle, I-centres as chords.
+
+Each I-centre I_ij is the chord joining numbers i and j: solid for those found
+by inspection (pins, sliders, rolling contacts), dashed and numbered in the
+order the Aronhold-Kennedy construction found them (a diagonal that closes two
+triangles of known sides).  The same construction :func:`mech.explain.explain_icentres`
+writes out.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from mech.draw.scene import INK, Circle, Figure, Line, Page, Style, Text
+
+__all__ = ["circle_diagram"]
+
+R = 32.0  # circle radius, mm
+MARGIN = 22.0
+
+
+def circle_diagram(ics: Any, *, title: str = "Kennedy's circle diagram") -> Figure:
+    """The circle diagram of located I-centres (:func:`mech.icentres.locate`)."""
+    n = len(ics.links)
+    cx = cy = MARGIN + R
+    page = Page(2 * (MARGIN + R) + 40.0, 2 * (MARGIN + R) + 12.0)
+    cx += 20.0
+    page.add(Text((6.0, 6.0), title, 3.4, "start", bold=True, cls="title"))
+    page.add(Circle((cx, cy + 6.0), R, Style("#999999", 0.25), "kennedy-circle"))
+
+    def spot(k: int) -> tuple[float, float]:  # number k (1-based), clockwise from the top
+        a = math.pi / 2 - 2 * math.pi * (k - 1) / n
+        return (cx + R * math.cos(a), cy + 6.0 - R * math.sin(a))
+
+    later = sorted(
+        (c for c in ics.centres if not c.primary),
+        key=lambda c: (c.step if c.step is not None else 99, c.numbers),
+    )
+    order = {c.numbers: k for k, c in enumerate(later, 1)}
+    for c in ics.centres:
+        p, q = spot(c.numbers[0]), spot(c.numbers[1])
+        if c.primary:
+            page.add(Line(p, q, Style(INK, 0.45), "kennedy-primary", c.name))
+        else:
+            page.add(Line(p, q, Style("#1f77b4", 0.35, dash=(1.5, 1.0)), "kennedy-diagonal", c.name))
+            # a third of the way along from the lower number: diameters do not share their label spot
+            mx, my = p[0] + (q[0] - p[0]) / 3, p[1] + (q[1] - p[1]) / 3
+            page.add(
+                Text((mx + 1.0, my - 1.0), f"{order[c.numbers]}", 2.6, "start", "#1f77b4", cls="kennedy-step")
+            )
+    for k, link in enumerate(ics.links, 1):
+        x, y = spot(k)
+        page.add(Circle((x, y), 1.2, Style(INK, 0.3, fill="#ffffff"), "kennedy-node", link))
+        ox, oy = x - cx, y - (cy + 6.0)
+        d = math.hypot(ox, oy) or 1.0
+        page.add(
+            Text(
+                (x + 5.0 * ox / d, y + 5.0 * oy / d + 1.0), f"{k} {link}", 3.0, "middle", cls="kennedy-label"
+            )
+        )
+    page.add(
+        Text(
+            (6.0, page.height - 3.0),
+            "solid: by inspection; dashed: by Kennedy's theorem, numbered in order",
+            2.6,
+            "start",
+            "#333333",
+            cls="caption",
+        )
+    )
+    return page.figure(title)
