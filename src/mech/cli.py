@@ -584,7 +584,7 @@ def sweep_command(
         if plot_path:
             render.sweep_plot_file(plot_path, result, units=units, quantities=quantities)
         if gif_path:
-            render.sweep_animation_file(gif_path, mechanism, result)
+            render.sweep_animation_file(gif_path, mechanism, result, paths=paths)
         if svg_path:
             _path_svg(svg_path, mechanism, result, paths, request.options)
         if request.as_json:

@@ -130,3 +130,23 @@ def test_draw_traces_paths_and_centrodes(tmp_path, write, run):
 def test_centrodes_of_the_ground_are_refused(write, run):
     result = run("draw", str(write(TEXT)), "-o", "x.svg", "--centrodes", "frame")
     assert result.exit_code == 2 and "ground has no centrodes" in result.stderr
+
+
+def test_sweep_animation_traces_the_path(tmp_path, write, run, monkeypatch):
+    pytest.importorskip("matplotlib")
+    import mech.draw.plot as plot
+
+    seen = {}
+    real = plot.animate
+
+    def spy(path, mech, kin, frames, **kw):
+        seen["curves"] = kw.get("curves")
+        return real(path, mech, kin, frames[:2], **kw)  # two frames are enough to write a GIF
+
+    monkeypatch.setattr(plot, "animate", spy)
+    out = tmp_path / "a.gif"
+    result = run("sweep", str(write(TEXT)), "--path", "E", "--animate", str(out), "--steps", "12")
+    assert result.exit_code == 0, result.output
+    ((label, points, kind),) = seen["curves"]
+    assert (label, kind, len(points)) == ("path of E", "path", 13)
+    assert out.stat().st_size > 0

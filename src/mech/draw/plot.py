@@ -135,8 +135,12 @@ def animate(
     *,
     fps: int = 24,
     dpi: int = 100,
+    curves: Sequence[tuple[str, Sequence[Vec], str]] = (),
 ) -> None:
     """An animated GIF of the mechanism over a cycle, one frame per set of positions.
+
+    ``curves`` (label, points, kind) are traced in every frame (a coupler
+    point's path: the point runs along it).
 
     ``kin`` is one solve of the mechanism (it tells which points each link
     carries and how the guides lie); ``frames`` are the positions at each
@@ -154,7 +158,9 @@ def animate(
     view = fit_view([p for frame in frames for p in frame.values()])
     images = []
     for frame in frames:
-        fig = configuration(mech, kin, positions=frame, view=view, title=getattr(mech, "label", ""))
+        fig = configuration(
+            mech, kin, positions=frame, view=view, title=getattr(mech, "label", ""), curves=curves
+        )
         images.append(Image.fromarray(render_rgb(fig, dpi=dpi)).convert("P", palette=Image.Palette.ADAPTIVE))
     images[0].save(
         str(path),

@@ -245,8 +245,13 @@ def sweep_plot_file(path: str, sw: Sweep, *, units: OutputUnits, quantities: tup
     )
 
 
-def sweep_animation_file(path: str, mech: Any, sw: Sweep, *, frames: int = 72) -> None:
-    """An animated GIF of the positions, about ``frames`` assembled steps of the sweep."""
+def sweep_animation_file(
+    path: str, mech: Any, sw: Sweep, *, frames: int = 72, paths: tuple[str, ...] = ()
+) -> None:
+    """An animated GIF of the positions, about ``frames`` assembled steps of the sweep.
+
+    ``paths``: points whose whole path (from every step) is traced in each frame.
+    """
     from mech.draw.plot import animate
     from mech.kinematics import solve
 
@@ -260,4 +265,8 @@ def sweep_animation_file(path: str, mech: Any, sw: Sweep, *, frames: int = 72) -
         }
         for i in pick
     ]
-    animate(path, mech, kin, shots)
+    curves = [
+        (f"path of {p}", [(float(x), float(y)) for x, y in sw.positions[:, sw.points.index(p), :]], "path")
+        for p in paths
+    ]
+    animate(path, mech, kin, shots, curves=curves)
