@@ -12,7 +12,6 @@ from types import SimpleNamespace
 
 import pytest
 
-from mech.cam.mechanism import cam_joints
 from mech.draw import draw, save
 from mech.draw.polygon import acceleration_polygon, velocity_polygon
 from mech.draw.scene import nice_scale
@@ -27,14 +26,12 @@ SVG = "{http://www.w3.org/2000/svg}"
 
 
 def kinematic_examples() -> list[Path]:
-    """Shipped examples with a drive and geometry: the ones that can be drawn.
-
-    A cam given by its follower's programme is drawn by ``mech cam`` (tests/cam/), not here.
-    """
+    """Shipped examples with a driven speed and geometry: the ones drawn with their polygons."""
     out = []
     for path in sorted(MECHANISMS.glob("*.yaml")):
         m = load(path)
-        if m.drives and m.has_geometry and not cam_joints(m):
+        speeds = all(d.omega is not None or d.speed is not None for d in m.drives)
+        if m.drives and m.has_geometry and speeds:
             out.append(path)
     return out
 
