@@ -187,6 +187,25 @@ def test_cam_and_follower_file():
     assert_laws(ic, kin)
 
 
+@pytest.mark.parametrize("deg", [0.0, 30.0, 100.0, 250.0])
+def test_moving_eccentric_cam_centre_lies_on_the_common_normal_under_the_disc_centre(deg):
+    # The flat face's normal at the contact passes through the disc's centre E, and the
+    # follower translates: Kennedy puts I23 on that vertical through E, on the line of
+    # centres (the x axis): x = e cos θ, where the cam's speed ω·x is the follower's.
+    ic, kin = located("eccentric_cam.yaml", angle=math.radians(deg))
+    assert ic.get("cam", "follower").point == pytest.approx(
+        (0.015 * math.cos(math.radians(deg)), 0.0), abs=REL * 0.05
+    )
+    assert_laws(ic, kin)
+
+
+def test_rolling_wheel_centre_with_the_ground_is_the_contact_point():
+    ic, kin = located("rolling_wheel.yaml", angle=math.radians(200))
+    x_b = kin.positions["B"][0]
+    assert ic.get("frame", "wheel").point == pytest.approx((x_b, 0.0), abs=REL * 0.1)
+    assert_laws(ic, kin)
+
+
 @pytest.mark.parametrize(
     "name", ["watt_six_bar.yaml", "stephenson_six_bar.yaml", "whitworth_quick_return.yaml"]
 )
