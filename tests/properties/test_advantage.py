@@ -146,3 +146,20 @@ def test_properties_command_shows_advantage_three_ways_and_the_input_torque(writ
 def test_properties_refuses_an_unknown_output(run):
     result = run("properties", "mechanisms/four_bar.yaml", "--output", "nothing")
     assert result.exit_code == 2 and "neither a link nor a point" in result.stderr
+
+
+def test_slider_drive_input_force_balances_a_torque_on_the_slotted_link():
+    # Hibbeler 16-48: B = (0.6, y) rises with the cylinder; the link's angle θ = atan2(y, 0.6), so
+    # dθ/dy = 0.6 / (0.36 + y²) = 0.8333 per m at y = 0.6 m. A torque T on the link is balanced by
+    # a force F along the cylinder's path with F·dy + T·dθ = 0: F = −T·dθ/dy.
+    text = load("mechanisms/hibbeler_slotted_link_cylinder.yaml").source.split("answers:")[0]
+    mech = loads(text + 'loads: {link: {torque: "12 N m"}}\n')
+    kin = solve(mech, "velocity")
+    dtheta_dy = 0.6 / (0.36 + 0.6**2)
+    effort = input_effort(mech, kin)
+    assert effort.kind == "force" and effort.by_virtual_work is None  # a slider drive is not turned by θ ± h
+    assert effort.value == pytest.approx(-12.0 * dtheta_dy, rel=1e-9)
+    ma = mechanical_advantage(mech, kin, "link")
+    assert (ma.unit, ma.value) == ("m", pytest.approx(1 / dtheta_dy, rel=1e-9))
+    (verdict,) = check(loads(text + 'loads: {link: {torque: "12 N m"}}\nanswers:\n  input_force: "-10 N"\n'))
+    assert verdict.status == "pass", verdict.message

@@ -116,8 +116,14 @@ def _advantages(
         disp = virtual_displacements(mech, kin, options=options) if kin.drives[0].link else None
         drive = kin.drives[0].link
         names = list(outputs) or [lk.name for lk in mech.moving_links if lk.name != drive]
-        if not outputs:
-            names += [ld.target for ld in mech.loads if ld.force is not None and ld.target not in names]
+        if not outputs:  # loaded points that move (a force on a ground pivot does no work)
+            names += [
+                ld.target
+                for ld in mech.loads
+                if ld.force is not None
+                and ld.target not in names
+                and mech.ground not in _carriers(mech, ld.target)
+            ]
         out = tuple(
             mechanical_advantage(mech, kin, n, icentres=ics, options=options, displacements=disp)
             if ics is not None
@@ -130,3 +136,10 @@ def _advantages(
             raise
         return (), None, error.problems[0].message if error.problems else str(error)
     return out, effort, None
+
+
+def _carriers(mech: Mechanism, name: str) -> tuple[str, ...]:
+    for p in mech.points:
+        if p.name == name:
+            return (p.link,)
+    return mech.joint(name).located_on
