@@ -129,7 +129,7 @@ def test_drawing_to_an_unknown_format_is_refused_with_exit_2(run, tmp_path):
 def test_file_without_a_programme_is_refused_with_exit_2(run):
     result = run("cam", str(MECHANISMS / "cam_follower.yaml"))
     assert result.exit_code == 2
-    assert "no cam joint with a `program`" in result.stderr
+    assert "cam_follower.yaml: error: this mechanism has no cam joint with a `program`" in result.stderr
 
 
 def mech(follower_joint: str, k_extra: str = "", drive: str = "", program: str = PROGRAM, more: str = ""):

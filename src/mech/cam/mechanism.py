@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 from mech._records import dataclass
 from mech.cam.profile import CamLayout, evaluate, layout_problem
 from mech.cam.program import CamProgram, resolve
-from mech.errors import InputError, UnsupportedError
+from mech.errors import InputError, UnsupportedError, Where
 from mech.model import Joint, JointType, Mechanism, Ref
 
 if TYPE_CHECKING:
@@ -117,13 +117,14 @@ def cam_setup(
     if not cams:
         raise UnsupportedError(
             "this mechanism has no cam joint with a `program`",
-            where=None,
+            where=Where(mechanism.path),
             hint="give a cam joint `program: {base_radius, follower, segments}` (cli.md § mech cam)",
         )
     if joint is None:
         if len(cams) > 1:
             raise UnsupportedError(
                 f"this mechanism has {len(cams)} cams with a programme ({', '.join(j.name for j in cams)})",
+                where=Where(mechanism.path),
                 hint="name one with --joint",
             )
         cj = cams[0]
@@ -131,7 +132,9 @@ def cam_setup(
         named = [j for j in cams if j.name == joint]
         if not named:
             raise UnsupportedError(
-                f"no cam joint {joint!r} with a programme", hint="cams: " + ", ".join(j.name for j in cams)
+                f"no cam joint {joint!r} with a programme",
+                where=Where(mechanism.path),
+                hint="cams: " + ", ".join(j.name for j in cams),
             )
         cj = named[0]
     raw = joint_program(cj)

@@ -147,6 +147,8 @@ def layout_problem(layout: CamLayout) -> str | None:
     if layout.pivot is None or layout.arm is None:
         return "an oscillating follower needs its pivot and its arm's length"
     d = math.hypot(*layout.pivot)
+    if not d > 1e-9 * (prog.base_radius + layout.roller):
+        return "the follower's pivot is at the cam's centre: it cannot swing the follower off the cam"
     if prog.follower == "flat":
         if abs(prog.base_radius - layout.arm) > d:
             return "the flat face cannot touch the base circle from that pivot"
