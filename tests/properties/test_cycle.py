@@ -93,6 +93,41 @@ def test_transmission_angle_at_the_instant_is_the_cosine_rule(links, angle):
     assert mu == pytest.approx(mu_closed(d, a, b, c, math.radians(angle)), abs=1e-9)
 
 
+def bd_range(d: float, a: float, b: float, c: float) -> tuple[float, float]:
+    """The diagonal BD the loop can take: BD(θ) ∈ [|d − a|, d + a] and the closure [|b − c|, b + c]."""
+    return max(abs(d - a), abs(b - c)), min(d + a, b + c)
+
+
+def mu_of(b: float, c: float, bd: float) -> float:
+    """The cosine rule in its half-angle form, exact at the ends (μ = 0 at BD = |b − c|, π at b + c):
+    tan(μ/2) = √((BD² − (b − c)²) / ((b + c)² − BD²))."""
+    return 2 * math.atan2(
+        math.sqrt(max(bd * bd - (b - c) ** 2, 0.0)), math.sqrt(max((b + c) ** 2 - bd * bd, 0.0))
+    )
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    d=st.floats(min_value=20.0, max_value=200.0),
+    a=st.floats(min_value=20.0, max_value=200.0),
+    b=st.floats(min_value=20.0, max_value=200.0),
+    c=st.floats(min_value=20.0, max_value=200.0),
+    angle=st.integers(min_value=0, max_value=359),
+)
+def test_transmission_angle_extremes_of_every_grashof_class_are_at_the_ends_of_bd(d, a, b, c, angle):
+    # crank-rockers and double-cranks reach the ends of BD at θ = 0 and 180°; double-rockers and
+    # triple rockers at the toggles, where coupler and output lie in line (μ = 0 or 180°)
+    ordered = sorted((a, b, c, d))
+    assume(abs(ordered[0] + ordered[3] - ordered[1] - ordered[2]) > 1e-2 * ordered[3])  # not change-point
+    th = math.radians(angle)
+    bd = math.hypot(a * math.cos(th) - d, a * math.sin(th))
+    lo, hi = bd_range(d, a, b, c)
+    assume(lo + 0.02 * ordered[3] < bd < hi - 0.02 * ordered[3])  # assembles, clear of a toggle
+    result = cycle(loads(four_bar_text(d, a, b, c, angle)))
+    assert result.mu_min == pytest.approx(mu_of(b, c, lo), abs=1e-9)
+    assert result.mu_max == pytest.approx(mu_of(b, c, hi), abs=1e-9)
+
+
 def test_four_bar_rocker_swing_and_time_ratio_match_the_limit_positions():
     d, a, b, c = 150.0, 40.0, 150.0, 80.0  # Khurmi Ex. 7.1
     result = cycle(load("mechanisms/four_bar.yaml"))

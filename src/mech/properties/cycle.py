@@ -236,6 +236,10 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
     sw = sweep(mech, angles, level="position", options=options, quantities=quantities or None)
     ext = {e.quantity: e for e in sw.extremes}
     mu = ext.get(trans.quantity) if trans else None
+    mu_min = (mu.min_value, mu.min_angle) if mu else None
+    mu_max = (mu.max_value, mu.max_angle) if mu else None
+    if trans is not None:
+        mu_min, mu_max = _toggle_extremes(sw, trans, mu_min, mu_max)
     strokes: dict[str, Stroke] = {}
     turning: list[str] = []
     for (joint, kind, subject), key in zip(subjects, slides_and_links, strict=True):
@@ -272,10 +276,10 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
     return Cycle(
         sweep=sw,
         transmission=trans,
-        mu_min=mu.min_value if mu else None,
-        mu_min_angle=mu.min_angle if mu else None,
-        mu_max=mu.max_value if mu else None,
-        mu_max_angle=mu.max_angle if mu else None,
+        mu_min=mu_min[0] if mu_min else None,
+        mu_min_angle=mu_min[1] if mu_min else None,
+        mu_max=mu_max[0] if mu_max else None,
+        mu_max_angle=mu_max[1] if mu_max else None,
         limits=limits,
         strokes=strokes,
         turning=tuple(turning),
@@ -283,6 +287,39 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
         time_ratio_output=sw.time_ratio.output if sw.time_ratio else None,
         gaps=tuple((g.start, g.end) for g in sw.gaps),
     )
+
+
+def _toggle_extremes(
+    sw: Sweep,
+    trans: Transmission,
+    mu_min: tuple[float, float] | None,
+    mu_max: tuple[float, float] | None,
+) -> tuple[tuple[float, float] | None, tuple[float, float] | None]:
+    """Where the crank cannot turn, μ reaches 0 or 180° at the toggles of coupler and output.
+
+    A sweep's extreme next to a gap is its last assembled step; but at the
+    gap's edge (located to rounding) the coupler and the output lie in one
+    line, so the transmission angle there is exactly 0 (folded) or π
+    (extended): the side is read from the nearest assembled step.
+    """
+    import numpy as np
+
+    series = sw.series(trans.quantity)
+    ok = np.isfinite(series)
+    if not np.any(ok):
+        return mu_min, mu_max
+    links = {trans.coupler, trans.output}
+    for event in sw.toggles:
+        words = event.subject.split(" in line at ")
+        if len(words) != 2 or words[1] != trans.joint or set(words[0].split(" and ")) != links:
+            continue
+        nearest = int(np.argmin(np.where(ok, np.abs(sw.angles - event.angle), np.inf)))
+        value = math.pi if series[nearest] > math.pi / 2 else 0.0
+        if value == 0.0 and (mu_min is None or value < mu_min[0]):
+            mu_min = (value, event.angle)
+        if value == math.pi and (mu_max is None or value > mu_max[0]):
+            mu_max = (value, event.angle)
+    return mu_min, mu_max
 
 
 def stroke_joints(mech: Mechanism) -> Sequence[str]:
