@@ -248,3 +248,17 @@ def test_rack_and_pinion_rack_travels_the_pitch_arc_at_constant_speed():
     assert sw.positions[:, k, 0] == pytest.approx(0.050 * ANGLES, abs=1e-12)
     assert sw.velocities[:, k, 0] == pytest.approx(np.full(ANGLES.size, 0.050 * w), rel=1e-12)
     assert np.abs(sw.accelerations[:, k, :]).max() < 1e-9 * 0.050 * w**2
+
+
+def test_a_contact_point_drawn_away_from_where_the_profiles_touch_is_refused():
+    x_k = 15 * math.cos(math.radians(30))  # mm: the face touches the disc above its centre
+    doc = _cam("{line: {through: F, angle: 0}}", "F", 47.5).replace(
+        "K: {type: cam, links: [cam, follower],",
+        f"K: {{type: cam, links: [cam, follower], at: [{x_k + 1!r}, 47.5],",
+    )
+    with pytest.raises(InputError, match="1 mm from where its profiles touch"):
+        solve(loads(doc, path="cam.yaml"), "velocity")
+    good = doc.replace(f"at: [{x_k + 1!r}, 47.5]", f"at: [{x_k!r}, 47.5]")
+    assert solve(loads(good, path="cam.yaml"), "velocity").positions["K"][0] == pytest.approx(
+        0.015 * math.cos(math.radians(30))
+    )

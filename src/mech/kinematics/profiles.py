@@ -179,7 +179,31 @@ def _dir(b: Build, link: str, u: np.ndarray) -> Callable[[np.ndarray], np.ndarra
 
 
 def moving_contact(b: Build, j: Joint) -> bool:
-    """Add the rows of ``j``'s profiles to ``b``; False when ``j`` has none (the instant rows apply)."""
+    """Add the rows of ``j``'s profiles to ``b``; False when ``j`` has none (the instant rows apply).
+
+    A contact point drawn with ``at`` as well must be where the profiles touch.
+    """
+    if not _moving_contact(b, j):
+        return False
+    locate = b.locators.get(j.name)
+    if locate is not None and j.place.at is not None and j.name in b.pos:
+        gap = float(math.hypot(*(locate(b.q0) - b.scn(j.name))))
+        if gap > TOUCH:
+            from mech.units import to_unit
+
+            unit = b.lay.mech.length_unit
+            b.problems.append(
+                Problem(
+                    f"joint {j.name} is drawn at a point {to_unit(gap * b.scale, unit):.4g} {unit} from "
+                    "where its profiles touch",
+                    j.where,
+                    "leave `at` out (the profiles give the contact point) or correct it",
+                )
+            )
+    return True
+
+
+def _moving_contact(b: Build, j: Joint) -> bool:
     profiles = drawn_profiles(b.lay, j, b.pos)
     if not profiles:
         return False
