@@ -177,3 +177,39 @@ def test_kennedy_circle_drawing_has_a_chord_per_icentre(tmp_path, run):
     # 15 I-centres of six links: 7 pins by inspection, 8 diagonals by Kennedy's theorem
     assert svg.count('class="kennedy-primary"') == 7
     assert svg.count('class="kennedy-diagonal"') == 8
+
+
+MOVING_GUIDE = """
+name: slider on a moving lever
+units: {length: mm, angle: deg}
+links: [frame, crank, block1, lever, rod, block2]
+joints:
+  O: {type: revolute, links: [frame, crank], at: [0, 0]}
+  A: {type: revolute, links: [crank, block1]}
+  slot1: {type: prismatic, links: [block1, lever], path: {through: Q, toward: R}}
+  Q: {type: revolute, links: [lever, frame], at: [0, -200]}
+  P: {type: revolute, links: [crank, rod], from: O, toward: A, distance: 60}
+  B: {type: revolute, links: [rod, block2], near: [60, 100]}
+  slot2: {type: prismatic, links: [block2, lever], path: {through: Q, toward: R}}
+lengths: {OA: 100, PB: 150}
+points:
+  R: {link: lever, at: [130.93073414, 177.96447301]}
+drive: {link: crank, angle: 30, rpm: 60, direction: ccw, alpha: 3}
+"""
+
+
+@pytest.mark.parametrize("kind", ["velocity", "acceleration"])
+def test_a_slider_on_a_moving_guide_starts_from_the_guides_point_under_it(kind):
+    from mech.loader import loads
+
+    mech = loads(MOVING_GUIDE)
+    kin = solve(mech, "acceleration")
+    c = explain(mech, kin, kind=kind)
+    mark = "′" if kind == "acceleration" else ""
+    located = [s.result for s in c.steps]
+    assert located.index("b₄" + mark) < located.index("b" + mark)  # the lever's point first, then b
+    pts = rebuild(c)
+    want = kin.velocity("B") if kind == "velocity" else kin.acceleration("B")
+    assert math.dist(pts["b" + mark], want) <= 1e-9 * math.hypot(*want)
+    if kind == "acceleration":
+        assert any(k.what.startswith("Coriolis") for s in c.steps for k in s.known)

@@ -374,7 +374,7 @@ class _Builder:
         known2: list[Known] = []
         s2 = gl
         if guide != self.ground:
-            self.at[gl] = self.value(b, guide)
+            self.guide_point(guide, b)
             if self.acc:
                 cor = self.kin.coriolis(joint)
                 s2 = f"~{b}c"
@@ -485,6 +485,21 @@ class _Builder:
         self.guide_images(guide, o, p, lpg)
         del r
 
+    def guide_point(self, guide: str, name: str) -> None:
+        """The image of the guide's point under ``name``, from two drawn points of the (known) guide."""
+        known = [
+            n
+            for n in self.mech.points_of(guide)
+            if n in self.kin.positions and (n in self.done or n in self.fixed)
+        ]
+        base = next(
+            ((p, q) for p in known for q in known if p < q and _mag(_sub(self.pos(q), self.pos(p))) > 0), None
+        )
+        if base is None:
+            raise UnsupportedError(f"{guide} has fewer than two drawn points: its image cannot be drawn")
+        p, q = base
+        self.image_step(guide, name, (p, self.label(p)), (q, self.label(q)), coincident=True)
+
     def guide_images(self, guide: str, o: str, p: str, lpg: str) -> None:
         lo = self.label(o)
         for name in self.mech.points_of(guide):
@@ -492,20 +507,38 @@ class _Builder:
                 continue
             self.image_step(guide, name, (o, lo), (p, lpg))
 
-    def image_step(self, link: str, name: str, base0: tuple[str, str], base1: tuple[str, str]) -> None:
+    def image_step(
+        self,
+        link: str,
+        name: str,
+        base0: tuple[str, str],
+        base1: tuple[str, str],
+        *,
+        coincident: bool = False,
+    ) -> None:
+        """Locate ``name``'s image by the link's image; ``coincident``: the point of ``link`` under ``name``."""
         (n0, l0), (n1, l1) = base0, base1
         r01 = _sub(self.pos(n1), self.pos(n0))
         r0x = _sub(self.pos(name), self.pos(n0))
         ratio = _mag(r0x) / _mag(r01)
         angle = _dir(r0x) - _dir(r01)
-        ln = self.label(name)
-        self.at[ln] = self.value(name)
-        self.done.add(name)
-        m = [self.measure("o" + self.mark, ln, f"{'v' if not self.acc else 'a'}_{name}")]
+        ln = self.label(name, link) if coincident else self.label(name)
+        self.at[ln] = self.value(name, link) if coincident else self.value(name)
+        if not coincident:
+            self.done.add(name)
+        m = [
+            self.measure(
+                "o" + self.mark,
+                ln,
+                f"{'v' if not self.acc else 'a'}_{name}" + (f" on {link}" if coincident else ""),
+            )
+        ]
+        turned = (math.degrees(angle) + 180.0) % 360.0 - 180.0
         text = (
-            f"Locate {ln} by the {'velocity' if not self.acc else 'acceleration'} image of {link}: "
-            f"{l0.rstrip('′')}{ln.rstrip('′')} / {l0.rstrip('′')}{l1.rstrip('′')} = {n0}{name} / {n0}{n1} = {_g(ratio)}, "
-            f"turned {math.degrees(angle) % 360:.1f}° from {l0}{l1} as {n0}{name} is from {n0}{n1}: "
+            f"Locate {ln} by the {'velocity' if not self.acc else 'acceleration'} image of {link}"
+            + (f" (its point under {name})" if coincident else "")
+            + f": {l0.rstrip('′')}{ln.rstrip('′')} / {l0.rstrip('′')}{l1.rstrip('′')} = {n0}{name} / {n0}{n1} = {_g(ratio)}, "
+            f"turned {turned:.1f}° from {l0}{l1} as {n0}{name} is from {n0}{n1}: "
             f"{m[0].name} = {m[0].meaning} = {_g(m[0].magnitude)} {self.unit} ({_g(m[0].magnitude / self.scale)} cm), "
             f"direction {_deg(m[0].direction)}."
         )
