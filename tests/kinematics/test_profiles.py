@@ -22,6 +22,8 @@ import textwrap
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from mech.errors import InputError
 from mech.kinematics import solve
@@ -262,3 +264,40 @@ def test_a_contact_point_drawn_away_from_where_the_profiles_touch_is_refused():
     assert solve(loads(good, path="cam.yaml"), "velocity").positions["K"][0] == pytest.approx(
         0.015 * math.cos(math.radians(30))
     )
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    e=st.floats(2.0, 30.0),
+    extra=st.floats(5.0, 60.0),
+    r=st.floats(2.0, 25.0),
+    deg=st.integers(0, 3590).map(lambda k: k / 10),  # tenths of a degree (mech refuses 1e-38 rad)
+    rpm=st.floats(10.0, 3000.0),
+)
+def test_roller_on_any_eccentric_cam_follows_its_equivalent_slider_crank(e, extra, r, deg, rpm):
+    # Law: circle on circle keeps the centres R + r apart, so the roller centre is the piston of
+    # the in-line slider crank (crank e, rod R + r) for every geometry, angle and speed.
+    big = e + extra  # the disc's radius, larger than its eccentricity
+    th, w = math.radians(deg), rpm * math.pi / 30
+    y0 = e * math.sin(th) + math.sqrt((big + r) ** 2 - (e * math.cos(th)) ** 2)
+    doc = textwrap.dedent(
+        f"""
+        units: {{length: mm, angle: deg}}
+        links: [frame, cam, follower]
+        joints:
+          O: {{type: revolute, links: [frame, cam], at: [0, 0]}}
+          S: {{type: prismatic, links: [follower, frame], path: {{through: [0, 0], angle: 90}}, point: C}}
+          K: {{type: cam, links: [cam, follower],
+              profiles: {{cam: {{circle: {{centre: E, radius: {big!r}}}}}, follower: {{circle: {{centre: C, radius: {r!r}}}}}}}}}
+        points:
+          E: {{link: cam, at: [{e * math.cos(th)!r}, {e * math.sin(th)!r}]}}
+          C: {{link: follower, at: [0, {y0!r}]}}
+        drive: {{link: cam, angle: {deg!r}, rpm: {rpm!r}, direction: ccw}}
+        """
+    )
+    kin = solve(loads(doc, path="cam.yaml"), "acceleration")
+    s, v, a = (float(x[0]) for x in _slider_crank(e / 1000, (big + r) / 1000, np.array([th]), w))
+    size = (big + r + e) / 1000
+    assert kin.positions["C"][1] == pytest.approx(s, abs=1e-12 * size)
+    assert kin.velocity("C")[1] == pytest.approx(v, abs=1e-10 * size * w)
+    assert kin.acceleration("C")[1] == pytest.approx(a, abs=1e-9 * size * w**2)
