@@ -200,8 +200,6 @@ def classify(mechanism: Mechanism) -> Topology:
     Where the file gives a four-bar loop's lengths, Grashof's criterion for it
     comes too (:func:`mech.properties.grashof.linkage_loops`, pure Python).
     """
-    from mech.properties.grashof import linkage_loops
-
     links = tuple(
         LinkClass(
             name=link.name,
@@ -234,9 +232,18 @@ def classify(mechanism: Mechanism) -> Topology:
         pairs=pairs,
         count=dof(mechanism),
         chain=chain_name(mechanism),
-        loops=linkage_loops(mechanism),
+        loops=_loops(mechanism),
         length_unit=mechanism.length_unit,
     )
+
+
+def _loops(mechanism: Mechanism) -> tuple[Any, ...]:
+    """Grashof loops, when the file gives any geometry (a DOF exercise does not even import them)."""
+    if not mechanism.lengths and not any(j.place.at is not None for j in mechanism.joints):
+        return ()
+    from mech.properties.grashof import linkage_loops
+
+    return linkage_loops(mechanism)
 
 
 def chain_name(mechanism: Mechanism) -> str | None:
