@@ -829,12 +829,8 @@ def _check_gears(lay: Layout, positions: dict[str, tuple[float, float]], fmt: Ca
 
 
 def _pitch_radii(j: Joint) -> tuple[float, float] | None:
-    """A gear's pitch radii: given, or teeth·module/2."""
-    if j.radii is not None:
-        return j.radii
-    if j.teeth is not None and j.module is not None:
-        return (j.teeth[0] * j.module / 2.0, j.teeth[1] * j.module / 2.0)
-    return None
+    """A gear's pitch radii: given, or teeth·module/2 (:attr:`mech.pairs.specs.GearSpec.pitch_radii`)."""
+    return getattr(j.spec, "pitch_radii", None)
 
 
 def gear_pitch_points(lay: Layout, positions: dict[str, tuple[float, float]]) -> None:

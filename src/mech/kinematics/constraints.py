@@ -501,9 +501,9 @@ def gear_row(
         return None
     carrier = common[0]
     o1, o2 = pos[c1[carrier]], pos[c2[carrier]]
-    radii = j.radii
-    if radii is None and j.teeth is not None and j.module is not None:
-        radii = (j.teeth[0] * j.module / 2.0, j.teeth[1] * j.module / 2.0)
+    radii = (
+        getattr(j.spec, "pitch_radii", None) or j.radii
+    )  # a gear's (teeth × module / 2), or rolling circles
     internal = j.internal
     if radii is None:
         if j.name not in pos:
