@@ -18,7 +18,6 @@ import io
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import IO, TYPE_CHECKING, Any
-from xml.etree import ElementTree as ET
 
 from mech.batch import Report, StudentScore
 from mech.check import ERROR, FAIL, IGNORED, PASS, FileResult, Verdict
@@ -464,50 +463,66 @@ def junit_xml(report: Report) -> str:
     be read) or ``skipped`` (nothing to check; a problem file excluded from the
     scores; an ignored sheet key) child carrying ``message``.
     """
-    skipped_total = 0
-    suites = []
+    # written as text, suite by suite: an element tree of a 10,000-file batch would cost tens of MB
+    body: list[str] = []
+    tests = skipped_total = 0
     for r in report.results:
-        suite = ET.Element("testsuite", name=_label(r))
-        classname = _classname(r)
+        classname = _attr(_classname(r))
+        cases: list[str] = []
         skipped = 0
         if r.skipped or (r.excluded and not r.verdicts):
-            case = ET.SubElement(suite, "testcase", classname=classname, name="answers", time="0")
             why = (
                 "nothing to check (no answers)"
                 if r.skipped
                 else "the problem file is excluded from every score"
             )
-            ET.SubElement(case, "skipped", message=why)
+            cases.append(_case(classname, "answers", f"<skipped message={_attr(why)} />"))
             skipped += 1
         for v in r.verdicts:
-            case = ET.SubElement(suite, "testcase", classname=classname, name=v.key, time="0")
+            child = ""
             if v.status == FAIL:
-                node = ET.SubElement(case, "failure", message=_message(v), type="WrongAnswer")
-                node.text = _details(v)
+                child = (
+                    f'<failure message={_attr(_message(v))} type="WrongAnswer">{_text(_details(v))}</failure>'
+                )
             elif v.status == ERROR:
                 kind = "FileError" if v.key == "file" else "CannotCompute"
-                node = ET.SubElement(case, "error", message=v.message, type=kind)
-                node.text = "\n".join(_problem_lines(r)) if v.key == "file" and r.problems else _details(v)
+                text = "\n".join(_problem_lines(r)) if v.key == "file" and r.problems else _details(v)
+                child = f'<error message={_attr(v.message)} type="{kind}">{_text(text)}</error>'
             elif v.status == IGNORED:
-                ET.SubElement(case, "skipped", message=v.message)
+                child = f"<skipped message={_attr(v.message)} />"
                 skipped += 1
-        suite.set("tests", str(len(suite)))
-        suite.set("failures", str(r.failed))
-        suite.set("errors", str(r.errors))
-        suite.set("skipped", str(skipped))
+            cases.append(_case(classname, v.key, child))
+        tests += len(cases)
         skipped_total += skipped
-        suites.append(suite)
-    root = ET.Element(
-        "testsuites",
-        name="mech check",
-        tests=str(sum(len(s) for s in suites)),
-        failures=str(report.failed),
-        errors=str(report.errors),
-        skipped=str(skipped_total),
+        body.append(
+            f'  <testsuite name={_attr(_label(r))} tests="{len(cases)}" failures="{r.failed}" '
+            f'errors="{r.errors}" skipped="{skipped}"'
+            + (">\n" + "".join(cases) + "  </testsuite>\n" if cases else " />\n")
+        )
+    head = (
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        f'<testsuites name="mech check" tests="{tests}" failures="{report.failed}" '
+        f'errors="{report.errors}" skipped="{skipped_total}"'
     )
-    root.extend(suites)
-    ET.indent(root)
-    return xml_safe('<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n")
+    return xml_safe(head + (">\n" + "".join(body) + "</testsuites>\n" if body else " />\n"))
+
+
+def _attr(text: str) -> str:
+    """An XML attribute value, quoted, with newlines and tabs kept (as character references)."""
+    from xml.sax.saxutils import quoteattr
+
+    return quoteattr(text, {"\n": "&#10;", "\r": "&#13;", "\t": "&#09;"})
+
+
+def _text(text: str) -> str:
+    from xml.sax.saxutils import escape
+
+    return escape(text)
+
+
+def _case(classname: str, name: str, child: str) -> str:
+    head = f'    <testcase classname={classname} name={_attr(name)} time="0"'
+    return f"{head}>\n      {child}\n    </testcase>\n" if child else f"{head} />\n"
 
 
 def _classname(r: FileResult) -> str:
