@@ -322,3 +322,15 @@ def test_result_is_frozen_and_queries_name_their_choices():
 def test_override_of_direction_and_speed_is_recorded_in_drives():
     kin = solve(slider_crank(omega=10.0), options=SolveOptions(omega=5.0, direction="cw"))
     assert kin.drives[0].omega == -5.0
+
+
+def test_acceleration_command_reports_the_gear_pitch_point_on_each_gear(run):
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "mechanisms" / "gear_pair.yaml"
+    result = run("acceleration", str(path))
+    assert result.exit_code == 0, result.output
+    assert "mesh (on pinion)" in result.output and "mesh (on wheel)" in result.output
+    # pinion 1200 rpm, r = 50 mm: ω²r = 789.57 m/s²; wheel 600 rpm, r = 100 mm: 394.78 m/s²
+    assert "789.57" in result.output and "394.78" in result.output
+    assert "link=" not in result.output
