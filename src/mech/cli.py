@@ -10,7 +10,7 @@ from __future__ import annotations
 import contextlib
 import math
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from enum import IntEnum
 from functools import wraps
 from typing import Any, TypeVar
@@ -753,7 +753,7 @@ def _check(
     from mech.render import check as render
 
     outputs = {
-        "--junit": render.junit_xml,
+        "--junit": render.junit_chunks,
         "--gradescope": lambda r: render.dumps(render.gradescope_dict(r)) + "\n",
         "--csv": render.csv_text,
     }
@@ -770,8 +770,11 @@ def _check(
     sys.exit(report.exit_status)
 
 
-def _write(path: str, text: str) -> None:
-    """Write a report file atomically (a temporary file renamed into place); exit 2 if it cannot be."""
+def _write(path: str, text: str | Iterable[str]) -> None:
+    """Write a report file atomically (a temporary file renamed into place); exit 2 if it cannot be.
+
+    ``text`` may come in pieces (a large JUnit report), written as they come.
+    """
     import os
     import tempfile
 
@@ -782,7 +785,10 @@ def _write(path: str, text: str) -> None:
     try:
         fd, tmp = tempfile.mkstemp(prefix=".mech-", suffix=".tmp", dir=folder)
         with os.fdopen(fd, "w", encoding="utf-8", newline="") as f:
-            f.write(text)
+            if isinstance(text, str):
+                f.write(text)
+            else:
+                f.writelines(text)
         mask = os.umask(0)
         os.umask(mask)
         os.chmod(tmp, 0o666 & ~mask)  # mkstemp makes it private; a report is an ordinary file

@@ -37,6 +37,7 @@ __all__ = [
     "csv_text",
     "dumps",
     "gradescope_dict",
+    "junit_chunks",
     "junit_xml",
     "progress",
     "report_dict",
@@ -463,48 +464,57 @@ def junit_xml(report: Report) -> str:
     be read) or ``skipped`` (nothing to check; a problem file excluded from the
     scores; an ignored sheet key) child carrying ``message``.
     """
-    # written as text, suite by suite: an element tree of a 10,000-file batch would cost tens of MB
-    body: list[str] = []
+    return "".join(junit_chunks(report))
+
+
+def junit_chunks(report: Report) -> Iterator[str]:
+    """:func:`junit_xml` in pieces, one ``testsuite`` at a time, to write a large report in flat memory.
+
+    (An element tree, or one string, of a 10,000-file batch would cost tens of MB.)
+    """
     tests = skipped_total = 0
-    for r in report.results:
-        classname = _attr(_classname(r))
-        cases: list[str] = []
-        skipped = 0
-        if r.skipped or (r.excluded and not r.verdicts):
-            why = (
-                "nothing to check (no answers)"
-                if r.skipped
-                else "the problem file is excluded from every score"
-            )
-            cases.append(_case(classname, "answers", f"<skipped message={_attr(why)} />"))
-            skipped += 1
-        for v in r.verdicts:
-            child = ""
-            if v.status == FAIL:
-                child = (
-                    f'<failure message={_attr(_message(v))} type="WrongAnswer">{_text(_details(v))}</failure>'
-                )
-            elif v.status == ERROR:
-                kind = "FileError" if v.key == "file" else "CannotCompute"
-                text = "\n".join(_problem_lines(r)) if v.key == "file" and r.problems else _details(v)
-                child = f'<error message={_attr(v.message)} type="{kind}">{_text(text)}</error>'
-            elif v.status == IGNORED:
-                child = f"<skipped message={_attr(v.message)} />"
-                skipped += 1
-            cases.append(_case(classname, v.key, child))
-        tests += len(cases)
-        skipped_total += skipped
-        body.append(
-            f'  <testsuite name={_attr(_label(r))} tests="{len(cases)}" failures="{r.failed}" '
-            f'errors="{r.errors}" skipped="{skipped}"'
-            + (">\n" + "".join(cases) + "  </testsuite>\n" if cases else " />\n")
-        )
-    head = (
+    for r in report.results:  # the totals first: the root element carries them
+        extra = 1 if r.skipped or (r.excluded and not r.verdicts) else 0
+        tests += len(r.verdicts) + extra
+        skipped_total += extra + r.ignored
+    yield (
         '<?xml version="1.0" encoding="UTF-8"?>\n'
         f'<testsuites name="mech check" tests="{tests}" failures="{report.failed}" '
-        f'errors="{report.errors}" skipped="{skipped_total}"'
+        f'errors="{report.errors}" skipped="{skipped_total}"' + (">\n" if report.results else " />\n")
     )
-    return xml_safe(head + (">\n" + "".join(body) + "</testsuites>\n" if body else " />\n"))
+    for r in report.results:
+        yield xml_safe(_suite(r))
+    if report.results:
+        yield "</testsuites>\n"
+
+
+def _suite(r: FileResult) -> str:
+    classname = _attr(_classname(r))
+    cases: list[str] = []
+    skipped = 0
+    if r.skipped or (r.excluded and not r.verdicts):
+        why = (
+            "nothing to check (no answers)" if r.skipped else "the problem file is excluded from every score"
+        )
+        cases.append(_case(classname, "answers", f"<skipped message={_attr(why)} />"))
+        skipped += 1
+    for v in r.verdicts:
+        child = ""
+        if v.status == FAIL:
+            child = f'<failure message={_attr(_message(v))} type="WrongAnswer">{_text(_details(v))}</failure>'
+        elif v.status == ERROR:
+            kind = "FileError" if v.key == "file" else "CannotCompute"
+            text = "\n".join(_problem_lines(r)) if v.key == "file" and r.problems else _details(v)
+            child = f'<error message={_attr(v.message)} type="{kind}">{_text(text)}</error>'
+        elif v.status == IGNORED:
+            child = f"<skipped message={_attr(v.message)} />"
+            skipped += 1
+        cases.append(_case(classname, v.key, child))
+    return (
+        f'  <testsuite name={_attr(_label(r))} tests="{len(cases)}" failures="{r.failed}" '
+        f'errors="{r.errors}" skipped="{skipped}"'
+        + (">\n" + "".join(cases) + "  </testsuite>\n" if cases else " />\n")
+    )
 
 
 def _attr(text: str) -> str:
