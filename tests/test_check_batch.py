@@ -221,3 +221,22 @@ def test_cli_interrupted_exits_130_and_leaves_no_report(tmp_path: Path, jobs: st
     assert "interrupted" in err and "Traceback" not in err
     assert not junit.exists() and not grades.exists()
     assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".mech-")] == []
+
+
+def test_the_pool_works_from_a_process_with_threads() -> None:
+    # a library caller with threads of its own (Dask, a GUI) gets workers that are not forked
+    import threading
+
+    stop = threading.Event()
+    helper = threading.Thread(target=stop.wait, daemon=True)
+    helper.start()
+    try:
+        jobs = [("ok", 1.0), ("crash", 0.0), ("ok", 2.0)]
+        assert list(run_jobs(jobs, _job, _lost, workers=2, timeout=None)) == [
+            "done 1",
+            "lost crash: crash",
+            "done 2",
+        ]
+    finally:
+        stop.set()
+        helper.join()

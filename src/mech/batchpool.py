@@ -151,8 +151,14 @@ class _Pool(Generic[T, R]):
         import multiprocessing as mp
 
         methods = mp.get_all_start_methods()
-        # fork: a worker starts in milliseconds with mech already imported; the parent has no threads
-        self.ctx = mp.get_context("fork" if "fork" in methods else "spawn")
+        # fork: a worker starts in milliseconds with mech already imported.  Only from a
+        # single-threaded parent (the command line): forking a process with threads (a library
+        # caller running Dask, say) can leave a lock held forever in the child.
+        if "fork" in methods and threading.active_count() == 1:
+            method = "fork"
+        else:
+            method = "forkserver" if "forkserver" in methods else "spawn"
+        self.ctx = mp.get_context(method)
         self.jobs, self.limited, self.on_lost = jobs, limited, on_lost
         self.timeout = timeout
         self.grace = None if timeout is None else 2.0 + 0.5 * timeout
