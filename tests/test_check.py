@@ -418,3 +418,20 @@ def test_progress_bar_only_on_a_terminal_for_large_sets() -> None:
             for _ in range(total):
                 advance(None)
         assert bool(buffer.getvalue()) is shown, (terminal, total)
+
+
+def test_terminal_table_has_one_row_per_file_and_every_answer_with_verbose(report: Report) -> None:
+    from rich.console import Console
+
+    from mech.render.check import check_table
+
+    def shown(verbose: bool) -> str:
+        buffer = io.StringIO()
+        console = Console(file=buffer, force_terminal=True, width=200, color_system=None, markup=False)
+        check_table(report, console, verbose=verbose)
+        return buffer.getvalue()
+
+    short, long = shown(False), shown(True)
+    for r in report.results:
+        assert sum(Path(r.path).name in ln for ln in short.splitlines()) == 1
+    assert "dof = 1" not in short and "dof = 1" in long  # a passing answer: shown only with verbose

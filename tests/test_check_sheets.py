@@ -310,3 +310,19 @@ def test_cli_gradescope_for_one_sheet_names_tests_by_file(run, classroom: Path, 
     names = [t["name"] for t in data["tests"]]
     assert any(n.startswith(str(classroom / "problems" / "p1.yaml")) for n in names)
     assert any("p4.yaml" in n for n in names)  # excluded, but a row
+
+
+def test_terminal_table_lists_excluded_files_then_students(classroom: Path) -> None:
+    from rich.console import Console
+
+    from mech.render.check import check_table
+
+    buffer = io.StringIO()
+    console = Console(file=buffer, force_terminal=True, width=200, color_system=None, markup=False)
+    check_table(grade(classroom), console, verbose=True)
+    text = buffer.getvalue()
+    assert text.index("excluded from every score") < text.index("alice")
+    assert "p3.yaml" in text and "p4.yaml" in text
+    alice = next(ln for ln in text.splitlines() if "alice" in ln and "%" in ln)
+    assert "100%" in alice
+    assert "ignored" in text  # carol's tolerance and chain keys, in the answers table
