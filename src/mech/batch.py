@@ -598,12 +598,12 @@ def _check_task(task: _Task) -> _Done:
         return _Done(_exclude(task, error_result(task.path, error)))
     questions = questions_of(mech)
     if not questions:
-        error = InputError(
+        asks_nothing = InputError(
             f"{task.path} asks nothing: it has neither `answers` nor `asks`, so no student can be graded on it",
             where=Where(task.path),
             hint="list its questions: `asks: [omega.rocker, velocity.C]` (or give `answers`)",
         )
-        return _Done(_exclude(task, replace(error_result(task.path, error), name=mech.name)))
+        return _Done(_exclude(task, replace(error_result(task.path, asks_nothing), name=mech.name)))
     return _check_sheets(task, mech, questions)
 
 
@@ -875,11 +875,11 @@ def _shared_names(
             swap[(student, path)] = error
     out = []
     for r in results:
-        error = swap.get((r.student or "", r.path)) if not r.sheet and not r.excluded else None
-        if error is None:
+        clash = swap.get((r.student or "", r.path)) if not r.sheet and not r.excluded else None
+        if clash is None:
             out.append(r)
             continue
-        p = error.problems[0]
+        p = clash.problems[0]
         verdicts = tuple(
             Verdict(v.key, ERROR, message=p.message, where=p.where) if v.scored else v for v in r.verdicts
         )

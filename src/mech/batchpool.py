@@ -29,7 +29,10 @@ import time
 from collections import deque
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
-from typing import Any, Generic, TypeVar
+from typing import TYPE_CHECKING, Any, Generic, TypeVar
+
+if TYPE_CHECKING:  # multiprocessing is imported only when a pool starts
+    from multiprocessing.context import ForkContext, ForkServerContext, SpawnContext
 
 __all__ = ["JobTimeout", "run_jobs", "time_limit"]
 
@@ -154,11 +157,13 @@ class _Pool(Generic[T, R]):
         # fork: a worker starts in milliseconds with mech already imported.  Only from a
         # single-threaded parent (the command line): forking a process with threads (a library
         # caller running Dask, say) can leave a lock held forever in the child.
+        self.ctx: ForkContext | ForkServerContext | SpawnContext
         if "fork" in methods and threading.active_count() == 1:
-            method = "fork"
+            self.ctx = mp.get_context("fork")
+        elif "forkserver" in methods:
+            self.ctx = mp.get_context("forkserver")
         else:
-            method = "forkserver" if "forkserver" in methods else "spawn"
-        self.ctx = mp.get_context(method)
+            self.ctx = mp.get_context("spawn")
         self.jobs, self.limited, self.on_lost = jobs, limited, on_lost
         self.timeout = timeout
         self.grace = None if timeout is None else 2.0 + 0.5 * timeout
@@ -213,11 +218,11 @@ class _Pool(Generic[T, R]):
                 busy = {s.conn: i for i, s in enumerate(self.slots) if s is not None and s.held}
                 ready = wait(list(busy), timeout=0.25) if busy else []
                 for conn in ready:
-                    slot = busy[conn]  # type: ignore[index]
+                    slot = busy[conn]
                     s = self.slots[slot]
                     assert s is not None
                     try:
-                        got = conn.recv()  # type: ignore[union-attr]
+                        got = s.conn.recv()  # s.conn is conn, as the Connection it is
                     except (EOFError, OSError):
                         self._lose(slot, "crash")
                         continue

@@ -611,10 +611,10 @@ def _cmp_magnitude(
         claim,
         base,
         magnitude,
-        abs(float(claim.value)),
+        abs(_number(claim)),
         akey.dimension or Dimension.NUMBER,
         tol,
-        an,  # type: ignore[arg-type]
+        an,
     )
 
 
@@ -623,7 +623,7 @@ def _cmp_ratio(
 ) -> Verdict:
     """A negative claim says the two turn opposite ways and is checked signed; a positive one
     is the textbook's velocity ratio, a magnitude."""
-    claimed = float(claim.value)  # type: ignore[arg-type]
+    claimed = _number(claim)
     what = "ω ratio " if akey.family == "omega_ratio" else ""
     dimension = akey.dimension or Dimension.NUMBER
     if claimed < 0:
@@ -634,9 +634,14 @@ def _cmp_ratio(
 def _cmp_signed(
     claim: Claim, akey: AnswerKey, value: Any, an: Analysis, tol: Tolerance, base: Verdict
 ) -> Verdict:
-    return _compare(
-        claim, base, float(value), float(claim.value), akey.dimension or Dimension.NUMBER, tol, an
-    )  # type: ignore[arg-type]
+    return _compare(claim, base, float(value), _number(claim), akey.dimension or Dimension.NUMBER, tol, an)
+
+
+def _number(claim: Claim) -> float:
+    """A scalar key's claim as a number (the sheet reader gives a point only to point keys)."""
+    if isinstance(claim.value, tuple):
+        raise TypeError(f"{claim.key}: a point claimed for a scalar answer")
+    return float(claim.value)
 
 
 def least_speed(mech: Mechanism, kin: Kinematics, link: str) -> float:
@@ -742,7 +747,7 @@ def _cmp_point(
     message = shown if ok else f"{noun} is at {shown}: {err / size:.1%} of the size away (allowed {tol_text})"
     if not ok:
         far = max(point, key=abs)
-        near = claimed[point.index(far)]  # type: ignore[index]
+        near = float(claimed[point.index(far)])  # type: ignore[index]  # a point key's claim is a pair
         message += _unit_slip(far, near, claim, Tolerance(0.02))
     return _replace(base, status=PASS if ok else FAIL, computed=point, error=err, message=message, **common)
 

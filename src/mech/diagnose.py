@@ -61,10 +61,10 @@ def diagnose(claim: Claim, akey: AnswerKey, value: Any, an: Analysis, tol: Toler
     to_space = _space(akey, claim)
     claimed = _claimed(akey, claim)
     right = to_space(value)
-    match = _scalar_match(tol, right)
-    found = _first(_cheap(akey, claim, value, right, an, to_space), claimed, match)
+    scalar_match = _scalar_match(tol, right)
+    found = _first(_cheap(akey, claim, value, right, an, to_space), claimed, scalar_match)
     if found is None and akey.level in _KINEMATIC:
-        found = _first(_branch_candidates(akey, an, to_space), claimed, match)
+        found = _first(_branch_candidates(akey, an, to_space), claimed, scalar_match)
     return found
 
 
@@ -360,6 +360,8 @@ def _mirrors(an: Analysis) -> Iterator[tuple[Any, Vec, str]]:
             k = kin.positions[rod[0][1]]
             u = geom.direction
             t = geom.at
+            if t is None or u is None:  # a slider not located at this instant: no mirror to offer
+                continue
             s = (k[0] - t[0]) * u[0] + (k[1] - t[1]) * u[1]
             foot = (t[0] + s * u[0], t[1] + s * u[1])
             q = (2 * foot[0] - p[0], 2 * foot[1] - p[1])

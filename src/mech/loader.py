@@ -21,7 +21,7 @@ import math
 import os
 import re
 import sys
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from typing import Any
 
 import yaml
@@ -318,7 +318,7 @@ class _Reader:
                     mark = event.start_mark
                     raise InputError(
                         f"the file nests lists or mappings more than {_MAX_DEPTH} deep",
-                        where=Where(self.path, mark.line + 1, mark.column + 1),
+                        where=Where(self.path, mark.line + 1, mark.column + 1) if mark else Where(self.path),
                         hint="a mechanism file nests three or four levels; look for runaway brackets",
                     )
             elif isinstance(event, (yaml.SequenceEndEvent, yaml.MappingEndEvent)):
@@ -428,7 +428,7 @@ class _Reader:
         except _Skip:
             return default
 
-    def optional(self, mapping: dict[str, tuple[Any, Any]], key: str, reader: Callable[..., Any]) -> Any:
+    def optional(self, mapping: Mapping[str, tuple[Any, Any]], key: str, reader: Callable[..., Any]) -> Any:
         if key not in mapping:
             return None
         try:
@@ -862,15 +862,15 @@ class _Reader:
             if j.type in (JointType.PRISMATIC, JointType.SLOT) and len(j.links) == 2:
                 mover, guide = j.links
                 if j.path is not None:
-                    for ref in (j.path.through, j.path.toward):
+                    for path_ref in (j.path.through, j.path.toward):
                         if (
-                            ref is not None
-                            and ref.name is not None
-                            and guide not in located.get(ref.name, set())
+                            path_ref is not None
+                            and path_ref.name is not None
+                            and guide not in located.get(path_ref.name, set())
                         ):
                             self.problems.append(
                                 Problem(
-                                    f"the path of {j.name} goes through {ref.name!r}, which is not a point of the guide {guide}",
+                                    f"the path of {j.name} goes through {path_ref.name!r}, which is not a point of the guide {guide}",
                                     w,
                                     "a path is fixed in the guide (the second link): name one of its joints or points, or give coordinates",
                                 )

@@ -823,7 +823,7 @@ def _pins_and_points(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Tran
             pins.add(j.name)
         elif GLYPHS[j.type] == "slot":
             point = kin.joints[j.name].point if j.name in kin.joints else None
-            if point in pos:
+            if point is not None and point in pos:
                 pins.add(point)
     for name in pins:
         items.append(Circle(tr(pos[name]), PIN_R, Style(INK, 0.4, fill="#ffffff"), "pin", name))

@@ -198,22 +198,22 @@ def _build(mech: Mechanism, kin: Any, kind: str) -> PolygonData:
                 link_keys[link.name].append(key)
     contacts = [j for j in mech.joints if j.type.kind.role == "contact" and j.name in pos]
     for j in contacts:
-        for link in j.links:
-            if link == ground:
+        for link_name in j.links:
+            if link_name == ground:
                 continue
-            key = f"{j.name}@{link}"
+            key = f"{j.name}@{link_name}"
             short = j.name if len(j.name) <= 2 else j.name[0]
             if short.lower() in {display_name(n, lower=True) for n in pos if n != j.name}:
                 short = j.name  # "c" is taken by a point C: keep the full name
             images[key] = Image(
                 key,
-                display_name(short, lower=True) + str(numbers[link]).translate(_SUB) + mark,
+                display_name(short, lower=True) + str(numbers[link_name]).translate(_SUB) + mark,
                 j.name,
-                link,
-                value(j.name, link),
+                link_name,
+                value(j.name, link_name),
             )
             order.append(key)
-            link_keys[link].append(key)
+            link_keys[link_name].append(key)
 
     rank = _ranks(link_keys, order)
     vectors: list[Vector] = []
@@ -228,10 +228,10 @@ def _build(mech: Mechanism, kin: Any, kind: str) -> PolygonData:
         if math.hypot(*im.value) == 0 and not acc:
             continue
         start_label, via = pole_names[0], None
-        for link, keys in link_keys.items():
-            if key in keys and "o" in keys and link != ground:
-                g = next(n for n in members[link] if n in ground_names)
-                start_label, via = display_name(g, lower=True) + mark, link
+        for link_name, keys in link_keys.items():
+            if key in keys and "o" in keys and link_name != ground:
+                g = next(n for n in members[link_name] if n in ground_names)
+                start_label, via = display_name(g, lower=True) + mark, link_name
                 break
         vectors.append(Vector(start_label + im.label, "o", key, "absolute", via, im.value))
         if acc and via is not None:

@@ -422,8 +422,8 @@ def omega_by_icentres(
     for k in sorted(twist):
         if k == 0:
             continue
-        st = motion.get(links[k])
-        out.append(OmegaByICentres(links[k], twist[k][0], via[k], None if st is None else st.omega))
+        moving = motion.get(links[k])
+        out.append(OmegaByICentres(links[k], twist[k][0], via[k], None if moving is None else moving.omega))
     return tuple(out)
 
 
@@ -489,7 +489,7 @@ def locate(mech: Mechanism, kin: Kinematics | None = None) -> ICentres:
 
         kin = solve(mech, level="velocity")
     instant = instant_of(mech, kin)
-    motion = None
+    motion: dict[str, LinkMotion] | None = None
     if kin.level != "position":
         motion = dict(kin.links)
         if mech.ground not in motion:

@@ -38,7 +38,7 @@ from mech._records import dataclass
 from mech.errors import GeometryError, InputError, Problem, Where
 from mech.kinematics.geometry import circle_circle, circle_line
 from mech.kinematics.layout import Layout
-from mech.model import Joint, JointType, Placement, Ref
+from mech.model import Joint, JointType, Mechanism, Placement, Point, Ref
 from mech.topology import dof
 from mech.units import to_unit
 
@@ -86,6 +86,7 @@ class _Eq:
 
     names: tuple[str, ...] = ()
     rows = 1
+    text = ""  # what the equation says, in the file's words (set by each kind)
     where: Where | None = None  # the line of the file that set this equation, for messages
 
     def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
@@ -343,8 +344,8 @@ def assemble(
             eqs.append(_OnLineToward(ps.point, t, ref_name(ps.joint, "toward", ps.path.toward), text))
             eqs[-1].where = path_where
         elif ps.path.angle is not None:
-            a = ps.path.angle
-            eqs.append(_OnLine(ps.point, t, np.array([math.cos(a), math.sin(a)]), text))
+            stroke = ps.path.angle
+            eqs.append(_OnLine(ps.point, t, np.array([math.cos(stroke), math.sin(stroke)]), text))
             eqs[-1].where = path_where
     for name, pl in places.items():
         if pl.origin is None or pl.toward is None or name not in lay.carriers:
@@ -363,7 +364,7 @@ def assemble(
                 f"{name} placed from {pl.origin} toward {pl.toward}",
             )
         )
-        eqs[-1].where = next((x.where for x in (*mech.joints, *mech.points) if x.name == name), None)
+        eqs[-1].where = _where_of(mech, name)
 
     # Every name an equation uses must be a location.
     problems = [
@@ -443,7 +444,7 @@ def assemble(
                         f"{n} is drawn at ({fmt(_unscale(soft[n], scale, centre)[0])}, "
                         f"{fmt(_unscale(soft[n], scale, centre)[1])}), but the lengths and angles put it "
                         f"{fmt(moved[n] * scale)} away",
-                        next((x.where for x in (*mech.joints, *mech.points) if x.name == n), None),
+                        _where_of(mech, n),
                         "make the drawing and the numbers agree, or give only one of them "
                         "(`at` on a moving joint means drawn here)",
                     )
@@ -463,7 +464,10 @@ def assemble(
         else:
             _check_determined(system, x, jac, unknown, lay)
 
-    positions = {n: tuple(float(c) for c in (p * scale + centre)) for n, p in fixed.items()}
+    positions: dict[str, tuple[float, float]] = {}
+    for n, p in fixed.items():
+        xy = p * scale + centre
+        positions[n] = (float(xy[0]), float(xy[1]))
     # Relative to the centre (a ground pivot) as well: far from the origin, absolute coordinates
     # round a millimetre link's end to the ulp there (1.2e-4 m at 1e12 m), so the constraint
     # system is built from these instead.
@@ -488,16 +492,15 @@ def assemble(
     # (a cam, a gear) has no line to read, and its drawn angle is taken as 0.
     for k, spec in enumerate(lay.drives):
         if resolved_angles[k] is None and spec.link is not None:
-            if spec.toward is None:
+            if spec.pivot is None or spec.toward is None:  # (a rotary drive always has a pivot)
                 resolved_angles[k] = 0.0
                 continue
-            o, b = positions[spec.pivot], positions[spec.toward]  # type: ignore[index]
-            resolved_angles[k] = math.atan2(b[1] - o[1], b[0] - o[0])
+            pivot_xy, toward_xy = positions[spec.pivot], positions[spec.toward]
+            drawn = math.atan2(toward_xy[1] - pivot_xy[1], toward_xy[0] - pivot_xy[0])
             if spec.reference_line is not None:  # θ_b − θ_a
                 r0, r1 = (positions[n] for n in spec.reference_line)
-                resolved_angles[k] = math.remainder(
-                    resolved_angles[k] - math.atan2(r1[1] - r0[1], r1[0] - r0[0]), 2 * math.pi
-                )
+                drawn = math.remainder(drawn - math.atan2(r1[1] - r0[1], r1[0] - r0[0]), 2 * math.pi)
+            resolved_angles[k] = drawn
     gear_pitch_points(lay, positions)
     cx, cy = float(centre[0]), float(centre[1])
     for n, xy in positions.items():
@@ -703,7 +706,8 @@ def _check_determined(
     if undriven:
         hint = f"give the drive of {undriven[0].link} an angle (or draw {undriven[0].toward} with at)"
     listed = ", ".join(names)
-    first = next((x for x in (*lay.mech.joints, *lay.mech.points) if x.name in names), None)
+    located: list[Joint | Point] = [*lay.mech.joints, *lay.mech.points]
+    first = next((x for x in located if x.name in names), None)
     message = (
         f"the file does not fix where {listed} {'is' if len(names) == 1 else 'are'}: "
         f"{'it' if len(names) == 1 else 'they'} can still move with everything given"
@@ -831,6 +835,12 @@ def _check_gears(lay: Layout, positions: dict[str, tuple[float, float]], fmt: Ca
 def _pitch_radii(j: Joint) -> tuple[float, float] | None:
     """A gear's pitch radii: given, or teeth·module/2 (:attr:`mech.pairs.specs.GearSpec.pitch_radii`)."""
     return getattr(j.spec, "pitch_radii", None)
+
+
+def _where_of(mech: Mechanism, name: str) -> Where | None:
+    """The line of the file that defines the joint or point ``name`` (None if neither)."""
+    located: list[Joint | Point] = [*mech.joints, *mech.points]
+    return next((x.where for x in located if x.name == name), None)
 
 
 def gear_pitch_points(lay: Layout, positions: dict[str, tuple[float, float]]) -> None:

@@ -42,7 +42,7 @@ from mech.errors import collect
 from mech.kinematics.assemble import Drawn, gear_centre
 from mech.kinematics.curves import CurveRow, curve_row
 from mech.kinematics.layout import Layout, PathSpec
-from mech.kinematics.rows import ROWS, Angle, Build, Locator, OnLine
+from mech.kinematics.rows import ROWS, Angle, Build, Distance, Locator, OnLine
 from mech.model import Joint
 
 __all__ = ["System", "build_system"]
@@ -332,7 +332,7 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     }
     # A link with one located point has no line of its own: a slider or a guide takes its
     # path's direction (so a block and the rod sliding through it report the same angle).
-    slider_dir = {}
+    slider_dir: dict[str, PathSpec] = {}
     for ps in lay.paths:
         slider_dir.setdefault(ps.slider, ps)
     for ps in lay.paths:
@@ -380,6 +380,7 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
             ang.append(Angle({i: 1.0, r: -1.0}, b.theta(spec.link) - b.theta(spec.reference), name))  # type: ignore[arg-type]
             drive_at.append(("ang", len(ang) - 1))
         else:
+            assert spec.joint is not None  # a drive without a link drives a slider joint (DriveSpec)
             base = next(x for x in ln if x.joint == spec.joint)
             u = b.path_dirs[spec.joint][1]
             ln.append(OnLine(base.slider, base.s, base.guide, base.t, u, 0.0, name))
@@ -424,18 +425,19 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
         sys_.ds_j = np.array([x.j for x in ds])
         sys_.ds_sj = np.array([x.sj for x in ds])
         sys_.ds_d = np.array([x.d for x in ds], float)
-    names: list[str] = []
+    row_joints: list[str] = []
     holo_rows: list[bool] = []
     for p in pc:
-        names += [p.joint, p.joint]
+        row_joints += [p.joint, p.joint]
         holo_rows += [p.holonomic, p.holonomic]
     sys_.cv = tuple(b.curves)
-    for rec in (*ln, *ang, *ds, *b.curves):
-        names.append(rec.joint)
-        holo_rows.append(rec.holonomic)
-    sys_.row_names = tuple(names)
+    one_row: list[OnLine | Angle | Distance | CurveRow] = [*ln, *ang, *ds, *b.curves]
+    for one in one_row:
+        row_joints.append(one.joint)
+        holo_rows.append(one.holonomic)
+    sys_.row_names = tuple(row_joints)
     sys_.holonomic = np.array(holo_rows, bool)
-    sys_.velocity_only = tuple(dict.fromkeys(n for n, h in zip(names, holo_rows, strict=True) if not h))
+    sys_.velocity_only = tuple(dict.fromkeys(n for n, h in zip(row_joints, holo_rows, strict=True) if not h))
     sys_.drive_rows = np.array(drive_rows, int)
     sys_.path_dirs = b.path_dirs
     sys_.path_points = b.path_points
@@ -459,9 +461,8 @@ def path_angle(lay: Layout, ps: PathSpec, pos: dict[str, tuple[float, float]]) -
     """Global direction (rad) of a path in the drawn configuration."""
     if ps.path.toward is not None:
         t = ps.path.through
-        t_xy = t.xy if t.xy is not None else pos[lay.resolve(t.name)]
-        q = ps.path.toward
-        q_xy = q.xy if q.xy is not None else pos[lay.resolve(q.name)]
+        t_xy = lay.ref_xy(t, pos)
+        q_xy = lay.ref_xy(ps.path.toward, pos)
         return math.atan2(q_xy[1] - t_xy[1], q_xy[0] - t_xy[0])
     return float(ps.path.angle or 0.0)
 
@@ -501,11 +502,14 @@ def gear_row(
         return None
     carrier = common[0]
     o1, o2 = pos[c1[carrier]], pos[c2[carrier]]
-    radii = (
+    given = (
         getattr(j.spec, "pitch_radii", None) or j.radii
     )  # a gear's (teeth × module / 2), or rolling circles
     internal = j.internal
-    if radii is None:
+    radii: tuple[float, float]
+    if given is not None and given[0] is not None and given[1] is not None:
+        radii = (given[0], given[1])
+    else:
         if j.name not in pos:
             return None
         p = pos[j.name]

@@ -635,13 +635,13 @@ def _build(lay: Layout, sys_: System, drive_angles: tuple[float | None, ...]) ->
     for level in range(3):
         lines = []
         for line in code:
-            s = line.lstrip()
-            if s.startswith("#V "):
+            stripped = line.lstrip()
+            if stripped.startswith("#V "):
                 if level >= 1:
-                    lines.append("    " + s[3:])
-            elif s.startswith("#A "):
+                    lines.append("    " + stripped[3:])
+            elif stripped.startswith("#A "):
                 if level >= 2:
-                    lines.append("    " + s[3:])
+                    lines.append("    " + stripped[3:])
             else:
                 lines.append(line)
         ret = outs + (vel if level >= 1 else []) + (acc if level >= 2 else [])

@@ -19,11 +19,12 @@ constraints and results.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import replace
 
 from mech._records import dataclass
 from mech.errors import Problem, UnsupportedError, collect
-from mech.model import Drive, Joint, JointType, Mechanism, Path
+from mech.model import Drive, Joint, JointType, Mechanism, Path, Ref, Vec
 
 __all__ = ["DriveSpec", "Layout", "PathSpec", "layout"]
 
@@ -99,6 +100,13 @@ class Layout:
         """The location a name stands for (a joint alias or itself)."""
         return self.alias.get(name, name)
 
+    def ref_xy(self, ref: Ref, positions: Mapping[str, Vec]) -> Vec:
+        """Where a reference is in ``positions``: its own coordinates, or its location's."""
+        if ref.xy is not None:
+            return ref.xy
+        assert ref.name is not None  # a Ref is coordinates or a name (model.Ref)
+        return positions[self.resolve(ref.name)]
+
 
 def layout(mech: Mechanism) -> Layout:
     """Read the located things of ``mech``.
@@ -141,8 +149,8 @@ def layout(mech: Mechanism) -> Layout:
     joint_locs: dict[str, list[str]] = {lk.name: [] for lk in mech.links}
     point_locs: dict[str, list[str]] = {lk.name: [] for lk in mech.links}
     for name, links in carriers.items():
-        for lk in links:
-            (point_locs if name in point_names else joint_locs)[lk].append(name)
+        for link_name in links:
+            (point_locs if name in point_names else joint_locs)[link_name].append(name)
 
     paths: list[PathSpec] = []
     for j in mech.joints:

@@ -484,17 +484,18 @@ def _drives(mech: Mechanism, lay: Layout, drawn: Drawn, options: SolveOptions, l
 
 def _omega_ref(drives: tuple[Drive, ...], scale: float) -> float:
     """Time scale 1/ω: the fastest drive (a slider's v/size), 1 when nothing moves."""
-    rates = [
-        abs(d.omega) if d.link is not None else abs(d.speed) / scale
-        for d in drives  # type: ignore[arg-type]
-        if (d.omega if d.link is not None else d.speed) is not None
-    ]
+    rates: list[float] = []
+    for d in drives:
+        rate = d.omega if d.link is not None else (None if d.speed is None else d.speed / scale)
+        if rate is not None:
+            rates.append(abs(rate))
     best = max(rates, default=0.0)
     return best if best > 0 and math.isfinite(best) else 1.0
 
 
-def _deg(a: float) -> str:
-    return f"{math.degrees(a):.6g}°"
+def _deg(a: float | None) -> str:
+    """An angle for a message; a drive angle the file does not give is said so."""
+    return f"{math.degrees(a):.6g}°" if a is not None else "(no angle given)"
 
 
 # -- linear algebra ---------------------------------------------------------------------
@@ -840,14 +841,14 @@ def _fields(
         if target in positions:
             positions[alias] = positions[target]
 
-    n = sys_.n
+    n_links = sys_.n
     qs = q.tolist()
     vs = (
-        (qd * np.repeat([[v_unit, v_unit, omega_ref]], n, axis=0).ravel()).tolist()
+        (qd * np.repeat([[v_unit, v_unit, omega_ref]], n_links, axis=0).ravel()).tolist()
         if qd is not None
         else None
     )
-    acc_units = np.repeat([[a_unit, a_unit, omega_ref**2]], n, axis=0).ravel()
+    acc_units = np.repeat([[a_unit, a_unit, omega_ref**2]], n_links, axis=0).ravel()
     as_ = (qdd * acc_units).tolist() if qdd is not None else None
     links: dict[str, LinkState] = {}
     zero = (0.0, 0.0)

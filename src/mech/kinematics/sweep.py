@@ -471,7 +471,7 @@ class _Newton:
             u = j.direction or (1.0, 0.0)
             at = j.at or (0.0, 0.0)
             through = ps.path.through
-            t = through.xy if through.xy is not None else kin.positions[lay.resolve(through.name)]  # type: ignore[index]
+            t = lay.ref_xy(through, kin.positions)
             disp.append(
                 (at[0] - t[0]) * u[0] + (at[1] - t[1]) * u[1] if ps.guide == self.mech.ground else math.nan
             )

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import field
+from functools import partial
 from typing import TYPE_CHECKING, Any, Protocol
 
 from mech._records import dataclass
@@ -236,7 +237,7 @@ def read_profiles(r: Reader, node: yaml.Node, what: str, links: tuple[str, ...])
                 f"key each profile by one of {', '.join(links)}",
             )
             continue
-        profile = r.guard(lambda v=vnode, k=key: _read_profile(r, v, f"the profile of {k} in {what}"), None)
+        profile = r.guard(partial(_read_profile, r, vnode, f"the profile of {key} in {what}"), None)
         if profile is not None:
             out.append((key, profile))
     return tuple(out)

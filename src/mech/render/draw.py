@@ -58,7 +58,7 @@ def draw_file(
         from mech.icentres import locate
 
         located = locate(mech, kin)
-        centres = list(getattr(located, "centres", located))
+        centres = list(located.centres)
     curves = loci(mech, options, paths=paths, centrodes=centrodes)
     figure = draw(
         mech, kin, velocity=velocity, acceleration=acceleration, icentres=centres, units=units, curves=curves

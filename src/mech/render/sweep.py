@@ -206,15 +206,15 @@ def sweep_table(sw: Sweep, console: Any, *, units: OutputUnits) -> None:
             ("unit", "left"),
         ):
             table.add_column(name, justify=justify)  # type: ignore[arg-type]
-        for e in sw.extremes:
-            unit = _out_unit(e.unit, units)
-            mx, mn = _conv(e.max_value, e.unit, units), _conv(e.min_value, e.unit, units)
+        for ex in sw.extremes:
+            unit = _out_unit(ex.unit, units)
+            mx, mn = _conv(ex.max_value, ex.unit, units), _conv(ex.min_value, ex.unit, units)
             table.add_row(
-                e.quantity,
+                ex.quantity,
                 f"{mx:.6g}" if mx is not None else "–",
-                f"{_deg(e.max_angle):.4f}°",
+                f"{_deg(ex.max_angle):.4f}°",
                 f"{mn:.6g}" if mn is not None else "–",
-                f"{_deg(e.min_angle):.4f}°",
+                f"{_deg(ex.min_angle):.4f}°",
                 format_unit(unit),
             )
         console.print()
