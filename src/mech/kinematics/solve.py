@@ -882,7 +882,7 @@ def _fields(
         point: str | None = lay.resolve(j.name)
         if j.name in sys_.path_dirs:
             g, u = sys_.path_dirs[j.name]
-            th_g = 0.0 if g == n else qs[3 * g + 2]
+            th_g = 0.0 if g == n_links else qs[3 * g + 2]
             c_g, s_g = math.cos(th_g), math.sin(th_g)
             direction = (c_g * u[0] - s_g * u[1], s_g * u[0] + c_g * u[1])
             point = sys_.path_points[j.name][1]
