@@ -524,9 +524,9 @@ def test_omega_overflowing_to_infinity_is_refused(yaml_file):
 
 
 @pytest.mark.parametrize("where", ["file", "option"])
-def test_huge_finite_omega_no_traceback(yaml_file, where):
-    # Audit defect, fixed: omega 1e200 (finite): OverflowError in solve._result (omega_ref**2) even at
-    # velocity level -> traceback.  Velocities (1e199 m/s) are representable: print them or refuse.
+def test_velocity_with_an_omega_too_large_to_square_is_refused(yaml_file, where):
+    # omega 1e200 (finite) once raised OverflowError in solve._result (omega_ref**2) even at
+    # velocity level.  mech refuses it as bad input (exit 2), from the file or the option alike.
     if where == "file":
         f = yaml_file(slider_crank(0.1, 0.4, 90, 10).replace("omega: 10", "omega: 1e200"))
         p = mech("velocity", "--json", str(f))
@@ -534,9 +534,8 @@ def test_huge_finite_omega_no_traceback(yaml_file, where):
         f = yaml_file(slider_crank(0.1, 0.4, 90, 10))
         p = mech("velocity", "--json", str(f), "--omega", "1e200")
     assert "Traceback" not in p.stderr, p.stderr[-800:]
-    assert p.returncode in (0, 2)
-    if p.returncode == 0:
-        assert close(math.hypot(*points(strict_json(p.stdout))["A"]["velocity"]), 1e199)
+    assert p.returncode == 2, p.stdout[-800:]
+    assert p.stderr.strip()
 
 
 def test_deeply_nested_yaml_is_an_error_not_a_segfault(yaml_file):
@@ -927,7 +926,7 @@ def test_json_is_strict_json_for_every_example(cmd):
 
 def test_check_json_is_strict_json():
     p = mech("check", str(EXAMPLES), "--json", "-j", "2", subprocess_=True)
-    assert p.returncode in (0, 1)
+    assert p.returncode == 0, p.stdout[-800:]  # every example passes its own answers
     strict_json(p.stdout)
 
 
