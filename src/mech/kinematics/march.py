@@ -63,24 +63,33 @@ class Stacked:
         return qf
 
     @staticmethod
-    def _rot(qf: np.ndarray, idx: np.ndarray, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        th = qf[:, 3 * idx + 2]
-        c, sn = np.cos(th), np.sin(th)
+    def _trig(qf: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """cos and sin of every link's angle (K, n + 1), taken once per configuration."""
+        th = qf[:, 2::3]
+        return np.cos(th), np.sin(th)
+
+    @staticmethod
+    def _rot(
+        trig: tuple[np.ndarray, np.ndarray], idx: np.ndarray, s: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """A(θ) s for the links ``idx`` (K, len(idx))."""
+        c, sn = trig[0][:, idx], trig[1][:, idx]
         return c * s[:, 0] - sn * s[:, 1], sn * s[:, 0] + c * s[:, 1]
 
     def phi(self, q: np.ndarray, c_line: np.ndarray, c_ang: np.ndarray) -> np.ndarray:
         """Φ (K, m); ``c_ang`` (K, angle rows) holds each step's drive target."""
         s, qf, k, kl = self.sys, self._full(q), self.k, self.kl
+        trig = self._trig(qf)
         out = np.empty((q.shape[0], self.m))
-        ax, ay = self._rot(qf, s.pc_i, s.pc_si)
-        bx, by = self._rot(qf, s.pc_j, s.pc_sj)
+        ax, ay = self._rot(trig, s.pc_i, s.pc_si)
+        bx, by = self._rot(trig, s.pc_j, s.pc_sj)
         out[:, 0 : 2 * k : 2] = qf[:, 3 * s.pc_i] + ax - qf[:, 3 * s.pc_j] - bx
         out[:, 1 : 2 * k : 2] = qf[:, 3 * s.pc_i + 1] + ay - qf[:, 3 * s.pc_j + 1] - by
         r = 2 * k
         if kl:
-            sx, sy = self._rot(qf, s.ln_s, s.ln_sp)
-            tx, ty = self._rot(qf, s.ln_g, s.ln_t)
-            nx, ny = self._rot(qf, s.ln_g, s.ln_n)
+            sx, sy = self._rot(trig, s.ln_s, s.ln_sp)
+            tx, ty = self._rot(trig, s.ln_g, s.ln_t)
+            nx, ny = self._rot(trig, s.ln_g, s.ln_n)
             dx = qf[:, 3 * s.ln_s] + sx - qf[:, 3 * s.ln_g] - tx
             dy = qf[:, 3 * s.ln_s + 1] + sy - qf[:, 3 * s.ln_g + 1] - ty
             out[:, r : r + kl] = nx * dx + ny * dy - c_line
@@ -91,10 +100,11 @@ class Stacked:
     def jacobian(self, q: np.ndarray) -> np.ndarray:
         """Φ_q (K, m, 3n)."""
         s, qf, k, kl = self.sys, self._full(q), self.k, self.kl
+        trig = self._trig(qf)
         jac = np.zeros((q.shape[0], self.m, self.n3 + 3))
         if k:
-            ax, ay = self._rot(qf, s.pc_i, s.pc_si)
-            bx, by = self._rot(qf, s.pc_j, s.pc_sj)
+            ax, ay = self._rot(trig, s.pc_i, s.pc_si)
+            bx, by = self._rot(trig, s.pc_j, s.pc_sj)
             rx = np.arange(0, 2 * k, 2)
             ry = rx + 1
             i3, j3 = 3 * s.pc_i, 3 * s.pc_j
@@ -109,9 +119,9 @@ class Stacked:
         r0 = 2 * k
         if kl:
             rows = np.arange(r0, r0 + kl)
-            sx, sy = self._rot(qf, s.ln_s, s.ln_sp)
-            tx, ty = self._rot(qf, s.ln_g, s.ln_t)
-            nx, ny = self._rot(qf, s.ln_g, s.ln_n)
+            sx, sy = self._rot(trig, s.ln_s, s.ln_sp)
+            tx, ty = self._rot(trig, s.ln_g, s.ln_t)
+            nx, ny = self._rot(trig, s.ln_g, s.ln_n)
             dx = qf[:, 3 * s.ln_s] + sx - qf[:, 3 * s.ln_g] - tx
             dy = qf[:, 3 * s.ln_s + 1] + sy - qf[:, 3 * s.ln_g + 1] - ty
             s3, g3 = 3 * s.ln_s, 3 * s.ln_g
@@ -130,19 +140,20 @@ class Stacked:
         """γ (K, m) without drive accelerations."""
         s, k, kl = self.sys, self.k, self.kl
         qf, vf = self._full(q), self._full(qd)
+        trig = self._trig(qf)
         out = np.zeros((q.shape[0], self.m))
         if k:
-            ax, ay = self._rot(qf, s.pc_i, s.pc_si)
-            bx, by = self._rot(qf, s.pc_j, s.pc_sj)
+            ax, ay = self._rot(trig, s.pc_i, s.pc_si)
+            bx, by = self._rot(trig, s.pc_j, s.pc_sj)
             wi2 = vf[:, 3 * s.pc_i + 2] ** 2
             wj2 = vf[:, 3 * s.pc_j + 2] ** 2
             out[:, 0 : 2 * k : 2] = wi2 * ax - wj2 * bx
             out[:, 1 : 2 * k : 2] = wi2 * ay - wj2 * by
         if kl:
             r0 = 2 * k
-            sx, sy = self._rot(qf, s.ln_s, s.ln_sp)
-            tx, ty = self._rot(qf, s.ln_g, s.ln_t)
-            nx, ny = self._rot(qf, s.ln_g, s.ln_n)
+            sx, sy = self._rot(trig, s.ln_s, s.ln_sp)
+            tx, ty = self._rot(trig, s.ln_g, s.ln_t)
+            nx, ny = self._rot(trig, s.ln_g, s.ln_n)
             s3, g3 = 3 * s.ln_s, 3 * s.ln_g
             dx = qf[:, s3] + sx - qf[:, g3] - tx
             dy = qf[:, s3 + 1] + sy - qf[:, g3 + 1] - ty
@@ -586,22 +597,16 @@ def _newton(
         lost[np.flatnonzero(live)[big]] = True
         q[live] += np.where(big[:, None], 0.0, dq)
     # one more correction of the converged steps: within ``tol`` is only tol-accurate, and one
-    # quadratic step from there lands at rounding (a prediction may start within tol already);
-    # kept only where it does not raise the residual (at a singular step it may not help)
-    r = rows.phi(q, c_line, c_ang)
-    norm = np.max(np.abs(r), axis=1) if r.shape[1] else np.zeros(q.shape[0])
-    live = ~lost & np.isfinite(norm)
+    # quadratic step from there lands at rounding (a prediction may start within tol already).
+    # Taken only where it is tiny (< 1e-6 of the size): there it cannot make things worse.
+    live = ~lost & (norm <= tol)
     if live.any():
         try:
-            polished = q[live] + _lin(rows.jacobian(q[live]), -r[live], keep)
+            dq = _lin(rows.jacobian(q[live]), -r[live], keep)
         except np.linalg.LinAlgError:
-            polished = q[live]
-        r_p = rows.phi(polished, c_line, c_ang[live])
-        norm_p = np.max(np.abs(r_p), axis=1) if r_p.shape[1] else np.zeros(polished.shape[0])
-        better = norm_p <= norm[live]
-        where = np.flatnonzero(live)[better]
-        q[where] = polished[better]
-        norm[where] = norm_p[better]
+            dq = np.zeros((int(live.sum()), q.shape[1]))
+        small = np.max(np.abs(dq), axis=1) < 1e-6
+        q[np.flatnonzero(live)[small]] += dq[small]
     jumped = np.max(np.abs(q - start), axis=1) > JUMP
     return q, (norm <= tol) & ~lost & ~jumped
 
