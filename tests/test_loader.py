@@ -345,3 +345,48 @@ def test_unreadable_files_exit_2_on_the_command_line(data, fragment, run, tmp_pa
     path.write_bytes(data)
     result = run("dof", str(path))
     assert result.exit_code == 2 and fragment in result.stderr and str(path) in result.stderr
+
+
+PLACED_FROM_ITSELF = """
+units: {length: mm, angle: deg}
+links: [frame, crank, rod]
+joints:
+  O: {type: revolute, links: [frame, crank], at: [0, 0]}
+  A: {type: revolute, links: [crank, rod], at: [10, 0]}
+  B: {type: revolute, links: [rod, frame], at: [30, 0]}
+lengths: {OA: 10}
+points: %s
+drive: {link: crank, angle: 0, rpm: 10}
+"""
+
+
+@pytest.mark.parametrize(
+    "command", ["dof", "position", "velocity", "acceleration", "icentres", "sweep", "draw"]
+)
+@pytest.mark.parametrize(
+    ("points", "message"),
+    [
+        (
+            "{PS: {link: crank, from: PS, toward: PS, distance: 5}}",
+            "PS is placed from itself: the placements form a cycle (PS → PS)",
+        ),
+        (
+            "{P1: {link: crank, from: P2, toward: O, distance: 5}, P2: {link: crank, from: P1, toward: A, distance: 3}}",
+            "the placements form a cycle (P1 → P2 → P1)",
+        ),
+    ],
+    ids=["itself", "ring"],
+)
+def test_points_placed_in_a_cycle_are_located_errors_for_every_command(command, points, message, run, write):
+    path = write(PLACED_FROM_ITSELF % points)
+    extra = ["-o", str(path.with_suffix(".svg"))] if command == "draw" else []
+    result = run(command, str(path), *extra)
+    assert result.exit_code == 2
+    assert message in result.stderr
+    assert f"{path.name}:9:" in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+def test_a_point_placed_from_and_toward_one_point_is_refused():
+    with pytest.raises(InputError, match="placed from O toward O: one point gives no direction"):
+        loads(PLACED_FROM_ITSELF % "{P: {link: crank, from: O, toward: O, distance: 5}}")

@@ -920,6 +920,7 @@ class _Reader:
                             p.where,
                         )
                     )
+        self.problems.extend(placement_cycles([*joints, *points]))
 
     def _lengths(self, node: yaml.Node, located: dict[str, set[str]]) -> list[Length]:
         out: list[Length] = []
@@ -1405,6 +1406,68 @@ def _text(node: yaml.Node) -> str:
     if isinstance(node, yaml.SequenceNode):
         return "[" + ", ".join(_text(n) for n in node.value) + "]"
     return "…"
+
+
+def placement_cycles(placed: Iterable[Joint | Point]) -> list[Problem]:
+    """Relative placements (``from``/``toward``) that lead back to themselves.
+
+    A point placed from itself, or points placed from each other in a ring,
+    have no position to start from: assembly would chase its own tail.  One
+    problem per cycle, at its first member's line, naming the whole ring.
+    """
+    items = list(placed)
+    refs = {
+        it.name: [r for r in (it.place.origin, it.place.toward) if r is not None]
+        for it in items
+        if it.place.is_relative
+    }
+    where = {it.name: it.where for it in items}
+    problems: list[Problem] = [
+        Problem(
+            f"{name} is placed from {r[0]} toward {r[1]}: one point gives no direction",
+            where[name],
+            "`toward` names a second point of the link, other than `from`",
+        )
+        for name, r in refs.items()
+        if len(r) == 2 and r[0] == r[1] and r[0] != name
+    ]
+    rings: set[frozenset[str]] = set()
+    state: dict[str, int] = {}  # 1: on the current path, 2: done
+    for start in refs:
+        if start in state:
+            continue
+        path: list[str] = []
+        stack = [(start, iter(refs[start]))]
+        state[start] = 1
+        path.append(start)
+        while stack:
+            name, todo = stack[-1]
+            nxt = next(todo, None)
+            if nxt is None:
+                stack.pop()
+                path.pop()
+                state[name] = 2
+                continue
+            if state.get(nxt) == 1 and frozenset(path[path.index(nxt) :]) not in rings:
+                rings.add(frozenset(path[path.index(nxt) :]))
+                ring = path[path.index(nxt) :] + [nxt]
+                what = (
+                    f"{nxt} is placed from itself"
+                    if len(ring) == 2
+                    else f"{nxt} is placed from {ring[1]}, which leads back to it"
+                )
+                problems.append(
+                    Problem(
+                        f"{what}: the placements form a cycle ({' → '.join(ring)})",
+                        where.get(nxt),
+                        "place one of them with `at`, or from/toward joints placed otherwise",
+                    )
+                )
+            elif nxt in refs and nxt not in state:
+                state[nxt] = 1
+                path.append(nxt)
+                stack.append((nxt, iter(refs[nxt])))
+    return problems
 
 
 def _did_you_mean(word: str, choices: Iterable[str]) -> str | None:

@@ -94,3 +94,21 @@ def test_sliding_acceleration_of_the_block_on_the_lever():
     s_ddot = (ad[0] ** 2 + ad[1] ** 2 + a[0] * add[0] + a[1] * add[1]) / n - dot**2 / n**3
     assert kin.sliding("slot") == pytest.approx(s_dot, rel=1e-9)
     assert kin.sliding_acceleration("slot") == pytest.approx(s_ddot, rel=1e-9)
+
+
+def test_a_gear_pairs_unplaced_second_pivot_is_named(run, write):
+    path = write(
+        """
+units: {length: mm, angle: deg}
+links: [frame, pinion, wheel]
+joints:
+  O1: {type: revolute, links: [frame, pinion], at: [0, 0]}
+  O2: {type: revolute, links: [frame, wheel]}
+  mesh: {type: gear, links: [pinion, wheel], teeth: [20, 40], module: 5}
+drive: {link: pinion, rpm: 1200, direction: cw}
+"""
+    )
+    for command in ("position", "velocity", "icentres", "sweep"):
+        result = run(command, str(path))
+        assert result.exit_code == 2, command
+        assert f"{path.name}:6:3: error: O2 is on the ground link frame but not placed" in result.stderr

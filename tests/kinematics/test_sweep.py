@@ -271,3 +271,48 @@ def test_sweep_refuses_what_it_cannot_do():
 
     with pytest.raises(UnsupportedError, match="one crank"):
         sweep(replace(slider_driven, drives=(Drive(joint="P", speed=1.0),)), FULL)
+
+
+PEAUCELLIER = """
+name: Peaucellier-Lipkin inversor
+units: {length: mm, angle: deg}
+links: [frame, crank, arm1, arm2, r1, r2, r3, r4]
+joints:
+  O: {type: revolute, links: [frame, arm1, arm2], at: [0, 0]}
+  Q: {type: revolute, links: [frame, crank], at: [10, 0]}
+  C: {type: revolute, links: [crank, r1, r2]}
+  A: {type: revolute, links: [arm1, r1, r3], near: [20, 25]}
+  B: {type: revolute, links: [arm2, r2, r4], near: [20, -25]}
+  D: {type: revolute, links: [r3, r4], near: [40, 0]}
+lengths: {QC: 10, OA: 30, OB: 30, AC: 15, BC: 15, AD: 15, BD: 15}
+drive: {link: crank, angle: 60, rpm: 60}
+"""
+
+
+@pytest.mark.parametrize("span", [("0", "360"), ("60", "90")])
+def test_peaucellier_inversor_sweeps_its_straight_line(span, run, write):
+    """C runs on a circle through the fixed pivot O, so D, its inverse (OC·OD = OA² − AC²), runs
+    on a straight line: x_D = (30² − 15²) / (2·10) = 33.75 mm.  Past the arms' limit, where both
+    rhombus halves fold flat, two dyad apexes coincide exactly: once a ZeroDivisionError."""
+    import json
+
+    result = run(
+        "sweep",
+        str(write(PEAUCELLIER)),
+        "--from",
+        span[0],
+        "--to",
+        span[1],
+        "--steps",
+        "72",
+        "--quantity",
+        "position.D.x",
+        "--json",
+    )
+    assert result.exit_code == 0, result.stderr
+    data = json.loads(result.stdout)
+    xs = [x for x in data["series"]["position.D.x"] if x is not None]
+    assert len(xs) > 10
+    assert xs == pytest.approx([0.03375] * len(xs), rel=1e-12)
+    # |OC| = 20 cos(φ/2) must reach OA − AC = 15: the inversor locks at φ = 2 acos(3/4)
+    assert data["gaps"][0]["from"] == pytest.approx(math.degrees(2 * math.acos(0.75)), rel=1e-9)

@@ -681,7 +681,9 @@ def _check_determined(
     free_dirs = []
     for v in null:
         nudged, res, _ = _gauss_newton(system, x + 1e-3 * v, max_iter=30)
-        if float(np.max(np.abs(res))) <= _ACCEPT and float(np.linalg.norm(nudged - x)) > 1e-4:
+        # no equation at all on a location (a ground pivot without `at`): any nudge stands
+        closes = res.size == 0 or float(np.max(np.abs(res))) <= _ACCEPT
+        if closes and float(np.linalg.norm(nudged - x)) > 1e-4:
             free_dirs.append(v)
     if not free_dirs:
         return

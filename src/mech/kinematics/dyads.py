@@ -509,7 +509,7 @@ def _build(lay: Layout, sys_: System, drive_angles: tuple[float | None, ...]) ->
                 code += [
                     f"    dx = {pv(b, 'x')} - {pv(a, 'x')}; dy = {pv(b, 'y')} - {pv(a, 'y')}",
                     f"    l{i}_t = atan2(dy, dx) - {_fmt(beta)}",
-                    "    #V dd = dx * dx + dy * dy",
+                    "    #V dd = dx * dx + dy * dy; dd = dd + (dd == 0.0)",
                     f"    #V l{i}_w = (dx * ({pv(b, 'vy')} - {pv(a, 'vy')}) - dy * ({pv(b, 'vx')} - {pv(a, 'vx')})) / dd",
                     f"    #A l{i}_al = (dx * ({pv(b, 'ay')} - {pv(a, 'ay')}) - dy * ({pv(b, 'ax')} - {pv(a, 'ax')})) / dd",
                 ]
@@ -687,13 +687,14 @@ def _rrr(k: int, j: str, p: str, q: str, lp: float, lq: float, sign: float, pv: 
     return [
         f"    dx = {Q['x']} - {P['x']}; dy = {Q['y']} - {P['y']}; dd = dx * dx + dy * dy",
         f"    f1 = {_fmt(s2)} - dd; f2 = dd - {_fmt(m2)}",
-        f"    d{k} = f1 * f2 * {_fmt(1.0 / (s2 * s2))}",
+        # base points that coincide leave the apex undetermined: no closure there (and no 1/0)
+        f"    d{k} = f1 * f2 * {_fmt(1.0 / (s2 * s2))} - (dd == 0.0); dd = dd + (dd == 0.0)",
         f"    ms{k} = ({_fmt(abs(lp - lq) - (lp + lq))} + abs(2.0 * sqrt(dd) - {_fmt(abs(lp - lq) + lp + lq)})) * 0.5",
         f"    a = ({_fmt(lp * lp - lq * lq)} + dd) / (2.0 * dd); h = {_fmt(sign)} * sqrt(clip(f1 * f2)) / (2.0 * dd)",
         f"    {J['x']} = {P['x']} + a * dx - h * dy; {J['y']} = {P['y']} + a * dy + h * dx",
         f"    epx = {J['x']} - {P['x']}; epy = {J['y']} - {P['y']}; eqx = {J['x']} - {Q['x']}; eqy = {J['y']} - {Q['y']}",
         "    det = epx * eqy - epy * eqx",
-        f"    sn{k} = det * {_fmt(1.0 / (lp * lq))}",
+        f"    sn{k} = det * {_fmt(1.0 / (lp * lq))}; det = det + (det == 0.0)",
         f"    #V r1 = epx * {P['vx']} + epy * {P['vy']}; r2 = eqx * {Q['vx']} + eqy * {Q['vy']}",
         f"    #V {J['vx']} = (r1 * eqy - epy * r2) / det; {J['vy']} = (epx * r2 - r1 * eqx) / det",
         f"    #A ux = {J['vx']} - {P['vx']}; uy = {J['vy']} - {P['vy']}; wx = {J['vx']} - {Q['vx']}; wy = {J['vy']} - {Q['vy']}",
@@ -738,7 +739,7 @@ def _rrp(
         f"    {B['x']} = tx + sb * gux; {B['y']} = ty + sb * guy",
         f"    ex = {B['x']} - {A['x']}; ey = {B['y']} - {A['y']}",
         "    det = -guy * ey - gux * ex",
-        f"    sn{k} = det * {_fmt(1.0 / length)}",
+        f"    sn{k} = det * {_fmt(1.0 / length)}; det = det + (det == 0.0)",
         f"    #V tvx = {gl}_vx - {gl}_w * rty; tvy = {gl}_vy + {gl}_w * rtx",
         f"    #V r1 = -guy * tvx + gux * tvy + {gl}_w * sb; r2 = ex * {A['vx']} + ey * {A['vy']}",
         f"    #V {B['vx']} = (r1 * ey - gux * r2) / det; {B['vy']} = (-guy * r2 - r1 * ex) / det",
@@ -760,12 +761,13 @@ def _rpr(k: int, g: int, o: str, p: str, e: float, ulx: float, uly: float, sign:
     return [
         f"    dx = {P['x']} - {O['x']}; dy = {P['y']} - {O['y']}; dd = dx * dx + dy * dy",
         f"    f = dd - {_fmt(e * e)}",
-        f"    d{k} = f / dd",
+        # P on the pivot O: the guide's direction is undetermined, no closure there (and no 1/0)
+        f"    d{k} = f / (dd + (dd == 0.0)) - (dd == 0.0); dd = dd + (dd == 0.0)",
         f"    ms{k} = {_fmt(abs(e))} - sqrt(dd)",
         f"    cc = {_fmt(sign)} * sqrt(clip(f))",
         f"    gux = (cc * dx + {_fmt(e)} * dy) / dd; guy = (cc * dy - {_fmt(e)} * dx) / dd",
         f"    l{g}_t = atan2(guy * {_fmt(ulx)} - gux * {_fmt(uly)}, gux * {_fmt(ulx)} + guy * {_fmt(uly)})",
-        f"    sn{k} = cc / sqrt(dd)",
+        f"    sn{k} = cc / sqrt(dd); cc = cc + (cc == 0.0)",
         f"    #V l{g}_w = (-guy * ({P['vx']} - {O['vx']}) + gux * ({P['vy']} - {O['vy']})) / cc",
         f"    #A l{g}_al = (-guy * ({P['ax']} - {O['ax']}) + gux * ({P['ay']} - {O['ay']}) - 2.0 * l{g}_w * "
         f"(gux * ({P['vx']} - {O['vx']}) + guy * ({P['vy']} - {O['vy']})) - l{g}_w * l{g}_w * {_fmt(e)}) / cc",
@@ -780,7 +782,14 @@ def _verified(prog: DyadProgram, sys_: System) -> bool:
     phis = [prog.drawn_angle] + [prog.drawn_angle + k * math.pi / 4 for k in range(1, 8)]
     ok_any = False
     for k, phi in enumerate(phis):
-        out = prog.raw(phi, level=0, xp=MATH)
+        try:
+            out = prog.raw(phi, level=0, xp=MATH)
+        except ZeroDivisionError:
+            # a dyad's two base points coincide at this angle (the Peaucellier crank pin on its
+            # fixed pivot): the apex is undetermined there, which says nothing about the others
+            if k == 0:
+                return False
+            continue
         parts = prog.split(out, 0)
         if min(parts["disc"], default=1.0) < -SLACK:
             if k == 0:
