@@ -1450,7 +1450,7 @@ def placement_cycles(placed: Iterable[Joint | Point]) -> list[Problem]:
                 continue
             if state.get(nxt) == 1 and frozenset(path[path.index(nxt) :]) not in rings:
                 rings.add(frozenset(path[path.index(nxt) :]))
-                ring = path[path.index(nxt) :] + [nxt]
+                ring = [*path[path.index(nxt) :], nxt]
                 what = (
                     f"{nxt} is placed from itself"
                     if len(ring) == 2
