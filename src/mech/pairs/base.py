@@ -45,7 +45,7 @@ Fields = Mapping[str, tuple[Any, Any]]
 
 
 class Reader(Protocol):
-    """What a kind's reader may ask of the loader (see ``mech.loader._Reader``)."""
+    """What a kind's reader may ask of the loader (see :class:`mech.loader.reader.NodeReader`)."""
 
     def problem(self, node: yaml.Node | None, message: str, hint: str | None = None) -> Exception: ...
     def guard(self, fn: Callable[[], Any], default: Any) -> Any: ...
@@ -245,7 +245,7 @@ def read_profiles(r: Reader, node: yaml.Node, what: str, links: tuple[str, ...])
 
 def read_radii(r: Reader, node: yaml.Node, what: str, *, nulls: bool) -> tuple[Any, Any]:
     """``radii: [r1, r2]`` (positive lengths; ``null`` for a straight line when ``nulls``)."""
-    from mech.loader import is_null
+    from mech.loader.nodes import is_null
 
     items = r.sequence(node, f"the radii of {what}")
     if len(items) != 2:

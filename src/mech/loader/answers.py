@@ -1,0 +1,204 @@
+"""The ``answers:`` and ``asks:`` sections: claimed results and the questions a problem asks.
+
+A key is one of the registered answer forms (:mod:`mech.answers`) whose names
+exist in this mechanism; a value is a number with an optional unit of the
+right quantity, a point, a count or a label, optionally with its own
+``tolerance``.  Answer sheets (:mod:`mech.batch`) are read with the same code.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import re
+
+import yaml
+
+from mech.answers import KIND_LABELS, AnswerKey, Compare, key_forms, parse_key
+from mech.loader.nodes import article, did_you_mean, text_of
+from mech.loader.reader import NodeReader, Skip
+from mech.model import Claim, Tolerance, Vec
+from mech.units import Dimension, known_units, parse_number, parse_quantity
+
+__all__ = ["ANSWER_KEYS", "DEFAULT_TOLERANCE", "read_answers", "read_asks", "read_claim"]
+
+#: The keys of an answer written as a mapping (``{value: …, tolerance: …}``).
+ANSWER_KEYS = ("value", "tolerance")
+#: The file's tolerance when ``answers`` sets none.
+DEFAULT_TOLERANCE = Tolerance(0.02)
+
+Kinds = dict[str, set[str]]
+
+
+def read_answers(r: NodeReader, node: yaml.Node, kinds: Kinds) -> tuple[list[Claim], Tolerance]:
+    """Every claim of an ``answers`` mapping and the file's ``tolerance`` (2% if none)."""
+    entries = r.mapping(node, "answers")
+    tolerance = DEFAULT_TOLERANCE
+    if "tolerance" in entries:
+        with contextlib.suppress(Skip):
+            tolerance = _tolerance(r, entries["tolerance"][1], None, file_level=True)
+    claims: list[Claim] = []
+    for key, (knode, vnode) in entries.items():
+        if key == "tolerance":
+            continue
+        try:
+            claims.append(read_claim(r, key, knode, vnode, kinds))
+        except Skip:
+            continue
+    return claims, tolerance
+
+
+def read_asks(r: NodeReader, node: yaml.Node, kinds: Kinds) -> tuple[str, ...]:
+    """``asks: [omega.rocker, velocity.C]``: the questions of a problem file without values."""
+    out: dict[str, yaml.Node] = {}
+    for item in r.sequence(node, "asks (a list of answer keys)"):
+        try:
+            key = r.scalar(item, "an answer key")
+            _answer_key(r, key, item, kinds)
+        except Skip:
+            continue
+        if key in out:
+            r.problem(item, f"asks lists {key} twice", f"first at line {out[key].start_mark.line + 1}")
+            continue
+        out[key] = item
+    return tuple(out)
+
+
+def _answer_key(r: NodeReader, key: str, knode: yaml.Node, kinds: Kinds) -> AnswerKey:
+    """A key of ``answers`` or ``asks``: a registered form whose names exist."""
+    try:
+        akey = parse_key(key)
+    except ValueError as exc:
+        raise r.problem(
+            knode,
+            str(exc),
+            did_you_mean(key.split(".")[0], {f.split(".")[0] for f in key_forms()})
+            or "see `answers` in cli.md",
+        ) from None
+    for name, kind in zip(akey.names, akey.kinds, strict=False):
+        if name not in kinds[kind]:
+            label = KIND_LABELS.get(kind, kind)
+            raise r.problem(
+                knode, f"answer {key} names unknown {label} {name!r}", did_you_mean(name, kinds[kind])
+            )
+    if akey.kind.distinct and len(set(akey.names)) < len(akey.names):
+        raise r.problem(
+            knode,
+            f"answer {key} names {akey.names[0]!r} twice",
+            f"{akey.family} relates two different names",
+        )
+    return akey
+
+
+def read_claim(r: NodeReader, key: str, knode: yaml.Node, vnode: yaml.Node, kinds: Kinds) -> Claim:
+    """One answer: its key checked, its value read as the key's quantity compares."""
+    akey = _answer_key(r, key, knode, kinds)
+    tolerance = None
+    value_node = vnode
+    if isinstance(vnode, yaml.MappingNode):
+        f = r.mapping(vnode, f"answer {key}", allowed=ANSWER_KEYS)
+        if "value" not in f:
+            raise r.problem(vnode, f"answer {key} has no `value`")
+        value_node = f["value"][1]
+        if "tolerance" in f:
+            tolerance = _tolerance(r, f["tolerance"][1], akey.dimension, file_level=False)
+    text = text_of(value_node)
+    where = r.where(knode)
+    if akey.compare is Compare.LABEL:
+        return Claim(key, r.scalar(value_node, "the chain"), None, None, tolerance, text, where)
+    if akey.compare is Compare.COUNT:
+        raw = r.scalar(value_node, f"answer {key}")
+        if not re.fullmatch(r"[+-]?\d+", raw.strip()):
+            raise r.problem(value_node, f"answer {key} is a count: a whole number, not {raw!r}")
+        return Claim(key, int(raw), Dimension.NUMBER.value, None, tolerance, text, where)
+    if akey.compare is Compare.POINT:
+        if (
+            akey.kind.infinity
+            and isinstance(value_node, yaml.ScalarNode)
+            and value_node.value.strip().lower() in ("infinity", "inf", "at infinity")
+        ):
+            return Claim(key, "infinity", Dimension.LENGTH.value, None, tolerance, text, where)
+        pt = _claim_point(r, value_node, key)
+        return Claim(key, pt, Dimension.LENGTH.value, None, tolerance, text, where)
+    value, sense = _claim_quantity(r, key, akey, value_node)
+    assert akey.dimension is not None
+    return Claim(key, value, akey.dimension.value, sense, tolerance, text, where)
+
+
+def _claim_quantity(
+    r: NodeReader, key: str, akey: AnswerKey, value_node: yaml.Node
+) -> tuple[float, str | None]:
+    """A claimed number with an optional unit of the key's quantity (and a sense where it turns)."""
+    dimension = akey.dimension
+    assert dimension is not None
+    raw = r.scalar(value_node, f"answer {key}")
+    try:
+        q = parse_quantity(raw)
+    except KeyError as exc:
+        raise r.problem(
+            value_node,
+            f"unknown unit {exc.args[0]!r} in answer {key}",
+            f"{dimension.label} units: {', '.join(known_units(dimension))}",
+        ) from None
+    except ValueError:
+        raise r.problem(
+            value_node, f"answer {key} must be a number with an optional unit, not {raw!r}"
+        ) from None
+    if q.dimension is not None and q.dimension not in akey.dimensions:
+        raise r.problem(
+            value_node,
+            f"answer {key} is {article(dimension.label)}, but {q.unit!r} is a unit of {q.dimension.label}",
+            f"{dimension.label} units: {', '.join(known_units(dimension)) or 'none (a plain number)'}",
+        )
+    r.in_range(value_node, f"answer {key}", q.value, dimension)
+    if q.sense is not None and akey.compare not in (Compare.SENSE, Compare.SIGNED):
+        raise r.problem(value_node, f"answer {key} is not an angular quantity: cw/ccw does not apply")
+    return q.value, q.sense
+
+
+def _claim_point(r: NodeReader, node: yaml.Node, key: str) -> Vec:
+    shape = "a point [x, y]" + (" or infinity" if parse_key(key).kind.infinity else "")
+    items = r.sequence(node, f"answer {key} ({shape})")
+    if len(items) != 2:
+        raise r.problem(node, f"answer {key} must be {shape}")
+    out = []
+    for item in items:
+        raw = r.scalar(item, "a coordinate")
+        try:
+            q = parse_quantity(raw)
+        except (KeyError, ValueError):
+            raise r.problem(item, f"a coordinate of answer {key} must be a length, not {raw!r}") from None
+        if q.dimension not in (None, Dimension.LENGTH):
+            raise r.problem(item, f"a coordinate of answer {key} must be a length")
+        out.append(q.value)
+    return (out[0], out[1])
+
+
+def _tolerance(r: NodeReader, node: yaml.Node, dimension: Dimension | None, *, file_level: bool) -> Tolerance:
+    """``2%`` (relative), or per answer a value with a unit of the answer's quantity (absolute)."""
+    raw = r.scalar(node, "tolerance").strip()
+    if raw.endswith("%"):
+        try:
+            value = parse_number(raw[:-1])
+        except ValueError:
+            raise r.problem(node, f"tolerance {raw!r} is not a percentage") from None
+        if value < 0:
+            raise r.problem(node, "a tolerance cannot be negative")
+        return Tolerance(value / 100.0, relative=True)
+    if file_level:
+        raise r.problem(
+            node,
+            f"the file's tolerance must be a percentage such as 2%, not {raw!r}",
+            "per answer, `{value: …, tolerance: 0.05 m/s}` may be absolute",
+        )
+    try:
+        q = parse_quantity(raw)
+    except (KeyError, ValueError):
+        raise r.problem(node, f"tolerance {raw!r} must be a percentage or a value with a unit") from None
+    if q.dimension is not None and dimension is not None and q.dimension is not dimension:
+        raise r.problem(
+            node,
+            f"tolerance {raw!r} is {article(q.dimension.label)}, but the answer is {article(dimension.label)}",
+        )
+    if q.value < 0:
+        raise r.problem(node, "a tolerance cannot be negative")
+    return Tolerance(q.value, relative=False)

@@ -1,0 +1,189 @@
+"""YAML text → located nodes: the one place mech turns text into YAML nodes.
+
+The loader walks the node tree PyYAML composes (with libyaml's C parser when
+present) instead of the Python objects it would construct, for three reasons:
+
+* every value keeps its line and column, so each message can point at it;
+* a duplicate key, which YAML silently lets overwrite, is caught;
+* scalars are read from their raw text, so YAML 1.1's surprises do not leak in:
+  ``1e3`` is the number 1000 (PyYAML makes it a string), and a link called
+  ``no`` or ``on`` is a name, not a boolean.
+
+Nothing is constructed from tags, so reading is as safe as ``safe_load``.
+Mechanism files and answer sheets are both read here (:func:`decode`,
+:func:`compose`), so both get the same encodings, limits and ``file:line:col``
+messages.  The small helpers that describe nodes in messages live here too.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+import yaml
+
+from mech.errors import InputError, Where
+
+__all__ = ["compose", "decode", "did_you_mean", "is_null", "node_kind", "text_of", "where_of"]
+
+_YamlLoader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+
+MAX_NODES = 200_000  # an alias bomb is refused, not expanded
+MAX_DEPTH = 64  # deeper nesting is refused before libyaml's recursive composer sees it
+
+
+def decode(data: bytes, path: str) -> str:
+    """The text of a file's bytes (UTF-8, a BOM allowed); binary or other encodings refused.
+
+    Raises
+    ------
+    InputError
+        Naming the file and the first byte that cannot be read.
+    """
+    if b"\x00" in data:
+        raise InputError(
+            "this is a binary file, not a YAML mechanism file",
+            where=Where(path),
+            hint="mech reads text files in the format of cli.md (see mechanisms/ for examples)",
+        )
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError(
+            f"this file is not UTF-8 text (byte {exc.start} cannot be read)",
+            where=Where(path),
+            hint="save the file as UTF-8",
+        ) from None
+
+
+def compose(text: str, path: str, *, what: str = "this") -> yaml.Node | None:
+    """The root node of YAML ``text`` (None when it holds no document).
+
+    ``what`` names the text in a syntax error (``"this answer sheet"`` → "this
+    answer sheet is not valid YAML: …").  Absurd nesting and alias bombs are
+    refused before they can crash or exhaust the interpreter.
+
+    Raises
+    ------
+    InputError
+        At the line and column of a syntax error, with a hint.
+    """
+    try:
+        _check_depth(text, path)
+        root = yaml.compose(text, Loader=_YamlLoader)
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        where = Where(path, mark.line + 1, mark.column + 1) if mark else Where(path)
+        problem = exc.problem or exc.context or "malformed YAML"
+        if exc.context and exc.problem and exc.context_mark is not None and mark is exc.problem_mark:
+            cm = exc.context_mark
+            problem += f" ({exc.context} at line {cm.line + 1}, column {cm.column + 1})"
+        raise InputError(
+            f"{what} is not valid YAML: {problem}",
+            where=where,
+            hint=_yaml_hint(text, where),
+            source=text,
+        ) from None
+    except yaml.YAMLError as exc:
+        raise InputError(f"{what} is not valid YAML: {exc}", where=Where(path)) from None
+    if root is not None:
+        _check_size(root, path)
+    return root
+
+
+def _yaml_hint(text: str, where: Where) -> str:
+    """What to look for at a YAML syntax error; tabs get a hint of their own."""
+    lines = text.splitlines()
+    nearby = lines[max(where.line - 2, 0) : where.line] if where.line else lines
+    if any("\t" in line for line in nearby):
+        return "YAML indents with spaces, never tabs: replace the tabs with spaces"
+    return "check indentation, colons and brackets near this place"
+
+
+def _check_depth(text: str, path: str) -> None:
+    """Refuse absurd nesting before composing: libyaml's composer recurses in C and
+    would crash the interpreter (not raise) on tens of thousands of nested brackets.
+
+    The event stream is flat, so counting depth on it is safe; it is only read
+    when the text has enough brackets or dashes to nest deeply at all.
+    """
+    if text.count("[") + text.count("{") + text.count("- ") < 4 * MAX_DEPTH:
+        return
+    depth = 0
+    for event in yaml.parse(text, Loader=_YamlLoader):
+        if isinstance(event, (yaml.SequenceStartEvent, yaml.MappingStartEvent)):
+            depth += 1
+            if depth > MAX_DEPTH:
+                mark = event.start_mark
+                raise InputError(
+                    f"the file nests lists or mappings more than {MAX_DEPTH} deep",
+                    where=Where(path, mark.line + 1, mark.column + 1) if mark else Where(path),
+                    hint="a mechanism file nests three or four levels; look for runaway brackets",
+                )
+        elif isinstance(event, (yaml.SequenceEndEvent, yaml.MappingEndEvent)):
+            depth -= 1
+
+
+def _check_size(root: yaml.Node, path: str) -> None:
+    seen = 0
+    stack = [root]
+    while stack:
+        node = stack.pop()
+        seen += 1
+        if seen > MAX_NODES:
+            raise InputError(
+                "the file expands to too many values (an alias bomb?)",
+                where=where_of(root, path),
+                hint="a mechanism file needs a few hundred values, not millions",
+            )
+        if isinstance(node, yaml.MappingNode):
+            for k, v in node.value:
+                stack.extend((k, v))
+        elif isinstance(node, yaml.SequenceNode):
+            stack.extend(node.value)
+
+
+def where_of(node: yaml.Node | None, path: str) -> Where:
+    """``path:line:col`` of a node (1-based), or the file alone when the node has no mark."""
+    if node is None or node.start_mark is None:
+        return Where(path)
+    return Where(path, node.start_mark.line + 1, node.start_mark.column + 1)
+
+
+def is_null(node: yaml.Node | None) -> bool:
+    """An empty value (``key:``, ``~``, ``null``): YAML's resolver tagged it null."""
+    return isinstance(node, yaml.ScalarNode) and node.tag == "tag:yaml.org,2002:null"
+
+
+def node_kind(node: yaml.Node | None) -> str:
+    """What a node is, with its article, for messages: ``a list``, ``an empty value``."""
+    if isinstance(node, yaml.MappingNode):
+        return "a mapping"
+    if isinstance(node, yaml.SequenceNode):
+        return "a list"
+    if isinstance(node, yaml.ScalarNode):
+        if is_null(node):
+            return "an empty value"
+        return f"a single value ({node.value!r})" if len(node.value) < 40 else "a single value"
+    return "nothing"
+
+
+def text_of(node: yaml.Node) -> str:
+    """A value as written, for echoing in results (``[1, 2]`` for a list, ``…`` for a mapping)."""
+    if isinstance(node, yaml.ScalarNode):
+        return node.value
+    if isinstance(node, yaml.SequenceNode):
+        return "[" + ", ".join(text_of(n) for n in node.value) + "]"
+    return "…"
+
+
+def article(noun: str) -> str:
+    """``an angular velocity``, ``a length``."""
+    return ("an " if noun[:1] in "aeiou" else "a ") + noun
+
+
+def did_you_mean(word: str, choices: Iterable[str]) -> str | None:
+    """``did you mean 'crank'?`` for a near miss among ``choices``, else None."""
+    import difflib  # only for a misspelt name: not paid at start-up
+
+    match = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
+    return f"did you mean {match[0]!r}?" if match else None
