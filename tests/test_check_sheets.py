@@ -326,3 +326,27 @@ def test_terminal_table_lists_excluded_files_then_students(classroom: Path) -> N
     alice = next(ln for ln in text.splitlines() if "alice" in ln and "%" in ln)
     assert "100%" in alice
     assert "ignored" in text  # carol's tolerance and chain keys, in the answers table
+
+
+def test_a_sheet_in_another_encoding_is_one_located_error_row(tmp_path: Path) -> None:
+    from mech.batch import read_sheets
+
+    before = "p1: {velocity.B: 1 m/s}  # "
+    (tmp_path / "zoe.yaml").write_bytes((before + "é\n").encode("latin-1"))
+    (sheet,) = read_sheets(str(tmp_path / "zoe.yaml"))
+    assert sheet.error is not None
+    # read as mechanism files are: the byte that cannot be read is named (é, one byte in Latin-1)
+    assert (
+        sheet.error.verdicts[0].message == f"this file is not UTF-8 text (byte {len(before)} cannot be read)"
+    )
+
+
+def test_a_sheet_that_is_not_yaml_points_at_the_line_and_column(tmp_path: Path) -> None:
+    from mech.batch import read_sheets
+
+    (tmp_path / "zoe.yaml").write_text("p1: {dof: 1}\np2: [\n")
+    (sheet,) = read_sheets(str(tmp_path / "zoe.yaml"))
+    assert sheet.error is not None
+    problem = sheet.error.problems[0]
+    assert problem.message.startswith("this answer sheet is not valid YAML")
+    assert (problem.where.line, problem.where.column) == (3, 1)  # the end of the text, where `[` is unclosed

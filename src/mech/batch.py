@@ -454,7 +454,9 @@ def _two_sheets(student: str, paths: Sequence[Path]) -> Sheet:
 
 
 def _read_sheet(path: Path, student: str) -> Sheet:
-    import yaml
+    """One sheet read through the loader (same decoding, YAML limits and located messages)."""
+    from mech.loader import decode
+    from mech.loader.sheets import sheet_entries
 
     name = str(path)
 
@@ -465,45 +467,18 @@ def _read_sheet(path: Path, student: str) -> Sheet:
     if why is not None:
         return failed(InputError(f"the answer sheet {name} is {why}", where=Where(name)))
     try:
-        text = path.read_bytes().decode("utf-8-sig")
-    except (OSError, UnicodeDecodeError) as exc:
+        data = path.read_bytes()
+    except OSError as exc:
         return failed(InputError(f"cannot read the answer sheet: {exc}", where=Where(name)))
-    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
     try:
-        root = yaml.compose(text, Loader=loader)
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = Where(name, mark.line + 1, mark.column + 1) if mark else Where(name)
-        what = getattr(exc, "problem", None) or "malformed YAML"
-        return failed(
-            InputError(f"this answer sheet is not valid YAML: {what}", where=where, source=text), text
-        )
-    if not isinstance(root, yaml.MappingNode):
-        error = InputError(
-            "an answer sheet maps problems to answers (`four_bar: {dof: 1, …}`)",
-            where=Where(name, 1, 1),
-            hint="each top-level key is a problem's file name, stem or name",
-        )
+        text = decode(data, name, what="answer sheet")
+    except InputError as error:
+        return failed(error)
+    try:
+        entries, bad_keys = sheet_entries(text, name)
+    except InputError as error:
         return failed(error, text)
-    from mech.loader import is_null, node_kind
-
-    entries = []
-    bad_keys = []
-    for knode, vnode in root.value:
-        where = Where(name, knode.start_mark.line + 1, knode.start_mark.column + 1)
-        if not isinstance(knode, yaml.ScalarNode):
-            written = " ".join(text[knode.start_mark.index : knode.end_mark.index].split())
-            bad_keys.append((written if len(written) <= 40 else written[:39] + "…", node_kind(knode), where))
-            continue
-        key = str(knode.value)
-        if isinstance(vnode, yaml.MappingNode):
-            entries.append(SheetEntry(key, where, vnode))
-        elif is_null(vnode):
-            entries.append(SheetEntry(key, where))
-        else:
-            message = f"the answers to {key} must be a mapping (`dof: 1` lines), not {node_kind(vnode)}"
-            entries.append(SheetEntry(key, where, problem=message))
-    return Sheet(student, name, text, tuple(entries), bad_keys=tuple(bad_keys))
+    return Sheet(student, name, text, tuple(SheetEntry(*e) for e in entries), bad_keys=tuple(bad_keys))
 
 
 @dataclass(frozen=True, slots=True)
@@ -558,28 +533,20 @@ def _lost(task: _Task, message: str) -> _Done:
 
 def _exclude(task: _Task, teacher: FileResult) -> tuple[FileResult, ...]:
     """A problem left out of every score: the teacher's row, and a not-scored row per student."""
+    from mech.loader.sheets import answer_keys
+
     why = teacher.verdicts[0].message if teacher.verdicts else "the problem asks nothing"
     rows = [replace(teacher, excluded=True)]
     for sub in task.submissions or ():
-        keys = [(k, w) for e in sub.entries if e.node is not None for k, w in _entry_keys(e)]
+        keys = [
+            (k, w) for e in sub.entries if e.node is not None for k, w in answer_keys(e.node, e.where.path)
+        ]
         verdicts = tuple(
             Verdict(k, IGNORED, message=f"not scored: the problem file is excluded ({why})", where=w)
             for k, w in keys
         )
         rows.append(FileResult(task.path, teacher.name, verdicts, student=sub.student, excluded=True))
     return tuple(rows)
-
-
-def _entry_keys(entry: SheetEntry) -> list[tuple[str, Where]]:
-    out = []
-    for knode, _ in entry.node.value:
-        out.append(
-            (
-                str(knode.value),
-                Where(entry.where.path, knode.start_mark.line + 1, knode.start_mark.column + 1),
-            )
-        )
-    return out
 
 
 def _check_task(task: _Task) -> _Done:
@@ -661,9 +628,10 @@ def _grade(
             questions, FAIL, "not answered: the sheet's entry for this problem is empty", entry.where
         )
     from mech.loader import parse_answer_entries
+    from mech.loader.sheets import own_tolerances
 
     asked = set(questions)
-    own_tolerance = _own_tolerances(entry.node, sub.sheet)
+    own_tolerance = own_tolerances(entry.node, sub.sheet)
     claims: dict[str, Any] = {}
     errors: dict[str, Verdict] = {}
     first: dict[str, Where] = {}
@@ -729,19 +697,6 @@ def _grade(
         else:
             out.append(Verdict(q, FAIL, message="not answered", where=entry.where))
     return tuple(out) + tuple(ignored)
-
-
-def _own_tolerances(node: Any, sheet: str) -> dict[str, Where]:
-    """Keys of a sheet entry written ``{value: …, tolerance: …}``: where their tolerance is."""
-    import yaml
-
-    out = {}
-    for knode, vnode in node.value:
-        if isinstance(vnode, yaml.MappingNode):
-            for k, _ in vnode.value:
-                if getattr(k, "value", None) == "tolerance":
-                    out[str(knode.value)] = Where(sheet, k.start_mark.line + 1, k.start_mark.column + 1)
-    return out
 
 
 def _twice(path: str, entries: Sequence[SheetEntry]) -> InputError:

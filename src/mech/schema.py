@@ -5,18 +5,43 @@ complete and flag typos as you write.  The loader checks more than a schema
 can (names that must exist, lengths on one link, units of the right kind), so
 a file the schema accepts may still be refused by ``mech`` with a located
 message.  ``mech schema`` prints it.
+
+Generated from the loader's own tables, so the two cannot drift apart: the key
+tuples of each section (:data:`mech.loader.mechanism.TOP_KEYS`,
+:data:`~mech.loader.drives.DRIVE_KEYS` …) decide which keys the schema lists,
+their enumerations (link kinds, closures, directions, unit spellings) come
+from the same tuples the loader checks values against, and each joint type's
+keys come from the pair-kind registry.  What is written here is only the JSON
+type of each key (its *fragment*); a key the loader reads with no fragment
+here fails at import, not in an editor.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 from typing import Any
 
+from mech.loader.answers import ANSWER_KEYS
+from mech.loader.drives import DIRECTIONS, DRIVE_KEYS
+from mech.loader.joints import CLOSURES, COMMON_JOINT_KEYS
+from mech.loader.links import LINK_KEYS, LINK_KINDS
+from mech.loader.loads import LOAD_KEYS
+from mech.loader.mechanism import TOP_KEYS
+from mech.loader.points import PLACE_KEYS, POINT_KEYS
+from mech.loader.units import UNITS_KEYS
 from mech.pairs.base import NAME as _NAME
 from mech.pairs.base import NUMBER as _NUMBER
 from mech.pairs.base import XY as _XY
 from mech.pairs.registry import KINDS
+from mech.units import known_units
 
-_PLACE: dict[str, Any] = {
+
+def _only(keys: Iterable[str], fragments: Mapping[str, Any]) -> dict[str, Any]:
+    """``{key: fragment}`` for exactly ``keys``, in their order (a key without a fragment raises)."""
+    return {k: fragments[k] for k in keys}
+
+
+_PLACE_FRAGMENTS: dict[str, Any] = {
     "at": {**_XY, "description": "Drawn here, in the analysed configuration."},
     "near": {**_XY, "description": "A hint: initial guess and assembly branch."},
     "from": {**_NAME, "description": "Placed relative to this point of the same link…"},
@@ -24,14 +49,18 @@ _PLACE: dict[str, Any] = {
     "distance": _NUMBER,
     "offset": {**_XY, "description": "[u, v]: u along from→toward, v to its left."},
 }
+_PLACE = _only(PLACE_KEYS, _PLACE_FRAGMENTS)
 
-_JOINT_COMMON: dict[str, Any] = {
-    "type": {"enum": [t.value for t in KINDS]},
-    "links": {"type": "array", "items": _NAME, "minItems": 2},
-    "description": {"type": "string"},
-    "closure": {"enum": ["form", "force", "self"]},
-    **_PLACE,
-}
+_JOINT_COMMON: dict[str, Any] = _only(
+    COMMON_JOINT_KEYS,
+    {
+        "type": {"enum": [t.value for t in KINDS]},
+        "links": {"type": "array", "items": _NAME, "minItems": 2},
+        "description": {"type": "string"},
+        "closure": {"enum": list(CLOSURES)},
+        **_PLACE,
+    },
+)
 # Every kind's keys, generated from the pair-kind registry (a key two kinds share, such as
 # `path` or `profiles`, has one fragment) …
 _JOINT_KEYS: dict[str, Any] = {}
@@ -47,6 +76,129 @@ _JOINT_KINDS: list[dict[str, Any]] = [
     for t, k in KINDS.items()
 ]
 
+_DRIVE: dict[str, Any] = _only(
+    DRIVE_KEYS,
+    {
+        "link": _NAME,
+        "joint": _NAME,
+        "angle": _NUMBER,
+        "rpm": _NUMBER,
+        "omega": _NUMBER,
+        "direction": {"enum": list(DIRECTIONS)},
+        "alpha": _NUMBER,
+        "about": _NAME,
+        "relative_to": {
+            **_NAME,
+            "description": "angle, omega and alpha are the driven link's minus this link's "
+            "(default: absolute, measured from the ground)",
+        },
+        "speed": _NUMBER,
+        "accel": _NUMBER,
+        "acceleration": _NUMBER,
+    },
+)
+
+_SECTIONS: dict[str, Any] = {
+    "name": {"type": "string"},
+    "description": {"type": "string"},
+    "source": {"type": "string"},
+    "units": {
+        "type": "object",
+        "additionalProperties": False,
+        "properties": {
+            key: {"enum": known_units(dimension, ascii_only=False)} for key, dimension in UNITS_KEYS.items()
+        },
+    },
+    "ground": _NAME,
+    "links": {
+        "oneOf": [
+            {"type": "array", "items": _NAME, "minItems": 2},
+            {
+                "type": "object",
+                "additionalProperties": {
+                    "oneOf": [
+                        {"type": "null"},
+                        {
+                            "type": "object",
+                            "additionalProperties": False,
+                            "properties": _only(
+                                LINK_KEYS,
+                                {"kind": {"enum": list(LINK_KINDS)}, "description": {"type": "string"}},
+                            ),
+                        },
+                    ]
+                },
+            },
+        ]
+    },
+    "joints": {
+        "type": "object",
+        "minProperties": 1,
+        "additionalProperties": {
+            "type": "object",
+            "required": ["type", "links"],
+            "additionalProperties": False,
+            "properties": {**_JOINT_COMMON, **_JOINT_KEYS},
+            "allOf": _JOINT_KINDS,
+        },
+    },
+    "lengths": {"type": "object", "additionalProperties": _NUMBER},
+    "points": {
+        "type": "object",
+        "additionalProperties": {
+            "type": "object",
+            "required": ["link"],
+            "additionalProperties": False,
+            "properties": _only(POINT_KEYS, {"link": _NAME, "description": {"type": "string"}, **_PLACE}),
+        },
+    },
+    "drive": {
+        "oneOf": [
+            {"$ref": "#/definitions/drive"},
+            {"type": "array", "items": {"$ref": "#/definitions/drive"}, "minItems": 1},
+        ]
+    },
+    "loads": {
+        "type": "object",
+        "description": "Loads for mechanical advantage and the input torque: {P: {force: [Fx, Fy]}} (N) "
+        "at a point, {link: {torque: T}} (N m, ccw +) on a link.",
+        "additionalProperties": {
+            "type": "object",
+            "additionalProperties": False,
+            "properties": _only(
+                LOAD_KEYS,
+                {
+                    "force": {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
+                    "torque": _NUMBER,
+                },
+            ),
+        },
+    },
+    "asks": {
+        "type": "array",
+        "items": {"type": "string"},
+        "description": "Answer keys a student must answer (mech check --answers), when `answers` gives no values.",
+    },
+    "answers": {
+        "type": "object",
+        "properties": {"tolerance": {"type": "string", "pattern": r"^\s*\d+(\.\d*)?\s*%\s*$"}},
+        "additionalProperties": {
+            "oneOf": [
+                {"type": ["number", "string"]},
+                {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
+                {
+                    "type": "object",
+                    "required": ["value"],
+                    "additionalProperties": False,
+                    "properties": _only(
+                        ANSWER_KEYS, {"value": {}, "tolerance": {"type": ["string", "number"]}}
+                    ),
+                },
+            ]
+        },
+    },
+}
+
 SCHEMA: dict[str, Any] = {
     "$schema": "http://json-schema.org/draft-07/schema#",
     "$id": "https://github.com/planar-mech/mech/schema/format-1.json",
@@ -55,124 +207,6 @@ SCHEMA: dict[str, Any] = {
     "type": "object",
     "additionalProperties": False,
     "required": ["links", "joints"],
-    "properties": {
-        "name": {"type": "string"},
-        "description": {"type": "string"},
-        "source": {"type": "string"},
-        "units": {
-            "type": "object",
-            "additionalProperties": False,
-            "properties": {
-                "length": {"enum": ["m", "mm", "cm", "dm", "km", "um", "µm", "in", "ft"]},
-                "angle": {"enum": ["deg", "rad", "°"]},
-            },
-        },
-        "ground": _NAME,
-        "links": {
-            "oneOf": [
-                {"type": "array", "items": _NAME, "minItems": 2},
-                {
-                    "type": "object",
-                    "additionalProperties": {
-                        "oneOf": [
-                            {"type": "null"},
-                            {
-                                "type": "object",
-                                "additionalProperties": False,
-                                "properties": {
-                                    "kind": {"enum": ["rigid", "flexible", "fluid"]},
-                                    "description": {"type": "string"},
-                                },
-                            },
-                        ]
-                    },
-                },
-            ]
-        },
-        "joints": {
-            "type": "object",
-            "minProperties": 1,
-            "additionalProperties": {
-                "type": "object",
-                "required": ["type", "links"],
-                "additionalProperties": False,
-                "properties": {**_JOINT_COMMON, **_JOINT_KEYS},
-                "allOf": _JOINT_KINDS,
-            },
-        },
-        "lengths": {"type": "object", "additionalProperties": _NUMBER},
-        "points": {
-            "type": "object",
-            "additionalProperties": {
-                "type": "object",
-                "required": ["link"],
-                "additionalProperties": False,
-                "properties": {"link": _NAME, "description": {"type": "string"}, **_PLACE},
-            },
-        },
-        "drive": {
-            "oneOf": [
-                {"$ref": "#/definitions/drive"},
-                {"type": "array", "items": {"$ref": "#/definitions/drive"}, "minItems": 1},
-            ]
-        },
-        "loads": {
-            "type": "object",
-            "description": "Loads for mechanical advantage and the input torque: {P: {force: [Fx, Fy]}} (N) "
-            "at a point, {link: {torque: T}} (N m, ccw +) on a link.",
-            "additionalProperties": {
-                "type": "object",
-                "additionalProperties": False,
-                "properties": {
-                    "force": {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
-                    "torque": _NUMBER,
-                },
-            },
-        },
-        "asks": {
-            "type": "array",
-            "items": {"type": "string"},
-            "description": "Answer keys a student must answer (mech check --answers), when `answers` gives no values.",
-        },
-        "answers": {
-            "type": "object",
-            "properties": {"tolerance": {"type": "string", "pattern": r"^\s*\d+(\.\d*)?\s*%\s*$"}},
-            "additionalProperties": {
-                "oneOf": [
-                    {"type": ["number", "string"]},
-                    {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
-                    {
-                        "type": "object",
-                        "required": ["value"],
-                        "additionalProperties": False,
-                        "properties": {"value": {}, "tolerance": {"type": ["string", "number"]}},
-                    },
-                ]
-            },
-        },
-    },
-    "definitions": {
-        "drive": {
-            "type": "object",
-            "additionalProperties": False,
-            "properties": {
-                "link": _NAME,
-                "joint": _NAME,
-                "angle": _NUMBER,
-                "rpm": _NUMBER,
-                "omega": _NUMBER,
-                "direction": {"enum": ["cw", "ccw"]},
-                "alpha": _NUMBER,
-                "about": _NAME,
-                "relative_to": {
-                    **_NAME,
-                    "description": "angle, omega and alpha are the driven link's minus this link's "
-                    "(default: absolute, measured from the ground)",
-                },
-                "speed": _NUMBER,
-                "accel": _NUMBER,
-                "acceleration": _NUMBER,
-            },
-        }
-    },
+    "properties": _only(TOP_KEYS, _SECTIONS),
+    "definitions": {"drive": {"type": "object", "additionalProperties": False, "properties": _DRIVE}},
 }

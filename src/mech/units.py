@@ -143,9 +143,9 @@ def unit_factor(unit: str) -> tuple[Dimension, float]:
     return _UNITS[_normalise_unit(unit)]
 
 
-def known_units(dimension: Dimension) -> list[str]:
-    """Unit spellings of one dimension, for hints in error messages."""
-    return [u for u, (d, _) in _UNITS.items() if d is dimension and u.isascii()]
+def known_units(dimension: Dimension, *, ascii_only: bool = True) -> list[str]:
+    """Unit spellings of one dimension: ASCII ones for hints in error messages, all for the schema."""
+    return [u for u, (d, _) in _UNITS.items() if d is dimension and (u.isascii() or not ascii_only)]
 
 
 def parse_number(text: str) -> float:

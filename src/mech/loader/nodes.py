@@ -31,8 +31,10 @@ MAX_NODES = 200_000  # an alias bomb is refused, not expanded
 MAX_DEPTH = 64  # deeper nesting is refused before libyaml's recursive composer sees it
 
 
-def decode(data: bytes, path: str) -> str:
+def decode(data: bytes, path: str, *, what: str = "mechanism file") -> str:
     """The text of a file's bytes (UTF-8, a BOM allowed); binary or other encodings refused.
+
+    ``what`` names what the file should have been (``"answer sheet"``).
 
     Raises
     ------
@@ -41,7 +43,7 @@ def decode(data: bytes, path: str) -> str:
     """
     if b"\x00" in data:
         raise InputError(
-            "this is a binary file, not a YAML mechanism file",
+            f"this is a binary file, not a YAML {what}",
             where=Where(path),
             hint="mech reads text files in the format of cli.md (see mechanisms/ for examples)",
         )
