@@ -238,6 +238,12 @@ def assemble(
 ) -> Drawn:
     """Positions of every location in the drawn configuration.
 
+    The steps: what the file places (:func:`_placements`), the scale and
+    origin (:func:`_frame`), the equations (:func:`_equations`), drawn data
+    checked against them (:func:`_check_drawn`), a closed-form first guess
+    (:func:`_construct`) polished by Gauss–Newton (:func:`_solve`), the
+    drawing's own drive angles read where the file gives none.
+
     Parameters
     ----------
     lay
@@ -266,6 +272,74 @@ def assemble(
         )
     _check_contacts(lay)
     unit = mech.length_unit
+
+    def fmt(v: float) -> str:
+        return f"{to_unit(v, unit):.6g} {unit}"
+
+    known, near, places = _placements(lay)
+    scale, centre = _frame(lay, known, near, places)
+    eqs, resolved_angles = _equations(lay, places, scale, drive_angles, fmt)
+    # Every name an equation uses must be a location.
+    problems = [
+        Problem(f"{e.text}: {n} is not a joint or point with a position")
+        for e in eqs
+        for n in e.names
+        if n not in lay.carriers and n not in known
+    ]
+    if problems:
+        raise InputError(problems=problems, source=mech.source)
+    scaled_known = {n: (np.asarray(xy, dtype=float) - centre) / scale for n, xy in known.items()}
+    _check_drawn(mech, eqs, scaled_known, scale, fmt)
+    guess, notes, gaps = _construct(lay, eqs, scaled_known, near, centre, scale)
+    # A moving location drawn with ``at`` is good to the drawing's precision, while the lengths
+    # and angles a file gives are exact: solve for it too, held to its drawing by a weak spring,
+    # so that where the drawing is rounded the exact numbers win (and any disagreement larger
+    # than drawing precision is reported by _solve).  Ground locations and path coordinates stay fixed.
+    soft = {
+        n: v for n, v in scaled_known.items() if lay.carriers.get(n) and mech.ground not in lay.carriers[n]
+    }
+    fixed = {n: v for n, v in scaled_known.items() if n not in soft}
+    guess.update(soft)
+    # Contact points of higher pairs are data of the instant (``at``), never unknowns.
+    unknown = [n for n, c in lay.carriers.items() if c and n not in fixed]
+    solved = _solve(lay, eqs, guess, fixed, soft, unknown, gaps, notes, (scale, centre, fmt), allow_free)
+
+    positions: dict[str, tuple[float, float]] = {}
+    for n, p in fixed.items():
+        xy = p * scale + centre
+        positions[n] = (float(xy[0]), float(xy[1]))
+    # Relative to the centre (a ground pivot) as well: far from the origin, absolute coordinates
+    # round a millimetre link's end to the ulp there (1.2e-4 m at 1e12 m), so the constraint
+    # system is built from these instead.
+    relative = {n: (float(p[0] * scale), float(p[1] * scale)) for n, p in fixed.items()}
+    for n in unknown:
+        rel = solved[n] * scale
+        relative[n] = (float(rel[0]), float(rel[1]))
+        p = rel + centre
+        positions[n] = (float(p[0]), float(p[1]))
+    for e in eqs:  # a drive's equation holds on the whole line: the point must be on the ray
+        if isinstance(e, _Dir):
+            pts = [(np.asarray(positions[n]) - centre) / scale for n in e.names]
+            if not e.forward(pts):
+                raise GeometryError(
+                    _disagreement(e, pts, scale, fmt),
+                    where=e.where,
+                    hint="give near: on the driven link's other joint, on the side the crank points to",
+                )
+    _check_gears(lay, positions, fmt)
+    _drawn_drive_angles(lay, positions, resolved_angles)
+    gear_pitch_points(lay, positions)
+    cx, cy = float(centre[0]), float(centre[1])
+    for n, xy in positions.items():
+        relative.setdefault(n, (xy[0] - cx, xy[1] - cy))
+    return Drawn(positions, tuple(resolved_angles), scale, tuple(notes), (cx, cy), relative)
+
+
+def _placements(
+    lay: Layout,
+) -> tuple[dict[str, tuple[float, float]], dict[str, tuple[float, float]], dict[str, Placement]]:
+    """Locations drawn with ``at`` (and path coordinates), those with a ``near`` hint, every placement."""
+    mech = lay.mech
     known: dict[str, tuple[float, float]] = {}
     near: dict[str, tuple[float, float]] = {}
     places: dict[str, Placement] = {}
@@ -281,17 +355,22 @@ def assemble(
             known[name] = pl.at
         elif pl.near is not None:
             near[name] = pl.near
-
     # Path references given as coordinates become synthetic known locations.
     for ps in lay.paths:
         for tag, ref in (("through", ps.path.through), ("toward", ps.path.toward)):
             if ref is not None and ref.xy is not None:
                 known[f"#{ps.joint}.{tag}"] = ref.xy
+    return known, near, places
 
-    def ref_name(ps_joint: str, tag: str, ref: Ref) -> str:
-        return lay.resolve(ref.name) if ref.name is not None else f"#{ps_joint}.{tag}"
 
-    # Scale: largest datum; origin: a drawn ground location (translation invariance).
+def _frame(
+    lay: Layout,
+    known: dict[str, tuple[float, float]],
+    near: dict[str, tuple[float, float]],
+    places: dict[str, Placement],
+) -> tuple[float, np.ndarray]:
+    """Scale: the largest datum; origin: a drawn ground location (translation invariance)."""
+    mech = lay.mech
     data = [abs(x.value) for x in mech.lengths]
     pts = list(known.values()) + list(near.values())
     if pts:
@@ -305,11 +384,20 @@ def assemble(
     scale = max(data) if data and max(data) > 0 else 1.0
     grounded = [n for n in lay.on_link.get(mech.ground, ()) if n in known]
     centre = np.array(known[grounded[0]] if grounded else (pts[0] if pts else (0.0, 0.0)), dtype=float)
+    return scale, centre
 
-    def fmt(v: float) -> str:
-        return f"{to_unit(v, unit):.6g} {unit}"
 
-    # -- equations
+def _equations(
+    lay: Layout,
+    places: dict[str, Placement],
+    scale: float,
+    drive_angles: Sequence[float | None] | None,
+    fmt: Callable[[float], str],
+) -> tuple[list[_Eq], list[float | None]]:
+    """Every equation the file's data give (lengths, drive angles, paths, relative placements),
+    and each drive's angle (the file's, else ``drive_angles``', else None: read from the drawing).
+    """
+    mech = lay.mech
     eqs: list[_Eq] = []
     for ln in mech.lengths:
         a, b = lay.resolve(ln.a), lay.resolve(ln.b)
@@ -332,21 +420,7 @@ def assemble(
         else:
             eqs.append(_Dir(spec.pivot, spec.toward, angle, f"drive angle {shown}"))  # type: ignore[arg-type]
         eqs[-1].where = spec.drive.where
-    for ps in lay.paths:
-        path_where = mech.joint(ps.joint).where
-        t = ref_name(ps.joint, "through", ps.path.through)
-        text = f"{ps.point} on the path of {ps.type.value} joint {ps.joint}"
-        if ps.point.startswith("#"):
-            eqs.append(_Same(ps.point, t, f"the point of {ps.slider} on the path of {ps.joint}"))
-            eqs[-1].where = path_where
-            continue
-        if ps.path.toward is not None:
-            eqs.append(_OnLineToward(ps.point, t, ref_name(ps.joint, "toward", ps.path.toward), text))
-            eqs[-1].where = path_where
-        elif ps.path.angle is not None:
-            stroke = ps.path.angle
-            eqs.append(_OnLine(ps.point, t, np.array([math.cos(stroke), math.sin(stroke)]), text))
-            eqs[-1].where = path_where
+    eqs += _path_equations(lay)
     for name, pl in places.items():
         if pl.origin is None or pl.toward is None or name not in lay.carriers:
             continue
@@ -365,20 +439,42 @@ def assemble(
             )
         )
         eqs[-1].where = _where_of(mech, name)
+    return eqs, resolved_angles
 
-    # Every name an equation uses must be a location.
-    problems = [
-        Problem(f"{e.text}: {n} is not a joint or point with a position")
-        for e in eqs
-        for n in e.names
-        if n not in lay.carriers and n not in known
-    ]
-    if problems:
-        raise InputError(problems=problems, source=mech.source)
 
-    scaled_known = {n: (np.asarray(xy, dtype=float) - centre) / scale for n, xy in known.items()}
+def _path_equations(lay: Layout) -> list[_Eq]:
+    """A prismatic or slot joint's point on its path (through a point, toward another or at an angle)."""
 
-    # -- drawn data must agree with lengths and drive angles given as well
+    def ref_name(ps_joint: str, tag: str, ref: Ref) -> str:
+        return lay.resolve(ref.name) if ref.name is not None else f"#{ps_joint}.{tag}"
+
+    eqs: list[_Eq] = []
+    for ps in lay.paths:
+        path_where = lay.mech.joint(ps.joint).where
+        t = ref_name(ps.joint, "through", ps.path.through)
+        text = f"{ps.point} on the path of {ps.type.value} joint {ps.joint}"
+        if ps.point.startswith("#"):
+            eqs.append(_Same(ps.point, t, f"the point of {ps.slider} on the path of {ps.joint}"))
+            eqs[-1].where = path_where
+            continue
+        if ps.path.toward is not None:
+            eqs.append(_OnLineToward(ps.point, t, ref_name(ps.joint, "toward", ps.path.toward), text))
+            eqs[-1].where = path_where
+        elif ps.path.angle is not None:
+            stroke = ps.path.angle
+            eqs.append(_OnLine(ps.point, t, np.array([math.cos(stroke), math.sin(stroke)]), text))
+            eqs[-1].where = path_where
+    return eqs
+
+
+def _check_drawn(
+    mech: Mechanism,
+    eqs: list[_Eq],
+    scaled_known: dict[str, np.ndarray],
+    scale: float,
+    fmt: Callable[[float], str],
+) -> None:
+    """Drawn data must agree with the lengths and drive angles given as well."""
     disagree: list[Problem] = []
     agree_hint = "make the drawing and the numbers agree, or give only one of them (`at` on a moving joint means drawn here)"
     for e in eqs:
@@ -390,21 +486,31 @@ def assemble(
     if disagree:
         raise InputError(problems=disagree, source=mech.source)
 
-    # -- first guess by closed-form construction
-    guess, notes, gaps = _construct(lay, eqs, scaled_known, near, centre, scale)
-    # A moving location drawn with ``at`` is good to the drawing's precision, while the lengths
-    # and angles a file gives are exact: solve for it too, held to its drawing by a weak spring,
-    # so that where the drawing is rounded the exact numbers win (and any disagreement larger
-    # than drawing precision is reported below).  Ground locations and path coordinates stay fixed.
-    soft = {
-        n: v for n, v in scaled_known.items() if lay.carriers.get(n) and mech.ground not in lay.carriers[n]
-    }
-    fixed = {n: v for n, v in scaled_known.items() if n not in soft}
-    guess.update(soft)
-    # Contact points of higher pairs are data of the instant (``at``), never unknowns.
-    unknown = [n for n, c in lay.carriers.items() if c and n not in fixed]
+
+def _solve(
+    lay: Layout,
+    eqs: list[_Eq],
+    guess: dict[str, np.ndarray],
+    fixed: dict[str, np.ndarray],
+    soft: dict[str, np.ndarray],
+    unknown: list[str],
+    gaps: list[str],
+    notes: list[str],
+    frame: tuple[float, np.ndarray, Callable[[float], str]],
+    allow_free: bool,
+) -> dict[str, np.ndarray]:
+    """Gauss–Newton from the first guess: every unknown location (scaled), checked.
+
+    Raises when the loop cannot close, when a drawn moving location lies farther
+    from its solved place than drawing precision, or when the data leave a
+    location free (unless ``allow_free``); notes a drawing rounded to agree.
+    """
+    if not unknown:
+        return {}
+    mech = lay.mech
+    scale, centre, fmt = frame
     col = {n: i for i, n in enumerate(unknown)}
-    x = np.concatenate([guess[n] for n in unknown]) if unknown else np.zeros(0)
+    x = np.concatenate([guess[n] for n in unknown])
     live = [e for e in eqs if any(n in col for n in e.names)]
     springs: list[_Eq] = [_Drawn(n, v) for n, v in soft.items()]
 
@@ -424,72 +530,52 @@ def assemble(
             row += e.rows
         return res, jac
 
-    res = np.zeros(0)
-    if unknown:
-        x, res_all, jac = _gauss_newton(system, x)
-        res = res_all[: sum(e.rows for e in live)]  # the file's equations, without the springs
-        worst = float(np.max(np.abs(res))) if res.size else 0.0
-        if worst > _AGREE:
-            raise GeometryError(
-                _no_assembly(mech.label, live, res, gaps, scale, fmt),
-                where=_worst_where(live, res) or (lay.drives[0].drive.where if lay.drives else None),
-                hint="check the lengths; a rocker or a slider has limits: try another crank angle (--angle)",
-            )
-        moved = {n: float(np.hypot(*(x[2 * col[n] : 2 * col[n] + 2] - v))) for n, v in soft.items()}
-        far = [n for n, d in moved.items() if d > _AGREE]
-        if far:
-            raise InputError(
-                problems=[
-                    Problem(
-                        f"{n} is drawn at ({fmt(_unscale(soft[n], scale, centre)[0])}, "
-                        f"{fmt(_unscale(soft[n], scale, centre)[1])}), but the lengths and angles put it "
-                        f"{fmt(moved[n] * scale)} away",
-                        _where_of(mech, n),
-                        "make the drawing and the numbers agree, or give only one of them "
-                        "(`at` on a moving joint means drawn here)",
-                    )
-                    for n in far
-                ],
-                source=mech.source,
-            )
-        if moved and max(moved.values()) > _ACCEPT:  # drawn data rounded to a few decimals
-            n = max(moved, key=moved.__getitem__)
-            notes.append(
-                f"drawn positions moved by up to {fmt(moved[n] * scale)} ({n}) to agree with the given "
-                f"lengths and angles (drawing precision: within {_AGREE:g} of the size)"
-            )
-        if allow_free:
-            if jac.shape[0] < x.size or np.linalg.matrix_rank(jac, tol=1e-8) < x.size:
-                notes.append("the file leaves the configuration free: one consistent configuration used")
-        else:
-            _check_determined(system, x, jac, unknown, lay)
-
-    positions: dict[str, tuple[float, float]] = {}
-    for n, p in fixed.items():
-        xy = p * scale + centre
-        positions[n] = (float(xy[0]), float(xy[1]))
-    # Relative to the centre (a ground pivot) as well: far from the origin, absolute coordinates
-    # round a millimetre link's end to the ulp there (1.2e-4 m at 1e12 m), so the constraint
-    # system is built from these instead.
-    relative = {n: (float(p[0] * scale), float(p[1] * scale)) for n, p in fixed.items()}
-    for n in unknown:
-        rel = x[2 * col[n] : 2 * col[n] + 2] * scale
-        relative[n] = (float(rel[0]), float(rel[1]))
-        p = rel + centre
-        positions[n] = (float(p[0]), float(p[1]))
-    for e in eqs:  # a drive's equation holds on the whole line: the point must be on the ray
-        if isinstance(e, _Dir):
-            p = [(np.asarray(positions[n]) - centre) / scale for n in e.names]
-            if not e.forward(p):
-                raise GeometryError(
-                    _disagreement(e, p, scale, fmt),
-                    where=e.where,
-                    hint="give near: on the driven link's other joint, on the side the crank points to",
+    x, res_all, jac = _gauss_newton(system, x)
+    res = res_all[: sum(e.rows for e in live)]  # the file's equations, without the springs
+    worst = float(np.max(np.abs(res))) if res.size else 0.0
+    if worst > _AGREE:
+        raise GeometryError(
+            _no_assembly(mech.label, live, res, gaps, scale, fmt),
+            where=_worst_where(live, res) or (lay.drives[0].drive.where if lay.drives else None),
+            hint="check the lengths; a rocker or a slider has limits: try another crank angle (--angle)",
+        )
+    moved = {n: float(np.hypot(*(x[2 * col[n] : 2 * col[n] + 2] - v))) for n, v in soft.items()}
+    far = [n for n, d in moved.items() if d > _AGREE]
+    if far:
+        raise InputError(
+            problems=[
+                Problem(
+                    f"{n} is drawn at ({fmt(_unscale(soft[n], scale, centre)[0])}, "
+                    f"{fmt(_unscale(soft[n], scale, centre)[1])}), but the lengths and angles put it "
+                    f"{fmt(moved[n] * scale)} away",
+                    _where_of(mech, n),
+                    "make the drawing and the numbers agree, or give only one of them "
+                    "(`at` on a moving joint means drawn here)",
                 )
-    _check_gears(lay, positions, fmt)
+                for n in far
+            ],
+            source=mech.source,
+        )
+    if moved and max(moved.values()) > _ACCEPT:  # drawn data rounded to a few decimals
+        n = max(moved, key=moved.__getitem__)
+        notes.append(
+            f"drawn positions moved by up to {fmt(moved[n] * scale)} ({n}) to agree with the given "
+            f"lengths and angles (drawing precision: within {_AGREE:g} of the size)"
+        )
+    if allow_free:
+        if jac.shape[0] < x.size or np.linalg.matrix_rank(jac, tol=1e-8) < x.size:
+            notes.append("the file leaves the configuration free: one consistent configuration used")
+    else:
+        _check_determined(system, x, jac, unknown, lay)
+    return {n: x[2 * col[n] : 2 * col[n] + 2] for n in unknown}
 
-    # Drive angles not given: read from the drawing; a disc with only its pivot
-    # (a cam, a gear) has no line to read, and its drawn angle is taken as 0.
+
+def _drawn_drive_angles(
+    lay: Layout, positions: dict[str, tuple[float, float]], resolved_angles: list[float | None]
+) -> None:
+    """Drive angles not given: read from the drawing (in place).  A disc with only its pivot
+    (a cam, a gear) has no line to read, and its drawn angle is taken as 0.
+    """
     for k, spec in enumerate(lay.drives):
         if resolved_angles[k] is None and spec.link is not None:
             if spec.pivot is None or spec.toward is None:  # (a rotary drive always has a pivot)
@@ -501,11 +587,6 @@ def assemble(
                 r0, r1 = (positions[n] for n in spec.reference_line)
                 drawn = math.remainder(drawn - math.atan2(r1[1] - r0[1], r1[0] - r0[0]), 2 * math.pi)
             resolved_angles[k] = drawn
-    gear_pitch_points(lay, positions)
-    cx, cy = float(centre[0]), float(centre[1])
-    for n, xy in positions.items():
-        relative.setdefault(n, (xy[0] - cx, xy[1] - cy))
-    return Drawn(positions, tuple(resolved_angles), scale, tuple(notes), (cx, cy), relative)
 
 
 def _construct(

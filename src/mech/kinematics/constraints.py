@@ -33,6 +33,7 @@ Everything is scaled: lengths by ``scale`` (the drawn size), time by
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import field
 
 import numpy as np
@@ -292,6 +293,10 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     """Compile the constraint rows of ``lay`` about its drawn configuration.
 
     Each joint's rows come from its kind's entry in :data:`mech.kinematics.rows.ROWS`.
+    The steps: the scaled frame (:func:`_scaling`), each link's drawn frame
+    (:func:`_link_frames`), every location in its carrier's frame, the joints'
+    rows, the drives' rows (:func:`_drive_rows`), then the rows stacked into
+    arrays (:func:`_stack_rows`) and labelled (:func:`_label_rows`).
 
     Raises
     ------
@@ -306,9 +311,67 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     index = {name: i for i, name in enumerate(links)}
     index[ground] = len(links)
     pos = drawn.positions
-    ground_pts = [p for p in lay.on_link.get(ground, ()) if p in pos]
+    centre, sc, scn = _scaling(lay, drawn)
+    n = len(links)
+    q0, frames = _link_frames(lay, drawn, links, index, scn)
+
+    b = Build(lay, pos, index, n, q0, scale, sc, scn, {ps.joint: ps for ps in lay.paths})
+    local: dict[str, tuple[int, np.ndarray]] = {}
+    for name, carriers in lay.carriers.items():
+        if carriers and name in pos:
+            moving = [c for c in carriers if c != ground]
+            carrier = moving[0] if moving else ground
+            local[name] = (index[carrier], b.to_local(carrier, scn(name)))
+    contact_xy = {j.name: scn(j.name) for j in lay.contacts if j.name in pos}
+
+    for j in mech.joints:
+        ROWS[j.type](b, j)
+    collect(b.problems, source=mech.source)
+    drive_rows = _drive_rows(lay, b, index)
+
+    sys_ = System(
+        links=links,
+        ground=ground,
+        scale=scale,
+        centre=centre,
+        q0=q0,
+        local=local,
+        frames=frames,
+        contact_xy=contact_xy,
+    )
+    _stack_rows(sys_, b, n)
+    _label_rows(sys_, b)
+    sys_.drive_rows = np.array(drive_rows, int)
+    sys_.path_dirs = b.path_dirs
+    sys_.path_points = b.path_points
+    sys_.locators = b.locators
+    sys_.normals = b.normals
+    sys_.loc_names = tuple(local)
+    sys_.loc_i = np.array([local[k][0] for k in local], int)
+    sys_.loc_s = np.array([local[k][1] for k in local], float).reshape(-1, 2)
+    sys_.link_index = {name: i for i, name in enumerate(links)}
+    sys_.joint_names = frozenset(j.name for j in mech.joints if j.type.kind.located != "none")
+    # Slider drives: their constant is the drawn displacement along the path.
+    n_pc, kl = len(b.coincide), len(b.online)
+    if b.online:
+        base_phi = sys_.phi(q0, sys_.ln_c, sys_.ang_c)
+        for r in sys_.drive_rows:
+            if 2 * n_pc <= r < 2 * n_pc + kl:
+                sys_.ln_c[r - 2 * n_pc] = base_phi[r]
+    return sys_
+
+
+def _scaling(
+    lay: Layout, drawn: Drawn
+) -> tuple[np.ndarray, Callable[[tuple[float, float]], np.ndarray], Callable[[str], np.ndarray]]:
+    """The centre (a drawn ground pivot), and the maps to scaled coordinates about it.
+
+    ``sc`` scales a global position; ``scn`` a named location, from the assembler's
+    relative coordinates when it has them (exact far from the origin).
+    """
+    scale, pos, relative = drawn.scale, drawn.positions, drawn.relative
+    ground_pts = [p for p in lay.on_link.get(lay.mech.ground, ()) if p in pos]
     centre = np.array(pos[ground_pts[0]] if ground_pts else next(iter(pos.values()), (0.0, 0.0)), float)
-    relative = drawn.relative
     if relative is not None:
         centre = np.array(drawn.centre, float)
 
@@ -321,9 +384,21 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
             return np.asarray(relative[name], float) / scale
         return sc(pos[name])
 
-    # -- link frames
-    n = len(links)
-    q0 = np.zeros(3 * n)
+    return centre, sc, scn
+
+
+def _link_frames(
+    lay: Layout,
+    drawn: Drawn,
+    links: tuple[str, ...],
+    index: dict[str, int],
+    scn: Callable[[str], np.ndarray],
+) -> tuple[np.ndarray, dict[str, str]]:
+    """Each moving link's drawn frame ``q0`` (origin at its first location, x toward the next),
+    and the location each frame is anchored at.
+    """
+    pos = drawn.positions
+    q0 = np.zeros(3 * len(links))
     frames: dict[str, str] = {}
     drive_link_angle = {
         spec.link: drawn.drive_angles[k]
@@ -355,23 +430,16 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
                 theta = 0.0
         frames[name] = names[0] if names else ""
         q0[3 * index[name] : 3 * index[name] + 3] = (origin[0], origin[1], theta)
-    frames[ground] = ""
+    frames[lay.mech.ground] = ""
+    return q0, frames
 
-    b = Build(lay, pos, index, n, q0, scale, sc, scn, {ps.joint: ps for ps in lay.paths})
-    local: dict[str, tuple[int, np.ndarray]] = {}
-    for name, carriers in lay.carriers.items():
-        if carriers and name in pos:
-            moving = [c for c in carriers if c != ground]
-            carrier = moving[0] if moving else ground
-            local[name] = (index[carrier], b.to_local(carrier, scn(name)))
-    contact_xy = {j.name: scn(j.name) for j in lay.contacts if j.name in pos}
 
-    for j in mech.joints:
-        ROWS[j.type](b, j)
-    collect(b.problems, source=mech.source)
-    pc, ln, ang = b.coincide, b.online, b.angle
+def _drive_rows(lay: Layout, b: Build, index: dict[str, int]) -> list[int]:
+    """Drives last, in file order: rotary drives are angle rows, slider drives line rows.
 
-    # Drives last, in file order: rotary drives are angle rows, slider drives line rows.
+    Appends them to ``b``'s rows; returns their indices in the stacked residual.
+    """
+    ln, ang = b.online, b.angle
     drive_at: list[tuple[str, int]] = []
     for spec in lay.drives:
         name = f"drive {spec.drive.link or spec.drive.joint}"
@@ -385,19 +453,13 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
             u = b.path_dirs[spec.joint][1]
             ln.append(OnLine(base.slider, base.s, base.guide, base.t, u, 0.0, name))
             drive_at.append(("ln", len(ln) - 1))
-    n_pc, kl = len(pc), len(ln)
-    drive_rows = [2 * n_pc + (k if kind == "ln" else kl + k) for kind, k in drive_at]
+    n_pc, kl = len(b.coincide), len(ln)
+    return [2 * n_pc + (k if kind == "ln" else kl + k) for kind, k in drive_at]
 
-    sys_ = System(
-        links=links,
-        ground=ground,
-        scale=scale,
-        centre=centre,
-        q0=q0,
-        local=local,
-        frames=frames,
-        contact_xy=contact_xy,
-    )
+
+def _stack_rows(sys_: System, b: Build, n: int) -> None:
+    """The row records stacked into the arrays the vectorised residual and Jacobian read."""
+    pc, ln, ang, ds = b.coincide, b.online, b.angle, b.distance
     if pc:
         sys_.pc_i = np.array([p.i for p in pc])
         sys_.pc_si = np.array([p.si for p in pc])
@@ -418,43 +480,29 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
             a[row, col] += v
     sys_.ang_a = a
     sys_.ang_c = np.array([x.c for x in ang], float)
-    ds = b.distance
     if ds:
         sys_.ds_i = np.array([x.i for x in ds])
         sys_.ds_si = np.array([x.si for x in ds])
         sys_.ds_j = np.array([x.j for x in ds])
         sys_.ds_sj = np.array([x.sj for x in ds])
         sys_.ds_d = np.array([x.d for x in ds], float)
+    sys_.cv = tuple(b.curves)
+
+
+def _label_rows(sys_: System, b: Build) -> None:
+    """Each residual row's joint, and whether it is holonomic (a velocity-only row is not)."""
     row_joints: list[str] = []
     holo_rows: list[bool] = []
-    for p in pc:
+    for p in b.coincide:
         row_joints += [p.joint, p.joint]
         holo_rows += [p.holonomic, p.holonomic]
-    sys_.cv = tuple(b.curves)
-    one_row: list[OnLine | Angle | Distance | CurveRow] = [*ln, *ang, *ds, *b.curves]
+    one_row: list[OnLine | Angle | Distance | CurveRow] = [*b.online, *b.angle, *b.distance, *b.curves]
     for one in one_row:
         row_joints.append(one.joint)
         holo_rows.append(one.holonomic)
     sys_.row_names = tuple(row_joints)
     sys_.holonomic = np.array(holo_rows, bool)
     sys_.velocity_only = tuple(dict.fromkeys(n for n, h in zip(row_joints, holo_rows, strict=True) if not h))
-    sys_.drive_rows = np.array(drive_rows, int)
-    sys_.path_dirs = b.path_dirs
-    sys_.path_points = b.path_points
-    sys_.locators = b.locators
-    sys_.normals = b.normals
-    sys_.loc_names = tuple(local)
-    sys_.loc_i = np.array([local[k][0] for k in local], int)
-    sys_.loc_s = np.array([local[k][1] for k in local], float).reshape(-1, 2)
-    sys_.link_index = {name: i for i, name in enumerate(links)}
-    sys_.joint_names = frozenset(j.name for j in mech.joints if j.type.kind.located != "none")
-    # Slider drives: their constant is the drawn displacement along the path.
-    if ln:
-        base_phi = sys_.phi(q0, sys_.ln_c, sys_.ang_c)
-        for r in sys_.drive_rows:
-            if 2 * n_pc <= r < 2 * n_pc + kl:
-                sys_.ln_c[r - 2 * n_pc] = base_phi[r]
-    return sys_
 
 
 def path_angle(lay: Layout, ps: PathSpec, pos: dict[str, tuple[float, float]]) -> float:
