@@ -109,34 +109,17 @@ def cam_setup(
     """Place the cam with a programme (``joint`` names it when there are several).
 
     ``omega`` (rad/s, magnitude) and ``sense`` (+1 ccw, −1 cw) override the drive.
+    The steps: the cam joint (:func:`_pick_cam`), the follower's motion and the
+    programme resolved for it, the cam's pivot, the drive's angle and sense
+    (:func:`_drive_of`), the follower's layout (:func:`_translating` or
+    :func:`_oscillating`), then the layout and the drawing checked
+    (:func:`_check_drawn`).
+
     Raises :class:`~mech.errors.InputError` (located at the cam joint) when the
     layout cannot be read or is impossible, :class:`~mech.errors.UnsupportedError`
     when the file has no cam with a programme.
     """
-    cams = cam_joints(mechanism)
-    if not cams:
-        raise UnsupportedError(
-            "this mechanism has no cam joint with a `program`",
-            where=Where(mechanism.path),
-            hint="give a cam joint `program: {base_radius, follower, segments}` (cli.md § mech cam)",
-        )
-    if joint is None:
-        if len(cams) > 1:
-            raise UnsupportedError(
-                f"this mechanism has {len(cams)} cams with a programme ({', '.join(j.name for j in cams)})",
-                where=Where(mechanism.path),
-                hint="name one with --joint",
-            )
-        cj = cams[0]
-    else:
-        named = [j for j in cams if j.name == joint]
-        if not named:
-            raise UnsupportedError(
-                f"no cam joint {joint!r} with a programme",
-                where=Where(mechanism.path),
-                hint="cams: " + ", ".join(j.name for j in cams),
-            )
-        cj = named[0]
+    cj = _pick_cam(mechanism, joint)
     raw = joint_program(cj)
     assert raw is not None
     cam, follower = cj.links[0], cj.links[1]
@@ -167,86 +150,143 @@ def cam_setup(
             f"e.g. O: {{type: revolute, links: [{ground}, {cam}], at: [0, 0]}}",
         )
     centre = pivots[0].place.at
+    angle, drive_sense, drive_omega = _drive_of(mechanism, cam)
+    sense = drive_sense if sense is None else sense
+    omega = drive_omega if omega is None else omega
+    if program.motion == "translating":
+        layout = _translating(mechanism, cj, program, centre, sense)
+    else:
+        layout = _oscillating(mechanism, cj, program, centre, sense, angle)
+    problem = layout_problem(layout)
+    if problem:
+        raise _fail(cj, problem)
+    _check_drawn(cj, program, layout, centre, angle)
+    return CamSetup(cj, cam, follower, centre, layout, angle, omega)
+
+
+def _pick_cam(mechanism: Mechanism, joint: str | None) -> Joint:
+    """The cam joint with a programme: the only one, or the one ``joint`` names."""
+    cams = cam_joints(mechanism)
+    if not cams:
+        raise UnsupportedError(
+            "this mechanism has no cam joint with a `program`",
+            where=Where(mechanism.path),
+            hint="give a cam joint `program: {base_radius, follower, segments}` (cli.md § mech cam)",
+        )
+    if joint is None:
+        if len(cams) > 1:
+            raise UnsupportedError(
+                f"this mechanism has {len(cams)} cams with a programme ({', '.join(j.name for j in cams)})",
+                where=Where(mechanism.path),
+                hint="name one with --joint",
+            )
+        return cams[0]
+    named = [j for j in cams if j.name == joint]
+    if not named:
+        raise UnsupportedError(
+            f"no cam joint {joint!r} with a programme",
+            where=Where(mechanism.path),
+            hint="cams: " + ", ".join(j.name for j in cams),
+        )
+    return named[0]
+
+
+def _drive_of(mechanism: Mechanism, cam: str) -> tuple[float, int, float | None]:
+    """The cam's turn from the programme's start (rad, in its sense), its sense (+1 ccw, −1 cw)
+    and its speed (rad/s, magnitude; None without one), from the drive that turns it."""
     drive = next((d for d in mechanism.drives if d.link == cam), None)
     # the model keeps the cam's turn counter-clockwise; the programme counts it in the drive's sense
     drawn_cw = drive is not None and drive.direction == "cw"
     angle = drive.angle if drive is not None and drive.angle is not None else 0.0
     angle = -angle if drawn_cw else angle
-    if sense is None:
-        if drive is not None and drive.omega is not None:
-            sense = -1 if drive.omega < 0 else 1
-        else:
-            sense = -1 if drive is not None and drive.direction == "cw" else 1
-    if omega is None and drive is not None and drive.omega is not None:
-        omega = abs(drive.omega)
-    if program.motion == "translating":
-        slide = next(
-            j
-            for j in mechanism.joints
-            if j.type is JointType.PRISMATIC and j.links[0] == follower and ground in j.links
-        )
-        if slide.path is None:
-            raise _fail(slide, f"the follower's prismatic joint {slide.name} needs a `path`: its line")
-        through = _coords(mechanism, slide.path.through, slide)
-        if slide.path.angle is not None:
-            axis = slide.path.angle
-        else:
-            assert slide.path.toward is not None
-            to = _coords(mechanism, slide.path.toward, slide)
-            if math.dist(to, through) == 0:
-                raise _fail(slide, f"the path of {slide.name} goes toward its own `through` point")
-            axis = math.atan2(to[1] - through[1], to[0] - through[0])
-        # signed offset: positive on the side where the cam's surface moves the way the follower rises
-        nx, ny = -math.sin(axis), math.cos(axis)
-        e_n = (through[0] - centre[0]) * nx + (through[1] - centre[1]) * ny
-        offset = -sense * e_n
-        size = program.base_radius + program.stroke + abs(offset)
-        if program.offset is not None and abs(program.offset - offset) > 1e-6 * size:
-            raise _fail(
-                cj,
-                f"the programme's offset {program.offset:.6g} m disagrees with the path of {slide.name}, "
-                f"which puts the follower's line {offset:.6g} m from the cam's centre "
-                "(positive on the side where the cam's surface moves the way the follower rises)",
-                "move the path, or leave `offset` out and let the path decide",
-            )
-        layout = CamLayout(program, sense=sense, axis=axis, offset=offset)
+    if drive is not None and drive.omega is not None:
+        sense = -1 if drive.omega < 0 else 1
     else:
-        turn = next(
-            j
-            for j in mechanism.joints
-            if j.type is JointType.REVOLUTE and follower in j.links and ground in j.links
+        sense = -1 if drive is not None and drive.direction == "cw" else 1
+    omega = abs(drive.omega) if drive is not None and drive.omega is not None else None
+    return angle, sense, omega
+
+
+def _translating(mechanism: Mechanism, cj: Joint, program: CamProgram, centre: Vec, sense: int) -> CamLayout:
+    """A translating follower on its prismatic joint's path: its axis and signed offset."""
+    ground = mechanism.ground
+    follower = cj.links[1]
+    slide = next(
+        j
+        for j in mechanism.joints
+        if j.type is JointType.PRISMATIC and j.links[0] == follower and ground in j.links
+    )
+    if slide.path is None:
+        raise _fail(slide, f"the follower's prismatic joint {slide.name} needs a `path`: its line")
+    through = _coords(mechanism, slide.path.through, slide)
+    if slide.path.angle is not None:
+        axis = slide.path.angle
+    else:
+        assert slide.path.toward is not None
+        to = _coords(mechanism, slide.path.toward, slide)
+        if math.dist(to, through) == 0:
+            raise _fail(slide, f"the path of {slide.name} goes toward its own `through` point")
+        axis = math.atan2(to[1] - through[1], to[0] - through[0])
+    # signed offset: positive on the side where the cam's surface moves the way the follower rises
+    nx, ny = -math.sin(axis), math.cos(axis)
+    e_n = (through[0] - centre[0]) * nx + (through[1] - centre[1]) * ny
+    offset = -sense * e_n
+    size = program.base_radius + program.stroke + abs(offset)
+    if program.offset is not None and abs(program.offset - offset) > 1e-6 * size:
+        raise _fail(
+            cj,
+            f"the programme's offset {program.offset:.6g} m disagrees with the path of {slide.name}, "
+            f"which puts the follower's line {offset:.6g} m from the cam's centre "
+            "(positive on the side where the cam's surface moves the way the follower rises)",
+            "move the path, or leave `offset` out and let the path decide",
         )
-        if turn.place.at is None:
-            raise _fail(turn, f"the follower's pivot {turn.name} must be placed with `at`")
-        pivot = (turn.place.at[0] - centre[0], turn.place.at[1] - centre[1])
-        arm = program.offset or 0.0 if program.follower == "flat" else _arm(mechanism, cj, turn)
-        layout = CamLayout(program, sense=sense, pivot=pivot, arm=arm, branch=1)
-        hint = cj.place.at or cj.place.near
-        if hint is not None and program.follower != "flat" and layout_problem(layout) is None:
-            target = (hint[0] - centre[0], hint[1] - centre[1])
+    return CamLayout(program, sense=sense, axis=axis, offset=offset)
 
-            def miss(branch: int) -> float:
-                st = evaluate(CamLayout(program, sense=sense, pivot=pivot, arm=arm, branch=branch), [angle])
-                return math.dist(tuple(st.point[0]), target)
 
-            if miss(-1) < miss(1):
-                layout = CamLayout(program, sense=sense, pivot=pivot, arm=arm, branch=-1)
-    problem = layout_problem(layout)
-    if problem:
-        raise _fail(cj, problem)
-    if cj.place.at is not None and program.follower != "flat":
-        at = evaluate(layout, [angle]).point[0]
-        drawn = (cj.place.at[0] - centre[0], cj.place.at[1] - centre[1])
-        gap = math.dist(tuple(at), drawn)
-        size = program.base_radius + layout.roller + (program.stroke if not layout.oscillating else 0.0)
-        if gap > 1e-4 * size:
-            raise _fail(
-                cj,
-                f"{cj.name} is drawn {gap:.6g} m from where the programme puts the follower's point "
-                f"at a cam angle of {math.degrees(angle):.6g}° ({at[0] + centre[0]:.6g}, {at[1] + centre[1]:.6g}) m",
-                "leave `at` out (mech places it), or draw it there",
-            )
-    return CamSetup(cj, cam, follower, centre, layout, angle, omega)
+def _oscillating(
+    mechanism: Mechanism, cj: Joint, program: CamProgram, centre: Vec, sense: int, angle: float
+) -> CamLayout:
+    """An oscillating follower about its ground pivot: its arm, and the branch the drawing picks."""
+    ground = mechanism.ground
+    follower = cj.links[1]
+    turn = next(
+        j
+        for j in mechanism.joints
+        if j.type is JointType.REVOLUTE and follower in j.links and ground in j.links
+    )
+    if turn.place.at is None:
+        raise _fail(turn, f"the follower's pivot {turn.name} must be placed with `at`")
+    pivot = (turn.place.at[0] - centre[0], turn.place.at[1] - centre[1])
+    arm = program.offset or 0.0 if program.follower == "flat" else _arm(mechanism, cj, turn)
+    layout = CamLayout(program, sense=sense, pivot=pivot, arm=arm, branch=1)
+    hint = cj.place.at or cj.place.near
+    if hint is not None and program.follower != "flat" and layout_problem(layout) is None:
+        target = (hint[0] - centre[0], hint[1] - centre[1])
+
+        def miss(branch: int) -> float:
+            st = evaluate(CamLayout(program, sense=sense, pivot=pivot, arm=arm, branch=branch), [angle])
+            return math.dist(tuple(st.point[0]), target)
+
+        if miss(-1) < miss(1):
+            layout = CamLayout(program, sense=sense, pivot=pivot, arm=arm, branch=-1)
+    return layout
+
+
+def _check_drawn(cj: Joint, program: CamProgram, layout: CamLayout, centre: Vec, angle: float) -> None:
+    """A cam joint drawn with ``at`` must be where the programme puts the follower's point."""
+    if cj.place.at is None or program.follower == "flat":
+        return
+    at = evaluate(layout, [angle]).point[0]
+    drawn = (cj.place.at[0] - centre[0], cj.place.at[1] - centre[1])
+    gap = math.dist(tuple(at), drawn)
+    size = program.base_radius + layout.roller + (program.stroke if not layout.oscillating else 0.0)
+    if gap > 1e-4 * size:
+        raise _fail(
+            cj,
+            f"{cj.name} is drawn {gap:.6g} m from where the programme puts the follower's point "
+            f"at a cam angle of {math.degrees(angle):.6g}° ({at[0] + centre[0]:.6g}, {at[1] + centre[1]:.6g}) m",
+            "leave `at` out (mech places it), or draw it there",
+        )
 
 
 def program_profiles(

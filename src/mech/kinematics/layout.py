@@ -111,6 +111,11 @@ class Layout:
 def layout(mech: Mechanism) -> Layout:
     """Read the located things of ``mech``.
 
+    The steps: which links carry each location (:func:`_carriers`), each
+    prismatic or slot joint's path and the point on it (:func:`_path_spec`),
+    the drives (:func:`_drive_spec`), and each link's locations in order,
+    its pivot first (:func:`_on_link`).
+
     Raises
     ------
     UnsupportedError
@@ -127,10 +132,42 @@ def layout(mech: Mechanism) -> Layout:
                 where=j.where,
             )
     problems: list[Problem] = []
-    ground = mech.ground
+    carriers, alias = _carriers(mech)
+    # Joints of each link in file order, then its points.
+    point_names = {p.name for p in mech.points}
+    joint_locs: dict[str, list[str]] = {lk.name: [] for lk in mech.links}
+    point_locs: dict[str, list[str]] = {lk.name: [] for lk in mech.links}
+    for name, links in carriers.items():
+        for link_name in links:
+            (point_locs if name in point_names else joint_locs)[link_name].append(name)
+
+    paths: list[PathSpec] = []
+    for j in mech.joints:
+        if j.type.kind.role == "path":
+            spec = _path_spec(j, carriers, joint_locs, point_locs, problems)
+            if spec is not None:
+                paths.append(spec)
+
+    contacts = tuple(j for j in mech.joints if j.type in CONTACT_TYPES)
+    for j in contacts:
+        if len(j.links) != 2:
+            problems.append(Problem(f"{j.type.value} joint {j.name} must join exactly two links", j.where))
+
+    drives: list[DriveSpec] = []
+    for d in mech.drives:
+        drive = _drive_spec(mech, d, carriers, joint_locs, point_locs, problems)
+        if drive is not None:
+            drives.append(drive)
+    on_link = _on_link(mech, drives, carriers, joint_locs, point_locs)
+    _reference_lines(mech, drives, on_link, problems)
+    collect(problems, source=mech.source)
+    return Layout(mech, carriers, alias, on_link, tuple(paths), contacts, tuple(drives))
+
+
+def _carriers(mech: Mechanism) -> tuple[dict[str, tuple[str, ...]], dict[str, str]]:
+    """Location → the links it is a point of (none for a contact), and slot joints' aliases."""
     carriers: dict[str, tuple[str, ...]] = {}
     alias: dict[str, str] = {}
-    point_names = {p.name for p in mech.points}
     for j in mech.joints:
         role = j.type.kind.role
         if role == "pin":
@@ -144,73 +181,71 @@ def layout(mech: Mechanism) -> Layout:
             carriers[j.name] = ()
     for p in mech.points:
         carriers[p.name] = (p.link,)
+    return carriers, alias
 
-    # Joints of each link in file order, then its points.
-    joint_locs: dict[str, list[str]] = {lk.name: [] for lk in mech.links}
-    point_locs: dict[str, list[str]] = {lk.name: [] for lk in mech.links}
-    for name, links in carriers.items():
-        for link_name in links:
-            (point_locs if name in point_names else joint_locs)[link_name].append(name)
 
-    paths: list[PathSpec] = []
-    for j in mech.joints:
-        if j.type.kind.role != "path":
-            continue
-        if len(j.links) != 2:
-            problems.append(Problem(f"{j.type.value} joint {j.name} must join exactly two links", j.where))
-            continue
-        slider, guide = j.links
-        if j.path is None:
+def _path_spec(
+    j: Joint,
+    carriers: dict[str, tuple[str, ...]],
+    joint_locs: dict[str, list[str]],
+    point_locs: dict[str, list[str]],
+    problems: list[Problem],
+) -> PathSpec | None:
+    """A prismatic or slot joint's path and the slider's point that runs on it (None: a problem)."""
+    if len(j.links) != 2:
+        problems.append(Problem(f"{j.type.value} joint {j.name} must join exactly two links", j.where))
+        return None
+    slider, guide = j.links
+    if j.path is None:
+        problems.append(
+            Problem(
+                f"{j.type.value} joint {j.name} has no path",
+                j.where,
+                hint="add path: {through: P, angle: a} or path: {through: P, toward: Q}",
+            )
+        )
+        return None
+    if j.type.kind.located == "first":  # a slot: its own pin, unless it names one
+        point = j.point if j.point is not None else j.name
+    elif j.point is not None:
+        point = j.point
+    elif not joint_locs[slider] and not point_locs[slider]:
+        # A slider with no located point of its own (a follower touched only by a cam):
+        # the point of it that lies on the path's ``through`` when drawn.
+        point = f"#{j.name}.point"
+        carriers[point] = (slider,)
+        joint_locs[slider].append(point)
+    else:
+        others = joint_locs[slider]
+        if len(others) != 1:
+            choices = ", ".join(others + point_locs[slider]) or "none"
             problems.append(
                 Problem(
-                    f"{j.type.value} joint {j.name} has no path",
+                    f"prismatic joint {j.name}: cannot tell which point of {slider} runs on "
+                    f"the path ({slider}'s located points: {choices})",
                     j.where,
-                    hint="add path: {through: P, angle: a} or path: {through: P, toward: Q}",
+                    hint="add point: NAME to the joint",
                 )
             )
-            continue
-        if j.type.kind.located == "first":  # a slot: its own pin, unless it names one
-            point = j.point if j.point is not None else j.name
-        elif j.point is not None:
-            point = j.point
-        elif not joint_locs[slider] and not point_locs[slider]:
-            # A slider with no located point of its own (a follower touched only by a cam):
-            # the point of it that lies on the path's ``through`` when drawn.
-            point = f"#{j.name}.point"
-            carriers[point] = (slider,)
-            joint_locs[slider].append(point)
-        else:
-            others = joint_locs[slider]
-            if len(others) != 1:
-                choices = ", ".join(others + point_locs[slider]) or "none"
-                problems.append(
-                    Problem(
-                        f"prismatic joint {j.name}: cannot tell which point of {slider} runs on "
-                        f"the path ({slider}'s located points: {choices})",
-                        j.where,
-                        hint="add point: NAME to the joint",
-                    )
-                )
-                continue
-            point = others[0]
-        if point not in carriers:
-            problems.append(
-                Problem(f"{j.type.value} joint {j.name}: point {point} is not a located point", j.where)
-            )
-            continue
-        paths.append(PathSpec(j.name, j.type, slider, guide, point, j.path))
+            return None
+        point = others[0]
+    if point not in carriers:
+        problems.append(
+            Problem(f"{j.type.value} joint {j.name}: point {point} is not a located point", j.where)
+        )
+        return None
+    return PathSpec(j.name, j.type, slider, guide, point, j.path)
 
-    contacts = tuple(j for j in mech.joints if j.type in CONTACT_TYPES)
-    for j in contacts:
-        if len(j.links) != 2:
-            problems.append(Problem(f"{j.type.value} joint {j.name} must join exactly two links", j.where))
 
-    drives: list[DriveSpec] = []
-    for d in mech.drives:
-        spec = _drive_spec(mech, d, carriers, joint_locs, point_locs, problems)
-        if spec is not None:
-            drives.append(spec)
-
+def _on_link(
+    mech: Mechanism,
+    drives: list[DriveSpec],
+    carriers: dict[str, tuple[str, ...]],
+    joint_locs: dict[str, list[str]],
+    point_locs: dict[str, list[str]],
+) -> dict[str, tuple[str, ...]]:
+    """Each link's locations, its pivot first (the drive's, else one it shares with the ground)."""
+    ground = mech.ground
     pivots = {s.link: s.pivot for s in drives if s.link is not None}
     on_link: dict[str, tuple[str, ...]] = {}
     for lk in mech.links:
@@ -221,8 +256,15 @@ def layout(mech: Mechanism) -> Layout:
         if first is not None:
             names = [first] + [n for n in names if n != first]
         on_link[lk.name] = tuple(names)
+    return on_link
+
+
+def _reference_lines(
+    mech: Mechanism, drives: list[DriveSpec], on_link: dict[str, tuple[str, ...]], problems: list[Problem]
+) -> None:
+    """A drive relative to a moving link measures from that link's first two locations (in place)."""
     for k, spec in enumerate(drives):
-        if spec.link is None or spec.reference == ground:
+        if spec.link is None or spec.reference == mech.ground:
             continue
         line = on_link.get(spec.reference, ())  # type: ignore[arg-type]
         if len(line) < 2:
@@ -236,9 +278,6 @@ def layout(mech: Mechanism) -> Layout:
             )
             continue
         drives[k] = replace(spec, reference_line=(line[0], line[1]))
-
-    collect(problems, source=mech.source)
-    return Layout(mech, carriers, alias, on_link, tuple(paths), contacts, tuple(drives))
 
 
 def _drive_spec(

@@ -241,77 +241,9 @@ def _moving_contact(b: Build, j: Joint) -> bool:
         return _curve_contact(b, j, ga, gb, gap_problem)
     if "line" in kinds and len(kinds) == 2:
         other, line = (ga, gb) if gb.kind == "line" else (gb, ga)
-        assert line.u is not None
-        n = np.array([-line.u[1], line.u[0]])
-        dist = float(n @ (other.p - line.p))
-        side = 1.0 if dist >= 0 else -1.0
-        want = side * other.r
-        if abs(dist - want) > TOUCH:
-            gap_problem(abs(dist - want), f"{other.kind} and line")
-            return True
-        s_loc = b.to_local(other.link, other.p)
-        t_loc = b.to_local(line.link, line.p)
-        n_loc = _rotate_into(b, line.link, n)
-        u_loc = np.array([n_loc[1], -n_loc[0]])
-        io, il = b.index[other.link], b.index[line.link]
-        # a gear's teeth keep its pitch line tangent: it adds only no slip (h = 1)
-        if j.type is not JointType.GEAR:
-            b.online.append(OnLine(io, s_loc, il, t_loc, n_loc, want, j.name))
-        if _rolls(j):
-            if other.kind != "circle":
-                b.problems.append(Problem(f"{j.type.value} joint {j.name}: a point cannot roll", j.where))
-                return True
-            k = side * other.r
-            c0 = float(line.u @ (other.p - line.p)) + k * (b.theta(other.link) - b.theta(line.link))
-            b.online.append(OnLine(io, s_loc, il, t_loc, u_loc, c0, j.name, k=k))
-        centre, normal = _at(b, other.link, s_loc), _dir(b, line.link, n_loc)
-        b.locators[j.name] = lambda q: centre(q) - want * normal(q)
-        b.normals[j.name] = normal
-        return True
+        return _line_contact(b, j, other, line, gap_problem)
     if kinds <= {"circle", "point"} and "circle" in kinds:
-        dist = float(math.hypot(*(gb.p - ga.p)))
-        outer = ga.r + gb.r
-        inner = abs(ga.r - gb.r)
-        d = outer if abs(dist - outer) <= abs(dist - inner) else inner
-        if abs(dist - d) > TOUCH:
-            gap_problem(abs(dist - d), "centres")
-            return True
-        sa, sb = b.to_local(ga.link, ga.p), b.to_local(gb.link, gb.p)
-        ca, cb = _at(b, ga.link, sa), _at(b, gb.link, sb)
-        if _rolls(j):
-            from mech.kinematics.constraints import gear_row
-
-            holo = gear_row(b.lay, j, b.pos, b.index, b.q0, b.n)
-            if holo is None:
-                b.problems.append(
-                    Problem(
-                        f"{j.type.value} joint {j.name}: two circles roll here only with both centres pinned "
-                        "to one link (a carrier or the frame)",
-                        j.where,
-                    )
-                )
-                return True
-            b.angle.append(Angle(holo[0], holo[1], j.name))
-        else:
-            b.distance.append(Distance(b.index[ga.link], sa, b.index[gb.link], sb, d, j.name))
-        ra, rb = ga.r, gb.r
-
-        def contact(q: np.ndarray) -> np.ndarray:
-            pa, pb = ca(q), cb(q)
-            w = pb - pa
-            e = w / (math.hypot(*w) or 1.0)
-            if d == outer or ra >= rb:
-                return pa + ra * e  # outside each other, or b inside a: on a toward b
-            return pb - rb * e  # a inside b: on b, beyond a
-
-        b.locators[j.name] = contact
-
-        def normal(q: np.ndarray) -> np.ndarray:
-            w = cb(q) - ca(q)
-            return w / (math.hypot(*w) or 1.0)
-
-        b.normals[j.name] = normal
-        return True
+        return _circle_contact(b, j, ga, gb, gap_problem)
     b.problems.append(
         Problem(
             f"joint {j.name}: a {ga.kind} and a {gb.kind} do not touch at one point",
@@ -319,6 +251,90 @@ def _moving_contact(b: Build, j: Joint) -> bool:
             "give a circle or point against a line or circle",
         )
     )
+    return True
+
+
+def _line_contact(
+    b: Build, j: Joint, other: _Geo, line: _Geo, gap_problem: Callable[[float, str], None]
+) -> bool:
+    """A circle or point against a line: the distance row (none for a gear's pitch line), the
+    rolling row when it rolls, and the contact point and normal as functions of q."""
+    assert line.u is not None
+    n = np.array([-line.u[1], line.u[0]])
+    dist = float(n @ (other.p - line.p))
+    side = 1.0 if dist >= 0 else -1.0
+    want = side * other.r
+    if abs(dist - want) > TOUCH:
+        gap_problem(abs(dist - want), f"{other.kind} and line")
+        return True
+    s_loc = b.to_local(other.link, other.p)
+    t_loc = b.to_local(line.link, line.p)
+    n_loc = _rotate_into(b, line.link, n)
+    u_loc = np.array([n_loc[1], -n_loc[0]])
+    io, il = b.index[other.link], b.index[line.link]
+    # a gear's teeth keep its pitch line tangent: it adds only no slip (h = 1)
+    if j.type is not JointType.GEAR:
+        b.online.append(OnLine(io, s_loc, il, t_loc, n_loc, want, j.name))
+    if _rolls(j):
+        if other.kind != "circle":
+            b.problems.append(Problem(f"{j.type.value} joint {j.name}: a point cannot roll", j.where))
+            return True
+        k = side * other.r
+        c0 = float(line.u @ (other.p - line.p)) + k * (b.theta(other.link) - b.theta(line.link))
+        b.online.append(OnLine(io, s_loc, il, t_loc, u_loc, c0, j.name, k=k))
+    centre, normal = _at(b, other.link, s_loc), _dir(b, line.link, n_loc)
+    b.locators[j.name] = lambda q: centre(q) - want * normal(q)
+    b.normals[j.name] = normal
+    return True
+
+
+def _circle_contact(
+    b: Build, j: Joint, ga: _Geo, gb: _Geo, gap_problem: Callable[[float, str], None]
+) -> bool:
+    """Two circles (or a circle and a point): the centre-distance row, or the rolling row of
+    two circles pinned to one carrier, and the contact point and normal as functions of q."""
+    dist = float(math.hypot(*(gb.p - ga.p)))
+    outer = ga.r + gb.r
+    inner = abs(ga.r - gb.r)
+    d = outer if abs(dist - outer) <= abs(dist - inner) else inner
+    if abs(dist - d) > TOUCH:
+        gap_problem(abs(dist - d), "centres")
+        return True
+    sa, sb = b.to_local(ga.link, ga.p), b.to_local(gb.link, gb.p)
+    ca, cb = _at(b, ga.link, sa), _at(b, gb.link, sb)
+    if _rolls(j):
+        from mech.kinematics.constraints import gear_row
+
+        holo = gear_row(b.lay, j, b.pos, b.index, b.q0, b.n)
+        if holo is None:
+            b.problems.append(
+                Problem(
+                    f"{j.type.value} joint {j.name}: two circles roll here only with both centres pinned "
+                    "to one link (a carrier or the frame)",
+                    j.where,
+                )
+            )
+            return True
+        b.angle.append(Angle(holo[0], holo[1], j.name))
+    else:
+        b.distance.append(Distance(b.index[ga.link], sa, b.index[gb.link], sb, d, j.name))
+    ra, rb = ga.r, gb.r
+
+    def contact(q: np.ndarray) -> np.ndarray:
+        pa, pb = ca(q), cb(q)
+        w = pb - pa
+        e = w / (math.hypot(*w) or 1.0)
+        if d == outer or ra >= rb:
+            return pa + ra * e  # outside each other, or b inside a: on a toward b
+        return pb - rb * e  # a inside b: on b, beyond a
+
+    b.locators[j.name] = contact
+
+    def normal(q: np.ndarray) -> np.ndarray:
+        w = cb(q) - ca(q)
+        return w / (math.hypot(*w) or 1.0)
+
+    b.normals[j.name] = normal
     return True
 
 
