@@ -390,3 +390,72 @@ def test_points_placed_in_a_cycle_are_located_errors_for_every_command(command, 
 def test_a_point_placed_from_and_toward_one_point_is_refused():
     with pytest.raises(InputError, match="placed from O toward O: one point gives no direction"):
         loads(PLACED_FROM_ITSELF % "{P: {link: crank, from: O, toward: O, distance: 5}}")
+
+
+@pytest.mark.parametrize(
+    ("text", "line", "column", "code"),
+    [
+        ("name: x\nlinks: [a\x01]\n", 2, 10, 0x01),
+        # after two-byte characters: libyaml counts bytes, the column counts characters
+        ("name: ééé\nlinks: [a\x1b]\n", 2, 10, 0x1B),
+        # a form feed is a control character, not a line break, for YAML and for the count
+        ("name: x\n\nlinks: [ab, c\x0c]\n", 3, 14, 0x0C),
+        ("name: x\r\nlinks: [a, b\x7f]\r\n", 2, 13, 0x7F),
+    ],
+)
+def test_a_control_character_is_located_by_line_and_column(text, line, column, code):
+    ((ln, col, message),) = problems(text)
+    assert (ln, col) == (line, column)
+    assert f"U+{code:04X}" in message
+
+
+def test_a_control_character_message_shows_it_escaped_under_a_caret(run, write):
+    result = run("dof", str(write("name: x\nlinks: [ab\x1b, c]\n")))
+    assert result.exit_code == 2
+    assert "\x1b" not in result.stderr
+    lines = result.stderr.splitlines()
+    assert lines[0].endswith(
+        "m.yaml:2:11: error: this file holds a control character (U+001B) that YAML does not allow"
+    )
+    assert lines[1] == "    links: [ab\\x1b, c]"
+    assert lines[2].index("^") == 4 + len("links: [ab")
+
+
+@pytest.mark.parametrize("codec", ["utf-16", "utf-16-le", "utf-16-be", "utf-32", "utf-8-sig"])
+def test_a_file_with_a_byte_order_mark_reads_as_its_encoding(codec):
+    bom = {"utf-16-le": "\ufeff", "utf-16-be": "\ufeff"}.get(codec, "")
+    data = (bom + FOUR_BAR).encode(codec)
+    assert loads(data, path="w.yaml") == loads(FOUR_BAR, path="w.yaml")
+
+
+def test_utf16_without_a_byte_order_mark_is_refused_as_binary():
+    with pytest.raises(InputError, match="binary file"):
+        loads(FOUR_BAR.encode("utf-16-le"), path="w.yaml")
+
+
+@pytest.mark.parametrize(
+    ("written", "code"),
+    [("\u202e", 0x202E), ("\u2066", 0x2066), ("\u200f", 0x200F), ("\\e", 0x1B), ("\\N", 0x85)],
+)
+def test_a_name_with_an_invisible_character_is_refused_where_it_is_written(written, code):
+    """Written as a YAML escape or as the character itself, inside double quotes."""
+    text = FOUR_BAR.replace("links: [frame, crank,", f'links: [frame, "cr{written}ank",', 1)
+    found = problems(text)
+    assert (found[0][0], found[0][1]) == (4, 16)
+    assert f"U+{code:04X}" in found[0][2] and chr(code) not in found[0][2]
+
+
+def test_a_title_with_control_and_direction_characters_is_shown_escaped(run, write):
+    path = write(FOUR_BAR.replace("name: Four-bar chain ABCD", 'name: "\u202eABCD \\e[31m red"'))
+    result = run("velocity", str(path))
+    assert result.exit_code == 0
+    assert "\x1b" not in result.stdout and "\u202e" not in result.stdout
+    assert result.stdout.splitlines()[0].startswith("\\u202eABCD \\x1b[31m red")
+
+
+def test_a_file_name_with_control_characters_is_shown_escaped_in_messages(run, tmp_path):
+    path = tmp_path / "hw\x1b[2J.yaml"
+    path.write_text("links: [a, b\n", encoding="utf-8")
+    result = run("dof", str(path))
+    assert result.exit_code == 2
+    assert "\x1b" not in result.stderr and "hw\\x1b[2J.yaml" in result.stderr

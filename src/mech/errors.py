@@ -9,9 +9,13 @@ catch what they already know.  Only the command line maps errors to exit codes:
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Sequence
 
 from mech._records import dataclass
+from mech._text import visible
+
+_YAML_BREAK = re.compile("\r\n|[\r\n\x85\u2028\u2029]")
 
 
 @dataclass(frozen=True, slots=True)
@@ -28,6 +32,15 @@ class Where:
         return self.path
 
 
+def source_lines(source: str) -> list[str]:
+    """The lines of a YAML text as YAML counts them (CR LF, CR, LF, NEL, LS, PS).
+
+    Not ``str.splitlines``: it also breaks at form feeds and the file separators,
+    so the line a message quotes would not be the line its number names.
+    """
+    return _YAML_BREAK.split(source)
+
+
 @dataclass(frozen=True, slots=True)
 class Problem:
     """One thing wrong with an input, with where it is and what to do about it."""
@@ -38,16 +51,19 @@ class Problem:
 
     def format(self, source: str | None = None) -> str:
         """``file:line:col: error: message``, then the line, a caret and the hint."""
+        # a file name, a quoted value or the echoed line may hold control or direction
+        # characters from the user's file: shown as escapes, never sent to the terminal
         head = f"{self.where}: error: {self.message}" if self.where else f"error: {self.message}"
-        lines = [head]
+        lines = [visible(head)]
         if source is not None and self.where is not None and self.where.line:
-            text_lines = source.splitlines()
+            text_lines = source_lines(source)
             if 0 < self.where.line <= len(text_lines):
                 text = text_lines[self.where.line - 1].rstrip("\n")
-                lines.append(f"    {text}")
-                lines.append("    " + " " * max(self.where.column - 1, 0) + "^")
+                lines.append(f"    {visible(text)}")
+                lead = len(visible(text[: max(self.where.column - 1, 0)]))
+                lines.append("    " + " " * lead + "^")
         if self.hint:
-            lines.append(f"  hint: {self.hint}")
+            lines.append(visible(f"  hint: {self.hint}"))
         return "\n".join(lines)
 
 

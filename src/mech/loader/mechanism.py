@@ -13,6 +13,7 @@ from typing import Any
 
 import yaml
 
+from mech._text import visible
 from mech.answers import names_by_kind
 from mech.errors import InputError, Where
 from mech.loader.answers import DEFAULT_TOLERANCE, read_answers, read_asks
@@ -79,7 +80,9 @@ def read_mechanism(text: str, path: str) -> Mechanism:
 
 
 def _mechanism(r: NodeReader, root: yaml.MappingNode, top: Top) -> Mechanism:
-    name = r.optional(top, "name", r.text_value)
+    # the title is free text shown atop every report: its control and direction
+    # characters are kept as visible escapes (names of links and joints refuse them)
+    name = r.optional(top, "name", lambda n: visible(r.text_value(n)))
     r.optional(top, "description", r.text_value)
     r.optional(top, "source", r.text_value)
     r.optional(top, "units", lambda n: read_units(r, n))

@@ -17,11 +17,12 @@ messages.  The small helpers that describe nodes in messages live here too.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable
 
 import yaml
 
-from mech.errors import InputError, Where
+from mech.errors import InputError, Where, source_lines
 
 __all__ = ["compose", "decode", "did_you_mean", "is_null", "node_kind", "text_of", "where_of"]
 
@@ -31,8 +32,18 @@ MAX_NODES = 200_000  # an alias bomb is refused, not expanded
 MAX_DEPTH = 64  # deeper nesting is refused before libyaml's recursive composer sees it
 
 
+# UTF-32 before UTF-16: the UTF-32-LE mark begins with the UTF-16-LE one
+_BOMS = (
+    (b"\xff\xfe\x00\x00", "utf-32-le"),
+    (b"\x00\x00\xfe\xff", "utf-32-be"),
+    (b"\xff\xfe", "utf-16-le"),
+    (b"\xfe\xff", "utf-16-be"),
+)
+
+
 def decode(data: bytes, path: str, *, what: str = "mechanism file") -> str:
-    """The text of a file's bytes (UTF-8, a BOM allowed); binary or other encodings refused.
+    """The text of a file's bytes: UTF-8 (a BOM allowed), or UTF-16/32 when a byte-order mark
+    says so (Windows editors save "Unicode" that way); binary or other encodings refused.
 
     ``what`` names what the file should have been (``"answer sheet"``).
 
@@ -41,6 +52,17 @@ def decode(data: bytes, path: str, *, what: str = "mechanism file") -> str:
     InputError
         Naming the file and the first byte that cannot be read.
     """
+    for bom, codec in _BOMS:
+        if data.startswith(bom):
+            try:
+                return data[len(bom) :].decode(codec)
+            except UnicodeDecodeError as exc:
+                raise InputError(
+                    f"this file starts with a {codec.upper()} byte-order mark but byte {exc.start + len(bom)} "
+                    "cannot be read as it",
+                    where=Where(path),
+                    hint="save the file as UTF-8",
+                ) from None
     if b"\x00" in data:
         raise InputError(
             f"this is a binary file, not a YAML {what}",
@@ -85,11 +107,38 @@ def compose(text: str, path: str, *, what: str = "this") -> yaml.Node | None:
             hint=_yaml_hint(text, where),
             source=text,
         ) from None
+    except yaml.reader.ReaderError as exc:
+        raise _unreadable_character(text, path, what, exc) from None
     except yaml.YAMLError as exc:
         raise InputError(f"{what} is not valid YAML: {exc}", where=Where(path)) from None
     if root is not None:
         _check_size(root, path)
     return root
+
+
+# what YAML 1.1 allows in a stream (PyYAML's reader refuses anything else)
+_NOT_YAML = re.compile("[^\x09\x0a\x0d\x20-\x7e\x85\xa0-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
+
+
+def _unreadable_character(text: str, path: str, what: str, exc: yaml.reader.ReaderError) -> InputError:
+    """A character YAML does not allow, located at its line and column.
+
+    PyYAML reports it by offset into the text (libyaml counts UTF-8 bytes, the pure
+    Python reader characters), so the character is found again here and placed by
+    YAML's own line breaks.
+    """
+    found = _NOT_YAML.search(text)
+    if found is None:  # the reader refused something else (it never should): say what it said
+        return InputError(f"{what} is not valid YAML: {exc.reason}", where=Where(path))
+    before = source_lines(text[: found.start()])
+    where = Where(path, len(before), len(before[-1]) + 1)
+    subject = "this file" if what == "this" else what
+    return InputError(
+        f"{subject} holds a control character (U+{ord(found.group()):04X}) that YAML does not allow",
+        where=where,
+        hint="delete it (most editors do not show it: retype the line if in doubt)",
+        source=text,
+    )
 
 
 def _yaml_hint(text: str, where: Where) -> str:

@@ -20,6 +20,7 @@ from typing import Any
 
 import yaml
 
+from mech._text import INVISIBLE, visible
 from mech.errors import InputError, Problem, Where
 from mech.loader.nodes import article, did_you_mean, is_null, node_kind, where_of
 from mech.model import Vec
@@ -134,6 +135,14 @@ class NodeReader:
         if is_null(node):
             raise self.problem(node, f"{what} is empty", "write a name")
         value = self.scalar(node, what)
+        hidden = INVISIBLE.search(value)
+        if hidden is not None:
+            raise self.problem(
+                node,
+                f"the name '{visible(value)}' for {what} holds an invisible character (U+{ord(hidden.group()):04X})",
+                "names are shown in tables and typed in other keys: retype it without control "
+                "or direction characters",
+            )
         if not NAME_PATTERN.match(value):
             raise self.problem(
                 node,

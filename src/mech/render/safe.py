@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import re
 
+from mech._text import visible
+
 __all__ = ["printable", "xml_safe"]
 
-# C0 controls but tab and newline, DEL, and the C1 controls (CSI and friends)
-_CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f]")
 # what XML 1.0 forbids anywhere in a document (tab, newline and carriage return are allowed)
 _NOT_XML = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff]")
 
@@ -24,8 +24,11 @@ def _escape(match: re.Match[str]) -> str:
 
 
 def printable(text: str) -> str:
-    """``text`` with control characters shown as ``\\xNN`` (for terminals and tables)."""
-    return _CONTROL.sub(_escape, text)
+    """``text`` with control and direction characters shown as escapes (for terminals and tables).
+
+    The rule is :func:`mech._text.visible`, shared with the loader and the error messages.
+    """
+    return visible(text)
 
 
 def xml_safe(document: str) -> str:

@@ -1,0 +1,37 @@
+"""Text from users' files made visible: control and direction characters shown as escapes.
+
+A name, a title, a claim or a file name can carry any character a YAML string can: an
+escape sequence that would drive the reader's terminal, or a right-to-left override that
+makes ``crank`` print as ``knarc`` and a table lie about which row is which.  Wherever
+such text is shown to a person it goes through :func:`visible`, which writes those
+characters as ``\\x1b`` / ``\\u202e`` escapes and leaves every other character (accents,
+Greek, Arabic or Hebrew letters) as it is.
+
+It lives below every layer (no imports) so the loader, the error messages and the
+renderers share one rule.
+"""
+
+from __future__ import annotations
+
+import re
+
+__all__ = ["INVISIBLE", "visible"]
+
+# C0 controls but tab and newline, DEL, the C1 controls (CSI and friends), and the
+# invisible format characters that reorder or hide text: Arabic letter mark, zero-width
+# space/joiners and the left/right marks, the bidi embeddings, overrides and isolates,
+# word joiner and invisible operators, the BOM as a zero-width no-break space, and the
+# interlinear annotation controls.
+INVISIBLE = re.compile(
+    "[\x00-\x08\x0b-\x1f\x7f-\x9f\u061c\u200b-\u200f\u202a-\u202e\u2060-\u2069\ufeff\ufff9-\ufffb]"
+)
+
+
+def _escape(match: re.Match[str]) -> str:
+    code = ord(match.group())
+    return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}"
+
+
+def visible(text: str) -> str:
+    """``text`` with control and invisible direction characters shown as ``\\xNN``/``\\uNNNN``."""
+    return INVISIBLE.sub(_escape, text)
