@@ -627,6 +627,30 @@ def _grade(
         return _everyone(
             questions, FAIL, "not answered: the sheet's entry for this problem is empty", entry.where
         )
+    claims, errors, ignored = _read_entry(sub, entry, mech, questions, teacher_tol)
+    checked = dict(
+        zip(
+            claims,
+            check(mech, tuple(claims.values()), tolerance=mech.tolerance, analysis=analysis),
+            strict=True,
+        )
+    )
+    out = []
+    for q in questions:
+        if q in errors:
+            out.append(errors[q])
+        elif q in checked:
+            out.append(checked[q])
+        else:
+            out.append(Verdict(q, FAIL, message="not answered", where=entry.where))
+    return tuple(out) + tuple(ignored)
+
+
+def _read_entry(
+    sub: _Submission, entry: SheetEntry, mech: Any, questions: tuple[str, ...], teacher_tol: dict[str, Any]
+) -> tuple[dict[str, Any], dict[str, Verdict], list[Verdict]]:
+    """A sheet entry's answers read against the problem: the claims to check (with the teacher's
+    tolerance), the questions that cannot be graded (why), and the keys ignored (why)."""
     from mech.loader import parse_answer_entries
     from mech.loader.sheets import own_tolerances
 
@@ -638,18 +662,7 @@ def _grade(
     ignored: list[Verdict] = []
     for key, where, got in parse_answer_entries(entry.node, mech, path=sub.sheet, source=sub.source):
         if key not in asked:
-            if key == "tolerance":
-                reason = "an answer sheet cannot set a tolerance (the problem file sets it)"
-            elif isinstance(got, InputError):
-                reason = got.problems[0].message + (
-                    f" ({got.problems[0].hint})" if got.problems[0].hint else ""
-                )
-            else:
-                reason = f"not a question of this problem (it asks {', '.join(questions)})"
-            written = "" if isinstance(got, InputError) else got.text
-            ignored.append(
-                Verdict(key, IGNORED, claimed=written, message=f"ignored, not scored: {reason}", where=where)
-            )
+            ignored.append(_ignored(key, where, got, questions))
             continue
         if key in first:
             errors[key] = Verdict(
@@ -681,22 +694,19 @@ def _grade(
         else:
             tol = teacher_tol.get(key)
             claims[key] = replace(got, tolerance=tol)
-    checked = dict(
-        zip(
-            claims,
-            check(mech, tuple(claims.values()), tolerance=mech.tolerance, analysis=analysis),
-            strict=True,
-        )
-    )
-    out = []
-    for q in questions:
-        if q in errors:
-            out.append(errors[q])
-        elif q in checked:
-            out.append(checked[q])
-        else:
-            out.append(Verdict(q, FAIL, message="not answered", where=entry.where))
-    return tuple(out) + tuple(ignored)
+    return claims, errors, ignored
+
+
+def _ignored(key: str, where: Where, got: Any, questions: tuple[str, ...]) -> Verdict:
+    """A sheet key that is not a question of the problem: reported, not scored."""
+    if key == "tolerance":
+        reason = "an answer sheet cannot set a tolerance (the problem file sets it)"
+    elif isinstance(got, InputError):
+        reason = got.problems[0].message + (f" ({got.problems[0].hint})" if got.problems[0].hint else "")
+    else:
+        reason = f"not a question of this problem (it asks {', '.join(questions)})"
+    written = "" if isinstance(got, InputError) else got.text
+    return Verdict(key, IGNORED, claimed=written, message=f"ignored, not scored: {reason}", where=where)
 
 
 def _twice(path: str, entries: Sequence[SheetEntry]) -> InputError:

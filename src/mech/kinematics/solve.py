@@ -814,12 +814,34 @@ def _fields(
     omega_ref: float,
     moved: bool,
 ) -> Fields:
-    """Unscale and package; vectorised, since it runs on every solve of a sweep."""
-    sys_, lay, mech = comp.system, comp.layout, comp.mech
-    scale, centre = sys_.scale, sys_.centre
-    v_unit, a_unit = scale * omega_ref, scale * omega_ref**2
-    cx, cy = float(centre[0]), float(centre[1])
+    """Unscale and package; vectorised, since it runs on every solve of a sweep.
 
+    The steps: every location's position (:func:`_positions`), each link's state
+    (:func:`_link_states`), each joint's geometry (:func:`_joint_geoms`).
+    """
+    sys_, lay = comp.system, comp.layout
+    positions, all_pos = _positions(comp, q, moved)
+    links = _link_states(comp, q, qd, qdd, omega_ref, positions)
+    joints = _joint_geoms(comp, q, positions, all_pos)
+    carriers = {n_: c_ for n_, c_ in lay.carriers.items() if not n_.startswith("#")}
+    for alias, target in lay.alias.items():
+        carriers[alias] = carriers.get(target, ())
+    return Fields(
+        MappingProxyType(positions),
+        MappingProxyType(links),
+        MappingProxyType(carriers),
+        MappingProxyType(joints),
+        joint_names=sys_.joint_names,
+    )
+
+
+def _positions(
+    comp: Compiled, q: np.ndarray, moved: bool
+) -> tuple[dict[str, tuple[float, float]], dict[str, tuple[float, float]]]:
+    """Every location's global position (m): the named ones, and all (``#`` synthetic ones too)."""
+    sys_, lay = comp.system, comp.layout
+    scale, centre = sys_.scale, sys_.centre
+    cx, cy = float(centre[0]), float(centre[1])
     # every located point at once: r = R + A(θ) s, for its carrier (ground appended)
     qf = np.append(q, (0.0, 0.0, 0.0))
     idx, loc = sys_.loc_i, sys_.loc_s
@@ -840,7 +862,22 @@ def _fields(
     for alias, target in lay.alias.items():
         if target in positions:
             positions[alias] = positions[target]
+    return positions, all_pos
 
+
+def _link_states(
+    comp: Compiled,
+    q: np.ndarray,
+    qd: np.ndarray | None,
+    qdd: np.ndarray | None,
+    omega_ref: float,
+    positions: dict[str, tuple[float, float]],
+) -> dict[str, LinkState]:
+    """Each link's origin, angle and (up to the level solved) velocities and accelerations, SI."""
+    sys_, lay, mech = comp.system, comp.layout, comp.mech
+    scale, centre = sys_.scale, sys_.centre
+    v_unit, a_unit = scale * omega_ref, scale * omega_ref**2
+    cx, cy = float(centre[0]), float(centre[1])
     n_links = sys_.n
     qs = q.tolist()
     vs = (
@@ -875,14 +912,25 @@ def _fields(
             (as_[i], as_[i + 1]) if as_ is not None else None,
             as_[i + 2] if as_ is not None else None,
         )
+    return links
 
+
+def _joint_geoms(
+    comp: Compiled,
+    q: np.ndarray,
+    positions: dict[str, tuple[float, float]],
+    all_pos: dict[str, tuple[float, float]],
+) -> dict[str, JointGeom]:
+    """Each joint's point and direction now: a path's line, a contact's common tangent."""
+    sys_, lay, mech = comp.system, comp.layout, comp.mech
+    n_links = sys_.n
     joints: dict[str, JointGeom] = {}
     for j in mech.joints:
         direction = None
         point: str | None = lay.resolve(j.name)
         if j.name in sys_.path_dirs:
             g, u = sys_.path_dirs[j.name]
-            th_g = 0.0 if g == n_links else qs[3 * g + 2]
+            th_g = 0.0 if g == n_links else float(q[3 * g + 2])
             c_g, s_g = math.cos(th_g), math.sin(th_g)
             direction = (c_g * u[0] - s_g * u[1], s_g * u[0] + c_g * u[1])
             point = sys_.path_points[j.name][1]
@@ -895,14 +943,4 @@ def _fields(
         if point is not None and (point.startswith("#") or point not in positions):
             point = None
         joints[j.name] = JointGeom(j.name, j.type.value, tuple(j.links), point, direction, j.radius, at)
-
-    carriers = {n_: c_ for n_, c_ in lay.carriers.items() if not n_.startswith("#")}
-    for alias, target in lay.alias.items():
-        carriers[alias] = carriers.get(target, ())
-    return Fields(
-        MappingProxyType(positions),
-        MappingProxyType(links),
-        MappingProxyType(carriers),
-        MappingProxyType(joints),
-        joint_names=sys_.joint_names,
-    )
+    return joints
