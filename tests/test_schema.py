@@ -58,3 +58,63 @@ def test_rev_is_an_angle_unit_in_the_schema_because_the_loader_reads_it() -> Non
 def test_a_unit_of_another_quantity_is_neither_in_the_schema_nor_read() -> None:
     assert not _keys_the_loader_accepts(FOUR_BAR.format(unit="mm"))
     assert "mm" not in SCHEMA["properties"]["units"]["properties"]["angle"]["enum"]
+
+
+BASE = """\
+links: [frame, crank, coupler, rocker]
+joints:
+  A: {type: revolute, links: [frame, crank], at: [0, 0]}
+  B: {type: revolute, links: [crank, coupler]}
+  C: {type: revolute, links: [coupler, rocker]}
+  D: {type: revolute, links: [rocker, frame], at: [3, 0]}
+"""
+
+#: (schema path to a section's properties, YAML that puts KEY in that section)
+SECTIONS = {
+    "drive": (("definitions", "drive", "properties"), "drive: {{link: crank, {key}: 1}}\n"),
+    "points": (
+        ("properties", "points", "additionalProperties", "properties"),
+        "points: {{P: {{link: coupler, {key}: 1}}}}\n",
+    ),
+    "loads": (
+        ("properties", "loads", "additionalProperties", "properties"),
+        "loads: {{crank: {{{key}: 1}}}}\n",
+    ),
+    "units": (("properties", "units", "properties"), "units: {{{key}: m}}\n"),
+    # a revolute joint's keys: the common ones and its own (the schema's if/then for the type)
+    "joints": ((), "  E: {{type: revolute, links: [coupler, rocker], {key}: 1}}\n"),
+}
+
+
+def _messages(text: str) -> list[str]:
+    try:
+        loads(text)
+    except InputError as e:
+        return [p.message for p in e.problems]
+    return []
+
+
+def _section_keys(path: tuple[str, ...]) -> list[str]:
+    if not path:
+        kinds = SCHEMA["properties"]["joints"]["additionalProperties"]["allOf"]
+        revolute = next(k for k in kinds if k["if"]["properties"]["type"]["const"] == "revolute")
+        return sorted(revolute["then"]["propertyNames"]["enum"])
+    node = SCHEMA
+    for step in path:
+        node = node[step]
+    return sorted(node)
+
+
+@pytest.mark.parametrize("section", sorted(SECTIONS))
+def test_every_key_the_schema_lists_is_known_to_the_loader(section: str) -> None:
+    path, template = SECTIONS[section]
+    for key in _section_keys(path):
+        text = BASE + template.format(key=key)
+        assert not [m for m in _messages(text) if m.startswith(f"unknown key {key!r}")], (section, key)
+
+
+@pytest.mark.parametrize("section", sorted(SECTIONS))
+def test_a_key_the_schema_does_not_list_is_refused_by_the_loader(section: str) -> None:
+    path, template = SECTIONS[section]
+    assert "colour" not in _section_keys(path)
+    assert any(m.startswith("unknown key 'colour'") for m in _messages(BASE + template.format(key="colour")))
