@@ -164,14 +164,16 @@ def _questions(
     r: NodeReader, top: Top, links: tuple[Link, ...], joints: list[Joint], points: list[Point]
 ) -> tuple[list[Claim], Tolerance, tuple[str, ...]]:
     """``answers`` (claims and the file's tolerance) and ``asks``, keys checked against the names."""
+    answers: list[Claim] = []
+    tolerance = DEFAULT_TOLERANCE
+    asks: tuple[str, ...] = ()
+    if "answers" not in top and "asks" not in top:
+        return answers, tolerance, asks  # the names' kinds (I-centres too) cost more than the rest
     kinds = names_by_kind(
         (link.name for link in links), (j.name for j in joints), (p.name for p in points), len(links)
     )
-    answers: list[Claim] = []
-    tolerance = DEFAULT_TOLERANCE
     if "answers" in top:
         answers, tolerance = r.guard(lambda: read_answers(r, top["answers"][1], kinds), ([], tolerance))
-    asks: tuple[str, ...] = ()
     if "asks" in top:
         asks = r.guard(lambda: read_asks(r, top["asks"][1], kinds), ())
     return answers, tolerance, asks

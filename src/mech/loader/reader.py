@@ -126,7 +126,8 @@ class NodeReader:
     def scalar(self, node: yaml.Node, what: str) -> str:
         if not isinstance(node, yaml.ScalarNode):
             raise self.problem(node, f"{what} must be a single value, not {node_kind(node)}")
-        return str(node.value)
+        value: str = node.value  # a scalar node holds its text
+        return value
 
     def text_value(self, node: yaml.Node) -> str:
         return self.scalar(node, "this value")
