@@ -13,6 +13,7 @@ The loader is split by section over one located-node reader:
 :mod:`~.answers`          ``answers:`` and ``asks:`` (answer sheets too)
 :mod:`~.loads`            ``loads:``
 :mod:`~.refs`             cross-references: one namespace, names on the right link, cycles
+:mod:`~.sheets`           answer sheets: entries as nodes, each validated like ``answers``
 :mod:`~.mechanism`        a whole file: the top-level keys and the order sections are read in
 ========================  ===============================================================
 
@@ -26,16 +27,12 @@ from __future__ import annotations
 import os
 import sys
 
-import yaml
-
-from mech.answers import names_by_kind
-from mech.errors import InputError, Problem, Where
-from mech.loader.answers import DEFAULT_TOLERANCE, read_answers, read_claim
+from mech.errors import InputError, Where
 from mech.loader.mechanism import read_mechanism
-from mech.loader.nodes import compose, decode, is_null, node_kind, text_of
-from mech.loader.reader import NodeReader, Skip
+from mech.loader.nodes import compose, decode, is_null, node_kind
 from mech.loader.refs import placement_cycles
-from mech.model import Claim, Mechanism, Tolerance
+from mech.loader.sheets import parse_answer_entries, parse_answers
+from mech.model import Mechanism
 
 __all__ = [
     "compose",
@@ -101,74 +98,3 @@ def loads(text: str | bytes, *, path: str = "<string>") -> Mechanism:
     if isinstance(text, bytes):
         text = decode(text, path)
     return read_mechanism(text, path)
-
-
-def _kinds(mechanism: Mechanism) -> dict[str, set[str]]:
-    return names_by_kind(
-        (link.name for link in mechanism.links),
-        (j.name for j in mechanism.joints),
-        (p.name for p in mechanism.points),
-        len(mechanism.links),
-    )
-
-
-def parse_answers(
-    node: yaml.Node, mechanism: Mechanism, *, path: str, source: str | None = None
-) -> tuple[tuple[Claim, ...], Tolerance]:
-    """Read an ``answers`` mapping written outside the mechanism's own file.
-
-    ``mech check --answers SHEET`` reads a student's sheet (problem → answers)
-    and validates each answers mapping exactly as the loader validates a
-    file's own ``answers``: the same key grammar, names checked against
-    ``mechanism``, units against the quantity.  ``node`` is the mapping node
-    PyYAML composed from the sheet; ``path`` and ``source`` are the sheet's,
-    so every problem points into the sheet with a caret.
-
-    Returns the claims and the ``tolerance`` the mapping sets (2% if none).
-
-    Raises
-    ------
-    InputError
-        With every problem in the mapping at once.
-    """
-    reader = NodeReader(source or "", path)
-    claims, tolerance = reader.guard(
-        lambda: read_answers(reader, node, _kinds(mechanism)), ([], DEFAULT_TOLERANCE)
-    )
-    reader.fail()
-    return tuple(claims), tolerance
-
-
-def parse_answer_entries(
-    node: yaml.MappingNode, mechanism: Mechanism, *, path: str, source: str | None = None
-) -> list[tuple[str, Where, Claim | InputError]]:
-    """Each entry of an answers mapping read on its own: ``(key, where, claim or its error)``.
-
-    For answer sheets, where one bad key must cost only that key: every entry
-    is validated as :func:`parse_answers` would (same grammar, names, units),
-    but a problem becomes that entry's :class:`InputError` instead of failing
-    the mapping.  Keys are returned as written, repeats and ``tolerance``
-    included (the caller decides what they mean on a sheet).
-    """
-    reader = NodeReader(source or "", path)
-    kinds = _kinds(mechanism)
-    out: list[tuple[str, Where, Claim | InputError]] = []
-    for knode, vnode in node.value:
-        reader.problems = []
-        key = str(knode.value) if isinstance(knode, yaml.ScalarNode) else text_of(knode)
-        claim: Claim | None = None
-        try:
-            if not isinstance(knode, yaml.ScalarNode):
-                raise reader.problem(
-                    knode, f"an answer key is text such as omega.rocker, not {node_kind(knode)}"
-                )
-            claim = read_claim(reader, key, knode, vnode, kinds)
-        except Skip:
-            pass
-        if reader.problems or claim is None:
-            problems = reader.problems or [Problem("unreadable answer", reader.where(knode))]
-            error = InputError(problems=problems, source=source)
-            out.append((key, reader.where(knode), error))
-        else:
-            out.append((key, reader.where(knode), claim))
-    return out
