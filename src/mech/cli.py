@@ -11,64 +11,17 @@ import contextlib
 import math
 import sys
 from collections.abc import Callable, Iterable, Sequence
-from enum import IntEnum
 from functools import wraps
-from typing import Any, TypeVar
+from typing import Any
 
 import click
 
 from mech import __version__
-from mech._records import dataclass
-from mech.errors import InputError, MechError
+from mech.commands import DEFAULT_FILE, Request, classify_files, count_dof, handles_errors
+from mech.commands import kinematics as _kinematics
+from mech.commands import solve_options as _solve_options
+from mech.errors import InputError
 from mech.options import OutputUnits, SolveOptions
-
-F = TypeVar("F", bound=Callable[..., Any])
-
-DEFAULT_FILE = "mechanism.yaml"
-
-
-class ExitStatus(IntEnum):
-    """What ``mech`` returns to the shell."""
-
-    OK = 0
-    CHECK_FAILED = 1
-    BAD_INPUT = 2
-
-
-def _report_error(error: MechError) -> None:
-    """Print every problem of ``error`` to stderr, with the offending line when it has one.
-
-    Errors found after loading (a length that cannot close a loop) carry a
-    location but not the text; the file is read again here to show the line.
-    """
-    if error.source is None:
-        path = next((p.where.path for p in error.problems if p.where and p.where.line), None)
-        if path and path != "<stdin>":
-            try:
-                with open(path, encoding="utf-8") as f:
-                    error.source = f.read()
-            except (OSError, UnicodeDecodeError):
-                pass
-    click.echo(error.format(), err=True)
-
-
-def handles_errors(fn: F) -> F:
-    """Turn a :class:`MechError` into its message on stderr and exit status 2.
-
-    Only errors mech raises on purpose are caught: a bug still shows its
-    traceback, so that it gets reported rather than disguised as bad input.
-    """
-
-    @wraps(fn)
-    def wrapper(*args: Any, **kwargs: Any) -> Any:
-        try:
-            return fn(*args, **kwargs)
-        except MechError as error:
-            _report_error(error)
-            sys.exit(error.exit_code)
-
-    return wrapper  # type: ignore[return-value]
-
 
 file_argument = click.argument("file", default=DEFAULT_FILE, type=click.Path(dir_okay=False, allow_dash=True))
 json_option = click.option(
@@ -107,63 +60,12 @@ def dof(files: Sequence[str], mobility: bool, as_json: bool) -> None:
     several files give one table.  A bad file is reported on stderr and the
     others are still counted (exit status 2 at the end).
     """
-    from mech.loader import load
-    from mech.topology import classify
-
-    results = []
-    errors: list[tuple[str, MechError]] = []
-    mobilities: dict[str, Any] = {}
-    for path in files or (DEFAULT_FILE,):
-        try:
-            mechanism = load(path)
-            results.append(classify(mechanism))
-            if mobility:
-                mobilities[path] = _mobility(mechanism)
-        except MechError as error:
-            errors.append((path, error))
-            if not as_json:
-                _report_error(error)
-    if as_json:
-        from mech.render.jsonout import dumps, error_dict
-        from mech.render.topology import topology_dict
-
-        out = []
-        for t in results:
-            record = topology_dict(t)
-            if mobility:
-                record["mobility"] = mobilities[t.path]
-            out.append(record)
-        out += [{"file": p, "error": error_dict(e)} for p, e in errors]
-        click.echo(dumps(out if len(out) != 1 or errors else out[0]))
-    elif results:
-        from mech.render.console import stdout
-        from mech.render.topology import dof_table
-
-        console = stdout()
-        dof_table(results, console)
-        if mobility:
-            for t in results:
-                where = "" if len(results) == 1 else f"{t.path}: "
-                console.print(f"  {where}numeric mobility {mobilities[t.path]['text']}", soft_wrap=True)
-    if errors:
-        sys.exit(ExitStatus.BAD_INPUT)
-
-
-def _mobility(mechanism: Any) -> dict[str, Any]:
-    """Numeric mobility for ``mech dof --mobility``: a dict, or the reason it cannot be had."""
-    from mech.kinematics import mobility
-
-    try:
-        m = mobility(mechanism)
-    except MechError as error:
-        return {"value": None, "text": f"not computed: {error.problems[0].message}"}
-    return {"value": m.numeric, "text": m.describe(), "condition": m.condition}
+    count_dof(files, mobility, as_json)
 
 
 @cli.command(name="classify")
 @file_argument
 @json_option
-@handles_errors
 def classify_command(file: str, as_json: bool) -> None:
     """Classify links (binary, ternary …), joints and kinematic pairs.
 
@@ -171,20 +73,7 @@ def classify_command(file: str, as_json: bool) -> None:
     sliding, rolling, screw, spherical, cam or gear), by contact (lower or
     higher) and by closure (self-closed or force-closed).
     """
-    from mech.loader import load
-    from mech.topology import classify
-
-    t = classify(load(file))
-    if as_json:
-        from mech.render.jsonout import dumps
-        from mech.render.topology import classify_dict
-
-        click.echo(dumps(classify_dict(t)))
-        return
-    from mech.render.console import stdout
-    from mech.render.topology import classify_tables
-
-    classify_tables(t, stdout())
+    classify_files(file, as_json)
 
 
 @cli.command()
@@ -206,21 +95,6 @@ def schema(output: str | None) -> None:
 
 
 # -- kinematics -----------------------------------------------------------------------
-@dataclass(frozen=True, slots=True)
-class Request:
-    """What a solving command was asked, folded from its options once (STYLE: one value)."""
-
-    file: str
-    options: SolveOptions
-    units: OutputUnits
-    as_json: bool
-
-    @property
-    def speed_given(self) -> bool:
-        """True when --rpm, --omega or --speed set the drive's speed."""
-        return self.options.omega is not None or self.options.speed is not None
-
-
 _KINEMATIC_OPTIONS = (
     file_argument,
     click.option("--rpm", type=float, help="Crank speed in rev/min (overrides the file)."),
@@ -282,76 +156,6 @@ def kinematic_command(*, alpha: bool = False) -> Callable[[Callable[..., Any]], 
         return command
 
     return decorate
-
-
-def _solve_options(
-    rpm: float | None,
-    omega: float | None,
-    angle: float | None,
-    direction: str | None,
-    tol: float,
-    alpha: float | None = None,
-    speed: float | None = None,
-) -> SolveOptions:
-    """Command-line speeds and angles (rpm, degrees) → one validated :class:`SolveOptions`."""
-    if rpm is not None and omega is not None:
-        raise InputError("give --rpm or --omega, not both")
-    turning = None
-    for name, value, factor in (("--rpm", rpm, 2 * math.pi / 60), ("--omega", omega, 1.0)):
-        if value is not None:
-            if not math.isfinite(value) or value < 0:
-                raise InputError(
-                    f"{name} must be a finite speed ≥ 0", hint="give the sense with --direction cw|ccw"
-                )
-            turning = value * factor
-    if angle is not None and not math.isfinite(angle):
-        raise InputError("--angle must be a finite number of degrees")
-    try:
-        return SolveOptions(
-            # reduce in degrees, where it is exact, before converting (1e300° is 0°)
-            angle=None if angle is None else math.radians(math.fmod(angle, 360.0)),
-            omega=turning,
-            speed=speed,
-            direction=direction,
-            alpha=alpha,
-            tol=tol,
-        )
-    except ValueError as exc:
-        raise InputError(f"{exc}") from None
-
-
-def _kinematics(request: Request, level: str, explain: bool = False) -> None:
-    from mech.kinematics import solve
-    from mech.loader import load
-
-    mech = load(request.file)
-    kin = solve(mech, level=level, options=request.options)
-    construction = None
-    if explain:
-        from mech.explain import explain as write_out
-
-        construction = write_out(mech, kin, kind=level)
-    if request.as_json:
-        from mech.render.jsonout import dumps
-        from mech.render.kinematics import kinematics_json
-
-        record = kinematics_json(kin, units=request.units)
-        if construction is not None:
-            from mech.explain import construction_dict
-
-            record["construction"] = construction_dict(construction)
-        click.echo(dumps(record))
-        return
-    from mech.render.console import stdout
-    from mech.render.kinematics import kinematics_table
-
-    console = stdout()
-    kinematics_table(kin, console, units=request.units)
-    if construction is not None:
-        from rich.text import Text
-
-        console.print()
-        console.print(Text(construction.text()), soft_wrap=True)
 
 
 _EXPLAIN_OPTION = click.option(

@@ -1,0 +1,279 @@
+"""What the hot commands do, without click: the bodies :mod:`mech.cli` and :mod:`mech.entry` share.
+
+``mech dof``, ``mech classify`` and ``mech position|velocity|acceleration``
+are the commands run most often, one file at a time, and their start-up is
+benchmarked: importing click costs about two interpreter start-ups, and
+:mod:`mech.entry` runs their plain command lines without it.  So their
+bodies, the error report and the option folding live here, importing
+nothing heavy (numpy, rich, yaml and the analyses are imported inside the
+functions that use them), and :mod:`mech.cli`'s click commands call them.
+:func:`echo` writes as ``click.echo`` does, so both paths print the same bytes.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Callable, Sequence
+from enum import IntEnum
+from functools import wraps
+from typing import Any, TypeVar
+
+from mech._records import dataclass
+from mech.errors import InputError, MechError
+from mech.options import OutputUnits, SolveOptions
+
+__all__ = [
+    "DEFAULT_FILE",
+    "ExitStatus",
+    "Request",
+    "classify_files",
+    "count_dof",
+    "echo",
+    "handles_errors",
+    "kinematics",
+    "report_error",
+    "solve_options",
+]
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+DEFAULT_FILE = "mechanism.yaml"
+
+
+class ExitStatus(IntEnum):
+    """What ``mech`` returns to the shell."""
+
+    OK = 0
+    CHECK_FAILED = 1
+    BAD_INPUT = 2
+
+
+def _utf8(stream: Any) -> bool:
+    encoding = (getattr(stream, "encoding", None) or "").lower().replace("-", "").replace("_", "")
+    return encoding == "utf8"
+
+
+def echo(message: str, *, err: bool = False) -> None:
+    """``click.echo(message, err=err)`` without importing click on the usual streams.
+
+    click writes straight to a UTF-8 stream, with ANSI escapes stripped when
+    it is not a terminal; any other stream (an ASCII locale) it re-wraps, so
+    there click itself is used.
+    """
+    stream = sys.stderr if err else sys.stdout
+    if stream is None:
+        return
+    if not _utf8(stream):
+        import click
+
+        click.echo(message, err=err)
+        return
+    out = message + "\n"
+    if not stream.isatty():
+        import re
+
+        out = re.sub(r"\033\[[;?0-9]*[a-zA-Z]", "", out)  # click.termui's strip_ansi
+    stream.write(out)
+    stream.flush()
+
+
+def report_error(error: MechError) -> None:
+    """Print every problem of ``error`` to stderr, with the offending line when it has one.
+
+    Errors found after loading (a length that cannot close a loop) carry a
+    location but not the text; the file is read again here to show the line.
+    """
+    if error.source is None:
+        path = next((p.where.path for p in error.problems if p.where and p.where.line), None)
+        if path and path != "<stdin>":
+            try:
+                with open(path, encoding="utf-8") as f:
+                    error.source = f.read()
+            except (OSError, UnicodeDecodeError):
+                pass
+    echo(error.format(), err=True)
+
+
+def handles_errors(fn: F) -> F:
+    """Turn a :class:`MechError` into its message on stderr and exit status 2.
+
+    Only errors mech raises on purpose are caught: a bug still shows its
+    traceback, so that it gets reported rather than disguised as bad input.
+    """
+
+    @wraps(fn)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return fn(*args, **kwargs)
+        except MechError as error:
+            report_error(error)
+            sys.exit(error.exit_code)
+
+    return wrapper  # type: ignore[return-value]
+
+
+# -- counting -------------------------------------------------------------------------
+def count_dof(files: Sequence[str], mobility: bool, as_json: bool) -> None:
+    """``mech dof``: Kutzbach and Grübler for each file, one table (or JSON) for all.
+
+    A bad file is reported on stderr and the others are still counted (exit
+    status 2 at the end).
+    """
+    from mech.loader import load
+    from mech.topology import classify
+
+    results = []
+    errors: list[tuple[str, MechError]] = []
+    mobilities: dict[str, Any] = {}
+    for path in files or (DEFAULT_FILE,):
+        try:
+            mechanism = load(path)
+            results.append(classify(mechanism))
+            if mobility:
+                mobilities[path] = _mobility(mechanism)
+        except MechError as error:
+            errors.append((path, error))
+            if not as_json:
+                report_error(error)
+    if as_json:
+        from mech.render.jsonout import dumps, error_dict
+        from mech.render.topology import topology_dict
+
+        out = []
+        for t in results:
+            record = topology_dict(t)
+            if mobility:
+                record["mobility"] = mobilities[t.path]
+            out.append(record)
+        out += [{"file": p, "error": error_dict(e)} for p, e in errors]
+        echo(dumps(out if len(out) != 1 or errors else out[0]))
+    elif results:
+        from mech.render.console import stdout
+        from mech.render.topology import dof_table
+
+        console = stdout()
+        dof_table(results, console)
+        if mobility:
+            for t in results:
+                where = "" if len(results) == 1 else f"{t.path}: "
+                console.print(f"  {where}numeric mobility {mobilities[t.path]['text']}", soft_wrap=True)
+    if errors:
+        sys.exit(ExitStatus.BAD_INPUT)
+
+
+def _mobility(mechanism: Any) -> dict[str, Any]:
+    """Numeric mobility for ``mech dof --mobility``: a dict, or the reason it cannot be had."""
+    from mech.kinematics import mobility
+
+    try:
+        m = mobility(mechanism)
+    except MechError as error:
+        return {"value": None, "text": f"not computed: {error.problems[0].message}"}
+    return {"value": m.numeric, "text": m.describe(), "condition": m.condition}
+
+
+@handles_errors
+def classify_files(file: str, as_json: bool) -> None:
+    """``mech classify``: links, joints and pairs of one file, as tables or JSON."""
+    from mech.loader import load
+    from mech.topology import classify
+
+    t = classify(load(file))
+    if as_json:
+        from mech.render.jsonout import dumps
+        from mech.render.topology import classify_dict
+
+        echo(dumps(classify_dict(t)))
+        return
+    from mech.render.console import stdout
+    from mech.render.topology import classify_tables
+
+    classify_tables(t, stdout())
+
+
+# -- kinematics -----------------------------------------------------------------------
+@dataclass(frozen=True, slots=True)
+class Request:
+    """What a solving command was asked, folded from its options once (STYLE: one value)."""
+
+    file: str
+    options: SolveOptions
+    units: OutputUnits
+    as_json: bool
+
+    @property
+    def speed_given(self) -> bool:
+        """True when --rpm, --omega or --speed set the drive's speed."""
+        return self.options.omega is not None or self.options.speed is not None
+
+
+def solve_options(
+    rpm: float | None,
+    omega: float | None,
+    angle: float | None,
+    direction: str | None,
+    tol: float,
+    alpha: float | None = None,
+    speed: float | None = None,
+) -> SolveOptions:
+    """Command-line speeds and angles (rpm, degrees) → one validated :class:`SolveOptions`."""
+    if rpm is not None and omega is not None:
+        raise InputError("give --rpm or --omega, not both")
+    turning = None
+    for name, value, factor in (("--rpm", rpm, 2 * math.pi / 60), ("--omega", omega, 1.0)):
+        if value is not None:
+            if not math.isfinite(value) or value < 0:
+                raise InputError(
+                    f"{name} must be a finite speed ≥ 0", hint="give the sense with --direction cw|ccw"
+                )
+            turning = value * factor
+    if angle is not None and not math.isfinite(angle):
+        raise InputError("--angle must be a finite number of degrees")
+    try:
+        return SolveOptions(
+            # reduce in degrees, where it is exact, before converting (1e300° is 0°)
+            angle=None if angle is None else math.radians(math.fmod(angle, 360.0)),
+            omega=turning,
+            speed=speed,
+            direction=direction,
+            alpha=alpha,
+            tol=tol,
+        )
+    except ValueError as exc:
+        raise InputError(f"{exc}") from None
+
+
+def kinematics(request: Request, level: str, explain: bool = False) -> None:
+    """``mech position|velocity|acceleration``: solve at the instant, print tables or JSON."""
+    from mech.kinematics import solve
+    from mech.loader import load
+
+    mech = load(request.file)
+    kin = solve(mech, level=level, options=request.options)
+    construction = None
+    if explain:
+        from mech.explain import explain as write_out
+
+        construction = write_out(mech, kin, kind=level)
+    if request.as_json:
+        from mech.render.jsonout import dumps
+        from mech.render.kinematics import kinematics_json
+
+        record = kinematics_json(kin, units=request.units)
+        if construction is not None:
+            from mech.explain import construction_dict
+
+            record["construction"] = construction_dict(construction)
+        echo(dumps(record))
+        return
+    from mech.render.console import stdout
+    from mech.render.kinematics import kinematics_table
+
+    console = stdout()
+    kinematics_table(kin, console, units=request.units)
+    if construction is not None:
+        from rich.text import Text
+
+        console.print()
+        console.print(Text(construction.text()), soft_wrap=True)

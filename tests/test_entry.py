@@ -1,0 +1,83 @@
+"""The console script's fast forms (mech.entry) answer exactly as click does.
+
+mech.entry runs the plainest command lines of dof, classify, position,
+velocity and acceleration without importing click; every other command line
+goes to click.  Each case is run both ways in a fresh interpreter and the exit
+status, stdout and stderr compared byte for byte, and the forms meant to be
+fast are checked to be taken without click.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from mech.entry import _fast
+
+ROOT = Path(__file__).resolve().parents[1]
+FOUR_BAR = str(ROOT / "mechanisms" / "four_bar.yaml")
+SLIDER = str(ROOT / "mechanisms" / "slider_crank.yaml")
+MECHANISMS = str(ROOT / "mechanisms")
+
+FAST = [
+    ("dof", FOUR_BAR),
+    ("dof", "--json", FOUR_BAR),
+    ("dof", FOUR_BAR, SLIDER, "--json"),
+    ("dof", "--mobility", FOUR_BAR),
+    ("dof", FOUR_BAR, "no_such_file.yaml"),
+    ("dof", "--json", FOUR_BAR, "no_such_file.yaml"),
+    ("classify", FOUR_BAR),
+    ("classify", "--json", FOUR_BAR),
+    ("velocity", FOUR_BAR, "--rpm", "600"),
+    ("velocity", FOUR_BAR, "--rpm=600", "--json", "--units", "mm"),
+    ("velocity", FOUR_BAR, "--rpm", "600", "--rpm", "300", "--direction", "ccw"),
+    ("velocity", FOUR_BAR, "--rpm", "-5"),
+    ("velocity", FOUR_BAR, "--rpm", "600", "--omega", "3"),
+    ("velocity", FOUR_BAR, "--angle", "-30", "--omega", "2", "--explain"),
+    ("velocity", FOUR_BAR, "--rpm", "nan"),
+    ("position", FOUR_BAR, "--angle", "1e300", "--tol", "1e-10"),
+    ("acceleration", SLIDER, "--rpm", "600", "--alpha", "5", "--json"),
+    ("velocity", "no_such_file.yaml"),
+]
+SLOW = [
+    ("dof", "--help"),
+    ("dof", MECHANISMS),
+    ("dof", "--jsn", FOUR_BAR),
+    ("dof", "--json=1", FOUR_BAR),
+    ("dof", "--", FOUR_BAR),
+    ("classify", FOUR_BAR, SLIDER),
+    ("velocity", FOUR_BAR, "--rpm", "fast"),
+    ("velocity", FOUR_BAR, "--rpm"),
+    ("velocity", FOUR_BAR, "--direction", "CW"),
+    ("velocity", FOUR_BAR, "--alpha", "3"),
+    ("position", FOUR_BAR, "--explain"),
+    ("--version",),
+    ("sweep", FOUR_BAR),
+    (),
+]
+
+
+def run(module: str, argv: tuple[str, ...]) -> tuple[int, str, str]:
+    code = f"import sys; from {module} import main; main(sys.argv[1:])"
+    done = subprocess.run(
+        [sys.executable, "-c", code, *argv], capture_output=True, text=True, check=False, cwd=ROOT
+    )
+    return done.returncode, done.stdout, done.stderr
+
+
+@pytest.mark.parametrize("argv", FAST + SLOW, ids=lambda a: " ".join(Path(x).name for x in a) or "none")
+def test_command_line_answers_as_click_answers(argv):
+    assert run("mech.entry", argv) == run("mech.cli", argv)
+
+
+@pytest.mark.parametrize("argv", FAST, ids=lambda a: " ".join(Path(x).name for x in a))
+def test_plain_forms_are_taken_without_click(argv):
+    assert _fast(list(argv)) is not None
+
+
+@pytest.mark.parametrize("argv", SLOW, ids=lambda a: " ".join(Path(x).name for x in a) or "none")
+def test_other_forms_are_left_to_click(argv):
+    assert _fast(list(argv)) is None
