@@ -167,9 +167,10 @@ def _standalone(run: Callable[[], None]) -> None:
     except OSError as error:
         if error.errno != errno.EPIPE:
             raise
-        from click.utils import PacifyFlushWrapper
+        import click.utils
 
-        sys.stdout = PacifyFlushWrapper(sys.stdout)  # type: ignore[assignment]
-        sys.stderr = PacifyFlushWrapper(sys.stderr)  # type: ignore[assignment]
+        pacify: Any = click.utils.PacifyFlushWrapper  # what click's standalone mode does on EPIPE
+        sys.stdout = pacify(sys.stdout)
+        sys.stderr = pacify(sys.stderr)
         sys.exit(1)
     sys.exit(0)
