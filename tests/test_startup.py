@@ -11,6 +11,7 @@ Timings are measured by tests/benchmarks/bench_issue_table.py, not here.
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -40,7 +41,10 @@ def loaded_by(*argv: str) -> set[str]:
         "    assert not exit.code, exit.code\n"
         "print(json.dumps(sorted(sys.modules)), file=sys.__stdout__)\n"
     )
-    done = subprocess.run([sys.executable, "-c", code, *argv], capture_output=True, text=True, check=False)
+    env = {k: v for k, v in os.environ.items() if k != "COLUMNS"}  # pytest sets it to its terminal's
+    done = subprocess.run(
+        [sys.executable, "-c", code, *argv], capture_output=True, text=True, check=False, env=env
+    )
     assert done.returncode == 0, done.stderr
     return set(json.loads(done.stdout))
 
@@ -57,10 +61,20 @@ def test_counting_commands_with_json_import_neither_numpy_nor_rich(argv):
     assert not (mods & unwanted), sorted(mods & unwanted)
 
 
-def test_dof_table_imports_rich_but_not_numpy():
-    mods = loaded_by("dof", FOUR_BAR)
-    assert "rich" in mods
-    unwanted = {"numpy", *COSTLY_STDLIB, *OTHER_ANALYSES, *CLI_PARSER}
+@pytest.mark.parametrize("argv", [("dof", FOUR_BAR), ("classify", FOUR_BAR)], ids=["dof", "classify"])
+def test_counting_tables_piped_import_neither_numpy_nor_rich(argv):
+    # piped tables are written by mech.render.plain, byte for byte as rich writes them
+    mods = loaded_by(*argv)
+    assert "mech.render.plain" in mods  # it did print a table
+    unwanted = {"numpy", "rich", *COSTLY_STDLIB, *OTHER_ANALYSES, *CLI_PARSER}
+    assert not (mods & unwanted), sorted(mods & unwanted)
+
+
+@pytest.mark.parametrize("level", ["position", "velocity", "acceleration"])
+def test_kinematics_tables_piped_import_numpy_but_no_rich(level):
+    mods = loaded_by(level, FOUR_BAR, "--rpm", "600")
+    assert "numpy" in mods and "mech.render.plain" in mods
+    unwanted = {"rich", *COSTLY_STDLIB, *CLI_PARSER, "mech.icentres", "mech.draw", "mech.check", "mech.batch"}
     assert not (mods & unwanted), sorted(mods & unwanted)
 
 

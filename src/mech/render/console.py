@@ -1,10 +1,16 @@
-"""The one place that decides colour and width (rich honours NO_COLOR and non-tty)."""
+"""The one place that decides colour and width (rich honours NO_COLOR and non-tty).
+
+Piped output is written by :class:`~mech.render.plain.PlainConsole`, which
+prints rich's bytes without importing rich where it can; renderers take
+their ``Table`` and ``Text`` from :func:`kit` so that it can.
+"""
 
 from __future__ import annotations
 
 import os
+import sys
 from functools import lru_cache
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # pragma: no cover
     from rich.box import Box
@@ -14,6 +20,10 @@ if TYPE_CHECKING:  # pragma: no cover
 @lru_cache(maxsize=1)
 def stdout() -> Console:
     """The console for reports.  Piped output is plain text, $COLUMNS (default 120) wide."""
+    if not _isatty() and not _forced_terminal():
+        from mech.render.plain import PlainConsole
+
+        return PlainConsole(int(os.environ.get("COLUMNS", 120)))  # type: ignore[return-value]
     from rich.console import Console
 
     # markup=False: names, claims and messages come from users' files, and "[/b]" in a
@@ -39,3 +49,32 @@ def table_box(console: Console) -> Box:
     from rich import box
 
     return box.SIMPLE if is_plain(console) else box.ROUNDED
+
+
+def kit(console: Console) -> tuple[Any, Any, Any]:
+    """``(Table, Text, box)`` for ``console``: mech's plain ones for a plain console, rich's otherwise.
+
+    ``box`` is :func:`table_box`'s choice, for tables made with this ``Table``.
+    """
+    if getattr(console, "is_plain", False):
+        from mech.render.plain import SIMPLE, Table, Text
+
+        return Table, Text, SIMPLE
+    from rich.table import Table as RichTable
+    from rich.text import Text as RichText
+
+    return RichTable, RichText, table_box(console)
+
+
+def _isatty() -> bool:
+    try:
+        return sys.stdout.isatty()
+    except (AttributeError, ValueError):
+        return False
+
+
+def _forced_terminal() -> bool:
+    """rich treats the output as a terminal when FORCE_COLOR or TTY_COMPATIBLE says so."""
+    return bool(
+        os.environ.get("FORCE_COLOR") or os.environ.get("TTY_COMPATIBLE") or os.environ.get("TTY_INTERACTIVE")
+    )

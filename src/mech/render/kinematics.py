@@ -361,14 +361,11 @@ _LEVEL_TITLES = {"position": "positions", "velocity": "velocities", "acceleratio
 
 def kinematics_table(kin: Kinematics, console: Any, *, units: OutputUnits) -> None:
     """Print the solve as rich tables on ``console`` (numbers in ``units``)."""
-    from rich.table import Table
-    from rich.text import Text
+    from mech.render.console import kit
 
-    from mech.render.console import table_box
-
+    Table, Text, box = kit(console)
     data = kinematics_json(kin, units=units)
     u = {k: format_unit(v) for k, v in data["units"].items()}
-    box = table_box(console)
 
     console.print(Text(kin.mechanism, style="bold") + Text(f" — {_LEVEL_TITLES[kin.level]}"))
     for d in data["drives"]:

@@ -8,7 +8,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
-from mech.render.console import table_box
+from mech.render.console import kit
 from mech.render.properties import loop_dict, loop_lines
 from mech.topology import Topology
 
@@ -80,10 +80,9 @@ def _classes(classes: dict[str, tuple[str, ...]]) -> str:
 
 def dof_table(results: Sequence[Topology], console: Console) -> None:
     """One table for one or many files: l, j, h, n worked, Grübler, verdict."""
-    from rich.table import Table
-    from rich.text import Text
+    Table, Text, box = kit(console)
 
-    table = Table(box=table_box(console), title="Degrees of freedom (Kutzbach)" if len(results) > 1 else None)
+    table = Table(box=box, title="Degrees of freedom (Kutzbach)" if len(results) > 1 else None)
     if len(results) > 1:
         table.add_column("file", overflow="fold")
     table.add_column("l", justify="right")
@@ -120,11 +119,10 @@ def dof_table(results: Sequence[Topology], console: Console) -> None:
 
 def classify_tables(t: Topology, console: Console) -> None:
     """``mech classify``: links by class, pairs three ways, then the count."""
-    from rich.table import Table
-    from rich.text import Text
+    Table, Text, box = kit(console)
 
     console.print(Text(t.name, style="bold"))
-    links = Table(box=table_box(console), title="Links")
+    links = Table(box=box, title="Links")
     for col in ("link", "class", "joints", "kind"):
         links.add_column(col)
     for k in t.links:
@@ -132,7 +130,7 @@ def classify_tables(t: Topology, console: Console) -> None:
             k.name + (" (ground)" if k.is_ground else ""), k.class_name, ", ".join(k.joints), k.kind
         )
     console.print(links)
-    pairs = Table(box=table_box(console), title="Kinematic pairs")
+    pairs = Table(box=box, title="Kinematic pairs")
     for col in (
         "joint",
         "type",
@@ -163,7 +161,7 @@ def classify_tables(t: Topology, console: Console) -> None:
 
 def _print_loops(t: Topology, console: Console, indent: str = "  ") -> None:
     """Grashof's criterion for each four-bar loop, the inversion of each slider-crank loop."""
-    from rich.text import Text
+    _, Text, _ = kit(console)
 
     for loop in t.loops:
         for line in loop_lines(loop, t.length_unit):
