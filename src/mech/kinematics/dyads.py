@@ -17,20 +17,21 @@ formula written out, so it reads like the textbook derivation.
 
 Why generated code and not ordinary functions (issue 12 asked for functions
 "if at the same speed"; measured, they are not).  The four-bar's program was
-rewritten by hand as ordinary functions: one closure per step (ground, crank,
-point, pose, rrr) over a list of registers, the same formulas, the same
-results to 1e-12, and timed against the generated function in one
-interleaved run (median of 7 × 3 repeats; 2 shared cores, Python 3.12,
-numpy 2): at acceleration level on floats the generated function takes
-4.5–5.1 µs, the functions 8.6–9.9 µs (1.8–2.0×: eleven calls and register
-indexing instead of locals).  ``state`` (the lean row of the benchmark
-table) takes 8.0 µs against pylinkage's 36.7 µs for one step with
-derivatives (0.22×, target ≤ 0.3×); with the functions it would be about
-12.6 µs (0.34×, over the target).  On arrays the functions were faster (a
-3,601-angle evaluation 1.5–1.6 ms against 1.9 ms, temporaries freed step by
-step), but that is 6 % of the four-bar's 4.2 ms 3,600-step sweep series and
-under 2 % of the 15.8 ms whole sweep, so it does not pay for a second body
-of code.  The generation stays; :class:`_Builder` names its steps.
+rewritten as ordinary functions (tests/benchmarks/bench_dyad_functions.py):
+one closure per step (ground, crank, point, pose, rrr) over a list of
+registers, the same formulas, the same results to 1e-12, timed against the
+generated function in one interleaved run (medians of 5–9 repeats, three
+runs; 2 shared cores, Python 3.11, numpy 2.4).  At acceleration level on
+floats the generated function takes 4.4–6.0 µs, the functions 9.0–10.1 µs
+(1.7–2.0×: eleven calls and register indexing instead of locals).  ``state``
+(the lean row of the benchmark table) takes 7.7–8.0 µs against pylinkage's
+33–37 µs for one step with derivatives (0.20–0.23×, target ≤ 0.3×); the
+functions would add 4–5 µs to it (about 0.35×, over the target).  On arrays
+the functions were faster (3,601 angles in 1.5–1.6 ms against 1.8–2.7 ms),
+which is 7–20 % of the four-bar's 4.3–5.1 ms 3,600-step sweep series: a lead
+for the sweep's speed (the generated function keeps more arrays alive at
+once), not a reason for a second body of code beside the first.  The
+generation stays; :class:`_Builder` names its steps.
 
 Primitives (Norton, *Design of Machinery*, ch. 4, 6, 7; Haug ch. 3 for the
 derivative rows).  P, Q, A, O are points already known, with their velocity
