@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import os
 import subprocess
 import sys
@@ -214,3 +215,49 @@ def test_rounding_noise_prints_as_zero(run):
     assert points["B"]["position"][1] == 0.0
     assert points["B"]["velocity"] == [0.0, 0.0] and points["B"]["direction"] is None
     assert data["links"]["rod"]["angle"] in (0.0, 180.0)
+
+
+TINY_CRANK = """
+name: tiny crank
+units: {length: m, angle: deg}
+links: [frame, crank, rod, piston]
+joints:
+  O: {type: revolute, links: [frame, crank], at: [0, 0]}
+  A: {type: revolute, links: [crank, rod]}
+  B: {type: revolute, links: [rod, piston], near: [1, 0]}
+  P: {type: prismatic, links: [piston, frame], path: {through: [0, 0], angle: 0}}
+lengths: {OA: 1e-12, AB: 1}
+drive: {link: crank, angle: 45, rpm: 60}
+"""
+
+
+def test_tiny_crank_prints_its_true_speeds(run, write):
+    # r = 1e-12 m, l = 1 m, θ = 45°, ω = 2π rad/s. Closed form (r/l negligible to 1e-12):
+    # v_A = rω = 6.2832e-12 m/s; v_B = −rω(sinθ + r sin2θ/(2l)) = −4.4429e-12 m/s;
+    # ω_rod = −rω cosθ/(l cosφ) = −4.4429e-12 rad/s (cw). Formerly all printed as 0.
+    r, w, th = 1e-12, 2 * math.pi, math.radians(45)
+    data = json.loads(run("velocity", str(write(TINY_CRANK)), "--json").output)
+    points = {p["point"]: p for p in data["points"]}
+    assert points["A"]["speed"] == pytest.approx(r * w, rel=1e-12)
+    assert points["B"]["velocity"][0] == pytest.approx(-r * w * math.sin(th), rel=1e-11)
+    assert points["B"]["velocity"][1] == 0.0  # on its guide: noise, shown as the zero it is
+    assert data["sliders"][0]["sliding"] == pytest.approx(-r * w * math.sin(th), rel=1e-11)
+    assert data["links"]["rod"]["omega"] == pytest.approx(-r * w * math.cos(th), rel=1e-11)
+    assert data["links"]["crank"]["angle"] == pytest.approx(45.0, rel=1e-12)
+
+
+@pytest.mark.parametrize("name", ["four_bar", "slider_crank", "whitworth_quick_return", "watt_six_bar"])
+def test_fixed_pivots_print_exactly_zero_velocity(run, name):
+    # Rounding noise on ordinary mechanisms still prints as 0: a ground pivot's velocity and
+    # acceleration are zero by the constraints, whatever the solve's round-off.
+    from mech.loader import load
+
+    path = ROOT / "mechanisms" / f"{name}.yaml"
+    mech = load(path)
+    pivots = {j.name for j in mech.joints if mech.ground in j.links and j.type == "revolute"}
+    data = json.loads(run("acceleration", str(path), "--json").output)
+    rows = [p for p in data["points"] if p["point"] in pivots]
+    assert rows
+    for p in rows:
+        assert p["velocity"] == [0.0, 0.0] and p["direction"] is None, p
+        assert p["acceleration"] == [0.0, 0.0], p

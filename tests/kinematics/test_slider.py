@@ -7,6 +7,8 @@ import math
 import numpy as np
 import pytest
 from builders import slider_crank, slotted_lever
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from mech.kinematics import solve
 from mech.options import SolveOptions
@@ -152,3 +154,51 @@ def test_pin_in_slot_moves_the_lever_like_the_sliding_block():
     assert kin.links["lever"].alpha == pytest.approx(block.links["lever"].alpha, rel=1e-10)
     assert kin.sliding("A") == pytest.approx(block.sliding("S"), rel=1e-12)
     assert kin.coriolis("A") == pytest.approx(block.coriolis("S"), rel=1e-10)
+
+
+@pytest.mark.parametrize("method", ["newton", "closed"])
+@pytest.mark.parametrize("r", [1e-12, 1e-13])
+def test_tiny_crank_rates_keep_their_own_digits(r, method):
+    # A 1e-12 m crank on a 1 m rod at 45°, 60 rpm: the rod's ω and the piston's speed are
+    # 4.4e-12 beside the crank's 6.28 rad/s. Each must be right to its own size (closed form
+    # above), not to 1e-16 of the crank's ω (which left 1e-4 of them wrong) nor set to zero.
+    rod, th, w = 1.0, math.radians(45), 2 * math.pi
+    kin = solve(slider_crank(r=r, rod=rod, angle=th, omega=w), "acceleration", SolveOptions(method=method))
+    _, w3, v, a3, a = slider_closed_form(r, rod, 0.0, th, w)
+    assert math.hypot(*kin.velocity("A")) == pytest.approx(r * w, rel=1e-12)
+    assert kin.links["rod"].omega == pytest.approx(w3, rel=1e-12)
+    assert kin.velocity("B")[0] == pytest.approx(v, rel=1e-12)
+    assert kin.sliding("P") == pytest.approx(v, rel=1e-12)
+    assert kin.links["rod"].alpha == pytest.approx(a3, rel=1e-9)
+    assert kin.acceleration("B")[0] == pytest.approx(a, rel=1e-9)
+    assert kin.links["crank"].angle == pytest.approx(th, rel=1e-12)  # was 0: its two points "coincided"
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    k=st.integers(min_value=-12, max_value=6),
+    deg=st.floats(min_value=5.0, max_value=175.0),
+    e=st.floats(min_value=-0.05, max_value=0.05),
+)
+def test_velocities_scale_with_the_lengths(k, deg, e):
+    # Law: scaling every length by 10^k scales every velocity and acceleration by 10^k and leaves
+    # every ω and α as it was (time is untouched), to rounding, and the report prints the same.
+    from mech.options import OutputUnits
+    from mech.render.kinematics import kinematics_json
+
+    th, f = math.radians(deg), 10.0**k
+    base = solve(slider_crank(e=e, angle=th), "acceleration")
+    big = solve(slider_crank(r=0.1 * f, rod=0.4 * f, e=e * f, angle=th), "acceleration")
+    for name in ("A", "B"):
+        assert np.allclose(
+            np.array(big.velocity(name)) / f, base.velocity(name), rtol=1e-12, atol=1e-12 * 6.3
+        )
+        assert np.allclose(
+            np.array(big.acceleration(name)) / f, base.acceleration(name), rtol=1e-11, atol=1e-11 * 400
+        )
+    assert big.links["rod"].omega == pytest.approx(base.links["rod"].omega, rel=1e-12)
+    units = OutputUnits()
+    jb, jf = kinematics_json(base, units=units), kinematics_json(big, units=units)
+    for pb, pf in zip(jb["points"], jf["points"], strict=True):
+        assert (pb["speed"] == 0.0) == (pf["speed"] == 0.0)
+        assert pf["speed"] / f == pytest.approx(pb["speed"], rel=1e-12, abs=1e-300)

@@ -387,6 +387,12 @@ def _scaling(
     return centre, sc, scn
 
 
+#: Two located points of a link closer than this (scaled by the size) are one point for the
+#: link's frame: a few hundred ulps, so a 1e-12 m crank on 1 m links still has its direction
+#: (it had 0° for a crank drawn at 45° under the former 1e-9).
+_DISTINCT = 1e-14
+
+
 def _link_frames(
     lay: Layout,
     drawn: Drawn,
@@ -418,7 +424,7 @@ def _link_frames(
         theta = None
         for other in names[1:]:
             w = scn(other) - origin
-            if math.hypot(*w) > 1e-9:
+            if math.hypot(*w) > _DISTINCT:
                 theta = math.atan2(w[1], w[0])
                 break
         if theta is None:

@@ -77,53 +77,92 @@ def _link_pairs(kin: Kinematics) -> Iterator[tuple[str, str, str]]:
 
 
 class _Noise:
-    """Rounding noise shown as the zero it is: below 1e-12 of the mechanism's own scale.
+    """Rounding noise shown as the zero it is, each quantity judged against its own scale.
 
     A rod exactly along +x comes out at 3e-15° or 359.99999999999997°, a pivot's
     velocity at 4e-18 m/s with a direction of 249°; a student reads those as
-    numbers.  The scales are the mechanism's: its size, its fastest link's ω, and
-    the largest velocity and acceleration of any of its points.
+    numbers.  But a 1e-12 m crank on 1 m links really moves its pin at
+    6.3e-12 m/s, and that must print.  So:
+
+    - ω and α come from the solver already judged, each against its own error
+      bound (``solve._snap_to_error``): they are shown as they are;
+    - a point's velocity is v_o + ω × r of its link, and is noise below 1e-12 of
+      |v_o| + |ω|·|r| (the terms it is summed from); an acceleration likewise
+      against |a_o| + (|α| + ω²)·|r|; a relative or sliding velocity against the
+      scales of the two points it is the difference of;
+    - positions and angles against the mechanism's size: the position solve's
+      stated accuracy is 1e-12 of the size (Newton's tolerance), so a
+      coordinate nearer zero than that is zero to the accuracy it is known to.
     """
 
     RELATIVE = 1e-12
 
     def __init__(self, kin: Kinematics, has_v: bool, has_a: bool) -> None:
-        omegas = [abs(s.omega) for s in kin.links.values() if s.omega is not None]
-        alphas = [abs(s.alpha) for s in kin.links.values() if s.alpha is not None]
-        speeds = [abs(d.speed) / kin.size for d in kin.drives if d.speed is not None and kin.size > 0]
-        self.w = max([*omegas, *speeds], default=0.0)
-        self.al = max([*alphas, self.w * self.w], default=0.0)
-        v_pts = [math.hypot(*kin.velocity(n, lk)) for n, lk in _point_rows(kin)] if has_v else []
-        a_pts = [math.hypot(*kin.acceleration(n, lk)) for n, lk in _point_rows(kin)] if has_a else []
+        self.kin, self.has_v, self.has_a = kin, has_v, has_a
         self.size = kin.size
-        self.v = max([kin.size * self.w, *v_pts], default=0.0)
-        self.a = max([kin.size * self.al, *a_pts], default=0.0)
+
+    def _links_at(self, name: str, link: str | None) -> tuple[str, ...]:
+        if link is not None:
+            return (link,)
+        carriers = tuple(self.kin.carriers.get(name, ()))
+        joint = self.kin.joints.get(name)
+        return carriers or (joint.links if joint is not None else ())
+
+    def v_scale(self, links: tuple[str, ...], p: tuple[float, float]) -> float:
+        """|v_o| + |ω|·|r| over ``links``: the sizes of the terms a velocity at ``p`` is summed from."""
+        out = 0.0
+        for lk in links:
+            s = self.kin.links[lk]
+            r = math.dist(p, s.origin)
+            out = max(out, math.hypot(*(s.velocity or (0.0, 0.0))) + abs(s.omega or 0.0) * r)
+        return out
+
+    def a_scale(self, links: tuple[str, ...], p: tuple[float, float]) -> float:
+        """|a_o| + (|α| + ω²)·|r| over ``links``."""
+        out = 0.0
+        for lk in links:
+            s = self.kin.links[lk]
+            r = math.dist(p, s.origin)
+            w, al = s.omega or 0.0, s.alpha or 0.0
+            out = max(out, math.hypot(*(s.acceleration or (0.0, 0.0))) + (abs(al) + w * w) * r)
+        return out
+
+    def point_v_scale(self, name: str, link: str | None) -> float:
+        return self.v_scale(self._links_at(name, link), self.kin.positions[name])
+
+    def point_a_scale(self, name: str, link: str | None) -> float:
+        return self.a_scale(self._links_at(name, link), self.kin.positions[name])
 
     def angle(self, theta: float) -> float:
         return 0.0 if abs(math.remainder(theta, 2 * math.pi)) < self.RELATIVE else theta
 
-    def omega(self, w: float | None) -> float | None:
-        return None if w is None else (0.0 if abs(w) <= self.RELATIVE * self.w else w)
+    @staticmethod
+    def omega(w: float | None) -> float | None:
+        return w
 
-    def alpha(self, a: float | None) -> float | None:
-        return None if a is None else (0.0 if abs(a) <= self.RELATIVE * self.al else a)
+    @staticmethod
+    def alpha(a: float | None) -> float | None:
+        return a
 
-    def speed(self, v: float) -> float:
-        return 0.0 if abs(v) <= self.RELATIVE * self.v else v
+    def scalar(self, v: float, scale: float) -> float:
+        return 0.0 if abs(v) <= self.RELATIVE * scale else v
 
     @classmethod
-    def _vector(cls, v: tuple[float, float], scale: float) -> tuple[float, float]:
+    def vector(cls, v: tuple[float, float], scale: float) -> tuple[float, float]:
         floor = cls.RELATIVE * scale
         return (0.0 if abs(v[0]) <= floor else v[0], 0.0 if abs(v[1]) <= floor else v[1])
 
     def position(self, p: tuple[float, float]) -> tuple[float, float]:
-        return self._vector(p, self.size)
+        return self.vector(p, self.size)
 
-    def velocity(self, v: tuple[float, float]) -> tuple[float, float]:
-        return self._vector(v, self.v)
-
-    def acceleration(self, a: tuple[float, float]) -> tuple[float, float]:
-        return self._vector(a, self.a)
+    def joint_scales(self, name: str) -> tuple[float, float]:
+        """(velocity, acceleration) scales at a sliding joint's point, over its two links."""
+        j = self.kin.joints[name]
+        p = j.at if j.at is not None else (0.0, 0.0)
+        v = sum(self.v_scale((lk,), p) for lk in j.links)
+        a = sum(self.a_scale((lk,), p) for lk in j.links) if self.has_a else 0.0
+        w = abs(self.kin.links[j.links[-1]].omega or 0.0)
+        return v, a + 2.0 * w * v
 
 
 def _drive_frames(kin: Kinematics, d: Any, num: Any, ANG: str, W: str, AL: str) -> dict[str, Any]:
@@ -242,8 +281,8 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
 
     points = []
     for name, link in _point_rows(kin):
-        v = quiet.velocity(kin.velocity(name, link)) if has_v else None
-        a = quiet.acceleration(kin.acceleration(name, link)) if has_a else None
+        v = quiet.vector(kin.velocity(name, link), quiet.point_v_scale(name, link)) if has_v else None
+        a = quiet.vector(kin.acceleration(name, link), quiet.point_a_scale(name, link)) if has_a else None
         points.append(
             {
                 "point": name,
@@ -261,7 +300,10 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
     if has_v:
         for lk, p, q in _link_pairs(kin):
             state = kin.links[lk]
-            v = quiet.velocity(kin.relative_velocity(q, p, link_a=lk, link_b=lk))
+            v = quiet.vector(
+                kin.relative_velocity(q, p, link_a=lk, link_b=lk),
+                quiet.point_v_scale(p, lk) + quiet.point_v_scale(q, lk),
+            )
             r = math.dist(kin.positions[p], kin.positions[q])
             relative.append(
                 {
@@ -280,16 +322,17 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
     if has_v:
         for name, j in kin.joints.items():
             if j.type in ("prismatic", "slot"):
-                cor = quiet.acceleration(kin.coriolis(name)) if has_a else None
+                v_sc, a_sc = quiet.joint_scales(name)
+                cor = quiet.vector(kin.coriolis(name), a_sc) if has_a else None
                 sliders.append(
                     {
                         "joint": name,
                         "type": j.type,
                         "slider": j.links[0],
                         "guide": j.links[1],
-                        "sliding": to_unit(quiet.speed(kin.sliding(name)), V),
+                        "sliding": to_unit(quiet.scalar(kin.sliding(name), v_sc), V),
                         "sliding_acceleration": num(
-                            quiet.acceleration((kin.sliding_acceleration(name), 0.0))[0] if has_a else None, A
+                            quiet.scalar(kin.sliding_acceleration(name), a_sc) if has_a else None, A
                         ),
                         "coriolis": vec(cor, A),
                         "coriolis_magnitude": num(math.hypot(*cor), A) if cor is not None else None,
