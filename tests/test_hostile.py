@@ -24,7 +24,7 @@ from pathlib import Path
 
 import pytest
 
-from hostile_runner import mech, strict_json
+from cli_runner import mech, strict_json
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = ROOT / "mechanisms"
@@ -366,13 +366,6 @@ def test_gear_centre_distance_that_contradicts_pitch_radii_is_refused(yaml_file,
     f = yaml_file(GEARS.format(x2=0.3, size=size))
     p = mech("velocity", str(f))
     assert_bad_input(p, f)
-
-
-def test_gear_contradiction_gives_icentres_traceback(yaml_file):
-    # Audit defect, fixed: same file: `mech icentres` dies with ICentreDisagreement (a traceback) on
-    # what is bad input, not a bug in the I-centre code.
-    f = yaml_file(GEARS.format(x2=0.3, size="radii: [0.05, 0.1]"))
-    assert_bad_input(mech("icentres", str(f)), f)
 
 
 def test_consistent_gears_pitch_point_moves_alike_on_both(yaml_file):

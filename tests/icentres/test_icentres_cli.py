@@ -7,6 +7,10 @@ from pathlib import Path
 
 import pytest
 
+from cli_runner import assert_bad_input, mech, no_traceback, strict_json
+from mechanism_texts import GEARS, TOGGLE_FOUR_BAR
+from oracles.field_cases import IC_CASES
+
 MECHANISMS = Path(__file__).resolve().parents[2] / "mechanisms"
 
 
@@ -60,3 +64,54 @@ def test_icentres_without_geometry_is_a_clean_error(run):
         pytest.xfail(f"the solver crashes on a file without coordinates: {exc}")
     assert result.exit_code == 2
     assert "error" in result.stderr and "Traceback" not in result.stderr
+
+
+# -- through the command line as a user runs it (cli_runner: in process, tracebacks shown) --
+def test_icentres_units_mm_scale_points_not_directions_or_omega(tmp_path):
+    """--units mm multiplies every finite point by 1000 and leaves directions and ω alone."""
+    m = tmp_path / "m.yaml"
+    m.write_text(IC_CASES["slotted_lever"][0], encoding="utf-8")
+    si = strict_json(mech("icentres", "--json", str(m)).stdout)
+    mm = strict_json(mech("icentres", "--json", "--units", "mm", str(m)).stdout)
+    assert mm["units"]["length"] == "mm"
+    for a, b in zip(si["icentres"], mm["icentres"], strict=True):
+        if a["point"] is None:
+            assert b["point"] is None and b["direction"] == pytest.approx(a["direction"])
+        else:
+            assert b["point"] == pytest.approx([1000 * v for v in a["point"]], rel=1e-12, abs=1e-9)
+    assert [o["by_icentres"] for o in mm["omega"]] == pytest.approx([o["by_icentres"] for o in si["omega"]])
+
+
+def test_icentres_of_coincident_ground_pivots_turn_as_one_body_and_a_toggle_is_refused(tmp_path):
+    """Pivots A = D: crank, coupler, rocker turn as one body about A (exit 0); a toggle is exit 2."""
+    m = tmp_path / "c.yaml"
+    m.write_text(
+        """\
+links: [frame, crank, coupler, rocker]
+joints:
+  A: {type: revolute, links: [frame, crank], at: [0, 0]}
+  B: {type: revolute, links: [crank, coupler], at: [1, 0]}
+  C: {type: revolute, links: [coupler, rocker], at: [0.5, 1]}
+  D: {type: revolute, links: [rocker, frame], at: [0, 0]}
+drive: {link: crank, omega: 10}
+""",
+        encoding="utf-8",
+    )
+    p = mech("icentres", "--json", str(m))
+    no_traceback(p)
+    assert p.returncode == 0
+    d = strict_json(p.stdout)
+    by = {i["name"]: i for i in d["icentres"]}
+    assert by["I13"]["point"] == pytest.approx([0, 0], abs=1e-12)  # the body turns about A = D
+    assert all(o["by_icentres"] == pytest.approx(10.0) for o in d["omega"])
+    t = tmp_path / "t.yaml"
+    t.write_text(TOGGLE_FOUR_BAR, encoding="utf-8")
+    p = mech("icentres", str(t))
+    no_traceback(p)
+    assert p.returncode == 2 and "error:" in p.stderr
+
+
+def test_icentres_of_gears_whose_centres_contradict_their_radii_is_located_bad_input(write):
+    """Pitch radii 50 + 100 mm need centres 150 mm apart, not 300: input error, not a traceback."""
+    f = write(GEARS.format(x2=0.3, size="radii: [0.05, 0.1]"))
+    assert_bad_input(mech("icentres", str(f)), f)

@@ -3,8 +3,18 @@
 from __future__ import annotations
 
 import csv
+import io
 import json
+import math
 from pathlib import Path
+
+import numpy as np
+import pytest
+
+from cli_runner import mech, no_traceback, strict_json
+from mechanism_texts import CRANK_ROCKER, CRANK_ROCKER_LENGTHS, slider_crank
+from oracles.four_bar import crank_rocker_limits, crank_rocker_sweep, four_bar
+from oracles.slider_crank import slider_dead_centres
 
 ROOT = Path(__file__).resolve().parents[2]
 SHAPER = str(ROOT / "mechanisms" / "crank_slotted_lever_quick_return.yaml")
@@ -89,3 +99,228 @@ def test_plot_and_animation_are_written(run, tmp_path):
     assert result.exit_code == 0, result.output
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert gif.read_bytes()[:6] in (b"GIF89a", b"GIF87a")
+
+
+# -- numbers through mech sweep --json, against tests/oracles (cli_runner: tracebacks shown) --
+CR = CRANK_ROCKER_LENGTHS
+
+
+def _file(tmp_path: Path, name: str, text: str) -> Path:
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def sweep_json(path, *args):
+    p = mech("sweep", "--json", str(path), *args)
+    no_traceback(p)
+    assert p.returncode == 0, p.stderr
+    return strict_json(p.stdout)
+
+
+def _crank_rocker_limits() -> tuple[float, float, float]:
+    return crank_rocker_limits(CR["a"], CR["b"], CR["c"], CR["d"])
+
+
+@pytest.mark.parametrize("rng", [("0", "360"), ("-180", "180"), ("720", "1080"), ("0", "720")])
+def test_crank_rocker_dead_centres_and_time_ratio_match_the_law_of_cosines(tmp_path, rng):
+    """Dead centres where crank and coupler are in line, ratio (180 + a)/(180 - a), any full range."""
+    t_ext, t_fold, ratio = _crank_rocker_limits()
+    m = _file(tmp_path, "cr.yaml", CRANK_ROCKER)
+    d = sweep_json(m, "--from", rng[0], "--to", rng[1], "--steps", "36")
+    assert d["time_ratio"]["ratio"] == pytest.approx(ratio, rel=1e-10)
+    lo, hi = float(rng[0]), float(rng[1])
+    want = sorted(t + 360 * k for t in (t_ext, t_fold) for k in range(-2, 4) if lo <= t + 360 * k <= hi)
+    assert [e["angle"] for e in d["dead_centres"]] == pytest.approx(want, abs=1e-8)
+
+
+@pytest.mark.parametrize(
+    "rng, steps, full_turn",
+    [(("90", "-90"), "360", False), (("90", "-90"), "12", False), (("360", "0"), "360", True)],
+)
+def test_descending_sweep_refines_dead_centres_and_time_ratio_as_an_ascending_one(
+    tmp_path, rng, steps, full_turn
+):
+    """--from above --to: dead centres to 1e-8 deg (once 0.05 deg off); a time ratio needs a full turn."""
+    t_ext, t_fold, ratio = _crank_rocker_limits()
+    m = _file(tmp_path, "cr.yaml", CRANK_ROCKER)
+    d = sweep_json(m, "--from", rng[0], "--to", rng[1], "--steps", steps)
+    got = sorted(e["angle"] for e in d["dead_centres"])
+    lo, hi = sorted(map(float, rng))
+    want = sorted(t + 360 * k for t in (t_ext, t_fold) for k in (-1, 0, 1) if lo <= t + 360 * k <= hi)
+    assert got == pytest.approx(want, abs=1e-8)
+    if full_turn:
+        assert d["time_ratio"]["ratio"] == pytest.approx(ratio, rel=1e-10)
+    else:  # half a turn holds one stroke only: no ratio of two strokes
+        assert d["time_ratio"] is None
+
+
+@pytest.mark.parametrize("offset", [0.0, 0.05])
+def test_slider_crank_dead_centres_and_time_ratio_match_the_closed_form(tmp_path, offset):
+    """In line: exactly 0 and 180 deg, ratio 1; offset e: asin(e/(L+r)) and 180 + asin(e/(L-r))."""
+    r, L = 0.1, 0.4
+    m = _file(tmp_path, "sc.yaml", slider_crank(r, L, 90, 10, offset=offset))
+    d = sweep_json(m, "--steps", "7")
+    outer, inner, x_out, x_in = slider_dead_centres(r, L, offset)
+    t1, t2 = math.degrees(outer), math.degrees(inner)
+    alpha = t2 - t1 - 180
+    got = [(e["angle"], e["position"]) for e in d["dead_centres"]]
+    assert [g[0] for g in got] == pytest.approx([t1, t2], abs=1e-9)
+    assert [g[1] for g in got] == pytest.approx([x_out, x_in], rel=1e-12)
+    if offset == 0:
+        assert d["dead_centres"][0]["angle"] == 0.0
+    assert d["time_ratio"]["ratio"] == pytest.approx((180 + alpha) / (180 - alpha), rel=1e-10)
+
+
+def _dense_extremes(lo, hi, n=400_001):
+    th = np.linspace(lo, hi, n)
+    psi, w4, w3, vc = crank_rocker_sweep(CR["a"], CR["b"], CR["c"], CR["d"], th, 10.0)
+    return th, {"angle.rocker": psi, "omega.rocker": w4, "omega.coupler": w3, "velocity.C": vc}
+
+
+@pytest.mark.parametrize("rng", [("300", "420"), ("0", "360"), ("10", "100")])
+def test_twelve_step_extremes_match_a_dense_evaluation_of_the_closed_form(tmp_path, rng):
+    """12 steps give the extremes of 400 001 points of the oracle, and their angles."""
+    m = _file(tmp_path, "cr.yaml", CRANK_ROCKER)
+    d = sweep_json(m, "--from", rng[0], "--to", rng[1], "--steps", "12")
+    th, dense = _dense_extremes(float(rng[0]), float(rng[1]))
+    got = {e["quantity"]: e for e in d["extremes"]}
+    for key, v in dense.items():
+        e = got[key]
+        scale = float(np.max(np.abs(v)))
+        assert e["max"] == pytest.approx(float(v.max()), abs=1e-9 * scale), key
+        assert abs(e["max_angle"] - th[v.argmax()]) < 1e-2, (key, e)
+        if key == "velocity.C" and float(v.min()) < 1e-3 * scale:
+            # |v_C| has a V-shaped minimum, zero where the rocker stops (a dead centre in range):
+            # the dense grid only brackets it, the exact least value is 0
+            assert 0 <= e["min"] <= 1e-9 * scale, e
+        else:
+            assert e["min"] == pytest.approx(float(v.min()), abs=1e-9 * scale), key
+        assert abs(e["min_angle"] - th[v.argmin()]) < 1e-2, (key, e)
+
+
+def test_newton_sweep_extremes_are_refined_not_read_off_a_parabola(tmp_path):
+    """--method newton: the rocker's largest angle within its limit, least |v_C| = 0 where it stops."""
+    m = _file(tmp_path, "cr.yaml", CRANK_ROCKER)
+    d = sweep_json(m, "--steps", "36", "--method", "newton")
+    _, dense = _dense_extremes(0.0, 360.0)
+    got = {e["quantity"]: e for e in d["extremes"]}
+    for key, v in dense.items():
+        scale = float(np.max(np.abs(v)))
+        assert got[key]["max"] == pytest.approx(float(v.max()), abs=1e-6 * scale), (key, got[key])
+        least = 0.0 if key == "velocity.C" else float(v.min())  # the rocker stops: |v_C| = 0
+        assert got[key]["min"] == pytest.approx(least, abs=1e-6 * scale), (key, got[key])
+
+
+def test_gear_sweep_extremes_are_values_the_wheel_takes(tmp_path):
+    """A 2:1 wheel does not repeat each pinion turn: angle.wheel runs 0 to -180 deg, no wrap."""
+    d = sweep_json(ROOT / "mechanisms" / "gear_pair.yaml", "--steps", "8", "--quantity", "angle.wheel")
+    assert d["series"]["angle.wheel"] == pytest.approx([-th / 2 for th in d["series"]["angle"]], abs=1e-9)
+    (e,) = d["extremes"]
+    assert e["max"] == pytest.approx(0.0, abs=1e-9) and e["max_angle"] == pytest.approx(0.0, abs=1e-6)
+    assert e["min"] == pytest.approx(-180.0, abs=1e-9) and e["min_angle"] == pytest.approx(360.0, abs=1e-6)
+
+
+def test_one_step_over_a_full_turn_locates_nothing_and_says_why(tmp_path):
+    """Both ends of 0..360 are one crank position: no extreme, dead centre or ratio, and a note."""
+    m = _file(tmp_path, "cr.yaml", CRANK_ROCKER)
+    d = sweep_json(m, "--steps", "1")
+    assert d["extremes"] == [] and d["dead_centres"] == [] and d["time_ratio"] is None
+    assert any("give at least 2 steps per turn" in n for n in d["notes"]), d["notes"]
+
+
+def test_sweep_steps_beyond_the_memory_budget_are_refused(tmp_path):
+    """Under a 1.5 GB address-space limit, --steps 10,000,000 is exit 2 saying how many fit."""
+    import resource
+
+    m = _file(tmp_path, "cr.yaml", CRANK_ROCKER)
+
+    def limit():
+        resource.setrlimit(resource.RLIMIT_AS, (1_500_000_000, 1_500_000_000))
+
+    p = mech("sweep", str(m), "--steps", "10000000", subprocess_=True, preexec_fn=limit, timeout=60)
+    assert "Traceback" not in p.stderr, p.stderr[-600:]
+    assert p.returncode == 2, p.stdout[-600:]
+    assert "give at most" in p.stderr
+
+
+@pytest.mark.parametrize(
+    "quantity",
+    [
+        "omega.nolink",
+        "velocity.Z",
+        "displacement.O",
+        "sliding.A",
+        "angle.frame",
+        "omega",
+        "velocity.B.z",
+        "position.B",
+        "acceleration.B",
+        "alpha.rod",
+        "",
+        "omega.rod.x.y",
+        "velocity.<&>",
+    ],
+)
+def test_sweep_unknown_quantity_is_a_usage_error(tmp_path, quantity):
+    """A quantity that does not exist (or needs a higher --level) is exit 2 with a message."""
+    m = _file(tmp_path, "sc.yaml", slider_crank(0.1, 0.4, 90, 10))
+    p = mech("sweep", str(m), "--steps", "4", "--quantity", quantity)
+    no_traceback(p)
+    assert p.returncode == 2 and "error:" in p.stderr
+
+
+def test_sweep_csv_has_units_in_its_header_and_empty_cells_in_a_gap(tmp_path):
+    """AB = BC = CD = 1, AD = 2.5 assembles only while cos(th) >= 0.65: toggles at +-acos(0.65)."""
+    m = _file(
+        tmp_path,
+        "g.yaml",
+        """\
+links: [frame, crank, coupler, rocker]
+joints:
+  A: {type: revolute, links: [frame, crank], at: [0, 0]}
+  B: {type: revolute, links: [crank, coupler]}
+  C: {type: revolute, links: [coupler, rocker], near: [1.8, 1]}
+  D: {type: revolute, links: [rocker, frame], at: [2.5, 0]}
+lengths: {AB: 1, BC: 1, CD: 1}
+drive: {link: crank, angle: 30, omega: 10}
+""",
+    )
+    out = tmp_path / "s.csv"
+    q = ("--quantity", "velocity.C", "--quantity", "angle.rocker", "--quantity", "position.C.x")
+    d = sweep_json(m, "--steps", "36", "--units", "mm", "--csv", str(out), *q)
+    t = math.degrees(math.acos(0.65))
+    assert [x["angle"] for x in d["toggles"]] == pytest.approx([t, 360 - t], abs=1e-7)
+    rows = list(csv.reader(io.StringIO(out.read_text(encoding="utf-8"))))
+    assert rows[0] == ["angle [deg]", "velocity.C [mm/s]", "angle.rocker [deg]", "position.C.x [mm]"]
+    assert len(rows) == 38
+    for row, a in zip(rows[1:], d["series"]["angle"], strict=True):
+        assert float(row[0]) == pytest.approx(a)
+        inside = math.cos(math.radians(a)) >= 0.65 - 1e-12
+        assert (row[1] != "") == inside, row
+    for k, key in enumerate(("velocity.C", "angle.rocker", "position.C.x"), 1):
+        col = [float(r[k]) if r[k] else None for r in rows[1:]]
+        series = d["series"][key]
+        # empty cells exactly where the JSON has null; numbers equal where both have one
+        # (compared apart: pytest.approx does not take None in every version)
+        assert [c is None for c in col] == [v is None for v in series]
+        both = [(c, v) for c, v in zip(col, series, strict=True) if c is not None]
+        assert [c for c, _ in both] == pytest.approx([v for _, v in both], rel=1e-12)
+    # v_C at 0 deg from the four-bar oracle (C above BD), in mm/s
+    _C, _w3, w4, _, _ = four_bar(1.0, 1.0, 1.0, 2.5, 0.0, 10.0)
+    assert float(rows[1][1]) == pytest.approx(1000 * abs(w4) * 1.0, rel=1e-10)
+
+
+def test_sweep_json_units_mm_scale_lengths_and_speeds_not_angles(tmp_path):
+    """--units mm: dead centres, extremes and series of lengths and speeds x 1000; ω unchanged."""
+    m = _file(tmp_path, "sc.yaml", slider_crank(0.1, 0.4, 90, 10, offset=0.05))
+    q = ("--quantity", "sliding.P", "--quantity", "omega.rod", "--quantity", "displacement.P")
+    si, mm = sweep_json(m, "--steps", "24", *q), sweep_json(m, "--steps", "24", "--units", "mm", *q)
+    assert [e["position"] * 1000 for e in si["dead_centres"]] == pytest.approx(
+        [e["position"] for e in mm["dead_centres"]]
+    )
+    for a, b in zip(si["extremes"], mm["extremes"], strict=True):
+        k = 1.0 if a["quantity"].startswith("omega") else 1000.0
+        assert (b["max"], b["min"]) == pytest.approx((k * a["max"], k * a["min"]))
+        assert b["unit"] == {"sliding.P": "mm/s", "omega.rod": "rad/s", "displacement.P": "mm"}[a["quantity"]]
+    assert mm["series"]["sliding.P"] == pytest.approx([1000 * v for v in si["series"]["sliding.P"]])

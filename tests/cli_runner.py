@@ -1,4 +1,4 @@
-"""Run mech as a user does, for the hostile-input tests (shared by test_hostile*.py).
+"""Run mech as a user does, and read what it left (for tests of the command line in any subject).
 
 In process through click's runner by default (fast); a real ``python -m mech``
 process where only that shows the truth: a crash of the interpreter, a process
@@ -9,11 +9,12 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
 
-__all__ = ["Run", "mech", "strict_json"]
+__all__ = ["Run", "assert_bad_input", "mech", "no_traceback", "points", "strict_json"]
 
 
 class Run:
@@ -81,3 +82,25 @@ def strict_json(text: str):
         raise ValueError(f"invalid JSON constant {token}")
 
     return json.loads(text, parse_constant=bad)
+
+
+def no_traceback(p: Run) -> None:
+    """No Python traceback reached the user."""
+    assert "Traceback" not in p.stderr, p.stderr[-2500:]
+
+
+def assert_bad_input(proc: Run, path: Path | str | None = None, *, located: bool = True) -> None:
+    """Exit 2, an ``error:`` on stderr (at ``path:line:col`` when asked), never a traceback."""
+    no_traceback(proc)
+    assert proc.returncode == 2, (proc.returncode, proc.stdout[-500:], proc.stderr[-1500:])
+    assert "error:" in proc.stderr
+    if located and path is not None:
+        assert re.search(re.escape(str(path)) + r":\d+:\d+: error:", proc.stderr), proc.stderr
+
+
+def points(data: dict) -> dict[str, dict]:
+    """Points of a kinematics JSON (position, velocity, acceleration) by name, first entry per name."""
+    out: dict[str, dict] = {}
+    for p in data["points"]:
+        out.setdefault(p["point"], p)
+    return out

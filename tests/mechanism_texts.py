@@ -1,0 +1,124 @@
+"""Mechanism files as text, shared by the command-line tests of several subjects.
+
+Each is the smallest file that shows the behaviour; the numbers the tests expect from them
+are worked in the tests (or in tests/oracles), never read back from mech.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+__all__ = [
+    "CRANK_ROCKER",
+    "CRANK_ROCKER_LENGTHS",
+    "DRAWN_FOUR_BAR",
+    "EXAMPLES",
+    "FOUR_BAR_NAME",
+    "FOUR_BAR_PARALLELOGRAM",
+    "GEARS",
+    "TOGGLE_FOUR_BAR",
+    "slider_crank",
+    "strip_answers",
+]
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "mechanisms"
+FOUR_BAR_NAME = "Four-bar chain ABCD (Khurmi Ex. 7.1)"
+
+
+def _num(x: float) -> str:
+    return repr(float(x))
+
+
+def slider_crank(
+    r: float = 0.1,
+    L: float = 0.4,
+    angle: float = 90,
+    omega: float = 10,
+    offset: float = 0.0,
+    origin: float = 0.0,
+    near_x: float | None = None,
+    extra: str = "",
+    drive: str | None = None,
+) -> str:
+    """In-line (or offset) slider crank, crank O at (origin, origin), path y = origin + offset.
+
+    The slider starts near x = origin + r + L (ahead of the crank); ``drive`` replaces the
+    crank drive written from ``angle`` and ``omega``; ``extra`` is appended (answers, …).
+    """
+    nx = origin + (near_x if near_x is not None else r + L)
+    drive = drive or f"{{link: crank, angle: {angle!r}, omega: {omega!r}, direction: ccw}}"
+    o, y = _num(origin), _num(origin + offset)
+    return f"""\
+links: [frame, crank, rod, piston]
+joints:
+  O: {{type: revolute, links: [frame, crank], at: [{o}, {o}]}}
+  A: {{type: revolute, links: [crank, rod]}}
+  B: {{type: revolute, links: [rod, piston], near: [{_num(nx)}, {y}]}}
+  P: {{type: prismatic, links: [piston, frame], path: {{through: [{o}, {y}], angle: 0}}}}
+lengths: {{OA: {_num(r)}, AB: {_num(L)}}}
+drive: {drive}
+{extra}"""
+
+
+def strip_answers(name: str) -> str:
+    """A shipped example without its answers: a problem for answer sheets."""
+    return (EXAMPLES / name).read_text(encoding="utf-8").split("\nanswers:")[0] + "\n"
+
+
+FOUR_BAR_PARALLELOGRAM = """\
+links: [frame, crank, coupler, rocker]
+joints:
+  A: {type: revolute, links: [frame, crank], at: [0, 0]}
+  B: {type: revolute, links: [crank, coupler]}
+  C: {type: revolute, links: [coupler, rocker], near: [1.3, 0.4]}
+  D: {type: revolute, links: [rocker, frame], at: [1, 0]}
+lengths: {AB: 0.5, BC: 1, CD: 0.5}
+drive: {link: crank, angle: 60, omega: 10, direction: ccw}
+"""
+
+# A four-bar whose drawing puts B at 90 deg; format with ab (length AB) and angle (drive).
+DRAWN_FOUR_BAR = """\
+links: [frame, crank, coupler, rocker]
+joints:
+  A: {{type: revolute, links: [frame, crank], at: [0, 0]}}
+  B: {{type: revolute, links: [crank, coupler], at: [0, 1]}}
+  C: {{type: revolute, links: [coupler, rocker], at: [2, 1]}}
+  D: {{type: revolute, links: [rocker, frame], at: [2, 0]}}
+lengths: {{AB: {ab}, BC: 2, CD: 1}}
+drive: {{link: crank, angle: {angle}, omega: 1}}
+"""
+
+# Two gears about O1 = (0, 0) and O2 = (x2, 0); format with x2 and size (teeth/module or radii).
+GEARS = """\
+links: [frame, g1, g2]
+joints:
+  O1: {{type: revolute, links: [frame, g1], at: [0, 0]}}
+  O2: {{type: revolute, links: [frame, g2], at: [{x2}, 0]}}
+  M: {{type: gear, links: [g1, g2], {size}}}
+drive: {{link: g1, rpm: 600}}
+"""
+
+# AB = 1, BC = 2, CD = 1, AD = 2 at 180 deg: crank and coupler fold onto AD (a toggle).
+TOGGLE_FOUR_BAR = """\
+links: [frame, crank, coupler, rocker]
+joints:
+  A: {type: revolute, links: [frame, crank], at: [0, 0]}
+  B: {type: revolute, links: [crank, coupler]}
+  C: {type: revolute, links: [coupler, rocker], near: [1, 1]}
+  D: {type: revolute, links: [rocker, frame], at: [2, 0]}
+lengths: {AB: 1, BC: 2, CD: 1}
+drive: {link: crank, angle: 180, omega: 10}
+"""
+
+CRANK_ROCKER_LENGTHS = dict(a=1.0, b=3.0, c=2.5, d=3.0)  # Grashof, crank the shortest
+CRANK_ROCKER = """\
+name: crank rocker
+links: [frame, crank, coupler, rocker]
+joints:
+  A: {type: revolute, links: [frame, crank], at: [0, 0]}
+  B: {type: revolute, links: [crank, coupler]}
+  C: {type: revolute, links: [coupler, rocker], near: [3, 2]}
+  D: {type: revolute, links: [rocker, frame], at: [3, 0]}
+lengths: {AB: 1, BC: 3, CD: 2.5}
+drive: {link: crank, angle: 90, omega: 10, direction: ccw}
+"""

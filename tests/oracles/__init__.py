@@ -1,0 +1,16 @@
+"""Independent references for the tests: what the answer must be, derived without mech.
+
+Every function here works a result from the geometry and the constraint equations alone
+(closed forms, a linear solve of the velocity constraints written out by hand) and imports
+nothing from ``mech``: a test that compares mech against an oracle can fail.  Each module
+says what it derives and from what; ``tests/oracles/test_oracles.py`` checks the oracles
+themselves against textbook answers, so they are trusted for a reason.
+
+- :mod:`oracles.four_bar`: the four-bar chain (positions, ω, α by the vector loop; the
+  crank-rocker's limit positions and time ratio by the law of cosines).
+- :mod:`oracles.slider_crank`: the slider crank, in line or offset (loop equations
+  differentiated; dead centres from the collinear crank-and-rod triangles).
+- :mod:`oracles.velocity_field`: the velocity of every link of any planar chain from its
+  pin, slider and contact constraints (a linear solve), and I-centres read off that field.
+- :mod:`oracles.field_cases`: mechanisms written both as mech YAML and as those constraints.
+"""

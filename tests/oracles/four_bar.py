@@ -1,0 +1,90 @@
+"""The four-bar chain in closed form: positions, angular velocities and accelerations, limits.
+
+Crank AB about A = (0, 0), coupler BC, rocker CD about D = (d, 0).  Derived here from the
+geometry alone: C by intersecting the circles about B and D, the velocities and
+accelerations from the vector loop differentiated once and twice (Raven's method, e.g.
+Norton, *Design of Machinery*, § 6.7 and § 7.3), the rocker's limit positions from the law
+of cosines (crank and coupler in line).  Nothing of mech is used.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["crank_rocker_limits", "crank_rocker_sweep", "four_bar"]
+
+
+def _k(v: np.ndarray) -> np.ndarray:
+    """k × v: v turned a quarter turn anticlockwise."""
+    return np.array([-v[1], v[0]])
+
+
+def four_bar(
+    a: float, b: float, c: float, d: float, theta: float, w2: float, al2: float = 0.0, upper: bool = True
+) -> tuple[np.ndarray, float, float, float, float]:
+    """C, ω3, ω4, α3, α4 of the four-bar at crank angle ``theta`` (rad), crank ω2 and α2.
+
+    ``upper``: C left of the line B→D (the other assembly otherwise).  The vector loop:
+    v_B + ω3 k×BC = ω4 k×DC ;  a_B + α3 k×BC − ω3² BC = α4 k×DC − ω4² DC.
+    """
+    B = np.array([a * math.cos(theta), a * math.sin(theta)])
+    D = np.array([d, 0.0])
+    f = D - B
+    L = float(np.hypot(*f))
+    x = (b * b - c * c + L * L) / (2 * L)
+    h = math.sqrt(b * b - x * x)
+    e = f / L
+    perp = np.array([-e[1], e[0]])
+    C = B + x * e + (h if upper else -h) * perp
+    BC, DC = C - B, C - D
+    vB = w2 * _k(B)
+    M = np.column_stack([_k(BC), -_k(DC)])
+    w3, w4 = np.linalg.solve(M, -vB)
+    aB = al2 * _k(B) - w2**2 * B
+    rhs = -(aB - w3**2 * BC + w4**2 * DC)
+    a3, a4 = np.linalg.solve(M, rhs)
+    return C, float(w3), float(w4), float(a3), float(a4)
+
+
+def crank_rocker_sweep(
+    a: float, b: float, c: float, d: float, theta_deg: np.ndarray | float, omega: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Over many crank angles at once (deg), C left of B→D: rocker angle (deg), ω4, ω3, |v_C|.
+
+    The same loop as :func:`four_bar`, vectorised, with ω3 and ω4 by Cramer's rule from
+    ``[-BCy DCy; BCx -DCx] [ω3 ω4]ᵀ = -v_B``.
+    """
+    th = np.radians(np.asarray(theta_deg, float))
+    B = np.stack([a * np.cos(th), a * np.sin(th)], -1)
+    D = np.array([d, 0.0])
+    BD = D - B
+    r = np.linalg.norm(BD, axis=-1)
+    x = (b * b - c * c + r * r) / (2 * r)
+    h = np.sqrt(b * b - x * x)
+    u = BD / r[..., None]
+    nrm = np.stack([-u[..., 1], u[..., 0]], -1)  # left of B->D
+    C = B + x[..., None] * u + h[..., None] * nrm
+    vB = omega * np.stack([-B[..., 1], B[..., 0]], -1)
+    BC, DC = C - B, C - D
+    det = (-BC[..., 1]) * (-DC[..., 0]) - DC[..., 1] * BC[..., 0]
+    w3 = ((-vB[..., 0]) * (-DC[..., 0]) - DC[..., 1] * (-vB[..., 1])) / det
+    w4 = ((-BC[..., 1]) * (-vB[..., 1]) - (-vB[..., 0]) * BC[..., 0]) / det
+    psi = np.degrees(np.arctan2(DC[..., 1], DC[..., 0]))
+    return psi, w4, w3, np.abs(w4) * c
+
+
+def crank_rocker_limits(a: float, b: float, c: float, d: float) -> tuple[float, float, float]:
+    """Crank angles (deg) of the rocker's limit positions and the time ratio (180 + α)/(180 − α).
+
+    Crank and coupler in line: extended (AC = a + b, crank along AC) and folded (AC = b − a,
+    crank opposite AC); the angle DAC by the law of cosines in triangle A, D, C (C above AD).
+    """
+
+    def dac(AC: float) -> float:
+        return math.degrees(math.acos((AC * AC + d * d - c * c) / (2 * AC * d)))
+
+    t_ext, t_fold = dac(a + b), dac(b - a) + 180.0
+    alpha = t_fold - t_ext - 180.0
+    return t_ext, t_fold, (180 + alpha) / (180 - alpha)

@@ -1,0 +1,134 @@
+"""The oracles themselves against published answers, so that tests may trust them.
+
+Each oracle is checked on a worked textbook example (source beside the numbers) and, where
+two oracles derive the same quantity by different routes, against each other.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from oracles.four_bar import crank_rocker_limits, crank_rocker_sweep, four_bar
+from oracles.slider_crank import slider_crank, slider_dead_centres
+from oracles.velocity_field import icentre, velocity_field
+
+# Khurmi & Gupta, *Theory of Machines*, Example 7.1: AD = 150 mm fixed, crank AB = 40 mm at
+# 120 rpm clockwise, CD = 80 mm, BC = AD, angle BAD = 60 deg.  Published (graphical):
+# v_B = 0.503 m/s, v_C = 0.385 m/s, omega_CD = 4.8 rad/s clockwise -- to drawing accuracy (2 %).
+KHURMI_7_1 = dict(a=0.04, b=0.15, c=0.08, d=0.15, theta=math.radians(60), w2=-120 * 2 * math.pi / 60)
+
+
+def _khurmi_7_1_pins() -> tuple[list[tuple], np.ndarray, np.ndarray]:
+    k = KHURMI_7_1
+    B = k["a"] * np.array([math.cos(k["theta"]), math.sin(k["theta"])])
+    C, *_ = four_bar(k["a"], k["b"], k["c"], k["d"], k["theta"], k["w2"])
+    pins = [
+        ("pin", (0.0, 0.0), "frame", "crank"),
+        ("pin", B, "crank", "coupler"),
+        ("pin", C, "coupler", "rocker"),
+        ("pin", (k["d"], 0.0), "rocker", "frame"),
+    ]
+    return pins, B, C
+
+
+def test_four_bar_oracle_gives_khurmi_example_7_1():
+    k = KHURMI_7_1
+    C, _w3, w4, _a3, _a4 = four_bar(k["a"], k["b"], k["c"], k["d"], k["theta"], k["w2"])
+    assert C[1] > 0  # C above AD, as in the book's figure
+    assert math.dist(C, (0.04 * math.cos(k["theta"]), 0.04 * math.sin(k["theta"]))) == pytest.approx(0.15)
+    assert math.dist(C, (0.15, 0)) == pytest.approx(0.08)
+    assert abs(k["w2"]) * k["a"] == pytest.approx(0.503, rel=0.02)
+    assert w4 < 0 and abs(w4) == pytest.approx(4.8, rel=0.02)  # clockwise
+    assert abs(w4) * k["c"] == pytest.approx(0.385, rel=0.02)
+
+
+def test_four_bar_oracle_sweep_agrees_with_the_single_angle_loop():
+    """The vectorised Cramer's-rule sweep and the matrix solve are two routes to one answer."""
+    th = np.linspace(5.0, 355.0, 36)
+    psi, w4s, w3s, vc = crank_rocker_sweep(1.0, 3.0, 2.5, 3.0, th, 10.0)
+    for i, t in enumerate(th):
+        C, w3, w4, _, _ = four_bar(1.0, 3.0, 2.5, 3.0, math.radians(t), 10.0)
+        assert w4s[i] == pytest.approx(w4, rel=1e-12, abs=1e-12)
+        assert w3s[i] == pytest.approx(w3, rel=1e-12, abs=1e-12)
+        assert psi[i] == pytest.approx(math.degrees(math.atan2(C[1], C[0] - 3.0)), abs=1e-10)
+        assert vc[i] == pytest.approx(abs(w4) * 2.5, rel=1e-12)
+
+
+def test_crank_rocker_limits_give_khurmi_7_1_time_ratio_and_a_resting_rocker():
+    # mechanisms/four_bar.yaml works the same chain by the cosine rule: crank angles between the
+    # limit positions 187.61 / 172.39 deg, time ratio 1.0883.
+    t_ext, t_fold, ratio = crank_rocker_limits(0.04, 0.15, 0.08, 0.15)
+    assert t_fold - t_ext == pytest.approx(187.61, abs=0.01)
+    assert ratio == pytest.approx(1.0883, abs=1e-4)
+    # at a limit position the rocker is at rest: the loop's ω4 vanishes there
+    _, w4, _, _ = crank_rocker_sweep(0.04, 0.15, 0.08, 0.15, np.array([t_ext, t_fold]), 1.0)
+    assert np.abs(w4) == pytest.approx([0, 0], abs=1e-9)
+
+
+def test_slider_crank_oracle_gives_khurmi_examples_7_2_and_8_1():
+    # Khurmi & Gupta, Examples 7.2 and 8.1: crank 150 mm at a constant 300 rpm, rod 600 mm,
+    # crank 45 deg from inner dead centre.  Published (graphical): mid-point D of the rod at
+    # 4.1 m/s (exact 3.995, the book's drawing is 2.6 % high: 3 %) and 117 m/s^2 (2 %).
+    # Mirrored so that the piston is ahead (+x): the crank at 45 deg.
+    r, rod, w, th = 0.15, 0.6, 300 * 2 * math.pi / 60, math.radians(45)
+    _x, w3, v, _a3, a = slider_crank(r, rod, 0.0, th, w)
+    A = r * np.array([math.cos(th), math.sin(th)])
+    vA, aA = w * np.array([-A[1], A[0]]), -(w**2) * A
+    vD, aD = (vA + np.array([v, 0.0])) / 2, (aA + np.array([a, 0.0])) / 2  # D midway on a rigid rod
+    assert np.hypot(*vD) == pytest.approx(4.1, rel=0.03)
+    assert np.hypot(*aD) == pytest.approx(117, rel=0.02)
+    assert abs(w3) == pytest.approx(5.642, rel=1e-3)  # worked in mechanisms/slider_crank.yaml
+
+
+def test_slider_dead_centres_are_where_the_slider_stops():
+    r, rod, e = 0.1, 0.4, 0.05
+    outer, inner, x_out, x_in = slider_dead_centres(r, rod, e)
+    for th, x in ((outer, x_out), (inner, x_in)):
+        xb, _, v, _, _ = slider_crank(r, rod, e, th, 1.0)
+        assert xb == pytest.approx(x, rel=1e-12)
+        assert v == pytest.approx(0.0, abs=1e-12)
+    assert x_out - x_in > 2 * r  # an offset slider's stroke is longer than twice the crank
+
+
+def test_velocity_field_agrees_with_the_four_bar_loop_and_kennedy():
+    """Field (linear solve of pins) and loop (closed form) are independent routes to ω."""
+    pins, B, C = _khurmi_7_1_pins()
+    k = KHURMI_7_1
+    field = velocity_field(["frame", "crank", "coupler", "rocker"], "frame", pins, ("crank", k["w2"]))
+    _, w3, w4, _, _ = four_bar(k["a"], k["b"], k["c"], k["d"], k["theta"], k["w2"])
+    assert field["coupler"][1] == pytest.approx(w3, rel=1e-12)
+    assert field["rocker"][1] == pytest.approx(w4, rel=1e-12)
+    # I13 where lines AB and DC meet (Kennedy); mechanisms/four_bar.yaml: (212.05, 367.29) mm
+    P, direction = icentre(field, "frame", "coupler")
+    assert direction is None and P is not None
+    assert math.dist(P * 1000, (212.05, 367.29)) <= 0.01
+
+    def cross(u, v) -> float:
+        return float(u[0] * v[1] - u[1] * v[0])
+
+    assert abs(cross(B, P)) <= 1e-12 and abs(cross(C - (0.15, 0), P - (0.15, 0))) <= 1e-12
+    # a pin is its own I-centre
+    P12, _ = icentre(field, "crank", "coupler")
+    assert P12 is not None and math.dist(P12, B) <= 1e-15
+
+
+def test_velocity_field_of_a_slider_crank_agrees_with_the_closed_form():
+    r, rod, e, th, w = 0.1, 0.4, 0.03, math.radians(70), 12.0
+    xb, w3, v, _, _ = slider_crank(r, rod, e, th, w)
+    A = (r * math.cos(th), r * math.sin(th))
+    cons = [
+        ("pin", (0.0, 0.0), "frame", "crank"),
+        ("pin", A, "crank", "rod"),
+        ("pin", (xb, e), "rod", "piston"),
+        ("prismatic", (xb, e), "piston", "frame", (1.0, 0.0)),
+    ]
+    field = velocity_field(["frame", "crank", "rod", "piston"], "frame", cons, ("crank", w))
+    assert field["rod"][1] == pytest.approx(w3, rel=1e-12)
+    u, wp = field["piston"]
+    assert wp == pytest.approx(0.0, abs=1e-12) and u == pytest.approx([v, 0.0], abs=1e-12 * abs(v))
+    # the piston translates: I14 at infinity, across the path
+    P, direction = icentre(field, "frame", "piston")
+    assert P is None and abs(direction[1]) == pytest.approx(1.0)
