@@ -42,6 +42,16 @@ __all__ = [
 
 Vec = tuple[float, float]
 
+_KINDS: dict[JointType, PairKind] = {}  # mech.pairs.registry.KINDS, once imported
+
+
+def _pair_kinds() -> dict[JointType, PairKind]:
+    """The pair-kind registry, imported on first need (it imports the pair modules)."""
+    from mech.pairs.registry import KINDS
+
+    _KINDS.update(KINDS)
+    return _KINDS
+
 
 class JointType(str, Enum):
     """Kinds of joint in format 1.
@@ -62,10 +72,8 @@ class JointType(str, Enum):
 
     @property
     def kind(self) -> PairKind:
-        """This type's entry in the pair-kind registry."""
-        from mech.pairs.registry import KINDS
-
-        return KINDS[self]
+        """This type's entry in the pair-kind registry (imported on first use, then looked up)."""
+        return (_KINDS or _pair_kinds())[self]
 
     @property
     def is_higher(self) -> bool:

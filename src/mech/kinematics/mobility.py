@@ -29,12 +29,22 @@ def kutzbach(mech: Mechanism) -> int:
     return 3 * (len(mech.links) - 1) - 2 * j - h
 
 
-def numeric_mobility(mech: Mechanism, system: System, q: np.ndarray, notes: tuple[str, ...] = ()) -> Mobility:
-    """Mobility of ``system`` at ``q`` from the SVD of Φ_q without drive rows."""
+def numeric_mobility(
+    mech: Mechanism,
+    system: System,
+    q: np.ndarray,
+    notes: tuple[str, ...] = (),
+    *,
+    jacobian: np.ndarray | None = None,
+) -> Mobility:
+    """Mobility of ``system`` at ``q`` from the SVD of Φ_q without drive rows.
+
+    ``jacobian``: Φ_q at ``q`` with the drive rows, when the caller has it already.
+    """
     k = kutzbach(mech)
     keep = np.ones(system.m, bool)
     keep[system.drive_rows] = False
-    jac = system.jacobian(q)[keep]
+    jac = (system.jacobian(q) if jacobian is None else jacobian)[keep]
     ncols = jac.shape[1]
     if ncols == 0:
         return Mobility(k, 0, 1.0, (), (), int(jac.shape[0]), notes)

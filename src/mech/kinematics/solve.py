@@ -92,8 +92,9 @@ def compiled(
     lay = layout(mech)
     drawn = assemble(lay, drive_angles=angles, allow_free=allow_free)
     system = build_system(lay, drawn)
-    mob = numeric_mobility(mech, system, system.q0)
-    comp = Compiled(mech, lay, drawn, system, mob, _is_singular(system.jacobian(system.q0)))
+    jac = system.jacobian(system.q0)  # once, for the rank and the drawn toggle alike
+    mob = numeric_mobility(mech, system, system.q0, jacobian=jac)
+    comp = Compiled(mech, lay, drawn, system, mob, _is_singular(jac))
     _CACHE[key] = comp
     if len(_CACHE) > _CACHE_SIZE:
         _CACHE.popitem(last=False)
