@@ -10,7 +10,7 @@ import pytest
 from builders import four_bar, slider_crank
 
 import mech
-from mech.kinematics import sweep
+from mech.kinematics import solve, sweep
 from mech.kinematics.march import stacked
 from mech.kinematics.solve import compiled
 from mech.options import SolveOptions
@@ -123,3 +123,32 @@ def test_newton_sweep_refines_extremes_and_dead_centres_as_the_closed_form_does(
         assert d.subject == r.subject and abs(d.angle - r.angle) < 1e-10
     assert got.time_ratio is not None and ref.time_ratio is not None
     assert got.time_ratio.ratio == pytest.approx(ref.time_ratio.ratio, rel=1e-10)
+
+
+@pytest.mark.parametrize(
+    "name", ["eccentric_cam_roller", "rolling_wheel", "cam_oscillating_roller", "cam_roller_program"]
+)
+def test_moving_higher_pairs_march_in_stacks_as_the_step_by_step_sweep_solves_them(name, monkeypatch):
+    # distance rows (a roller on an eccentric), rolling rows (the arc rolled) and profile rows
+    # (a cam's spline against a roller): the stacked rows reproduce the system's own (agrees()),
+    # and the marched sweep gives the step-by-step continuation's answer to 1e-9 of the size
+    import mech.kinematics.march as march
+
+    m = mech.load(ROOT / "mechanisms" / f"{name}.yaml")
+    assert stacked(compiled(m, None).system) is not None
+    phi = np.radians(np.linspace(0.0, 360.0, 181))
+    got = sweep(m, phi, level="acceleration", analyse=False)
+    monkeypatch.setattr(march, "stacked", lambda sys_: None)
+    ref = sweep(m, phi, level="acceleration", analyse=False)
+    assert got.assembled.all() and ref.assembled.all()
+    size = solve(m, "position").size  # the mechanism's own scale (its largest joint distance)
+    w = float(np.nanmax(np.abs(ref.omegas)))
+    for key, unit in (("positions", size), ("velocities", w * size), ("accelerations", w * w * size)):
+        a, b = getattr(got, key), getattr(ref, key)
+        assert np.array_equal(np.isnan(a), np.isnan(b)), key
+        assert np.nanmax(np.abs(a - b)) <= 1e-9 * unit, key
+    turned = got.link_angles - ref.link_angles  # the same angle, whichever turn each counts it in
+    assert np.nanmax(np.abs((turned + math.pi) % (2 * math.pi) - math.pi)) <= 1e-9
+    for key, unit in (("omegas", w), ("alphas", w * w)):
+        a, b = getattr(got, key), getattr(ref, key)
+        assert np.nanmax(np.abs(a - b)) <= 1e-9 * unit, key

@@ -36,6 +36,7 @@ import numpy as np
 
 from mech.errors import GeometryError
 from mech.kinematics.constraints import System
+from mech.kinematics.curves import curve_row
 
 __all__ = ["MAX_SPAN", "Marcher", "Stacked", "Walker", "march", "stacked"]
 
@@ -93,9 +94,29 @@ class Stacked:
             dx = qf[:, 3 * s.ln_s] + sx - qf[:, 3 * s.ln_g] - tx
             dy = qf[:, 3 * s.ln_s + 1] + sy - qf[:, 3 * s.ln_g + 1] - ty
             out[:, r : r + kl] = nx * dx + ny * dy - c_line
+            if s.ln_k is not None:  # rolling: the arc rolled, k (θ_slider − θ_guide)
+                out[:, r : r + kl] += s.ln_k * (qf[:, 3 * s.ln_s + 2] - qf[:, 3 * s.ln_g + 2])
         r += kl
-        out[:, r:] = qf[:, 2::3] @ s.ang_a.T - c_ang
+        ka = s.ang_c.size
+        out[:, r : r + ka] = qf[:, 2::3] @ s.ang_a.T - c_ang
+        r += ka
+        kd = s.ds_d.size
+        if kd:
+            dx, dy, _, _, _, _ = self._distance(trig, qf)
+            out[:, r : r + kd] = 0.5 * (dx * dx + dy * dy - s.ds_d**2)
+        for c, row in enumerate(s.cv):  # a profile's row is found by a nearest-point search: one by one
+            out[:, r + kd + c] = [curve_row(row, qf[t])[0] for t in range(qf.shape[0])]
         return out
+
+    def _distance(self, trig: tuple[np.ndarray, np.ndarray], qf: np.ndarray) -> tuple[np.ndarray, ...]:
+        """d = r_i(P) − r_j(Q) of the distance rows (K, rows), with A_i s_i and A_j s_j."""
+        s = self.sys
+        ax, ay = self._rot(trig, s.ds_i, s.ds_si)
+        bx, by = self._rot(trig, s.ds_j, s.ds_sj)
+        i3, j3 = 3 * s.ds_i, 3 * s.ds_j
+        dx = qf[:, i3] + ax - qf[:, j3] - bx
+        dy = qf[:, i3 + 1] + ay - qf[:, j3 + 1] - by
+        return dx, dy, ax, ay, bx, by
 
     def jacobian(self, q: np.ndarray) -> np.ndarray:
         """Φ_q (K, m, 3n)."""
@@ -131,9 +152,31 @@ class Stacked:
             jac[:, rows, g3] = -nx
             jac[:, rows, g3 + 1] = -ny
             jac[:, rows, g3 + 2] = (-ny * dx + nx * dy) - (-nx * ty + ny * tx)
+            if s.ln_k is not None:
+                np.add.at(jac, (slice(None), rows, s3 + 2), s.ln_k)
+                np.add.at(jac, (slice(None), rows, g3 + 2), -s.ln_k)
         r0 += kl
-        if s.ang_c.size:
-            jac[:, r0:, 2::3] = s.ang_a
+        ka = s.ang_c.size
+        if ka:
+            jac[:, r0 : r0 + ka, 2::3] = s.ang_a
+        r0 += ka
+        kd = s.ds_d.size
+        if kd:
+            rows = np.arange(r0, r0 + kd)
+            dx, dy, ax, ay, bx, by = self._distance(trig, qf)
+            i3, j3 = 3 * s.ds_i, 3 * s.ds_j
+            every = slice(None)
+            np.add.at(jac, (every, rows, i3), dx)
+            np.add.at(jac, (every, rows, i3 + 1), dy)
+            np.add.at(jac, (every, rows, i3 + 2), -dx * ay + dy * ax)
+            np.add.at(jac, (every, rows, j3), -dx)
+            np.add.at(jac, (every, rows, j3 + 1), -dy)
+            np.add.at(jac, (every, rows, j3 + 2), dx * by - dy * bx)
+        r0 += kd
+        for c, row in enumerate(s.cv):
+            for t in range(qf.shape[0]):
+                for col, v in curve_row(row, qf[t])[1].items():
+                    jac[t, r0 + c, col] += v
         return jac[:, :, :-3]
 
     def gamma(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
@@ -166,6 +209,19 @@ class Stacked:
                 + ws**2 * (nx * sx + ny * sy)
                 - wg**2 * (nx * tx + ny * ty)
             )
+        kd, kc = s.ds_d.size, len(s.cv)
+        if kd:
+            # ½|d|² = const: d·d̈ = −|ḋ|², and d̈ holds −ω_i² A_i s_i + ω_j² A_j s_j besides q̈
+            dx, dy, ax, ay, bx, by = self._distance(trig, qf)
+            i3, j3 = 3 * s.ds_i, 3 * s.ds_j
+            wi, wj = vf[:, i3 + 2], vf[:, j3 + 2]
+            ddx = vf[:, i3] - wi * ay - vf[:, j3] + wj * by
+            ddy = vf[:, i3 + 1] + wi * ax - vf[:, j3 + 1] - wj * bx
+            out[:, self.m - kc - kd : self.m - kc] = (
+                -(ddx * ddx + ddy * ddy) + dx * (wi**2 * ax - wj**2 * bx) + dy * (wi**2 * ay - wj**2 * by)
+            )
+        for c, row in enumerate(s.cv):
+            out[:, self.m - kc + c] = [curve_row(row, qf[t], vf[t])[2] for t in range(qf.shape[0])]
         return out
 
     def agrees(self) -> bool:
