@@ -19,7 +19,8 @@ Rows (mech | reference):
   chains of 40, 100 and 200 links | the same on 4 links; linear growth is a
   ratio of n/4 (10, 25, 50) or less.
 * a 3,600-step sweep with accelerations of a mechanism that does not decompose
-  into dyads (the double parallelogram, the gear pair) | the closed-form sweep
+  into dyads (the double parallelogram, the gear pair, and the moving higher
+  pairs: a wheel rolling on the ground, a roller on an eccentric) | the closed-form sweep
   of the four-bar; the series alone (``analyse=False``) and the whole
   ``sweep`` (extremes refined, dead centres).
 
@@ -147,6 +148,8 @@ def main() -> None:
         "four-bar (closed form)": mech.load(FOUR_BAR),
         "double parallelogram": mech.load(ROOT / "mechanisms" / "double_parallelogram.yaml"),
         "gear pair": mech.load(ROOT / "mechanisms" / "gear_pair.yaml"),
+        "rolling wheel": mech.load(ROOT / "mechanisms" / "rolling_wheel.yaml"),
+        "eccentric cam, roller": mech.load(ROOT / "mechanisms" / "eccentric_cam_roller.yaml"),
     }
     for label, m in sweeps.items():
         sweep(m, phi[:10], level="acceleration", analyse=False)  # compile outside the timing
@@ -210,7 +213,7 @@ def main() -> None:
             f"{base}-link Newton",
         )
     for kind in ("series", "whole"):
-        for label in ("double parallelogram", "gear pair"):
+        for label in ("double parallelogram", "gear pair", "rolling wheel", "eccentric cam, roller"):
             what = "series only" if kind == "series" else "whole sweep (extremes, dead centres)"
             print(
                 f"| 3,600-step sweep, {label}, {what} | {fmt(med[f'sweep {kind}, {label}'])} | "

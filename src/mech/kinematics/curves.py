@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["CurveRow", "Spline", "curve_row"]
+__all__ = ["CurveRow", "Spline", "curve_row", "curve_rows"]
 
 
 class Spline:
@@ -90,6 +90,62 @@ class Spline:
             return float(r @ c1), float(c1 @ c1 + r @ c2)
 
         return self._newton(u0, g)
+
+    # -- the same for K configurations at once (marched sweeps): arrays (K,) and (K, 2) ----------
+    def eval_many(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """c(u), c'(u), c''(u) (K, 2) for the parameters ``u`` (K,): :meth:`eval` element by element."""
+        u = u % self.n
+        i = np.floor(u).astype(int)
+        t = (u - i)[:, None]
+        j = (i + 1) % self.n
+        p0, p1, m0, m1 = self.p[i], self.p[j], self.m[i], self.m[j]
+        s = 1.0 - t
+        c = s * p0 + t * p1 + ((s**3 - s) * m0 + (t**3 - t) * m1) / 6.0
+        c1 = p1 - p0 + ((1.0 - 3.0 * s * s) * m0 + (3.0 * t * t - 1.0) * m1) / 6.0
+        c2 = s * m0 + t * m1
+        return c, c1, c2
+
+    def outward_many(self, c1: np.ndarray) -> np.ndarray:
+        """Unit outward normals (K, 2) for tangents ``c1`` (K, 2)."""
+        t = c1 / np.hypot(c1[:, 0], c1[:, 1])[:, None]
+        return np.stack([t[:, 1], -t[:, 0]], axis=1) if self.ccw else np.stack([-t[:, 1], t[:, 0]], axis=1)
+
+    def _newton_many(self, u: np.ndarray, g) -> np.ndarray:  # type: ignore[no-untyped-def]
+        """:meth:`_newton` for each element: each stops where the scalar iteration would."""
+        u = u.astype(float)
+        active = np.ones(u.shape, bool)
+        for _ in range(30):
+            if not active.any():
+                break
+            val, slope = g(u)
+            active &= slope != 0.0
+            with np.errstate(divide="ignore", invalid="ignore"):
+                du = np.where(active, np.clip(-val / slope, -0.5, 0.5), 0.0)
+            u = u + du
+            active &= ~(np.abs(du) < 1e-13)
+        return u % self.n
+
+    def nearest_many(self, x: np.ndarray) -> np.ndarray:
+        """:meth:`nearest` for each point of ``x`` (K, 2)."""
+        d = self.p[None, :, :] - x[:, None, :]
+        u0 = np.argmin(d[..., 0] ** 2 + d[..., 1] ** 2, axis=1)
+
+        def g(u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            c, c1, c2 = self.eval_many(u)
+            r = c - x
+            return _dot(r, c1), _dot(c1, c1) + _dot(r, c2)
+
+        return self._newton_many(u0, g)
+
+    def support_many(self, m: np.ndarray) -> np.ndarray:
+        """:meth:`support` for each direction of ``m`` (K, 2)."""
+        u0 = np.argmin(m @ self.p.T, axis=1)
+
+        def g(u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            _, c1, c2 = self.eval_many(u)
+            return _dot(m, c1), _dot(m, c2)
+
+        return self._newton_many(u0, g)
 
     def support(self, m: np.ndarray) -> float:
         """The parameter of the curve's point with the least ``m · c``."""
@@ -201,3 +257,90 @@ def curve_row(
         if f_uu != 0.0:
             gamma += f_uq**2 / f_uu
     return float(n_g @ d) - row.c, cols, gamma, rc + a_c, n_g
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise dot products of (K, 2) arrays."""
+    return a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1]
+
+
+def _rot_many(th: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """A(θ) v for each angle of ``th`` (K,) and vector of ``v`` ((2,) or (K, 2))."""
+    c, s = np.cos(th), np.sin(th)
+    vx, vy = (v[0], v[1]) if v.ndim == 1 else (v[:, 0], v[:, 1])
+    return np.stack([c * vx - s * vy, s * vx + c * vy], axis=1)
+
+
+def _perp_many(v: np.ndarray) -> np.ndarray:
+    return np.stack([-v[:, 1], v[:, 0]], axis=1)
+
+
+def curve_rows(
+    row: CurveRow, qf: np.ndarray, vf: np.ndarray | None = None
+) -> tuple[np.ndarray, dict[int, np.ndarray], np.ndarray]:
+    """:func:`curve_row`'s Φ, Φ_q entries and γ for K configurations ``qf`` (K, 3n + 3) at once."""
+    ic, io = 3 * row.ic, 3 * row.io
+    th_c, th_o = qf[:, ic + 2], qf[:, io + 2]
+    rc, ro = qf[:, ic : ic + 2], qf[:, io : io + 2]
+    sp = row.spline
+    gamma = np.zeros(qf.shape[0])
+    if row.mode == "point":
+        a_o = _rot_many(th_o, row.s)
+        w = ro + a_o - rc
+        s_loc = _rot_many(-th_c, w)
+        c, c1, c2 = sp.eval_many(sp.nearest_many(s_loc))
+        n_loc = sp.outward_many(c1)
+        f = _dot(n_loc, s_loc - c)
+        k = _dot(n_loc, c2) / _dot(c1, c1)
+        n_g = _rot_many(th_c, n_loc)
+        cols = {
+            io: n_g[:, 0],
+            io + 1: n_g[:, 1],
+            io + 2: _dot(n_g, _perp_many(a_o)),
+            ic: -n_g[:, 0],
+            ic + 1: -n_g[:, 1],
+            ic + 2: -_dot(n_g, _perp_many(w)),
+        }
+        if vf is not None:
+            w_o, w_c = vf[:, io + 2, None], vf[:, ic + 2, None]
+            wd = vf[:, io : io + 2] + w_o * _perp_many(a_o) - vf[:, ic : ic + 2]
+            v_rel = wd - w_c * _perp_many(w)
+            t_g = _rot_many(th_c, c1 / np.hypot(c1[:, 0], c1[:, 1])[:, None])
+            hess = -k / (1.0 - f * k) * _dot(t_g, v_rel) ** 2
+            rest = _dot(n_g, -(w_o**2) * a_o - 2.0 * w_c * _perp_many(wd) - w_c**2 * w)
+            gamma = -(hess + rest)
+        return f - row.c, cols, gamma
+    assert row.n is not None
+    n_g = _rot_many(th_o, row.n)
+    t_g = _rot_many(th_o, row.s)
+    p, c1, c2 = sp.eval_many(sp.support_many(_rot_many(-th_c, n_g)))
+    a_c = _rot_many(th_c, p)
+    d = rc + a_c - ro - t_g
+    jn = _perp_many(n_g)
+    cols = {
+        ic: n_g[:, 0],
+        ic + 1: n_g[:, 1],
+        ic + 2: _dot(n_g, _perp_many(a_c)),
+        io: -n_g[:, 0],
+        io + 1: -n_g[:, 1],
+        io + 2: _dot(jn, d + t_g),
+    }
+    if vf is not None:
+        w_c, w_o = vf[:, ic + 2], vf[:, io + 2]
+        dd = (
+            vf[:, ic : ic + 2]
+            + w_c[:, None] * _perp_many(a_c)
+            - vf[:, io : io + 2]
+            - w_o[:, None] * _perp_many(t_g)
+        )
+        gamma = (
+            w_o**2 * _dot(n_g, d)
+            - 2.0 * w_o * _dot(jn, dd)
+            + w_c**2 * _dot(n_g, a_c)
+            - w_o**2 * _dot(n_g, t_g)
+        )
+        f_uq = (w_o - w_c) * _dot(jn, _rot_many(th_c, c1))
+        f_uu = _dot(n_g, _rot_many(th_c, c2))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            gamma = gamma + np.where(f_uu != 0.0, f_uq**2 / f_uu, 0.0)
+    return _dot(n_g, d) - row.c, cols, gamma

@@ -36,7 +36,7 @@ import numpy as np
 
 from mech.errors import GeometryError
 from mech.kinematics.constraints import System
-from mech.kinematics.curves import curve_row
+from mech.kinematics.curves import curve_rows
 
 __all__ = ["MAX_SPAN", "Marcher", "Stacked", "Walker", "march", "stacked"]
 
@@ -104,8 +104,8 @@ class Stacked:
         if kd:
             dx, dy, _, _, _, _ = self._distance(trig, qf)
             out[:, r : r + kd] = 0.5 * (dx * dx + dy * dy - s.ds_d**2)
-        for c, row in enumerate(s.cv):  # a profile's row is found by a nearest-point search: one by one
-            out[:, r + kd + c] = [curve_row(row, qf[t])[0] for t in range(qf.shape[0])]
+        for c, row in enumerate(s.cv):  # a profile's rows: nearest points found for all K at once
+            out[:, r + kd + c] = curve_rows(row, qf)[0]
         return out
 
     def _distance(self, trig: tuple[np.ndarray, np.ndarray], qf: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -174,9 +174,8 @@ class Stacked:
             np.add.at(jac, (every, rows, j3 + 2), dx * by - dy * bx)
         r0 += kd
         for c, row in enumerate(s.cv):
-            for t in range(qf.shape[0]):
-                for col, v in curve_row(row, qf[t])[1].items():
-                    jac[t, r0 + c, col] += v
+            for col, v in curve_rows(row, qf)[1].items():
+                jac[:, r0 + c, col] += v
         return jac[:, :, :-3]
 
     def gamma(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
@@ -221,7 +220,7 @@ class Stacked:
                 -(ddx * ddx + ddy * ddy) + dx * (wi**2 * ax - wj**2 * bx) + dy * (wi**2 * ay - wj**2 * by)
             )
         for c, row in enumerate(s.cv):
-            out[:, self.m - kc + c] = [curve_row(row, qf[t], vf[t])[2] for t in range(qf.shape[0])]
+            out[:, self.m - kc + c] = curve_rows(row, qf, vf)[2]
         return out
 
     def agrees(self) -> bool:
