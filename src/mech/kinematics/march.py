@@ -153,8 +153,8 @@ class Stacked:
             jac[:, rows, g3 + 1] = -ny
             jac[:, rows, g3 + 2] = (-ny * dx + nx * dy) - (-nx * ty + ny * tx)
             if s.ln_k is not None:
-                np.add.at(jac, (slice(None), rows, s3 + 2), s.ln_k)
-                np.add.at(jac, (slice(None), rows, g3 + 2), -s.ln_k)
+                _add_at(jac, rows, s3 + 2, np.broadcast_to(s.ln_k, (q.shape[0], kl)))
+                _add_at(jac, rows, g3 + 2, np.broadcast_to(-s.ln_k, (q.shape[0], kl)))
         r0 += kl
         ka = s.ang_c.size
         if ka:
@@ -165,13 +165,12 @@ class Stacked:
             rows = np.arange(r0, r0 + kd)
             dx, dy, ax, ay, bx, by = self._distance(trig, qf)
             i3, j3 = 3 * s.ds_i, 3 * s.ds_j
-            every = slice(None)
-            np.add.at(jac, (every, rows, i3), dx)
-            np.add.at(jac, (every, rows, i3 + 1), dy)
-            np.add.at(jac, (every, rows, i3 + 2), -dx * ay + dy * ax)
-            np.add.at(jac, (every, rows, j3), -dx)
-            np.add.at(jac, (every, rows, j3 + 1), -dy)
-            np.add.at(jac, (every, rows, j3 + 2), dx * by - dy * bx)
+            _add_at(jac, rows, i3, dx)
+            _add_at(jac, rows, i3 + 1, dy)
+            _add_at(jac, rows, i3 + 2, -dx * ay + dy * ax)
+            _add_at(jac, rows, j3, -dx)
+            _add_at(jac, rows, j3 + 1, -dy)
+            _add_at(jac, rows, j3 + 2, dx * by - dy * bx)
         r0 += kd
         for c, row in enumerate(s.cv):
             for col, v in curve_rows(row, qf)[1].items():
@@ -237,6 +236,11 @@ class Stacked:
                 if a[t].shape != b.shape or not np.allclose(a[t], b, rtol=1e-12, atol=1e-13):
                     return False
         return True
+
+
+def _add_at(jac: np.ndarray, rows: np.ndarray, cols: np.ndarray, values: np.ndarray) -> None:
+    """``jac[:, rows, cols] += values`` (K, len(rows)), repeated (row, column) pairs adding up."""
+    np.add.at(jac.transpose(1, 2, 0), (rows, cols), np.asarray(values).T)
 
 
 def stacked(sys_: System) -> Stacked | None:
