@@ -346,10 +346,10 @@ class Analysis:
     @property
     def kin(self) -> Kinematics:
         def make() -> Kinematics:
-            from mech.kinematics import solve
+            from mech.analysis import solve_at
 
             level = self.level if self.level in _SOLVED else "position"
-            return solve(self.mech, level=level, options=self.options)
+            return solve_at(self.mech, level, self.options)
 
         return self._get("kin", make)
 
@@ -357,14 +357,14 @@ class Analysis:
     def icentres(self) -> Any:
         def make() -> Any:
             try:
-                from mech.icentres import locate
+                from mech.analysis import locate_icentres
             except ImportError as exc:  # the module, or its locate(), is not there
                 if exc.name != "mech.icentres":
                     raise
                 from mech.errors import UnsupportedError
 
                 raise UnsupportedError("I-centres are not available in this version of mech") from None
-            return locate(self.mech, self.kin)
+            return locate_icentres(self.mech, self.kin)
 
         return self._get("icentres", make)
 

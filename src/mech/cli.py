@@ -12,7 +12,7 @@ import math
 import sys
 from collections.abc import Callable, Iterable, Sequence
 from functools import wraps
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
@@ -21,7 +21,10 @@ from mech.commands import DEFAULT_FILE, Request, classify_files, count_dof, hand
 from mech.commands import kinematics as _kinematics
 from mech.commands import solve_options as _solve_options
 from mech.errors import InputError
-from mech.options import OutputUnits, SolveOptions
+from mech.options import OutputUnits
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.analysis import Result
 
 file_argument = click.argument("file", default=DEFAULT_FILE, type=click.Path(dir_okay=False, allow_dash=True))
 json_option = click.option(
@@ -207,41 +210,27 @@ def icentres(request: Request, explain: bool, circle_path: str | None) -> None:
     rest by the Aronhold-Kennedy theorem, each checked against the velocity
     solution; then every link's ω by the I-centre method beside the solver's.
     """
-    from mech.icentres import locate
-    from mech.kinematics import solve
-    from mech.loader import load
+    from mech.analysis import Request as Asked
+    from mech.analysis import analyse
+    from mech.render.emit import choose, emit
 
-    mechanism = load(request.file)
-    result = locate(mechanism, solve(mechanism, level="velocity", options=request.options))
+    result = analyse(request.file, Asked(level="velocity", options=request.options, icentres=True))
+    assert result.icentres is not None
     if circle_path:
         from mech.draw import save
         from mech.draw.kennedy import circle_diagram
 
-        save(circle_diagram(result, title=f"{mechanism.label}: Kennedy's circle diagram"), circle_path)
-    if request.as_json:
-        from mech.render.icentres import icentres_dict
-        from mech.render.jsonout import dumps
-
-        record = icentres_dict(result, units=request.units, file=request.file)
-        if explain:
-            from mech.explain import explain_icentres
-
-            record["construction"] = explain_icentres(result)
-        click.echo(dumps(record))
-        return
-    from mech.render.console import stdout
-    from mech.render.icentres import icentres_table
-
-    console = stdout()
-    icentres_table(result, console, units=request.units)
-    if explain:
-        from rich.text import Text
-
-        from mech.explain import explain_icentres
-
-        console.print()
-        for line in explain_icentres(result, unit=request.units.length):
-            console.print(Text(line), soft_wrap=True)
+        title = f"{result.mechanism.label}: Kennedy's circle diagram"
+        save(circle_diagram(result.icentres, title=title), circle_path)
+    emit(
+        "icentres",
+        choose(request.as_json),
+        result,
+        echo=click.echo,
+        units=request.units,
+        file=request.file,
+        explain=explain,
+    )
 
 
 @cli.command(name="properties")
@@ -261,20 +250,15 @@ def properties_command(request: Request, outputs: tuple[str, ...]) -> None:
     occur, the output's limit positions, every stroke and swing, and the
     quick-return time ratio.
     """
-    from mech.loader import load
-    from mech.properties.summary import linkage_properties
+    from mech.analysis import Request as Asked
+    from mech.analysis import analyse
+    from mech.render.emit import choose, emit
 
-    props = linkage_properties(load(request.file), options=request.options, outputs=outputs)
-    if request.as_json:
-        from mech.render.jsonout import dumps
-        from mech.render.properties import properties_dict
-
-        click.echo(dumps(properties_dict(props, units=request.units, file=request.file)))
-        return
-    from mech.render.console import stdout
-    from mech.render.properties import properties_table
-
-    properties_table(props, stdout(), units=request.units)
+    asked = Asked(level=None, options=request.options, properties=True, outputs=outputs)
+    result = analyse(request.file, asked)
+    emit(
+        "properties", choose(request.as_json), result, echo=click.echo, units=request.units, file=request.file
+    )
 
 
 @cli.command(name="sweep")
@@ -362,66 +346,77 @@ def sweep_command(
         from mech.draw.raster import use_matplotlib
 
         use_matplotlib()  # fail before solving when the plot extra is missing
-    import numpy as np
+    from mech.analysis import Request as Asked
+    from mech.analysis import SweepSpec, analyse, out_of_memory
+    from mech.render.emit import choose, emit
 
-    from mech.kinematics import sweep
-    from mech.loader import load
-
-    options = request.options.with_(method=method)
-    mechanism = load(request.file)
-    if level is None:
-        has_speed = request.speed_given or any(
-            d.omega is not None or d.speed is not None for d in mechanism.drives
-        )
-        level = "velocity" if has_speed else "position"
-    # the sweep refuses up front when its arrays would exceed its budget (MEMORY_BUDGET, 1 GiB); a
-    # machine with less memory than that, or the CSV / series / plot of that many steps, can still
-    # run out: say so (exit 2), never a traceback
+    spec = SweepSpec(start, stop, steps, level=level, quantities=quantities, method=method)
+    asked = Asked(level=None, options=request.options, sweep=spec, drawn=bool(gif_path or svg_path))
+    result = analyse(request.file, asked)
+    # the sweep refuses up front when its arrays would exceed its budget; the CSV, series or plot of
+    # that many steps can still run out of memory: say so (exit 2), never a traceback
     try:
-        angles = np.radians(np.linspace(start, stop, steps + 1))
-        result = sweep(mechanism, angles, level=level, options=options, quantities=quantities or None)
-        units = request.units
-        from mech.render import sweep as render
-
-        if csv_path:
-            _write(csv_path, render.sweep_csv(result, units=units, quantities=quantities))
-        if plot_path:
-            render.sweep_plot_file(plot_path, result, units=units, quantities=quantities)
-        if gif_path:
-            render.sweep_animation_file(gif_path, mechanism, result, paths=paths)
-        if svg_path:
-            _path_svg(svg_path, mechanism, result, paths, request.options)
-        if request.as_json:
-            from mech.render.jsonout import dumps
-
-            click.echo(dumps(render.sweep_json(result, units=units, file=request.file, series=quantities)))
-            return
-    except MemoryError:
-        raise InputError(
-            f"out of memory sweeping {steps + 1:,} angles of {mechanism.label}",
-            hint="give fewer --steps, or sweep the range in parts",
-        ) from None
-    from mech.render.console import stdout
-
-    render.sweep_table(result, stdout(), units=units)
-
-
-def _path_svg(path: str, mechanism: Any, result: Any, points: tuple[str, ...], options: SolveOptions) -> None:
-    """``mech sweep --path P --svg FILE``: the swept paths alone, to scale."""
-    from mech.draw import save
-    from mech.draw.config import curves_figure
-    from mech.kinematics import solve
-
-    curves = [
-        (
-            f"path of {p}",
-            [(float(x), float(y)) for x, y in result.positions[:, result.points.index(p), :]],
-            "path",
+        _sweep_files(
+            result,
+            request.units,
+            quantities,
+            csv_path=csv_path,
+            plot_path=plot_path,
+            gif_path=gif_path,
+            paths=paths,
+            svg_path=svg_path,
         )
-        for p in points
-    ]
-    kin = solve(mechanism, "position", options.with_(omega=None, direction=None, alpha=None, angle=None))
-    save(curves_figure(mechanism, kin, curves, title=f"{mechanism.label}: paths"), path)
+        emit(
+            "sweep",
+            choose(request.as_json),
+            result,
+            echo=click.echo,
+            units=request.units,
+            file=request.file,
+            series=quantities,
+        )
+    except MemoryError:
+        raise out_of_memory(result.mechanism, spec) from None
+
+
+def _sweep_files(
+    result: Result,
+    units: OutputUnits,
+    quantities_asked: tuple[str, ...],
+    *,
+    csv_path: str | None,
+    plot_path: str | None,
+    gif_path: str | None,
+    paths: tuple[str, ...],
+    svg_path: str | None,
+) -> None:
+    """The files ``mech sweep`` writes beside its report: CSV, PNG plot, GIF, the paths' SVG."""
+    from mech.render import sweep as render
+
+    sweep, quantities, drawn = result.sweep, quantities_asked, result.drawn
+    assert sweep is not None
+    if csv_path:
+        _write(csv_path, render.sweep_csv(sweep, units=units, quantities=quantities))
+    if plot_path:
+        render.sweep_plot_file(plot_path, sweep, units=units, quantities=quantities)
+    if gif_path:
+        assert drawn is not None
+        render.sweep_animation_file(gif_path, result.mechanism, drawn, sweep, paths=paths)
+    if svg_path:
+        from mech.draw import save
+        from mech.draw.config import curves_figure
+
+        curves = [
+            (
+                f"path of {p}",
+                [(float(x), float(y)) for x, y in sweep.positions[:, sweep.points.index(p), :]],
+                "path",
+            )
+            for p in paths
+        ]
+        title = f"{result.mechanism.label}: paths"
+        assert drawn is not None
+        save(curves_figure(result.mechanism, drawn, curves, title=title), svg_path)
 
 
 # -- checking answers -----------------------------------------------------------------
@@ -639,23 +634,22 @@ def draw_command(
     SVG is written by mech itself; PNG needs the optional matplotlib
     (pip install 'planar-mech[plot]').
     """
-    from mech.render.draw import draw_file
+    from mech.analysis import Request as Asked
+    from mech.analysis import analyse, drawing_level, load_mechanism
+    from mech.render.draw import check_output, draw_file
+    from mech.render.emit import choose, emit
 
-    summary = draw_file(
-        request.file,
-        output,
-        options=request.options,
-        velocity=velocity,
-        acceleration=acceleration,
-        icentres=with_icentres,
-        units=request.units,
-        paths=paths,
-        centrodes=centrodes,
+    check_output(output)
+    mechanism = load_mechanism(request.file)
+    level = drawing_level(
+        mechanism, request.options, velocity=velocity, acceleration=acceleration, icentres=with_icentres
     )
-    if request.as_json:
-        from mech.render.jsonout import dumps
-
-        click.echo(dumps(summary))
+    asked = Asked(level, request.options, icentres=with_icentres, paths=paths, centrodes=centrodes)
+    result = analyse(mechanism, asked)
+    summary = draw_file(
+        result, output, file=request.file, velocity=velocity, acceleration=acceleration, units=request.units
+    )
+    emit("draw", choose(request.as_json), summary, echo=click.echo)
 
 
 # -- cams -----------------------------------------------------------------------------
@@ -723,16 +717,10 @@ def cam_command(
             save(profile_figure(setup, result, title=mechanism.label), output)
         if diagram is not None:
             save(diagram_figure(result, title=mechanism.label), diagram)
-    if as_json:
-        from mech.render.cam import cam_json
-        from mech.render.jsonout import dumps
+    from mech.render.emit import choose, emit
 
-        click.echo(dumps(cam_json(setup, result, path=file, name=mechanism.name, step_deg=step)))
-        return
-    from mech.render.cam import cam_table
-    from mech.render.console import stdout
-
-    cam_table(setup, result, stdout(), name=mechanism.label, step_deg=step)
+    context = {"file": file, "name": mechanism.name, "label": mechanism.label, "step_deg": step}
+    emit("cam", choose(as_json), (setup, result), echo=click.echo, **context)
 
 
 def main(argv: Sequence[str] | None = None) -> None:

@@ -17,11 +17,14 @@ import sys
 from collections.abc import Callable, Sequence
 from enum import IntEnum
 from functools import wraps
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from mech._records import dataclass
 from mech.errors import InputError, MechError
 from mech.options import OutputUnits, SolveOptions
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.analysis import Result
 
 __all__ = [
     "DEFAULT_FILE",
@@ -120,76 +123,34 @@ def count_dof(files: Sequence[str], mobility: bool, as_json: bool) -> None:
     A bad file is reported on stderr and the others are still counted (exit
     status 2 at the end).
     """
-    from mech.loader import load
-    from mech.topology import classify
+    from mech.analysis import Request as Asked
+    from mech.analysis import analyse
+    from mech.render.emit import choose, emit
 
-    results = []
-    errors: list[tuple[str, MechError]] = []
-    mobilities: dict[str, Any] = {}
+    asked = Asked(level=None, topology=True, mobility=mobility)
+    counted: list[tuple[str, Result | MechError]] = []
     for path in files or (DEFAULT_FILE,):
         try:
-            mechanism = load(path)
-            results.append(classify(mechanism))
-            if mobility:
-                mobilities[path] = _mobility(mechanism)
+            counted.append((path, analyse(path, asked)))
         except MechError as error:
-            errors.append((path, error))
+            counted.append((path, error))
             if not as_json:
                 report_error(error)
-    if as_json:
-        from mech.render.jsonout import dumps, error_dict
-        from mech.render.topology import topology_dict
-
-        out = []
-        for t in results:
-            record = topology_dict(t)
-            if mobility:
-                record["mobility"] = mobilities[t.path]
-            out.append(record)
-        out += [{"file": p, "error": error_dict(e)} for p, e in errors]
-        echo(dumps(out if len(out) != 1 or errors else out[0]))
-    elif results:
-        from mech.render.console import stdout
-        from mech.render.topology import dof_table
-
-        console = stdout()
-        dof_table(results, console)
-        if mobility:
-            for t in results:
-                where = "" if len(results) == 1 else f"{t.path}: "
-                console.print(f"  {where}numeric mobility {mobilities[t.path]['text']}", soft_wrap=True)
-    if errors:
+    counted.sort(key=lambda c: isinstance(c[1], MechError))  # the files counted, then the errors
+    emit("dof", choose(as_json), counted, echo=echo, mobility=mobility)
+    if any(isinstance(r, MechError) for _, r in counted):
         sys.exit(ExitStatus.BAD_INPUT)
-
-
-def _mobility(mechanism: Any) -> dict[str, Any]:
-    """Numeric mobility for ``mech dof --mobility``: a dict, or the reason it cannot be had."""
-    from mech.kinematics import mobility
-
-    try:
-        m = mobility(mechanism)
-    except MechError as error:
-        return {"value": None, "text": f"not computed: {error.problems[0].message}"}
-    return {"value": m.numeric, "text": m.describe(), "condition": m.condition}
 
 
 @handles_errors
 def classify_files(file: str, as_json: bool) -> None:
     """``mech classify``: links, joints and pairs of one file, as tables or JSON."""
-    from mech.loader import load
-    from mech.topology import classify
+    from mech.analysis import Request as Asked
+    from mech.analysis import analyse
+    from mech.render.emit import choose, emit
 
-    t = classify(load(file))
-    if as_json:
-        from mech.render.jsonout import dumps
-        from mech.render.topology import classify_dict
-
-        echo(dumps(classify_dict(t)))
-        return
-    from mech.render.console import stdout
-    from mech.render.topology import classify_tables
-
-    classify_tables(t, stdout())
+    topology = analyse(file, Asked(level=None, topology=True)).topology
+    emit("classify", choose(as_json), topology, echo=echo)
 
 
 # -- kinematics -----------------------------------------------------------------------
@@ -245,35 +206,22 @@ def solve_options(
 
 
 def kinematics(request: Request, level: str, explain: bool = False) -> None:
-    """``mech position|velocity|acceleration``: solve at the instant, print tables or JSON."""
-    from mech.kinematics import solve
-    from mech.loader import load
+    """``mech position|velocity|acceleration``: solve at the instant, emit the tables or JSON."""
+    from mech.analysis import Request as Asked
+    from mech.analysis import analyse
+    from mech.render.emit import choose, emit
 
-    mech = load(request.file)
-    kin = solve(mech, level=level, options=request.options)
+    result = analyse(request.file, Asked(level=level, options=request.options))
     construction = None
     if explain:
         from mech.explain import explain as write_out
 
-        construction = write_out(mech, kin, kind=level)
-    if request.as_json:
-        from mech.render.jsonout import dumps
-        from mech.render.kinematics import kinematics_json
-
-        record = kinematics_json(kin, units=request.units)
-        if construction is not None:
-            from mech.explain import construction_dict
-
-            record["construction"] = construction_dict(construction)
-        echo(dumps(record))
-        return
-    from mech.render.console import stdout
-    from mech.render.kinematics import kinematics_table
-
-    console = stdout()
-    kinematics_table(kin, console, units=request.units)
-    if construction is not None:
-        from rich.text import Text
-
-        console.print()
-        console.print(Text(construction.text()), soft_wrap=True)
+        construction = write_out(result.mechanism, result.kinematics, kind=level)
+    emit(
+        "kinematics",
+        choose(request.as_json),
+        result,
+        echo=echo,
+        units=request.units,
+        construction=construction,
+    )

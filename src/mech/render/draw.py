@@ -1,7 +1,9 @@
-"""``mech draw``: load, solve at the level the drawing needs, locate I-centres, draw, write.
+"""``mech draw``: the analysed mechanism drawn and written (.svg or .png), with a summary for ``--json``.
 
-Kept out of :mod:`mech.cli` so the command stays a thin parse-and-call, and
-out of :mod:`mech.draw` so the drawing library never loads files.
+The analysis (load, solve at the level the drawing needs, I-centres, traced
+curves) is :func:`mech.analysis.analyse`'s; this module only draws its
+:class:`~mech.analysis.Result` and writes the file, so the drawing library
+(:mod:`mech.draw`) never loads files or solves.
 """
 
 from __future__ import annotations
@@ -9,30 +11,15 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from mech.analysis import Result
 from mech.errors import InputError
-from mech.options import OutputUnits, SolveOptions
+from mech.options import OutputUnits
 
-__all__ = ["draw_file"]
+__all__ = ["check_output", "draw_file"]
 
 
-def draw_file(
-    file: str,
-    output: str,
-    *,
-    options: SolveOptions,
-    velocity: bool = False,
-    acceleration: bool = False,
-    icentres: bool = False,
-    units: OutputUnits | None = None,
-    paths: tuple[str, ...] = (),
-    centrodes: tuple[str, ...] = (),
-) -> dict[str, Any]:
-    """Draw ``file`` into ``output`` (.svg or .png); returns a summary for ``--json``.
-
-    Only what the drawing needs is solved: positions for the configuration
-    alone, velocities for the velocity polygon, accelerations for the
-    acceleration polygon.  A PNG without matplotlib fails before any solving.
-    """
+def check_output(output: str) -> None:
+    """Refuse an output that is not .svg or .png, and a PNG without matplotlib, before any solving."""
     suffix = Path(output).suffix.lower()
     if suffix not in (".svg", ".png"):
         raise InputError(
@@ -43,25 +30,38 @@ def draw_file(
         from mech.draw.raster import use_matplotlib
 
         use_matplotlib()
+
+
+def draw_file(
+    result: Result,
+    output: str,
+    *,
+    file: str,
+    velocity: bool = False,
+    acceleration: bool = False,
+    units: OutputUnits | None = None,
+) -> dict[str, Any]:
+    """Draw ``result`` into ``output`` (.svg or .png); returns a summary for ``--json``.
+
+    ``result`` was solved at the level the drawing needs
+    (:func:`mech.analysis.drawing_level`), with the I-centres and curves asked.
+    """
+    check_output(output)
     from mech.draw import draw, save
     from mech.draw.scene import Text
-    from mech.kinematics import solve
-    from mech.loader import load
 
-    mech = load(file)
-    level = "acceleration" if acceleration else "velocity" if velocity else "position"
-    if icentres and level == "position" and _has_speed(mech, options):
-        level = "velocity"  # lets the I-centres be cross-checked with the velocity field
-    kin = solve(mech, level=level, options=options)
-    centres = None
-    if icentres:
-        from mech.icentres import locate
-
-        located = locate(mech, kin)
-        centres = list(located.centres)
-    curves = loci(mech, options, paths=paths, centrodes=centrodes)
+    kin = result.kinematics
+    assert kin is not None
+    centres = list(result.icentres.centres) if result.icentres is not None else None
+    curves = list(result.curves)
     figure = draw(
-        mech, kin, velocity=velocity, acceleration=acceleration, icentres=centres, units=units, curves=curves
+        result.mechanism,
+        kin,
+        velocity=velocity,
+        acceleration=acceleration,
+        icentres=centres,
+        units=units,
+        curves=curves,
     )
     save(figure, output)
     scales = [t.text for t in figure.items if isinstance(t, Text) and t.cls == "scale"]
@@ -76,34 +76,3 @@ def draw_file(
     if curves:  # only when asked: the summary's keys stay as they were for other drawings
         summary["curves"] = [{"label": label, "kind": kind} for label, _pts, kind in curves]
     return summary
-
-
-def _has_speed(mech: Any, options: SolveOptions) -> bool:
-    if options.omega is not None or options.speed is not None:
-        return True
-    return bool(mech.drives) and all(d.omega is not None or d.speed is not None for d in mech.drives)
-
-
-def loci(
-    mech: Any, options: SolveOptions, *, paths: tuple[str, ...] = (), centrodes: tuple[str, ...] = ()
-) -> list[tuple[str, list[tuple[float, float]], str]]:
-    """The curves ``mech draw --path/--centrodes`` traces: point paths, fixed and moving centrodes."""
-    if not (paths or centrodes):
-        return []
-    from mech.properties.paths import centrodes as find_centrodes
-    from mech.properties.paths import point_path
-
-    sweep_options = options.with_(angle=None)
-    out: list[tuple[str, list[tuple[float, float]], str]] = []
-    for name in paths:
-        path = point_path(mech, name, options=sweep_options)
-        out.append((f"path of {name}", [(float(x), float(y)) for x, y in path.xy], "path"))
-    for link in centrodes:
-        c = find_centrodes(mech, link, options=options)
-        out.append(
-            (f"fixed centrode of {link}", [(float(x), float(y)) for x, y in c.fixed], "fixed centrode")
-        )
-        out.append(
-            (f"moving centrode of {link}", [(float(x), float(y)) for x, y in c.moving_now], "moving centrode")
-        )
-    return out

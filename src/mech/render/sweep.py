@@ -17,7 +17,9 @@ from typing import Any
 
 import numpy as np
 
+from mech.kinematics.result import Kinematics
 from mech.kinematics.sweep import Sweep, default_quantities, quantity_unit
+from mech.model import Mechanism
 from mech.options import OutputUnits
 from mech.units import format_unit, to_unit
 
@@ -246,16 +248,22 @@ def sweep_plot_file(path: str, sw: Sweep, *, units: OutputUnits, quantities: tup
 
 
 def sweep_animation_file(
-    path: str, mech: Any, sw: Sweep, *, frames: int = 72, paths: tuple[str, ...] = ()
+    path: str,
+    mech: Mechanism,
+    kin: Kinematics,
+    sw: Sweep,
+    *,
+    frames: int = 72,
+    paths: tuple[str, ...] = (),
 ) -> None:
     """An animated GIF of the positions, about ``frames`` assembled steps of the sweep.
 
+    ``kin``: the positions at the file's own instant (:func:`mech.analysis.drawn_positions`),
+    which give what the frames do not move (pivots, guides).
     ``paths``: points whose whole path (from every step) is traced in each frame.
     """
     from mech.draw.plot import animate
-    from mech.kinematics import solve
 
-    kin = solve(mech, "position")
     ok = np.flatnonzero(sw.assembled)
     pick = ok[:: max(1, ok.size // frames)] if ok.size else ok
     shots = [
