@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import re
 
-__all__ = ["INVISIBLE", "visible"]
+__all__ = ["INVISIBLE", "NOT_XML", "visible", "xml_safe"]
 
 # C0 controls but tab and newline, DEL, the C1 controls (CSI and friends), and the
 # invisible format characters that reorder or hide text: Arabic letter mark, zero-width
@@ -35,3 +35,17 @@ def _escape(match: re.Match[str]) -> str:
 def visible(text: str) -> str:
     """``text`` with control and invisible direction characters shown as ``\\xNN``/``\\uNNNN``."""
     return INVISIBLE.sub(_escape, text)
+
+
+# what XML 1.0 forbids anywhere in a document (tab, newline and carriage return are allowed)
+NOT_XML = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff]")
+
+
+def xml_safe(document: str) -> str:
+    """A serialised XML or SVG document with the characters XML 1.0 forbids shown as ``\\xNN``.
+
+    Safe on a whole document: those characters never occur in markup itself.  Here, below every
+    layer, so that the drawings' SVG writer and the check reports' JUnit share it without the
+    drawings importing the report (:mod:`mech.render.safe` re-exports it).
+    """
+    return NOT_XML.sub(_escape, document)

@@ -16,6 +16,7 @@ from dataclasses import field
 from enum import Enum
 from typing import TYPE_CHECKING
 
+from mech._memo import Memo
 from mech._records import dataclass
 from mech.errors import Where
 
@@ -388,6 +389,9 @@ class Mechanism:
     asks: tuple[str, ...] = ()  # answer keys a student must answer (when `answers` carries no values)
     loads: tuple[Load, ...] = ()  # forces at points, torques on links (DESIGN § 1.1 "Loads")
     source: str | None = field(default=None, repr=False, compare=False)
+    #: What the analyses derive from this mechanism, kept with it (its compiled constraint system
+    #: …): :class:`mech._memo.Memo`, never compared, hashed or pickled.
+    memo: Memo = field(default_factory=Memo, init=False, repr=False, compare=False, hash=False)
 
     # -- lookups -----------------------------------------------------------------
     def link(self, name: str) -> Link:

@@ -15,8 +15,8 @@ from __future__ import annotations
 
 from xml.sax.saxutils import escape, quoteattr
 
+from mech._text import xml_safe
 from mech.draw.scene import Circle, Figure, Item, Line, Poly, Style, Text
-from mech.render.safe import xml_safe
 
 __all__ = ["to_svg"]
 

@@ -16,9 +16,9 @@ acceleration), :mod:`.dyads` (closed form), :mod:`.sweep` (cycles), :mod:`.mobil
 numpy is imported here, never by ``mech`` itself.
 """
 
-from mech.kinematics.mobility import kutzbach, mobility
+from mech.kinematics.mobility import kutzbach
 from mech.kinematics.result import Kinematics, LinkState, Mobility
-from mech.kinematics.solve import closed_form, solve
+from mech.kinematics.solve import closed_form, mobility, solve
 from mech.kinematics.sweep import Sweep, sweep
 
 __all__ = [

@@ -38,6 +38,7 @@ from dataclasses import field
 
 import numpy as np
 
+from mech._memo import Memo
 from mech._records import dataclass
 from mech.errors import collect
 from mech.kinematics.assemble import Drawn, gear_centre
@@ -108,6 +109,8 @@ class System:
     link_index: dict[str, int] = field(default_factory=dict)
     joint_names: frozenset[str] = frozenset()  # located joints (for the size)
     velocity_only: tuple[str, ...] = ()  # joints modelled only at velocity level (cam, contact, rolling …)
+    #: What the solvers derive from the system once (block form, stacked rows): :class:`mech._memo.Memo`.
+    memo: Memo = field(default_factory=Memo, repr=False)
 
     @property
     def n(self) -> int:

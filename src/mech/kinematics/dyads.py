@@ -76,7 +76,6 @@ solver.
 from __future__ import annotations
 
 import math
-from collections import OrderedDict
 from dataclasses import field
 from typing import Any
 
@@ -85,7 +84,7 @@ from mech.kinematics.constraints import System
 from mech.kinematics.layout import Layout
 from mech.model import JointType
 
-__all__ = ["DYADS", "DyadProgram", "FastState", "program"]
+__all__ = ["DYADS", "DyadProgram", "FastState", "closing_edge", "program"]
 
 #: A relative discriminant above −this is a tangency within rounding (assembled).
 SLACK = 1e-12
@@ -318,30 +317,28 @@ def numpy_namespace() -> _Numpy:
 
 
 # -- decomposition -------------------------------------------------------------------------
-_PROGRAMS: OrderedDict[int, tuple[Any, DyadProgram | None]] = OrderedDict()
 
 
 def program(comp: Any) -> DyadProgram | None:
     """The closed-form program of a compiled mechanism, or None when it does not decompose.
 
-    Cached per :class:`~mech.kinematics.solve.Compiled` (itself cached per
-    mechanism).  The program is accepted only if it reproduces the drawn
+    Kept in the memo of the :class:`~mech.kinematics.solve.Compiled` (itself
+    kept in the mechanism's).  The program is accepted only if it reproduces the drawn
     configuration and satisfies *every* constraint row of the system (so a
     row the decomposition did not use, a redundant one, still holds) at a
     few angles round the cycle; otherwise None, and Newton is used.
     """
-    hit = _PROGRAMS.get(id(comp))
-    if hit is not None and hit[0] is comp:
-        return hit[1]
+    return comp.memo.get("program", lambda: _checked_program(comp))  # type: ignore[no-any-return]
+
+
+def _checked_program(comp: Any) -> DyadProgram | None:
+    """The program built and verified (or None): :func:`program`'s work, done once per compiled mechanism."""
     try:
         prog = _build(comp.layout, comp.system, comp.drawn.drive_angles)
     except _NoDecomposition:
         prog = None
     if prog is not None and not _verified(prog, comp.system):
         prog = None
-    _PROGRAMS[id(comp)] = (comp, prog)
-    if len(_PROGRAMS) > 64:
-        _PROGRAMS.popitem(last=False)
     return prog
 
 
@@ -885,8 +882,11 @@ def _worst_disc(prog: DyadProgram, phi: float) -> float:
     return min(out[: len(prog.dyads)], default=1.0)
 
 
-def _edge(prog: DyadProgram, good: float, bad: float) -> float:
-    """Bisect between an angle where every dyad closes and one where one does not (to rounding)."""
+def closing_edge(prog: DyadProgram, good: float, bad: float) -> float:
+    """Bisect between an angle where every dyad closes and one where one does not (to rounding).
+
+    The last drive angle (rad) that still closes: the edge of a gap, a toggle (the sweep's too).
+    """
     for _ in range(200):
         mid = 0.5 * (good + bad)
         if mid in (good, bad):
@@ -942,8 +942,8 @@ def closure_gaps(prog: DyadProgram, samples: int = 2048) -> tuple[tuple[float, f
         if not bad[k] and disc[k] <= disc[k - 1] and disc[k] <= disc[k + 1] and disc[k] < 1e-3:
             x, v = _golden_min(lambda t: _worst_disc(prog, prog.drawn_angle + t), d[k - 1], d[k + 1])
             if v < -SLACK:
-                lo = _edge(prog, prog.drawn_angle + d[k - 1], prog.drawn_angle + x) - prog.drawn_angle
-                hi = _edge(prog, prog.drawn_angle + d[k + 1], prog.drawn_angle + x) - prog.drawn_angle
+                lo = closing_edge(prog, prog.drawn_angle + d[k - 1], prog.drawn_angle + x) - prog.drawn_angle
+                hi = closing_edge(prog, prog.drawn_angle + d[k + 1], prog.drawn_angle + x) - prog.drawn_angle
                 prog._memo.setdefault("dips", []).append((lo, hi))
     gaps: list[tuple[float, float]] = list(prog._memo.pop("dips", []))
     k = 0
@@ -952,9 +952,15 @@ def closure_gaps(prog: DyadProgram, samples: int = 2048) -> tuple[tuple[float, f
             start = k
             while k <= samples and bad[k]:
                 k += 1
-            lo = _edge(prog, prog.drawn_angle + d[start - 1], prog.drawn_angle + d[start]) - prog.drawn_angle
+            lo = (
+                closing_edge(prog, prog.drawn_angle + d[start - 1], prog.drawn_angle + d[start])
+                - prog.drawn_angle
+            )
             end = min(k, samples)
-            hi = _edge(prog, prog.drawn_angle + d[end], prog.drawn_angle + d[end - 1]) - prog.drawn_angle
+            hi = (
+                closing_edge(prog, prog.drawn_angle + d[end], prog.drawn_angle + d[end - 1])
+                - prog.drawn_angle
+            )
             gaps.append((lo, hi))
         k += 1
     result = tuple(sorted(gaps))

@@ -28,7 +28,6 @@ step by step, as before.
 from __future__ import annotations
 
 import math
-from collections import OrderedDict
 from dataclasses import replace
 from typing import Any
 
@@ -45,7 +44,6 @@ MAX_SPAN = math.radians(15.0)
 #: Largest Newton correction (scaled: fractions of the mechanism's size) accepted for a step.
 JUMP = 0.05
 _FIRST = 8  # steps in the first stack; doubles while stacks converge whole
-_CACHE: OrderedDict[int, tuple[System, Stacked | None]] = OrderedDict()
 
 
 class Stacked:
@@ -244,19 +242,17 @@ def _add_at(jac: np.ndarray, rows: np.ndarray, cols: np.ndarray, values: np.ndar
 
 
 def stacked(sys_: System) -> Stacked | None:
-    """The stacked rows of ``sys_`` (cached), or None when they do not reproduce its own."""
-    hit = _CACHE.get(id(sys_))
-    if hit is not None and hit[0] is sys_:
-        return hit[1]
+    """The stacked rows of ``sys_`` (kept in its memo), or None when they do not reproduce its own."""
+    return sys_.memo.get("stacked", lambda: _stacked(sys_))
+
+
+def _stacked(sys_: System) -> Stacked | None:
     form: Stacked | None = Stacked(sys_)
     try:
         if not form.agrees():  # type: ignore[union-attr]
             form = None
     except (AttributeError, ValueError, IndexError):  # rows laid out otherwise than these expect
         form = None
-    _CACHE[id(sys_)] = (sys_, form)
-    if len(_CACHE) > 64:
-        _CACHE.popitem(last=False)
     return form
 
 
@@ -369,23 +365,23 @@ class Marcher:
     """What a marched series or walk of one sweep shares: stacked rows, the drive, the rate solver."""
 
     def __init__(self, backend: Any, rows: Stacked, keep: np.ndarray) -> None:
-        from mech.kinematics.solve import SINGULAR, _continue, _drives, _omega_ref
+        from mech.kinematics.solve import SINGULAR, continue_along, drives_as_used, omega_ref_of
 
         comp = backend.comp
         sys_ = comp.system
         self.backend, self.comp, self.sys, self.rows = backend, comp, sys_, rows
         self.options = backend.options
         self.lvl = max(backend.lvl, 1)
-        self.drives = _drives(comp.mech, comp.layout, comp.drawn, self.options, self.lvl)
+        self.drives = drives_as_used(comp.mech, comp.layout, comp.drawn, self.options, self.lvl)
         drive = self.drives[0]
-        self.omega_ref = _omega_ref(self.drives, comp.drawn.scale)
+        self.omega_ref = omega_ref_of(self.drives, comp.drawn.scale)
         self.rate = drive.omega / self.omega_ref  # type: ignore[operator]
         self.accel = (drive.alpha or 0.0) / self.omega_ref**2
         offset = 2 * sys_.pc_i.size + sys_.ln_s.size
         self.arow = int(sys_.drive_rows[0]) - offset  # the drive's row among the angle rows
         self.ci = 3 * sys_.link_index[drive.link] + 2
         self.rates = _Rates(rows, keep, int(sys_.drive_rows[0]), self.rate, self.accel, SINGULAR)
-        self.step_once = _continue
+        self.step_once = continue_along
         self.solved: tuple[np.ndarray, ...] = (np.zeros(0),) * 4 + (np.zeros(0, bool),)
 
     @classmethod
@@ -402,11 +398,11 @@ class Marcher:
 
     def start(self, angle: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool] | None:
         """(q, q̇, q̈, singular) at ``angle``, reached from the drawing as one solve does; None if not."""
-        from mech.kinematics.solve import _move
+        from mech.kinematics.solve import move_to
 
         base = self.options.with_(angle=float(angle), method="newton")
         try:
-            q0 = _move(self.comp, tuple(replace(d, angle=float(angle)) for d in self.drives), base)
+            q0 = move_to(self.comp, tuple(replace(d, angle=float(angle)) for d in self.drives), base)
         except GeometryError:
             return None
         b0, qd0, qdd0 = self.rates(q0[None, :])

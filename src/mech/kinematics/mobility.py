@@ -5,18 +5,21 @@ geometry: the double parallelogram (Kutzbach 0) moves (numeric 1) because one
 of its constraints repeats the others.  The SVD of Φ_q (drive rows left out)
 gives the rank with a tolerance scaled to its largest singular value, and
 its null space says which links can move (free) and which cannot (locked).
+
+:func:`mech.kinematics.mobility` (the rank at the drawn configuration of a file)
+is :func:`mech.kinematics.solve.mobility`: it needs the compiled system, and the
+solver imports this module, never the other way round.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from mech.errors import InputError
 from mech.kinematics.constraints import System
 from mech.kinematics.result import Mobility
 from mech.model import Mechanism
 
-__all__ = ["kutzbach", "mobility", "numeric_mobility"]
+__all__ = ["kutzbach", "numeric_mobility"]
 
 #: singular values below this fraction of the largest count as zero (scaled units)
 RANK_TOL = 1e-9
@@ -72,34 +75,3 @@ def numeric_mobility(
             f"{numeric}{why} at the drawn configuration"
         )
     return Mobility(k, numeric, condition, free, locked, redundant, tuple(extra))
-
-
-def mobility(mech: Mechanism) -> Mobility:
-    """Numeric mobility at the drawn configuration; no drive needed.
-
-    A file whose data leave the configuration free (no drive angle, nothing
-    drawn on the moving links) is assembled in some consistent configuration,
-    which gives the generic rank.
-
-    Raises
-    ------
-    InputError
-        When the file has no geometry (nothing placed by ``at``).
-    GeometryError
-        When it cannot be assembled.
-
-    Examples
-    --------
-    >>> from mech.kinematics import mobility                    # doctest: +SKIP
-    >>> mobility(mech).numeric                                  # doctest: +SKIP
-    1
-    """
-    if not mech.has_geometry:
-        raise InputError(
-            "numeric mobility needs geometry: nothing in the file is placed",
-            hint="place the ground joints with at and give the links' lengths",
-        )
-    from mech.kinematics.solve import compiled
-
-    comp = compiled(mech, None, allow_free=True)
-    return comp.mobility

@@ -4,7 +4,7 @@ Stages:
 
 1. **Drawn configuration** (:mod:`.assemble`): the file's own data, at the
    file's drive angle.  Compiled once per mechanism into a :class:`System` of
-   constraint rows (cached on the mechanism object's identity).
+   constraint rows (kept in the mechanism's memo).
 2. **Position**: when ``--angle`` asks for another angle, the mechanism is
    *moved* there from the drawn configuration by Newton–Raphson continuation
    (steps of at most 15°, each predicted with the velocity solution, halved on
@@ -25,14 +25,14 @@ is finite) and solves normally.
 from __future__ import annotations
 
 import math
-from collections import OrderedDict
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import replace
+from dataclasses import field, replace
 from types import MappingProxyType
 from typing import Any
 
 import numpy as np
 
+from mech._memo import Memo
 from mech._records import dataclass
 from mech.errors import GeometryError, InputError, UnsupportedError
 from mech.kinematics.assemble import Drawn, assemble, gear_pitch_points
@@ -45,7 +45,7 @@ from mech.kinematics.result import Fields, JointGeom, Kinematics, LinkState, Mob
 from mech.model import Drive, Mechanism
 from mech.options import SolveOptions
 
-__all__ = ["Compiled", "closed_form", "compiled", "continuation", "solve"]
+__all__ = ["Compiled", "closed_form", "compiled", "continuation", "mobility", "solve"]
 
 LEVELS = ("position", "velocity", "acceleration")
 #: Condition number of Φ_q (scaled) above which a configuration is refused as singular.
@@ -70,35 +70,58 @@ class Compiled:
     system: System
     mobility: Mobility
     singular: bool  # Φ_q with drive rows is singular at the drawn configuration (a toggle drawn)
-
-
-_CACHE: OrderedDict[tuple, Compiled] = OrderedDict()
-_CACHE_SIZE = 64
+    #: What is derived from it in turn (the drives of each options, the closed-form program).
+    memo: Memo = field(default_factory=Memo, init=False, repr=False, compare=False, hash=False)
 
 
 def compiled(
     mech: Mechanism, angles: tuple[float | None, ...] | None, *, allow_free: bool = False
 ) -> Compiled:
-    """Layout, drawn configuration, constraint system and mobility of ``mech`` (cached).
+    """Layout, drawn configuration, constraint system and mobility of ``mech`` (remembered).
 
-    The cache holds the mechanism object itself, so its identity is a safe
-    key while the entry lives; the model is immutable, so entries never go stale.
+    Kept in the mechanism's own memo (:class:`mech._memo.Memo`): the model is
+    immutable, so an entry never goes stale, and it goes when the mechanism goes.
     """
-    key = (id(mech), angles, allow_free)
-    hit = _CACHE.get(key)
-    if hit is not None and hit.mech is mech:
-        _CACHE.move_to_end(key)
-        return hit
+    return mech.memo.get(("compiled", angles, allow_free), lambda: _compile(mech, angles, allow_free))
+
+
+def _compile(mech: Mechanism, angles: tuple[float | None, ...] | None, allow_free: bool) -> Compiled:
     lay = layout(mech)
     drawn = assemble(lay, drive_angles=angles, allow_free=allow_free)
     system = build_system(lay, drawn)
     jac = system.jacobian(system.q0)  # once, for the rank and the drawn toggle alike
     mob = numeric_mobility(mech, system, system.q0, jacobian=jac)
-    comp = Compiled(mech, lay, drawn, system, mob, _is_singular(jac))
-    _CACHE[key] = comp
-    if len(_CACHE) > _CACHE_SIZE:
-        _CACHE.popitem(last=False)
-    return comp
+    return Compiled(mech, lay, drawn, system, mob, _is_singular(jac))
+
+
+def mobility(mech: Mechanism) -> Mobility:
+    """Numeric mobility at the drawn configuration; no drive needed.
+
+    A file whose data leave the configuration free (no drive angle, nothing
+    drawn on the moving links) is assembled in some consistent configuration,
+    which gives the generic rank (:func:`mech.kinematics.mobility.numeric_mobility`).
+    It lives here, beside :func:`compiled`, so that :mod:`.mobility` (the rank
+    itself) never imports the solver that imports it.
+
+    Raises
+    ------
+    InputError
+        When the file has no geometry (nothing placed by ``at``).
+    GeometryError
+        When it cannot be assembled.
+
+    Examples
+    --------
+    >>> from mech.kinematics import mobility                    # doctest: +SKIP
+    >>> mobility(mech).numeric                                  # doctest: +SKIP
+    1
+    """
+    if not mech.has_geometry:
+        raise InputError(
+            "numeric mobility needs geometry: nothing in the file is placed",
+            hint="place the ground joints with at and give the links' lengths",
+        )
+    return compiled(mech, None, allow_free=True).mobility
 
 
 def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None = None) -> Kinematics:
@@ -185,7 +208,7 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
         )
 
     q = sys_.q0
-    omega_ref = _omega_ref(drives, drawn.scale)
+    omega_ref = omega_ref_of(drives, drawn.scale)
     if options.method == "closed" or (moved and options.method == "auto"):
         fast = _closed_form(comp, drives, lvl, omega_ref, options)
         if fast is not None:
@@ -199,7 +222,7 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
                 "only the instant drawn (no profile is given)",
                 hint="analyse the drawn angle, or draw the mechanism at the angle you need",
             )
-        q = _move(comp, drives, options)
+        q = move_to(comp, drives, options)
         shown = [
             f"{_deg(a)} → {_deg(t)}"
             for a, t in zip(drawn.drive_angles, targets, strict=False)
@@ -285,8 +308,8 @@ def continuation(
     comp = compiled(mech, None)
     sys_, lay, drawn = comp.system, comp.layout, comp.drawn
     base = options.with_(angle=float(angles[0]) if len(angles) else None, method="newton")
-    drives = _drives(mech, lay, drawn, base, lvl)
-    omega_ref = _omega_ref(drives, drawn.scale)
+    drives = drives_as_used(mech, lay, drawn, base, lvl)
+    omega_ref = omega_ref_of(drives, drawn.scale)
     offset = 2 * sys_.pc_i.size + sys_.ln_s.size
     rows = [sys_.drive_rows[0] - offset]
     ci = 3 * sys_.link_index[drives[0].link] + 2  # type: ignore[index]
@@ -296,13 +319,13 @@ def continuation(
         here = tuple(replace(d, angle=float(phi)) for d in drives)
         if k == 0:
             try:
-                q = _move(comp, here, base)
+                q = move_to(comp, here, base)
             except GeometryError:
                 q = None
         elif q is not None:
             c_ang = sys_.ang_c.copy()
             c_ang[rows] += q[ci] - sys_.q0[ci]  # the drive row's change so far (no 2π ambiguity)
-            q, _ = _continue(sys_, q, c_ang, sys_.ln_c, rows, np.array([float(phi) - prev]), base)
+            q, _ = continue_along(sys_, q, c_ang, sys_.ln_c, rows, np.array([float(phi) - prev]), base)
         if q is None:
             yield None
             continue
@@ -419,27 +442,19 @@ def closed_form(mech: Mechanism) -> Any:
 
 
 # -- drives ---------------------------------------------------------------------------
-_DRIVES: OrderedDict[tuple, tuple[Compiled, tuple[Drive, ...]]] = OrderedDict()
-
-
 def _drives_of(comp: Compiled, options: SolveOptions, lvl: int) -> tuple[Drive, ...]:
-    """:func:`_drives` for a compiled mechanism, remembered: a repeated solve skips rebuilding them.
+    """:func:`drives_as_used` for a compiled mechanism, remembered in its memo: a repeated solve skips them.
 
-    Keyed like :func:`compiled` (the entry holds ``comp``, so its identity is a
-    safe key while the entry lives); errors are raised afresh, never cached.
+    Errors are raised afresh, never kept.
     """
-    key = (id(comp), options, lvl)
-    hit = _DRIVES.get(key)
-    if hit is not None and hit[0] is comp:
-        return hit[1]
-    drives = _drives(comp.mech, comp.layout, comp.drawn, options, lvl)
-    _DRIVES[key] = (comp, drives)
-    if len(_DRIVES) > _CACHE_SIZE:
-        _DRIVES.popitem(last=False)
-    return drives
+    return comp.memo.get(
+        ("drives", options, lvl), lambda: drives_as_used(comp.mech, comp.layout, comp.drawn, options, lvl)
+    )
 
 
-def _drives(mech: Mechanism, lay: Layout, drawn: Drawn, options: SolveOptions, lvl: int) -> tuple[Drive, ...]:
+def drives_as_used(
+    mech: Mechanism, lay: Layout, drawn: Drawn, options: SolveOptions, lvl: int
+) -> tuple[Drive, ...]:
     """The drives as used: overrides applied, angle from the drawing, omega signed."""
     out = []
     for k, (d, spec) in enumerate(zip(mech.drives, lay.drives, strict=False)):
@@ -505,7 +520,7 @@ def _drives(mech: Mechanism, lay: Layout, drawn: Drawn, options: SolveOptions, l
     return tuple(out)
 
 
-def _omega_ref(drives: tuple[Drive, ...], scale: float) -> float:
+def omega_ref_of(drives: tuple[Drive, ...], scale: float) -> float:
     """Time scale 1/ω: the fastest drive (a slider's v/size), 1 when nothing moves."""
     rates: list[float] = []
     for d in drives:
@@ -526,11 +541,10 @@ def _deg(a: float | None) -> str:
 #: (:mod:`.blocks`) rather than densely: below it one dense LU or SVD is cheaper than
 #: a Python loop over the blocks.
 BLOCK_MIN = 90
-_BLOCKS: OrderedDict[int, tuple[System, BlockForm | None]] = OrderedDict()
 
 
 def _blocks(sys_: System) -> BlockForm | None:
-    """The block-triangular form of ``sys_``'s Φ_q (cached), or None: small, redundant or irreducible.
+    """The block-triangular form of ``sys_``'s Φ_q (kept in its memo), or None: small, redundant or irreducible.
 
     The sparsity is read from Φ_q at the drawn configuration and at a perturbed
     one, so that an entry that happens to vanish as drawn (a link at 0°) is
@@ -539,17 +553,16 @@ def _blocks(sys_: System) -> BlockForm | None:
     n3 = 3 * sys_.n
     if n3 < BLOCK_MIN or sys_.m != n3:
         return None
-    hit = _BLOCKS.get(id(sys_))
-    if hit is not None and hit[0] is sys_:
-        return hit[1]
+    return sys_.memo.get("blocks", lambda: _block_form(sys_))
+
+
+def _block_form(sys_: System) -> BlockForm | None:
+    n3 = 3 * sys_.n
     wiggle = np.random.default_rng(0).uniform(-0.1, 0.1, n3)
     pattern = (sys_.jacobian(sys_.q0) != 0) | (sys_.jacobian(sys_.q0 + wiggle) != 0)
     form = block_form(pattern)
     if form is not None and form.largest * 2 > n3:
         form = None  # one block holds most of it: nothing to gain over the dense path
-    _BLOCKS[id(sys_)] = (sys_, form)
-    if len(_BLOCKS) > _CACHE_SIZE:
-        _BLOCKS.popitem(last=False)
     return form
 
 
@@ -695,7 +708,7 @@ def _singular_message(comp: Compiled, v: np.ndarray, cond: float, drives: tuple[
 
 
 # -- position: continuation ----------------------------------------------------------------
-def _move(comp: Compiled, drives: tuple[Drive, ...], options: SolveOptions) -> np.ndarray:
+def move_to(comp: Compiled, drives: tuple[Drive, ...], options: SolveOptions) -> np.ndarray:
     """Carry the drawn configuration to the drives' target angles, keeping its branch."""
     sys_, drawn = comp.system, comp.drawn
     c_line = sys_.ln_c.copy()
@@ -715,7 +728,7 @@ def _move(comp: Compiled, drives: tuple[Drive, ...], options: SolveOptions) -> n
         tries.append(other)
     reached = []
     for total in tries:
-        q, fraction = _continue(sys_, sys_.q0, base_ang, c_line, rows, total, options)
+        q, fraction = continue_along(sys_, sys_.q0, base_ang, c_line, rows, total, options)
         if q is not None:
             return q
         reached.append(fraction)
@@ -759,7 +772,7 @@ def _closest_gap(comp: Compiled, c_line: np.ndarray, c_ang: np.ndarray) -> tuple
     return text, float(miss[worst])
 
 
-def _continue(
+def continue_along(
     sys_: System,
     q: np.ndarray,
     base_ang: np.ndarray,

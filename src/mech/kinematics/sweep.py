@@ -56,7 +56,7 @@ import numpy as np
 
 from mech._records import dataclass
 from mech.errors import GeometryError, InputError, UnsupportedError
-from mech.kinematics.dyads import ACCURATE_COND, SLACK, DyadProgram, numpy_namespace, program
+from mech.kinematics.dyads import ACCURATE_COND, SLACK, DyadProgram, closing_edge, numpy_namespace, program
 from mech.kinematics.march import Marcher
 from mech.kinematics.result import Kinematics
 from mech.kinematics.solve import SINGULAR, Compiled, compiled, continuation, instant_pairs, solve
@@ -984,9 +984,7 @@ def _gaps(
 
 def _edge(backend: _Closed, good: float, bad: float) -> float:
     """Bisect on the worst dyad discriminant to the last angle that still closes."""
-    from mech.kinematics.dyads import _edge as edge
-
-    return edge(backend.prog, float(good), float(bad))
+    return closing_edge(backend.prog, float(good), float(bad))
 
 
 def _outputs(comp: Compiled, names: dict[str, tuple[str, ...]], drive: str) -> list[tuple[str, str]]:

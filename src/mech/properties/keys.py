@@ -40,7 +40,7 @@ def normal_grashof(name: str) -> str:
     }.get(s, s)
 
 
-def _main_loop(loops: tuple[Any, ...], drive: str | None) -> FourBarLoop | None:
+def main_loop(loops: tuple[Any, ...], drive: str | None) -> FourBarLoop | None:
     """The four-bar loop of the driven crank (beside the frame), else the first with a frame."""
     framed = [lp for lp in loops if isinstance(lp, FourBarLoop) and lp.frame is not None]
     for lp in framed:
@@ -53,9 +53,9 @@ def _main_loop(loops: tuple[Any, ...], drive: str | None) -> FourBarLoop | None:
 def grashof(an: Any, names: tuple[str, ...]) -> str:
     """The Grashof class of the driven four-bar loop (lengths from the file, else from the solve)."""
     drive = next((d.link for d in an.mech.drives if d.link is not None), None)
-    loop = _main_loop(an.topology.loops, drive)
+    loop = main_loop(an.topology.loops, drive)
     if loop is None:
-        loop = _main_loop(linkage_loops(an.mech, an.kin.positions), drive)
+        loop = main_loop(linkage_loops(an.mech, an.kin.positions), drive)
     if loop is None:
         raise Undefined(
             "cannot be computed: the mechanism has no four-bar loop of turning pairs with a fixed link"

@@ -119,10 +119,10 @@ def properties_dict(props: Any, *, units: Any, file: str | None = None) -> dict[
     }
     out["loops"] = [loop_dict(loop) for loop in props.loops]
     from mech.properties.grashof import FourBarLoop
-    from mech.properties.keys import _main_loop
+    from mech.properties.keys import main_loop
 
     drive = props.transmission.driver if props.transmission else None
-    main = _main_loop(props.loops, drive)
+    main = main_loop(props.loops, drive)
     out["grashof"] = main.kind if isinstance(main, FourBarLoop) else None
     t, c = props.transmission, props.cycle
     if t is not None:
