@@ -316,3 +316,55 @@ def test_peaucellier_inversor_sweeps_its_straight_line(span, run, write):
     assert xs == pytest.approx([0.03375] * len(xs), rel=1e-12)
     # |OC| = 20 cos(φ/2) must reach OA − AC = 15: the inversor locks at φ = 2 acos(3/4)
     assert data["gaps"][0]["from"] == pytest.approx(math.degrees(2 * math.acos(0.75)), rel=1e-9)
+
+
+# -- coarse sweeps -----------------------------------------------------------------------------
+def four_bar_rocker_dead_centres(a, b, c, d):
+    """Crank angles (rad) where the rocker reverses: crank and coupler in line, |AC| = b ± a.
+
+    C lies on the circle of radius c about D = (d, 0), above AD: the angle of AC at A is
+    acos((L² + d² − c²) / (2 L d)); extended (L = a + b) the crank points along AC, folded
+    (L = b − a) it points the other way.
+    """
+    ext = math.acos(((a + b) ** 2 + d * d - c * c) / (2 * (a + b) * d))
+    fold = math.acos(((b - a) ** 2 + d * d - c * c) / (2 * (b - a) * d)) + math.pi
+    return ext, fold
+
+
+@pytest.mark.parametrize("method", ["auto", "newton"])
+def test_two_turns_in_three_steps_find_all_four_dead_centres(method):
+    # Khurmi's four-bar (a, b, c, d = 40, 150, 80, 150): 23.68° and 211.29° each turn. Three
+    # steps of 240° leave no sign change between two of them; the sweep looks between its steps.
+    m = four_bar(0.04, 0.15, 0.08, 0.15, angle=math.radians(60), omega=-4 * math.pi)
+    ext, fold = four_bar_rocker_dead_centres(0.04, 0.15, 0.08, 0.15)
+    s = sweep(m, np.radians([0.0, 240.0, 480.0, 720.0]), options=SolveOptions(method=method))
+    found = sorted(e.angle for e in s.dead_centres if e.subject == "rocker")
+    expected = sorted([ext, fold, ext + 2 * math.pi, fold + 2 * math.pi])
+    assert found == pytest.approx(expected, abs=1e-8)
+    assert s.angles.size == 4 and s.omegas.shape[0] == 4  # the series stays at the steps asked
+
+
+def test_angles_past_float_precision_are_refused():
+    # At 1e308 rad the spacing of floats is 2e292 rad: no crank position is known there.
+    m = four_bar(0.04, 0.15, 0.08, 0.15, angle=math.radians(60), omega=-4 * math.pi)
+    with pytest.raises(InputError, match="floating point"):
+        sweep(m, np.linspace(0.0, 1e308, 11))
+
+
+def test_steps_over_half_a_turn_beyond_the_budget_are_refused():
+    # 10 steps of 1e6° (2,778 turns each): resolving them at 1° would take 1e7 angles.
+    m = four_bar(0.04, 0.15, 0.08, 0.15, angle=math.radians(60), omega=-4 * math.pi)
+    with pytest.raises(InputError, match="more than half a turn"):
+        sweep(m, np.radians(np.linspace(0.0, 1e7, 11)))
+
+
+def test_steps_too_many_to_resolve_say_events_may_be_missed(monkeypatch):
+    import importlib
+
+    sweep_module = importlib.import_module("mech.kinematics.sweep")
+
+    # A budget that holds the 5 angles asked but not the 721 of a 1° grid over 0..720°.
+    monkeypatch.setattr(sweep_module, "MEMORY_BUDGET", 5 * 2000)
+    m = four_bar(0.04, 0.15, 0.08, 0.15, angle=math.radians(60), omega=-4 * math.pi)
+    s = sweep(m, np.radians(np.linspace(0.0, 720.0, 5)))
+    assert any("may be missed" in n for n in s.notes), s.notes

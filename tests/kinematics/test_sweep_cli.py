@@ -221,12 +221,15 @@ def test_gear_sweep_extremes_are_values_the_wheel_takes(tmp_path):
     assert e["min"] == pytest.approx(-180.0, abs=1e-9) and e["min_angle"] == pytest.approx(360.0, abs=1e-6)
 
 
-def test_one_step_over_a_full_turn_locates_nothing_and_says_why(tmp_path):
-    """Both ends of 0..360 are one crank position: no extreme, dead centre or ratio, and a note."""
+def test_one_step_over_a_full_turn_locates_what_a_fine_sweep_does(tmp_path):
+    """Both ends of 0..360 are one crank position, but the sweep looks between its steps (1° grid):
+    the dead centres and time ratio of the law of cosines, as with 36 steps."""
+    t_ext, t_fold, ratio = _crank_rocker_limits()
     m = _file(tmp_path, "cr.yaml", CRANK_ROCKER)
     d = sweep_json(m, "--steps", "1")
-    assert d["extremes"] == [] and d["dead_centres"] == [] and d["time_ratio"] is None
-    assert any("give at least 2 steps per turn" in n for n in d["notes"]), d["notes"]
+    assert [e["angle"] for e in d["dead_centres"]] == pytest.approx(sorted([t_ext, t_fold]), abs=1e-8)
+    assert d["time_ratio"]["ratio"] == pytest.approx(ratio, rel=1e-10)
+    assert d["steps"] == 2
 
 
 def test_sweep_steps_beyond_the_memory_budget_are_refused(tmp_path):
@@ -324,3 +327,18 @@ def test_sweep_json_units_mm_scale_lengths_and_speeds_not_angles(tmp_path):
         assert (b["max"], b["min"]) == pytest.approx((k * a["max"], k * a["min"]))
         assert b["unit"] == {"sliding.P": "mm/s", "omega.rod": "rad/s", "displacement.P": "mm"}[a["quantity"]]
     assert mm["series"]["sliding.P"] == pytest.approx([1000 * v for v in si["series"]["sliding.P"]])
+
+
+def test_sweep_to_1e308_degrees_is_refused_with_what_to_do(run):
+    # It printed seven dead centres at 1e307-sized angles, exit 0.
+    result = run("sweep", FOUR_BAR, "--from", "0", "--to", "1e308", "--steps", "10")
+    assert result.exit_code == 2
+    assert "floating point" in result.output and "subtract whole turns" in result.output
+
+
+def test_sweep_of_two_turns_in_three_steps_reports_four_dead_centres(run):
+    # It reported 2 of the 4 (23.68°, 211.29°, 383.68°, 571.29°: tests/kinematics/test_sweep.py).
+    result = run("sweep", FOUR_BAR, "--to", "720", "--steps", "3", "--json")
+    assert result.exit_code == 0, result.output
+    angles = [d["angle"] for d in json.loads(result.output)["dead_centres"]]
+    assert [round(a, 2) for a in angles] == [23.68, 211.29, 383.68, 571.29]

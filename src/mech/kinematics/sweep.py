@@ -697,15 +697,17 @@ def sweep(
         raise UnsupportedError(
             f"{mech.label} does not decompose into dyads driven by one crank", hint="use method auto"
         )
+    _check_precision(phi)
     _check_memory(comp, prog, phi.size, lvl_int)
     notes: list[str] = list(comp.drawn.notes)
+    fine, pick = _analysis_grid(phi, comp, prog, lvl_int, notes) if analyse else (phi, None)
     if prog is not None:
         backend: Any = _Closed(comp, prog, w_int, alpha, lvl_int)
-        data = backend.evaluate(phi)
+        data = backend.evaluate(fine)
         notes.append("closed form: " + "; ".join(prog.steps))
     else:
         backend = _Newton(mech, comp, options, w_int, alpha, lvl_int)
-        data = _newton_series(backend, phi, notes, comp.drawn.drive_angles[0])
+        data = _newton_series(backend, fine, notes, comp.drawn.drive_angles[0])
 
     ok = data["assembled"]
     cond = np.where(ok, data["condition"], np.nan)
@@ -715,12 +717,6 @@ def sweep(
     for key in ("velocities", "omegas", "sliding", "accelerations", "alphas"):
         if key in data:
             data[key] = np.where(_expand(ok & ~singular, data[key]), data[key], np.nan)
-    if np.any(singular):
-        notes.append(
-            f"{int(np.sum(singular))} step(s) next to a toggle (condition number above "
-            f"{ACCURATE_COND if prog is not None else SINGULAR:.0e}): velocities and accelerations there "
-            "would be good to less than 1e-6 and are not reported"
-        )
     data["link_angles"] = _unwrap(data["link_angles"], ok)
 
     names = {"points": backend.points, "links": backend.links, "slides": backend.slides}
@@ -737,24 +733,21 @@ def sweep(
     extremes: tuple[Extreme, ...] = ()
     ratio = None
     if analyse:
-        gaps, toggles = _gaps(backend, phi, data, ok)
-        dead, outputs = _dead_centres(backend, comp, phi, data, ok, names)
-        extremes = _extremes(backend, phi, data, ok & ~singular, names, keys)
-        ratio = _time_ratio(phi, ok, dead, outputs)
-    if (
-        analyse
-        and phi.size > 1
-        and np.all(np.abs(np.remainder(phi - phi[0] + math.pi, _TWO_PI) - math.pi) < 1e-9)
-    ):
+        gaps, toggles = _gaps(backend, fine, data, ok)
+        dead, outputs = _dead_centres(backend, comp, fine, data, ok, names)
+        extremes = _extremes(backend, fine, data, ok & ~singular, names, keys)
+        ratio = _time_ratio(fine, ok, dead, outputs)
+    if pick is not None:  # the series at the steps asked; what was found came from the finer grid
+        data = {
+            k: v[pick] if isinstance(v, np.ndarray) and v.shape[:1] == fine.shape else v
+            for k, v in data.items()
+        }
+        ok, cond, singular = ok[pick], cond[pick], singular[pick]
+    if np.any(singular):
         notes.append(
-            f"each of the {phi.size - 1} step(s) from {math.degrees(phi[0]):g}° to {math.degrees(phi[-1]):g}° "
-            "is a whole number of turns: every angle is the same crank position, so "
-            + (
-                "nothing varies over the grid and no extreme, dead centre or time ratio can be located"
-                if not (extremes or dead)
-                else "the grid sees nothing of the motion between them"
-            )
-            + " (give at least 2 steps per turn)"
+            f"{int(np.sum(singular))} step(s) next to a toggle (condition number above "
+            f"{ACCURATE_COND if prog is not None else SINGULAR:.0e}): velocities and accelerations there "
+            "would be good to less than 1e-6 and are not reported"
         )
     circuits = _circuits(phi, ok, comp.drawn.drive_angles[0])
     if circuits:
@@ -799,6 +792,17 @@ MEMORY_BUDGET = 1 << 30
 """Bytes a sweep's arrays may take (1 GiB); more angles are refused before solving."""
 
 
+def _per_angle(comp: Compiled, prog: DyadProgram | None, lvl: int) -> int:
+    """Bytes a sweep keeps per angle (an estimate, on the safe side; see :func:`_check_memory`)."""
+    if prog is not None:
+        with np.errstate(all="ignore"):
+            outputs = len(prog.raw(np.zeros(1), 1.0, 0.0, level=lvl, xp=numpy_namespace()))
+        return 20 * outputs + 128
+    sys_ = comp.system
+    values = (lvl + 1) * (2 * len(sys_.loc_names) + len(sys_.links)) + 2 * len(comp.layout.paths)
+    return 1200 + 32 * values
+
+
 def _check_memory(comp: Compiled, prog: DyadProgram | None, n: int, lvl: int) -> None:
     """Refuse a sweep whose arrays would exceed :data:`MEMORY_BUDGET` (an estimate, kept on the safe side).
 
@@ -807,14 +811,7 @@ def _check_memory(comp: Compiled, prog: DyadProgram | None, n: int, lvl: int) ->
     four-bar at velocity level, 1,360 for a six-bar at acceleration level).
     Newton: one small record per step, about 1,200 bytes plus 32 per value kept.
     """
-    if prog is not None:
-        with np.errstate(all="ignore"):
-            outputs = len(prog.raw(np.zeros(1), 1.0, 0.0, level=lvl, xp=numpy_namespace()))
-        per = 20 * outputs + 128
-    else:
-        sys_ = comp.system
-        values = (lvl + 1) * (2 * len(sys_.loc_names) + len(sys_.links)) + 2 * len(comp.layout.paths)
-        per = 1200 + 32 * values
+    per = _per_angle(comp, prog, lvl)
     if n * per <= MEMORY_BUDGET:
         return
     fit = MEMORY_BUDGET // per
@@ -824,6 +821,69 @@ def _check_memory(comp: Compiled, prog: DyadProgram | None, n: int, lvl: int) ->
         f"a sweep may use",
         hint=f"give at most {fit:,} angles (--steps {fit - 1}), or sweep the range in parts",
     )
+
+
+#: The analysis grid's largest step (rad): events (dead centres, extremes, gaps) are looked
+#: for between angles at most this far apart, whatever steps the series is printed at.
+RESOLVE = math.radians(1.0)
+#: The float spacing (rad) the largest angle of a sweep may have: beyond it (angles past
+#: about 2.6e8°) an angle is not known well enough to locate anything on it.
+ANGLE_PRECISION = 1e-9
+
+
+def _check_precision(phi: np.ndarray) -> None:
+    """Refuse angles so large that their float spacing exceeds :data:`ANGLE_PRECISION`."""
+    big = float(np.max(np.abs(phi)))
+    spacing = float(np.spacing(big))
+    if spacing > ANGLE_PRECISION:
+        raise InputError(
+            f"crank angles as large as {math.degrees(big):.4g}° are held only to "
+            f"{math.degrees(spacing):.2g}° in floating point: nothing on them can be located",
+            hint="sweep the same crank positions nearer 0 (subtract whole turns of 360°)",
+        )
+
+
+def _analysis_grid(
+    phi: np.ndarray, comp: Compiled, prog: DyadProgram | None, lvl: int, notes: list[str]
+) -> tuple[np.ndarray, np.ndarray | None]:
+    """The angles to analyse: ``phi`` with each step cut into parts of at most :data:`RESOLVE`.
+
+    Returns the grid and the indices of ``phi``'s angles in it (None when no step
+    needed cutting).  Two dead centres between two steps leave no sign change to
+    refine, so a sweep of 3 steps over two turns saw 2 of its 4; on the finer grid
+    it sees them all.  When the finer grid would exceed the memory budget the
+    steps given are analysed: a step of more than half a turn is then refused
+    (the motion between its ends is unknown), a smaller one gets a note that
+    events between steps may be missed.
+    """
+    if phi.size < 2:
+        return phi, None
+    widths = np.abs(np.diff(phi))
+    parts = np.maximum(1, np.ceil(widths / RESOLVE * (1.0 - 1e-12))).astype(np.int64)
+    if int(parts.max()) == 1:
+        return phi, None
+    total = int(parts.sum()) + 1
+    per = _per_angle(comp, prog, lvl)
+    if total * per > MEMORY_BUDGET:
+        widest = math.degrees(float(widths.max()))
+        span = math.degrees(abs(float(phi[-1] - phi[0])))
+        fit = max(int(MEMORY_BUDGET // per) - 1, 1)
+        if widest > 180.0:
+            raise InputError(
+                f"steps of {widest:.4g}° are more than half a turn: the crank's motion between them "
+                f"is unknown, and resolving it ({total:,} angles at 1°) exceeds the memory a sweep may use",
+                hint=f"give at least --steps {math.ceil(span / 180.0)} (1° steps: --steps "
+                f"{math.ceil(span * (1 - 1e-12))}), at most {fit:,}; or sweep the range in parts",
+            )
+        notes.append(
+            f"steps of {widest:.4g}° analysed as given (a 1° grid would exceed the memory budget): "
+            "a dead centre or extreme between two steps may be missed; give more --steps to resolve it"
+        )
+        return phi, None
+    starts = np.concatenate(([0], np.cumsum(parts)))
+    offset = np.arange(total - 1) - np.repeat(starts[:-1], parts)
+    fine = np.repeat(phi[:-1], parts) + np.repeat(np.diff(phi) / parts, parts) * offset
+    return np.append(fine, phi[-1]), starts
 
 
 def _expand(mask: np.ndarray, arr: np.ndarray) -> np.ndarray:
