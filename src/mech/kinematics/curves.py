@@ -29,9 +29,10 @@ all in scaled reference-point coordinates):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
+
+from mech._records import dataclass
 
 __all__ = ["CurveRow", "Spline", "curve_row", "curve_rows"]
 
