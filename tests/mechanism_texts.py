@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import yaml
+
 __all__ = [
     "CRANK_ROCKER",
     "CRANK_ROCKER_LENGTHS",
@@ -17,6 +19,7 @@ __all__ = [
     "FOUR_BAR_PARALLELOGRAM",
     "GEARS",
     "TOGGLE_FOUR_BAR",
+    "expected_refusal",
     "slider_crank",
     "strip_answers",
 ]
@@ -122,3 +125,35 @@ joints:
 lengths: {AB: 1, BC: 3, CD: 2.5}
 drive: {link: crank, angle: 90, omega: 10, direction: ccw}
 """
+
+KINEMATIC = ("position", "velocity", "acceleration", "icentres")
+
+
+def _drives(data: dict) -> list[dict]:
+    drive = data.get("drive") or []
+    return drive if isinstance(drive, list) else [drive]
+
+
+def expected_refusal(text: str, command: str) -> str | None:
+    """The words of the refusal ``command`` must give for this file, or None if it must answer.
+
+    Read from the file's own content: counting (dof, classify) needs no geometry; positions
+    need a path for every slider and a placed joint; velocities need a speed for every drive;
+    accelerations need profile curvature, which a contact given only as a point and a normal
+    (``at`` + ``normal``) does not have.
+    """
+    if command not in KINEMATIC:
+        return None
+    data = yaml.safe_load(text)
+    joints = list((data.get("joints") or {}).values())
+    if any(j.get("type") == "prismatic" and "path" not in j for j in joints):
+        return "has no path"  # a slider needs its line before anything can be placed
+    if not any("at" in j for j in joints):
+        return "positions need geometry"
+    if command == "position":
+        return None
+    if any(not ({"rpm", "omega", "speed"} & set(d)) for d in _drives(data)):
+        return "has no speed"
+    if command == "acceleration" and any(j.get("type") == "cam" and "normal" in j for j in joints):
+        return "curvature"
+    return None
