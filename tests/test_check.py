@@ -29,9 +29,11 @@ from xml.etree import ElementTree as ET
 
 import pytest
 
+from cli_runner import assert_bad_input, mech
 from mech.batch import CheckOptions, Report, run
 from mech.check import ERROR, FAIL, PASS, check, check_file
 from mech.loader import loads
+from mechanism_texts import slider_crank
 
 R, L, W = 0.1, 0.3, 10.0
 XB = math.sqrt(L * L - R * R)
@@ -435,3 +437,49 @@ def test_terminal_table_has_one_row_per_file_and_every_answer_with_verbose(repor
     for r in report.results:
         assert sum(Path(r.path).name in ln for ln in short.splitlines()) == 1
     assert "dof = 1" not in short and "dof = 1" in long  # a passing answer: shown only with verbose
+
+
+# -- through the command line as a user runs it (cli_runner: tracebacks shown) -----------
+EXAMPLE_FOUR_BAR = Path(__file__).resolve().parent.parent / "mechanisms" / "four_bar.yaml"
+
+
+@pytest.mark.parametrize(
+    "answer, line_col",
+    [
+        ("omega.rocker: 4.8 m/s", "26:17"),
+        ("velocity.C: 0.385 rad/s", "26:15"),
+        ("velocity.C: 0.385 m/s cw", "26:15"),
+        ("tolerance: -5%", "26:14"),
+        ("tolerance: abc%", "26:14"),
+        ("omega.rockr: 4.8", "26:3"),
+        ("dof: 1.0", "26:8"),
+        ("omega.rocker: .nan", "26:17"),
+    ],
+)
+def test_a_bad_answer_is_one_error_row_located_at_its_value(tmp_path, answer, line_col):
+    """Wrong unit, a sense on a speed, a bad tolerance, an unknown key, 1.0 for dof, NaN."""
+    text = EXAMPLE_FOUR_BAR.read_text(encoding="utf-8").split("answers:")[0]
+    assert text.count("\n") == 24  # the answer lands on line 26
+    f = tmp_path / "a.yaml"
+    f.write_text(text + "answers:\n  " + answer + "\n", encoding="utf-8")
+    p = mech("check", str(f), "-j", "1")
+    assert p.returncode == 1 and "Traceback" not in p.stderr
+    assert line_col in p.stdout
+
+
+def test_a_wrong_sense_fails_and_a_bare_mm_number_gets_a_hint(tmp_path):
+    text = EXAMPLE_FOUR_BAR.read_text(encoding="utf-8").split("answers:")[0]
+    f = tmp_path / "a.yaml"
+    f.write_text(text + 'answers:\n  omega.rocker: 4.785 rad/s ccw\n  velocity.C: "383"\n', encoding="utf-8")
+    p = mech("check", str(f), "-j", "1", "-v")
+    assert p.returncode == 1
+    assert "wrong sense" in p.stdout and "mm" in p.stdout
+
+
+def test_an_icentre_of_a_link_with_itself_is_a_located_input_error(write):
+    """`icentre.crank.crank` once passed the loader and made check report "internal error"."""
+    f = write(slider_crank(extra="answers:\n  icentre.crank.crank: [0, 0]\n"))
+    assert_bad_input(mech("dof", str(f)), f)
+    c = mech("check", str(f), "-j", "1")
+    assert c.returncode == 1
+    assert "internal error" not in c.stdout

@@ -7,7 +7,11 @@ always expires on it, however fast the machine.
 
 from __future__ import annotations
 
+import csv
+import io
+import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -17,9 +21,11 @@ from xml.etree import ElementTree as ET
 
 import pytest
 
+from cli_runner import mech, no_traceback, strict_json
 from mech.batch import CheckOptions, run
 from mech.batchpool import run_jobs
 from mech.check import ERROR
+from mechanism_texts import TOGGLE_FOUR_BAR, slider_crank, strip_answers
 
 ROOT = Path(__file__).resolve().parent.parent
 GOOD = (ROOT / "mechanisms" / "four_bar.yaml").read_text(encoding="utf-8")  # its answers all pass
@@ -240,3 +246,199 @@ def test_the_pool_works_from_a_process_with_threads() -> None:
     finally:
         stop.set()
         helper.join()
+
+
+# -- through the command line as a user runs it (cli_runner: crashes and tracebacks shown) --
+def _put(path: Path, text: str) -> Path:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+HOSTILE_NAME = "Bad <&\"'> \nline2 ]]> é"
+
+
+def test_reports_escape_hostile_names_and_their_counts_agree_with_the_summary(tmp_path):
+    """A file é <&'q'>.yaml named <&"'>, newline, ]]>: JUnit parses, Gradescope and CSV carry it."""
+    body = strip_answers("slider_crank.yaml")
+    body = re.sub(r"(?m)^name: .*$", lambda _: "name: " + json.dumps(HOSTILE_NAME), body)
+    body += "answers:\n  dof: 1\n  omega.rod: 5.642 rad/s ccw\n  chain: \"four <bar> & 'x'\"\n  velocity.B: 9 m/s\n"
+    folder = tmp_path / "hw"
+    _put(folder / "é <&'q'>.yaml", body)
+    _put(folder / "good.yaml", strip_answers("four_bar.yaml") + "answers: {dof: 1}\n")
+    junit, gs, gb = tmp_path / "r.xml", tmp_path / "gs.json", tmp_path / "g.csv"
+    p = mech(
+        "check",
+        str(folder),
+        "-j",
+        "1",
+        "--json",
+        "--junit",
+        str(junit),
+        "--gradescope",
+        str(gs),
+        "--csv",
+        str(gb),
+    )
+    no_traceback(p)
+    assert p.returncode == 1
+    summary = strict_json(p.stdout)["summary"]
+    assert (summary["passed"], summary["failed"], summary["errors"]) == (3, 2, 0)
+    root = ET.parse(junit).getroot()
+    assert root.get("tests") == str(summary["total"]) and root.get("failures") == str(summary["failed"])
+    cases = root.findall(".//testcase")
+    assert len(cases) == summary["total"]
+    assert len(root.findall(".//failure")) == summary["failed"]
+    assert sum(int(s.get("tests")) for s in root.findall("testsuite")) == summary["total"]
+    messages = [fl.get("message") for fl in root.findall(".//failure")]
+    assert any("four <bar> & 'x'" in m for m in messages), messages
+    grade = strict_json(gs.read_text(encoding="utf-8"))
+    assert grade["score"] == summary["passed"] and len(grade["tests"]) == summary["total"]
+    assert any(f"({HOSTILE_NAME}): " in t["name"] for t in grade["tests"])  # named by file and name
+    assert all(t["status"] in ("passed", "failed") and t["max_score"] == 1 for t in grade["tests"])
+    rows = list(csv.DictReader(io.StringIO(gb.read_text(encoding="utf-8"))))
+    assert len(rows) == 2 and {Path(r["problem"]).name for r in rows} == {"é <&'q'>.yaml", "good.yaml"}
+    hostile = next(r for r in rows if "q" in r["problem"])
+    assert (hostile["passed"], hostile["total"], hostile["score"]) == ("2", "4", "50.0")
+
+
+# One file per distinct way the solver can fail to give an answer (each must be one error row).
+FAILURES = {
+    "no_assembly": slider_crank(0.1, 0.4, 90, 10, offset=1.0, extra="answers: {velocity.B: 1 m/s}\n"),
+    "toggle": TOGGLE_FOUR_BAR + "answers: {omega.rocker: 1}\n",
+    "structure": """\
+links: [frame, a, b]
+joints:
+  A: {type: revolute, links: [frame, a], at: [0, 0]}
+  B: {type: revolute, links: [a, b], at: [1, 1]}
+  C: {type: revolute, links: [b, frame], at: [2, 0]}
+drive: {link: a, angle: 45, omega: 1}
+answers: {velocity.B: 0}
+""",
+    "no_speed": slider_crank(
+        0.1, 0.4, 90, 10, drive="{link: crank, angle: 90}", extra="answers: {velocity.B: 1 m/s}\n"
+    ),
+    "two_dof_one_drive": """\
+links: [frame, a, b, c, d]
+joints:
+  A: {type: revolute, links: [frame, a], at: [0, 0]}
+  B: {type: revolute, links: [a, b]}
+  C: {type: revolute, links: [b, c], near: [1, 1.5]}
+  D: {type: revolute, links: [c, d]}
+  E: {type: revolute, links: [d, frame], at: [2, 0]}
+lengths: {AB: 1, BC: 1, CD: 1, DE: 1}
+drive: {link: a, angle: 90, omega: 1}
+answers: {omega.b: 1}
+""",
+    "ratio_over_rest": slider_crank(0.1, 0.4, 90, 10, extra="answers: {omega_ratio.crank.rod: 1}\n"),
+    "cam_acceleration": """\
+links: [frame, cam, follower]
+joints:
+  O: {type: revolute, links: [frame, cam], at: [0, 0]}
+  F: {type: prismatic, links: [follower, frame], path: {through: [0, 0], angle: 90}, point: T}
+  T: {type: cam, links: [cam, follower], at: [0, 0.05], normal: 80}
+drive: {link: cam, angle: 0, rpm: 60}
+answers: {acceleration.T: 1}
+""",
+    "gear_contradiction": """\
+links: [frame, g1, g2]
+joints:
+  O1: {type: revolute, links: [frame, g1], at: [0, 0]}
+  O2: {type: revolute, links: [frame, g2], at: [0.3, 0]}
+  M: {type: gear, links: [g1, g2], radii: [0.05, 0.1]}
+drive: {link: g1, rpm: 600}
+answers: {icentre.g1.g2: [0.1, 0]}
+""",
+    "mobility_without_geometry": """\
+links: [frame, a, b, c]
+joints:
+  A: {type: revolute, links: [frame, a]}
+  B: {type: revolute, links: [a, b]}
+  C: {type: revolute, links: [b, c]}
+  D: {type: revolute, links: [c, frame]}
+answers: {mobility: 1}
+""",
+    "spherical": """\
+links: [frame, a, b]
+joints:
+  A: {type: spherical, links: [frame, a], at: [0, 0]}
+  B: {type: revolute, links: [a, b], at: [1, 0]}
+drive: {link: a, angle: 0, omega: 1}
+answers: {omega.a: 1}
+""",
+    "out_of_range": slider_crank(1e307, 4e307, 90, 10, extra="answers: {velocity.B: 1e308}\n"),
+    "malformed": "links: [frame, crank\nanswers: {dof: 1}\n",
+}
+
+
+def test_each_way_the_solver_fails_is_one_error_row_among_200_files_with_one_or_two_jobs(tmp_path):
+    """188 good slider cranks pass (v_B = w r = 1 m/s at 90 deg, rod at rest), each failure is one
+    error row, exit 1; -j 2 (a process pool) gives the same JSON as -j 1."""
+    folder = tmp_path / "hw"
+    good = slider_crank(0.1, 0.4, 90, 10, extra="answers: {velocity.B: 1 m/s, omega.rod: 0}\n")
+    for i in range(200 - len(FAILURES)):
+        _put(folder / f"ok_{i:03d}.yaml", good)
+    for name, text in FAILURES.items():
+        _put(folder / f"zz_{name}.yaml", text)
+    one = mech("check", str(folder), "-j", "1", "--json")
+    no_traceback(one)
+    assert one.returncode == 1
+    report = strict_json(one.stdout)
+    assert len(report["results"]) == 200 and report["summary"]["files"] == 200
+    for r in report["results"]:
+        stem = Path(r["file"]).stem
+        if stem.startswith("zz_"):
+            assert r["errors"] == 1 and r["passed"] == 0, r
+        else:
+            assert (r["passed"], r["failed"], r["errors"]) == (2, 0, 0), r
+    two = mech("check", str(folder), "-j", "2", "--json", subprocess_=True)
+    assert two.returncode == 1 and "Traceback" not in two.stderr
+    assert strict_json(two.stdout) == report
+
+
+@pytest.mark.parametrize("jobs", ["1", "2"])
+def test_a_deeply_nested_file_is_one_error_row_and_the_batch_goes_on(tmp_path, jobs):
+    """50,000 nested brackets once segfaulted -j 1 (exit 139, no report) and broke the -j 2 pool."""
+    _put(tmp_path / "a.yaml", GOOD)
+    _put(
+        tmp_path / "b.yaml",
+        "links: [frame, crank]\njoints:\n  A: {type: revolute, links: [frame, crank]}\n"
+        "description: " + "[" * 50_000 + "]" * 50_000 + "\nanswers: {dof: 1}\n",
+    )
+    p = mech("check", str(tmp_path), "-j", jobs, "--json", subprocess_=True)
+    assert p.returncode == 1, (p.returncode, p.stderr[-500:])
+    report = strict_json(p.stdout)
+    by_file = {Path(r["file"]).name: r for r in report["results"]}
+    assert by_file["a.yaml"]["passed"] > 0
+    assert by_file["b.yaml"]["errors"] == 1
+
+
+def test_binary_empty_non_utf8_files_and_link_loops_in_a_folder_are_error_rows(tmp_path):
+    """Each unreadable *.yaml is one error row; notes.txt, a folder named sub.yaml and loops are not files."""
+    _put(tmp_path / "good.yaml", GOOD)
+    (tmp_path / "bin.yaml").write_bytes(b"\x7fELF\x00\x01\x02" * 100)
+    (tmp_path / "empty.yaml").write_text("")
+    (tmp_path / "latin.yaml").write_bytes(b"\xff\xfe garbage")
+    (tmp_path / "notes.txt").write_text("answers: {dof: 1}\n")
+    (tmp_path / "sub.yaml").mkdir()
+    os.symlink(".", tmp_path / "loop")
+    os.symlink("self.yaml", tmp_path / "self.yaml")  # a symlink loop named like a mechanism
+    p = mech("check", str(tmp_path), "-j", "1", "--json", timeout=120)
+    assert p.returncode == 1, p.stderr[-500:]
+    no_traceback(p)
+    report = strict_json(p.stdout)
+    by_file = {Path(r["file"]).name: r for r in report["results"]}
+    assert by_file["good.yaml"]["failed"] == 0 and by_file["good.yaml"]["passed"] > 0
+    for bad in ("bin.yaml", "empty.yaml", "latin.yaml"):
+        assert by_file[bad]["errors"] == 1, by_file[bad]
+
+
+@pytest.mark.parametrize("jobs", ["0", "-1"])
+def test_check_jobs_below_one_is_a_usage_error(jobs):
+    p = mech("check", str(ROOT / "mechanisms" / "four_bar.yaml"), "--jobs", jobs)
+    assert p.returncode == 2 and "Traceback" not in p.stderr
+
+
+def test_check_with_a_thousand_jobs_for_one_file_passes():
+    p = mech("check", str(ROOT / "mechanisms" / "four_bar.yaml"), "--jobs", "1000")
+    assert p.returncode == 0, p.stderr

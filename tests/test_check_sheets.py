@@ -24,8 +24,10 @@ from xml.etree import ElementTree as ET
 
 import pytest
 
+from cli_runner import Run, mech, no_traceback, strict_json
 from mech.batch import CheckOptions, Report, run
 from mech.check import ERROR, FAIL, IGNORED, PASS
+from mechanism_texts import FOUR_BAR_NAME, strip_answers
 
 SLIDER = """\
 name: Slider crank
@@ -350,3 +352,236 @@ def test_a_sheet_that_is_not_yaml_points_at_the_line_and_column(tmp_path: Path) 
     problem = sheet.error.problems[0]
     assert problem.message.startswith("this answer sheet is not valid YAML")
     assert (problem.where.line, problem.where.column) == (3, 1)  # the end of the text, where `[` is unclosed
+
+
+# -- through the command line as a user runs it (cli_runner: tracebacks shown) -----------
+# Problems: the shipped four-bar (Khurmi Ex. 7.1, asking dof = 1 and omega.rocker = 4.785 rad/s
+# cw) and slider crank (asking dof) without their answers.  Sheets answer them by stem, file
+# name or the problem's ``name:``.
+def _put(path: Path, text: str) -> Path:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+@pytest.fixture
+def problems(tmp_path: Path) -> Path:
+    """problems/four_bar.yaml (questions dof, omega.rocker) and slider_crank.yaml (asks dof)."""
+    d = tmp_path / "problems"
+    _put(
+        d / "four_bar.yaml",
+        strip_answers("four_bar.yaml") + "answers:\n  dof: 1\n  omega.rocker: 4.785 rad/s cw\n",
+    )
+    # a problem without values lists its questions (issue 10: a problem asking nothing is excluded)
+    _put(d / "slider_crank.yaml", strip_answers("slider_crank.yaml") + "asks: [dof]\n")
+    return d
+
+
+def check_json(*args: str) -> tuple[Run, dict]:
+    p = mech("check", *args, "-j", "1", "--json")
+    no_traceback(p)
+    return p, strict_json(p.stdout)
+
+
+def rows_of(report: dict, student: str) -> list[dict]:
+    return [r for r in report["results"] if r["student"] == student]
+
+
+def test_markup_in_a_students_claim_is_printed_literally(problems, tmp_path):
+    """`chain: "[/b]"` once killed the class report with rich's MarkupError; `[bold red]` vanished."""
+    sheet = _put(tmp_path / "s.yaml", 'four_bar: {chain: "[/b]", dof: 1}\n')
+    p = mech("check", str(problems), "--answers", str(sheet), "-j", "1", "-v")
+    no_traceback(p)
+    assert p.returncode == 1
+    assert "[/b]" in p.stdout and "failed" in p.stdout
+    sheet2 = _put(tmp_path / "s2.yaml", 'four_bar: {chain: "[bold red]x[/bold red]", dof: 1}\n')
+    p2 = mech("check", str(problems), "--answers", str(sheet2), "-j", "1", "-v")
+    no_traceback(p2)
+    assert "[bold red]x[/bold red]" in p2.stdout
+
+
+def test_an_empty_entry_for_a_problem_scores_as_leaving_it_out(problems, tmp_path):
+    """`slider_crank: {}` is "not answered" (a failed row), never a free pass (cli.md)."""
+    sheets = tmp_path / "sheets"
+    _put(sheets / "ann.yaml", "four_bar: {dof: 1, omega.rocker: 4.785 rad/s cw}\nslider_crank: {}\n")
+    _put(sheets / "ben.yaml", "four_bar: {dof: 1, omega.rocker: 4.785 rad/s cw}\n")
+    p, report = check_json(str(problems), "--answers", str(sheets))
+    assert p.returncode == 1
+    scores = {s["student"]: s for s in report["students"]}
+    assert scores["ben"]["failed"] == 1  # the documented rule for a missing problem
+    assert scores["ann"]["score"] == scores["ben"]["score"], scores
+    ann_sc = [r for r in rows_of(report, "ann") if r["file"].endswith("slider_crank.yaml")]
+    assert ann_sc and sum(r["failed"] + r["errors"] for r in ann_sc) >= 1
+
+
+def test_a_problem_answered_by_stem_and_by_file_name_is_answered_twice(problems, tmp_path):
+    """`four_bar:` and `four_bar.yaml:` name one problem: an error, not one silently dropped."""
+    sheet = _put(
+        tmp_path / "alice.yaml",
+        "four_bar: {dof: 1, omega.rocker: 4.785 rad/s cw}\nfour_bar.yaml: {dof: 5}\n",
+    )
+    _, report = check_json(str(problems), "--answers", str(sheet))
+    four = [
+        v
+        for r in rows_of(report, "alice")
+        for v in r["answers"]
+        if "four_bar" in r["file"] or "four_bar" in v["key"]
+    ]
+    assert any(v["status"] != "pass" for v in four), four
+    assert "twice" in json.dumps(report)
+
+
+def test_a_problem_answered_by_stem_and_by_name_is_answered_twice_not_unknown(problems, tmp_path):
+    """The second entry names the same problem by its `name:`; "no problem file is named" is false."""
+    sheet = _put(tmp_path / "bob.yaml", f'four_bar: {{dof: 1}}\n"{FOUR_BAR_NAME}": {{dof: 7}}\n')
+    _, report = check_json(str(problems), "--answers", str(sheet))
+    text = json.dumps(report, ensure_ascii=False)
+    assert "no problem file is named" not in text, text[:2000]
+    assert "twice" in text
+
+
+def test_sheets_carol_yaml_and_carol_yml_are_not_one_student_counted_twice(problems, tmp_path):
+    """One row per student name, and a student's totals are the rows with that name."""
+    sheets = tmp_path / "sheets"
+    _put(sheets / "carol.yaml", "four_bar: {dof: 2}\n")
+    _put(sheets / "carol.yml", "four_bar: {dof: 1, omega.rocker: 4.785 rad/s cw}\n")
+    _, report = check_json(str(problems), "--answers", str(sheets))
+    names = [s["student"] for s in report["students"]]
+    assert len(names) == len(set(names)), names
+    for s in report["students"]:
+        rows = [
+            r for r in rows_of(report, s["student"]) if not r["sheet"]
+        ]  # a sheet's own row is no question
+        assert s["total"] == sum(r["passed"] + r["failed"] + r["errors"] for r in rows)
+
+
+def test_an_uppercase_yaml_sheet_is_read(problems, tmp_path):
+    """erin.YAML (a Windows or macOS upload) is a student, not silently dropped."""
+    sheets = tmp_path / "sheets"
+    _put(sheets / "dave.yaml", "four_bar: {dof: 1}\n")
+    _put(sheets / "erin.YAML", "four_bar: {dof: 1}\n")
+    _, report = check_json(str(problems), "--answers", str(sheets))
+    assert "erin" in json.dumps(report), [s["student"] for s in report["students"]]
+
+
+def test_a_stem_shared_by_two_problem_files_is_an_ambiguous_error(tmp_path):
+    """a/hw.yaml and b/hw.yaml: `hw:` is an error row, not graded against both."""
+    _put(tmp_path / "p" / "a" / "hw.yaml", strip_answers("four_bar.yaml"))
+    _put(tmp_path / "p" / "b" / "hw.yaml", strip_answers("slider_crank.yaml"))
+    sheet = _put(tmp_path / "s.yaml", "hw: {chain: four-bar}\n")
+    _, report = check_json(str(tmp_path / "p"), "--answers", str(sheet))
+    statuses = [v["status"] for r in report["results"] for v in r["answers"]]
+    assert "error" in statuses, statuses
+
+
+def test_the_summary_counts_problem_files_not_the_sheets_error_row(problems, tmp_path):
+    """2 problem files and a sheet with an unknown entry: "in 2 files", not 3."""
+    sheet = _put(tmp_path / "s.yaml", "four_bar: {dof: 1}\nno_such_problem: {dof: 1}\n")
+    _, report = check_json(str(problems), "--answers", str(sheet))
+    assert report["summary"]["files"] == 2, report["summary"]
+
+
+def test_a_complex_yaml_key_on_a_sheet_is_reported_without_parser_internals(problems, tmp_path):
+    """`? [a, b]` once printed "[ScalarNode(tag='tag:yaml.org,2002:str', …)]"."""
+    sheet = _put(tmp_path / "w.yaml", "? [a, b]\n: {dof: 1}\nfour_bar: {dof: 1}\n")
+    _, report = check_json(str(problems), "--answers", str(sheet))
+    assert "ScalarNode" not in json.dumps(report)
+
+
+# (sheet text, the bad student's (passed, failed, errors, ignored)) of 3 questions: four_bar's
+# dof and omega.rocker, slider_crank's dof.  An unreadable sheet makes every question an error;
+# an unreadable entry its problem's questions; a problem left out is failed; a key that is no
+# question (velocity.Z, a student's tolerance, a non-text problem key) is ignored.
+HOSTILE_SHEETS = [
+    pytest.param("- four_bar\n- {dof: 1}\n", (0, 0, 3, 0), id="a-list"),
+    pytest.param("", (0, 0, 3, 0), id="empty"),
+    pytest.param("four_bar: 1\n", (0, 1, 2, 0), id="scalar-entry"),
+    pytest.param("four_bar: {velocity.Z: 1 m/s, dof: 1}\n", (1, 2, 0, 1), id="key-the-problem-lacks"),
+    pytest.param("four_bar: {dof: 1, tolerance: 50%}\n", (1, 2, 0, 1), id="student-tolerance"),
+    pytest.param("1: {dof: 1}\nnull: {dof: 1}\n", (0, 3, 0, 2), id="non-text-keys"),
+    pytest.param("four_bar: [1, 2]\n", (0, 1, 2, 0), id="list-entry"),
+]
+
+
+@pytest.mark.parametrize("text, counts", HOSTILE_SHEETS)
+def test_a_hostile_sheet_costs_only_its_student_and_the_class_goes_on(problems, tmp_path, text, counts):
+    """Each hostile sheet is rows for that student only; a good sheet beside it is graded normally."""
+    sheets = tmp_path / "sheets"
+    _put(sheets / "bad.yaml", text)
+    _put(sheets / "good.yaml", "four_bar: {dof: 1, omega.rocker: 4.785 rad/s cw}\n")
+    p, report = check_json(str(problems), "--answers", str(sheets))
+    assert p.returncode == 1
+    students = {s["student"]: s for s in report["students"]}
+    good = students["good"]
+    assert good["passed"] == 2 and good["errors"] == 0
+    bad = students["bad"]
+    assert (bad["passed"], bad["failed"], bad["errors"], bad["ignored"]) == counts, bad
+    assert rows_of(report, "bad")
+
+
+def test_gradescope_for_a_class_and_unwritable_reports_are_exit_2(problems, tmp_path):
+    """cli.md: --gradescope takes one sheet, and a report file that cannot be written is exit 2."""
+    sheets = tmp_path / "sheets"
+    _put(sheets / "a.yaml", "four_bar: {dof: 1}\n")
+    p = mech(
+        "check", str(problems), "--answers", str(sheets), "--gradescope", str(tmp_path / "g.json"), "-j", "1"
+    )
+    no_traceback(p)
+    assert p.returncode == 2
+    for opt in ("--junit", "--csv", "--gradescope"):
+        p = mech("check", str(problems / "four_bar.yaml"), opt, str(tmp_path / "no" / "dir" / "x"), "-j", "1")
+        no_traceback(p)
+        assert p.returncode == 2 and "cannot write" in p.stderr
+
+
+def test_class_reports_are_identical_with_one_and_two_jobs(problems, tmp_path):
+    """--jobs 2 (a process pool) and --jobs 1 give the same JSON, CSV and JUnit byte for byte."""
+    sheets = tmp_path / "sheets"
+    _put(sheets / "zoë <&>.yaml", "four_bar: {dof: 1, omega.rocker: 4.785 rad/s cw}\n")
+    _put(
+        sheets / "a.yaml",
+        'four_bar: {dof: 2}\n"Slider crank, Khurmi Ex. 7.2 / 8.1": {velocity.D: 3.995 m/s}\n',
+    )
+    _put(sheets / "sub" / "b.yml", "slider_crank.yaml: {omega.rod: 5.642 rad/s ccw}\n")
+    outs = []
+    for jobs in ("1", "2"):
+        x, c = tmp_path / f"{jobs}.xml", tmp_path / f"{jobs}.csv"
+        p = mech(
+            "check",
+            str(problems),
+            "--answers",
+            str(sheets),
+            "-j",
+            jobs,
+            "--json",
+            "--junit",
+            str(x),
+            "--csv",
+            str(c),
+            subprocess_=True,
+        )
+        assert p.returncode == 1 and "Traceback" not in p.stderr, p.stderr[-1000:]
+        outs.append((p.stdout, x.read_text(encoding="utf-8"), c.read_text(encoding="utf-8")))
+        ET.fromstring(outs[-1][1].encode("utf-8"))
+    assert outs[0] == outs[1]
+    report = strict_json(outs[0][0])
+    assert [s["student"] for s in report["students"]] == ["a", "sub/b", "zoë <&>"]
+
+
+def test_control_characters_from_a_sheet_leave_the_junit_file_well_formed(problems, tmp_path):
+    """A claim "four\\x01bar" or a key "four_bar\\x01" is not copied raw into XML 1.0."""
+    sheet = _put(
+        tmp_path / "ctrl.yaml", '"four_bar\\x01": {dof: 1}\nfour_bar: {chain: "four\\x01bar", dof: 1}\n'
+    )
+    out = tmp_path / "j.xml"
+    p = mech("check", str(problems), "--answers", str(sheet), "-j", "1", "--junit", str(out))
+    no_traceback(p)
+    ET.parse(out)
+
+
+def test_escape_codes_from_a_sheet_never_reach_the_teachers_terminal(problems, tmp_path):
+    """A claim "\\x1b[2J…" is shown escaped in the plain table: cli.md, no escape codes when plain."""
+    sheet = _put(tmp_path / "esc.yaml", 'four_bar: {chain: "\\e[2J\\e[31mfour-bar", dof: 1}\n')
+    p = mech("check", str(problems), "--answers", str(sheet), "-j", "1")
+    no_traceback(p)
+    assert "\x1b" not in p.stdout
