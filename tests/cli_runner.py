@@ -14,7 +14,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-__all__ = ["Run", "assert_bad_input", "mech", "no_traceback", "points", "strict_json"]
+__all__ = ["Run", "assert_bad_input", "close", "mech", "no_traceback", "points", "strict_json"]
 
 
 class Run:
@@ -104,3 +104,8 @@ def points(data: dict) -> dict[str, dict]:
     for p in data["points"]:
         out.setdefault(p["point"], p)
     return out
+
+
+def close(a: float, b: float, rel: float = 1e-9, abs_: float = 0.0) -> bool:
+    """a and b agree to ``rel`` of the larger (or to ``abs_``): numbers read back from JSON."""
+    return abs(a - b) <= max(rel * max(abs(a), abs(b)), abs_)

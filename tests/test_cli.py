@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 
+from cli_runner import mech
 from mech import __version__
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -261,3 +262,27 @@ def test_fixed_pivots_print_exactly_zero_velocity(run, name):
     for p in rows:
         assert p["velocity"] == [0.0, 0.0] and p["direction"] is None, p
         assert p["acceleration"] == [0.0, 0.0], p
+
+
+# -- as a user runs it (cli_runner: tracebacks shown) -------------------------------------
+@pytest.mark.parametrize(
+    "stdin",
+    [b"\x00\x01\x02garbage", b"\xff\xfe not utf8", b"{{{{", b"", b"[1, 2]", b'"just a string"'],
+)
+def test_garbage_on_stdin_is_exit_2_with_an_error(stdin):
+    p = mech("dof", "-", input=stdin)
+    assert p.returncode == 2 and "Traceback" not in p.stderr and "error:" in p.stderr
+
+
+@pytest.mark.parametrize("cmd", [["dof"], ["classify"], ["velocity"], ["acceleration"], ["icentres"]])
+def test_plain_output_has_no_escape_codes(cmd):
+    p = mech(*cmd, str(ROOT / "mechanisms" / "four_bar.yaml"))
+    assert p.returncode == 0
+    assert "\x1b" not in p.stdout and "\x1b" not in p.stderr
+
+
+def test_plain_errors_have_no_escape_codes(write):
+    p = mech(
+        "dof", str(write("links: [frame, crank]\njoints:\n  A: {type: revolute, links: [frame, crankk]}\n"))
+    )
+    assert "\x1b" not in p.stderr

@@ -7,9 +7,12 @@ import textwrap
 
 import pytest
 
+from cli_runner import assert_bad_input, mech, strict_json
 from mech.errors import InputError
 from mech.loader import load, loads
 from mech.model import JointType
+from mechanism_texts import GEARS
+from mechanism_texts import slider_crank as slider_crank_text
 
 FOUR_BAR = textwrap.dedent(
     """\
@@ -459,3 +462,165 @@ def test_a_file_name_with_control_characters_is_shown_escaped_in_messages(run, t
     result = run("dof", str(path))
     assert result.exit_code == 2
     assert "\x1b" not in result.stderr and "hw\\x1b[2J.yaml" in result.stderr
+
+
+# -- through the command line as a user runs it (cli_runner: crashes and tracebacks shown) --
+@pytest.mark.parametrize(
+    "units, length",
+    [("", '"1e308 km"'), ("units: {length: km}\n", "1e306"), ("", '"1e308 ft"')],
+)
+def test_a_length_that_overflows_to_infinity_in_si_is_refused(write, units, length):
+    """ "1e308 km" is finite as written but inf m: refused (once LinAlgError); cli.md refuses infinity."""
+    text = units + slider_crank_text(0.1, 0.4, 90, 10).replace("AB: 0.4", f"AB: {length}")
+    f = write(text)
+    with pytest.raises(InputError):
+        loads(text, path="m.yaml")
+    assert_bad_input(mech("velocity", str(f)), f)
+
+
+def test_an_omega_overflowing_to_infinity_is_refused(write):
+    """ω "1e308 rps" = 6.3e308 rad/s = inf: once accepted with nan velocities and exit 0."""
+    f = write(slider_crank_text(0.1, 0.4, 90, 10).replace("omega: 10", 'omega: "1e308 rps"'))
+    assert_bad_input(mech("velocity", str(f)), f)
+
+
+def test_deeply_nested_yaml_is_an_error_not_a_segfault(write):
+    """50,000 nested brackets once crashed the C YAML composer (exit -11, no message at all)."""
+    f = write(
+        "links: [frame, crank]\njoints:\n  A: {type: revolute, links: [frame, crank]}\n"
+        "description: " + "[" * 50_000 + "]" * 50_000 + "\n"
+    )
+    p = mech("dof", str(f), subprocess_=True)  # a crash of the interpreter shows only out of process
+    assert p.returncode == 2, (p.returncode, p.stderr[-500:])
+    assert "error:" in p.stderr and "Traceback" not in p.stderr
+
+
+def test_a_file_with_a_bom_and_crlf_line_ends_is_read(tmp_path):
+    f = tmp_path / "bom.yaml"
+    f.write_bytes(
+        b"\xef\xbb\xbflinks: [frame, crank]\r\njoints:\r\n  A: {type: revolute, links: [frame, crank]}\r\n"
+    )
+    p = mech("dof", "--json", str(f))
+    assert p.returncode == 0, p.stderr
+    assert strict_json(p.stdout)["dof"] == 1
+
+
+def test_an_error_in_a_crlf_file_points_at_the_right_column(tmp_path):
+    f = tmp_path / "crlf.yaml"
+    f.write_bytes(b"links: [frame, crank]\r\njoints:\r\n  A: {type: revolute, links: [frame, crankk]}\r\n")
+    p = mech("dof", str(f))
+    assert_bad_input(p, f)
+    assert f"{f}:3:38:" in p.stderr
+
+
+def test_tab_indentation_is_located_with_a_hint(write):
+    f = write("links: [frame, crank]\njoints:\n\tA: {type: revolute, links: [frame, crank]}\n")
+    p = mech("dof", str(f))
+    assert_bad_input(p, f)
+    assert f"{f}:3:1:" in p.stderr and "hint:" in p.stderr
+
+
+def test_a_second_yaml_document_is_refused_where_it_starts(write):
+    f = write(
+        "links: [frame, crank]\njoints:\n  A: {type: revolute, links: [frame, crank]}\n---\nlinks: [x]\n"
+    )
+    p = mech("dof", str(f))
+    assert_bad_input(p, f)
+    assert f"{f}:4:1:" in p.stderr
+
+
+def test_a_merge_key_is_refused(write):
+    f = write("links: [frame, crank]\njoints:\n  A: {<<: {type: revolute}, links: [frame, crank]}\n")
+    p = mech("dof", str(f))
+    assert_bad_input(p, f)
+    assert "merge" in p.stderr
+
+
+def test_an_alias_bomb_is_refused(write):
+    """Nine levels of ten aliases (10^9 nodes) are refused, exit 2, not expanded."""
+    text = "a: &a [x,x,x,x,x,x,x,x,x,x]\n"
+    for i in range(1, 9):
+        prev = chr(96 + i)
+        text += f"{chr(97 + i)}: &{chr(97 + i)} [" + ",".join([f"*{prev}"] * 10) + "]\n"
+    p = mech("dof", str(write(text)), timeout=30)
+    assert p.returncode == 2 and "Traceback" not in p.stderr
+
+
+def test_a_five_megabyte_file_is_read(write):
+    f = write(
+        "links: [frame, crank]\njoints:\n  A: {type: revolute, links: [frame, crank]}\n"
+        "description: " + "x" * 5_000_000 + "\n"
+    )
+    p = mech("dof", "--json", str(f), timeout=60)
+    assert p.returncode == 0 and strict_json(p.stdout)["dof"] == 1
+
+
+def test_every_empty_section_is_located_on_its_own_line(write):
+    """`links:` with nothing after it and the rest: one located error per line 2 to 9."""
+    f = write("name:\nunits:\nground:\nlinks:\njoints:\nlengths:\ndrive:\npoints:\nanswers:\n")
+    p = mech("dof", str(f))
+    assert_bad_input(p, f)
+    for line in range(2, 10):
+        assert f"{f}:{line}:" in p.stderr
+
+
+@pytest.mark.parametrize("name", ["cr.ank", '"my link"', "a-b", "2.5"])
+def test_an_unusable_link_name_is_located_with_a_hint(write, name):
+    f = write(f"links: [frame, {name}]\njoints:\n  A: {{type: revolute, links: [frame, {name}]}}\n")
+    p = mech("dof", str(f))
+    assert_bad_input(p, f)
+    assert "hint:" in p.stderr
+
+
+def test_unicode_names_are_read(write):
+    f = write(
+        "links: [frame, 曲柄, Kurbel_ä]\njoints:\n  Á: {type: revolute, links: [frame, 曲柄]}\n"
+        "  B: {type: revolute, links: [曲柄, Kurbel_ä]}\n  C: {type: revolute, links: [Kurbel_ä, frame]}\n"
+    )
+    p = mech("dof", "--json", str(f))
+    assert p.returncode == 0 and strict_json(p.stdout)["dof"] == 0
+
+
+def test_a_joint_listing_a_link_twice_and_a_zero_radius_are_each_located(write):
+    """Three bad joints, three located errors (lines 3, 4 and 5) in one run."""
+    f = write(
+        """\
+links: [frame, crank]
+joints:
+  D: {type: revolute, links: [frame, crank, crank]}
+  E: {type: revolute, links: [frame, frame]}
+  F: {type: revolute, links: [frame, crank], radius: 0}
+"""
+    )
+    p = mech("dof", str(f))
+    assert_bad_input(p, f)
+    assert f"{f}:3:" in p.stderr and f"{f}:4:" in p.stderr and f"{f}:5:" in p.stderr
+
+
+def test_two_ground_candidates_and_no_ground_are_refused_naming_ground(write):
+    p = mech(
+        "dof",
+        str(write("links: [frame, ground]\njoints:\n  A: {type: revolute, links: [frame, ground]}\n")),
+    )
+    assert p.returncode == 2 and "ground" in p.stderr
+    p = mech("dof", str(write("links: [a, b]\njoints:\n  A: {type: revolute, links: [a, b]}\n", "n.yaml")))
+    assert p.returncode == 2 and "ground" in p.stderr
+
+
+def test_a_length_given_as_ab_and_b_a_is_located_as_given_twice(write):
+    f = write(slider_crank_text().replace("AB: 0.4}", "AB: 0.4, B-A: 0.5}"))
+    p = mech("velocity", str(f))
+    assert_bad_input(p, f)
+    assert "twice" in p.stderr
+
+
+def test_a_zero_length_is_refused_where_written(write):
+    f = write(slider_crank_text().replace("OA: 0.1", "OA: 0"))
+    assert_bad_input(mech("velocity", str(f)), f)
+
+
+def test_gear_teeth_without_a_module_are_located_naming_module(write):
+    f = write(GEARS.format(x2=0.15, size="teeth: [20, 40]"))
+    p = mech("dof", str(f))
+    assert_bad_input(p, f)
+    assert "module" in p.stderr

@@ -13,9 +13,11 @@ from pathlib import Path
 
 import pytest
 
+from cli_runner import assert_bad_input, mech
 from mech.errors import InputError
 from mech.kinematics import solve
 from mech.loader import load, loads
+from mechanism_texts import DRAWN_FOUR_BAR
 
 FILE = Path(__file__).resolve().parents[2] / "mechanisms" / "crank_slotted_lever.yaml"
 
@@ -112,3 +114,37 @@ drive: {link: pinion, rpm: 1200, direction: cw}
         result = run(command, str(path))
         assert result.exit_code == 2, command
         assert f"{path.name}:6:3: error: O2 is on the ground link frame but not placed" in result.stderr
+
+
+# -- through the command line as a user runs it (cli_runner: tracebacks shown) -----------
+# DRAWN_FOUR_BAR draws B at 90 deg from A (at [0, 1]); AB 1, BC 2, CD 1.
+def test_a_drive_angle_opposite_to_the_drawing_is_an_error_saying_by_how_much(write):
+    """DESIGN.md: a drive angle given with a drawing must agree with it; 270 vs 90 is off by 180."""
+    f = write(DRAWN_FOUR_BAR.format(ab=1, angle=270))
+    p = mech("velocity", str(f))
+    assert p.returncode == 2, p.stdout
+    assert "180" in p.stderr
+
+
+def test_an_angle_override_does_not_excuse_a_drive_angle_opposite_to_the_drawing(write):
+    """The file contradicts itself whatever --angle asks (once B landed at 280 deg, silently)."""
+    f = write(DRAWN_FOUR_BAR.format(ab=1, angle=270))
+    p = mech("position", "--json", str(f), "--angle", "100")
+    assert_bad_input(p, f)
+    assert f"{f}:8:8:" in p.stderr and "off by 180°" in p.stderr
+    assert p.stdout == ""
+
+
+def test_a_drawing_agreeing_to_1e_7_is_accepted_and_one_off_by_1e_3_refused(write):
+    ok = mech("velocity", str(write(DRAWN_FOUR_BAR.format(ab="1.0000001", angle=90), "ok.yaml")))
+    assert ok.returncode == 0, ok.stderr
+    bad = mech("velocity", str(write(DRAWN_FOUR_BAR.format(ab="1.001", angle=90), "bad.yaml")))
+    assert bad.returncode == 2 and "0.001" in bad.stderr and "Traceback" not in bad.stderr
+
+
+def test_a_length_disagreeing_with_the_drawing_is_located_at_the_length(write):
+    """AB = 1.5 m where the drawing gives 1 m: file:line:col and the 0.5 m it is off by."""
+    f = write(DRAWN_FOUR_BAR.format(ab=1.5, angle=90))
+    p = mech("velocity", str(f))
+    assert_bad_input(p, f)
+    assert "0.5" in p.stderr

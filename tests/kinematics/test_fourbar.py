@@ -1,4 +1,4 @@
-"""Four-bar chain against the vector-loop closed form written here (not the solver's method)."""
+"""Four-bar chain against the vector-loop closed form (tests/oracles/four_bar.py, not the solver's method)."""
 
 from __future__ import annotations
 
@@ -8,35 +8,12 @@ import numpy as np
 import pytest
 from builders import build, four_bar
 
+from cli_runner import assert_bad_input, close, mech, no_traceback, points, strict_json
 from mech.errors import GeometryError, InputError
 from mech.kinematics import solve
 from mech.options import SolveOptions
-
-
-def closed_form(a, b, c, d, theta, w2, al2=0.0, upper=True):
-    """Crank AB, coupler BC, rocker CD, A=(0,0), D=(d,0): C, ω3, ω4, α3, α4 by the vector loop.
-
-    v_B + ω3 k×BC = ω4 k×DC ;  a_B + α3 k×BC − ω3² BC = α4 k×DC − ω4² DC.
-    """
-    B = np.array([a * math.cos(theta), a * math.sin(theta)])
-    D = np.array([d, 0.0])
-    f = D - B
-    L = np.hypot(*f)
-    x = (b * b - c * c + L * L) / (2 * L)
-    h = math.sqrt(b * b - x * x)
-    e = f / L
-    perp = np.array([-e[1], e[0]])
-    C = B + x * e + (h if upper else -h) * perp
-    BC, DC = C - B, C - D
-    k = lambda v: np.array([-v[1], v[0]])  # noqa: E731
-    vB = w2 * k(B)
-    M = np.column_stack([k(BC), -k(DC)])
-    w3, w4 = np.linalg.solve(M, -vB)
-    aB = al2 * k(B) - w2**2 * B
-    rhs = -(aB - w3**2 * BC + w4**2 * DC)
-    a3, a4 = np.linalg.solve(M, rhs)
-    return C, w3, w4, a3, a4
-
+from mechanism_texts import FOUR_BAR_PARALLELOGRAM
+from oracles.four_bar import four_bar as closed_form
 
 ANGLES = [0.0, 30.0, 60.0, 90.0, 145.0, 180.0, 200.0, 270.0, 333.0]
 
@@ -208,3 +185,84 @@ def test_size_is_largest_joint_distance():
     kin = solve(four_bar(), "position")
     pts = np.array(list(kin.positions.values()))
     assert kin.size == pytest.approx(max(np.hypot(*(p - q)) for p in pts for q in pts))
+
+
+# -- through mech velocity/position --json (cli_runner: tracebacks shown) ---------------------
+# AB = BC = CD = 1, AD = 2: coupler and rocker fall in line (a toggle) where |BD| = 2, cos θ = 1/4.
+EQUAL_LINKS_TOGGLE = """\
+links: [frame, crank, coupler, rocker]
+joints:
+  A: {{type: revolute, links: [frame, crank], at: [0, 0]}}
+  B: {{type: revolute, links: [crank, coupler]}}
+  C: {{type: revolute, links: [coupler, rocker], near: [1.1, 0.5]}}
+  D: {{type: revolute, links: [rocker, frame], at: [2, 0]}}
+lengths: {{AB: 1, BC: 1, CD: 1}}
+drive: {{link: crank, angle: {angle}, omega: 10}}
+"""
+
+
+def test_parallelogram_coupler_translates_and_rocker_turns_with_the_crank(write):
+    """B = 0.5 (cos 60, sin 60), v_B = ω k×B; C = B + (1, 0) moves with B."""
+    f = write(FOUR_BAR_PARALLELOGRAM)
+    p = mech("velocity", "--json", str(f))
+    assert p.returncode == 0, p.stderr
+    d = strict_json(p.stdout)
+    assert abs(d["links"]["coupler"]["omega"]) <= 1e-12 * 10
+    assert close(d["links"]["rocker"]["omega"], 10.0)
+    pts = points(d)
+    vb = (-10 * 0.5 * math.sin(math.radians(60)), 10 * 0.5 * math.cos(math.radians(60)))
+    for name in ("B", "C"):
+        assert close(pts[name]["velocity"][0], vb[0])
+        assert close(pts[name]["velocity"][1], vb[1])
+
+
+def test_velocities_exactly_at_a_toggle_are_refused_as_singular(write):
+    """At cos θ = 1/4 exactly: exit 2 naming the singular toggle, nothing on stdout."""
+    f = write(EQUAL_LINKS_TOGGLE.format(angle=60))
+    p = mech("velocity", "--json", str(f), "--angle", repr(math.degrees(math.acos(0.25))))
+    assert_bad_input(p, located=False)
+    assert "singular configuration" in p.stderr and "toggle" in p.stderr
+    assert p.stdout == ""
+
+
+@pytest.mark.parametrize("angle", ["0", "180"])
+def test_parallelogram_folded_flat_is_refused(write, angle):
+    """All four links on one line: the velocities are undetermined (once a ZeroDivisionError)."""
+    f = write(FOUR_BAR_PARALLELOGRAM)
+    p = mech("velocity", "--json", str(f), "--angle", angle)
+    assert_bad_input(p, located=False)
+    assert p.stdout == ""
+
+
+def test_velocity_near_a_toggle_after_continuation_matches_the_closed_form_branch(write):
+    """1.4e-8 deg short of the toggle, ω_coupler to 1e-6 of the loop (once 4.2e-5 off).
+
+    The branch is the file's: at the drawn 60 deg, ``near: [1.1, 0.5]`` is closer to the
+    assembly right of B→D (C = (1, 0)) than to the left one, and continuation keeps it.
+    """
+    th0, th = math.radians(60), math.radians(75.5224878)
+    branches = {up: closed_form(1, 1, 1, 2, th0, 10.0, upper=up)[0] for up in (True, False)}
+    upper = min(branches, key=lambda up: math.dist(branches[up], (1.1, 0.5)))
+    assert upper is False
+    C, w3, _w4, _, _ = closed_form(1, 1, 1, 2, th, 10.0, upper=upper)
+    f = write(EQUAL_LINKS_TOGGLE.format(angle=60))
+    p = mech("velocity", "--json", str(f), "--angle", "75.5224878")
+    no_traceback(p)
+    assert p.returncode == 0, p.stderr
+    d = strict_json(p.stdout)
+    assert abs(d["links"]["coupler"]["omega"] - w3) <= 1e-6 * abs(w3), (d["links"]["coupler"], w3)
+    assert math.dist(points(d)["C"]["position"], C) <= 1e-6
+
+
+def test_a_file_drawn_at_the_toggle_assembles_at_other_angles(write):
+    """Drive angle exactly the toggle; --angle 70 (|BD|² = 5 - 4 cos 70 < 4) puts C 1 from B and D."""
+    toggle = math.degrees(math.acos(0.25))
+    f = write(EQUAL_LINKS_TOGGLE.format(angle=repr(toggle)))
+    assert mech("position", str(f)).returncode == 0  # the toggle itself has a position
+    p = mech("position", "--json", str(f), "--angle", "70")
+    assert p.returncode == 0, p.stderr
+    pts = points(strict_json(p.stdout))
+    b, c = pts["B"]["position"], pts["C"]["position"]
+    assert math.degrees(math.atan2(b[1], b[0])) == pytest.approx(70, abs=1e-9)
+    assert math.dist(b, c) == pytest.approx(1, rel=1e-9)
+    assert math.dist(c, (2, 0)) == pytest.approx(1, rel=1e-9)

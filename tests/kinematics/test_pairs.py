@@ -8,9 +8,11 @@ import numpy as np
 import pytest
 from builders import build, four_bar, slider_crank
 
+from cli_runner import assert_bad_input, close, mech, strict_json
 from mech.errors import GeometryError, InputError, UnsupportedError
 from mech.kinematics import mobility, solve
 from mech.options import SolveOptions
+from mechanism_texts import GEARS
 
 
 def five_bar(drives):
@@ -334,3 +336,88 @@ def test_acceleration_command_reports_the_gear_pitch_point_on_each_gear(run):
     # pinion 1200 rpm, r = 50 mm: ω²r = 789.57 m/s²; wheel 600 rpm, r = 100 mm: 394.78 m/s²
     assert "789.57" in result.output and "394.78" in result.output
     assert "link=" not in result.output
+
+
+# -- through the command line as a user runs it (cli_runner: tracebacks shown) -----------
+@pytest.mark.parametrize("size", ["teeth: [20, 40], module: 5 mm", "radii: [0.05, 0.1]"])
+def test_gear_centres_that_contradict_the_pitch_radii_are_refused(write, size):
+    """Pitch radii 50 + 100 mm need centres 150 mm apart; at 300 mm the teeth would slip."""
+    f = write(GEARS.format(x2=0.3, size=size))
+    assert_bad_input(mech("velocity", str(f)), f)
+
+
+def test_consistent_gears_turn_at_the_teeth_ratio_and_the_pitch_point_moves_alike_on_both(write):
+    """Centres 150 mm apart, z 20/40: ω2 = -ω1/2; the pitch point moves at ω1 r1 on both gears."""
+    f = write(GEARS.format(x2=0.15, size="teeth: [20, 40], module: 5 mm"))
+    p = mech("velocity", "--json", str(f))
+    assert p.returncode == 0, p.stderr
+    d = strict_json(p.stdout)
+    w1 = 600 * 2 * math.pi / 60
+    assert close(d["links"]["g2"]["omega"], -w1 / 2)
+    speeds = [math.hypot(*q["velocity"]) for q in d["points"] if q["point"] == "M"]
+    assert speeds and all(close(s, w1 * 0.05) for s in speeds)
+
+
+def test_velocities_of_a_structure_are_refused(write):
+    """Three links pinned in a triangle have no motion (dof 0): nothing to drive."""
+    f = write(
+        """\
+links: [frame, a, b]
+joints:
+  A: {type: revolute, links: [frame, a], at: [0, 0]}
+  B: {type: revolute, links: [a, b], at: [1, 0]}
+  C: {type: revolute, links: [b, frame], at: [1, 1]}
+drive: {link: a, rpm: 60}
+"""
+    )
+    assert_bad_input(mech("velocity", str(f)), located=False)
+
+
+def test_a_five_bar_with_one_drive_is_refused_naming_the_drives(write):
+    """dof 2, one drive given: located, and the message speaks of drives."""
+    f = write(
+        """\
+links: [frame, a, b, c, d]
+joints:
+  A: {type: revolute, links: [frame, a], at: [0, 0]}
+  B: {type: revolute, links: [a, b]}
+  C: {type: revolute, links: [b, c], near: [1, 1.5]}
+  D: {type: revolute, links: [c, d]}
+  E: {type: revolute, links: [d, frame], at: [2, 0]}
+lengths: {AB: 1, BC: 1.2, CD: 1.2, DE: 1}
+drive: {link: a, angle: 80, rpm: 60}
+"""
+    )
+    p = mech("velocity", str(f))
+    assert_bad_input(p, f)
+    assert "drive" in p.stderr
+
+
+def test_velocities_with_a_spherical_pair_are_refused_where_it_is_written(write):
+    f = write(
+        """\
+links: [frame, a, b]
+joints:
+  A: {type: spherical, links: [frame, a], at: [0, 0]}
+  B: {type: revolute, links: [a, b], at: [1, 0]}
+drive: {link: a, rpm: 60}
+"""
+    )
+    assert_bad_input(mech("velocity", str(f)), f)
+
+
+def test_a_cam_without_a_contact_point_is_a_located_error_naming_it(write):
+    """A cam joint with no `at` once raised KeyError 'T' in constraints.build_system."""
+    f = write(
+        """\
+links: [frame, cam, follower]
+joints:
+  O: {type: revolute, links: [frame, cam], at: [0, 0]}
+  F: {type: prismatic, links: [follower, frame], path: {through: [0, 0], angle: 90}, point: T}
+  T: {type: cam, links: [cam, follower]}
+drive: {link: cam, angle: 0, rpm: 60}
+"""
+    )
+    p = mech("velocity", str(f))
+    assert_bad_input(p, f)
+    assert "T" in p.stderr

@@ -9,8 +9,10 @@ from builders import four_bar, slider_crank
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from cli_runner import close, mech, strict_json
 from mech.errors import GeometryError
 from mech.kinematics import solve
+from mechanism_texts import slider_crank as slider_crank_text
 
 angles = st.floats(min_value=0.0, max_value=2 * math.pi, allow_nan=False)
 FAST = settings(max_examples=40, deadline=None)
@@ -89,3 +91,16 @@ def test_triple_rocker_is_solved_or_refused_never_wrong(angle):
     r = (C[0] - 0.25, C[1])
     v = kin.velocity("C")
     assert v[0] * r[0] + v[1] * r[1] == pytest.approx(0.0, abs=1e-9 * math.hypot(*v))
+
+
+def test_units_mm_report_every_length_speed_and_acceleration_times_1000(write):
+    """--units mm is a change of unit only: positions, velocities, accelerations x 1000, ω alike."""
+    f = write(slider_crank_text(0.1, 0.4, 30, 10))
+    si = strict_json(mech("acceleration", "--json", str(f)).stdout)
+    mm = strict_json(mech("acceleration", "--json", "--units", "mm", str(f)).stdout)
+    for a, b in zip(si["points"], mm["points"], strict=True):
+        for key in ("position", "velocity", "acceleration"):
+            for x, y in zip(a[key], b[key], strict=True):
+                assert close(y, 1000 * x, abs_=1e-9)
+    for name in si["links"]:
+        assert si["links"][name]["omega"] == pytest.approx(mm["links"][name]["omega"], rel=1e-12, abs=1e-12)

@@ -1,4 +1,7 @@
-"""Slider crank (in-line and offset) and crank with slotted lever, against hand closed forms."""
+"""Slider crank (in-line and offset) and crank with slotted lever, against hand closed forms.
+
+The slider crank's reference is tests/oracles/slider_crank.py; the slotted lever's is worked here.
+"""
 
 from __future__ import annotations
 
@@ -10,33 +13,11 @@ from builders import slider_crank, slotted_lever
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from cli_runner import assert_bad_input, close, mech, no_traceback, points, strict_json
 from mech.kinematics import solve
 from mech.options import SolveOptions
-
-
-def slider_closed_form(r, rod, e, th, w, al=0.0):
-    """x_B = r cosθ + √(l² − (e − r sinθ)²); rod angle φ from sinφ = (e − r sinθ)/l.
-
-    With l the rod length, differentiating r sinθ + l sinφ = e and x = r cosθ + l cosφ:
-    ω₃ = −r ω cosθ / (l cosφ), v = −r ω sinθ − l ω₃ sinφ,
-    α₃ = (r ω² sinθ − r α cosθ + l ω₃² sinφ) / (l cosφ),
-    a = −r α sinθ − r ω² cosθ − l α₃ sinφ − l ω₃² cosφ.
-    """
-    s = (e - r * math.sin(th)) / rod
-    phi = math.asin(s)
-    x = r * math.cos(th) + rod * math.cos(phi)
-    w3 = -r * w * math.cos(th) / (rod * math.cos(phi))
-    v = -r * w * math.sin(th) - rod * w3 * math.sin(phi)
-    a3 = (r * w * w * math.sin(th) - r * al * math.cos(th) + rod * w3 * w3 * math.sin(phi)) / (
-        rod * math.cos(phi)
-    )
-    a = (
-        -r * al * math.sin(th)
-        - r * w * w * math.cos(th)
-        - rod * a3 * math.sin(phi)
-        - rod * w3 * w3 * math.cos(phi)
-    )
-    return x, w3, v, a3, a
+from mechanism_texts import slider_crank as slider_crank_text
+from oracles.slider_crank import slider_crank as slider_closed_form
 
 
 @pytest.mark.parametrize("e", [0.0, 0.03, -0.05])
@@ -202,3 +183,115 @@ def test_velocities_scale_with_the_lengths(k, deg, e):
     for pb, pf in zip(jb["points"], jf["points"], strict=True):
         assert (pb["speed"] == 0.0) == (pf["speed"] == 0.0)
         assert pf["speed"] / f == pytest.approx(pb["speed"], rel=1e-12, abs=1e-300)
+
+
+# -- through mech velocity/acceleration --json (cli_runner: tracebacks shown) -----------------
+# In-line slider crank r = 0.1, l = 0.4, ω = 10 rad/s ccw; closed forms worked beside each test.
+def test_inline_slider_crank_at_90_deg_rod_translates_and_slider_moves_at_omega_r(write):
+    """Crank vertical: A = (0, r), v_A = (-ω r, 0); the rod translates, so ω_rod = 0, v_B = -ω r."""
+    r, L, w = 0.1, 0.4, 10.0
+    f = write(slider_crank_text(r, L, 90, w))
+    p = mech("velocity", "--json", str(f))
+    assert p.returncode == 0, p.stderr
+    d = strict_json(p.stdout)
+    assert abs(d["links"]["rod"]["omega"]) <= 1e-12 * w
+    assert close(d["links"]["crank"]["omega"], w)
+    b = points(d)["B"]
+    assert close(b["position"][0], math.sqrt(L * L - r * r))
+    assert close(b["velocity"][0], -w * r)
+    assert abs(b["velocity"][1]) <= 1e-12 * w * r
+    assert close(abs(d["sliders"][0]["sliding"]), w * r)
+
+
+@pytest.mark.parametrize("angle, sign", [(0, -1), (180, +1)])
+def test_slider_crank_at_a_dead_centre_slider_stops_and_rod_turns_at_omega_r_over_l(write, angle, sign):
+    """At 0 deg: v_B = (0, ω r + ω3 l) must be horizontal, ω3 = -ω r / l; at 180 deg, +ω r / l."""
+    r, L, w = 0.1, 0.4, 10.0
+    f = write(slider_crank_text(r, L, angle, w))
+    p = mech("velocity", "--json", str(f))
+    assert p.returncode == 0, p.stderr
+    d = strict_json(p.stdout)
+    assert close(d["links"]["rod"]["omega"], sign * w * r / L)
+    b = points(d)["B"]
+    assert math.hypot(*b["velocity"]) <= 1e-12 * w * r
+    assert close(b["position"][0], (r + L) if angle == 0 else (L - r))
+
+
+def test_offset_slider_crank_at_0_deg_matches_the_closed_form(write):
+    """Path y = e: B = (r + √(l² - e²), e); ω3 = -ω r / √(l² - e²); v_Bx = -ω3 e."""
+    r, L, e, w = 0.1, 0.4, 0.1, 10.0
+    f = write(slider_crank_text(r, L, 0, w, offset=e))
+    p = mech("velocity", "--json", str(f))
+    assert p.returncode == 0, p.stderr
+    d = strict_json(p.stdout)
+    s = math.sqrt(L * L - e * e)
+    w3 = -w * r / s
+    assert close(d["links"]["rod"]["omega"], w3)
+    b = points(d)["B"]
+    assert close(b["position"][0], r + s)
+    assert close(b["velocity"][0], -w3 * e)
+
+
+def test_inline_slider_crank_acceleration_at_90_deg_matches_the_closed_form(write):
+    """a_A = (0, -ω² r); a_By = 0 gives α3 = ω² r / s and a_B = ω² r² / s, s = √(l² - r²)."""
+    r, L, w = 0.1, 0.4, 10.0
+    f = write(slider_crank_text(r, L, 90, w))
+    p = mech("acceleration", "--json", str(f))
+    assert p.returncode == 0, p.stderr
+    d = strict_json(p.stdout)
+    s = math.sqrt(L * L - r * r)
+    assert close(d["links"]["rod"]["alpha"], w * w * r / s)
+    assert close(points(d)["B"]["acceleration"][0], w * w * r * r / s)
+    assert close(points(d)["A"]["acceleration"][1], -w * w * r)
+
+
+def test_slider_crank_far_from_the_origin_keeps_its_velocities(write):
+    """O at (1e12, 1e12) m: |v_B| = ω r = 1 m/s at 90 deg (once 0.99976, solved from the far origin)."""
+    f = write(slider_crank_text(0.1, 0.4, 90, 10, origin=1e12))
+    p = mech("velocity", "--json", str(f))
+    no_traceback(p)
+    assert p.returncode == 0, p.stderr
+    d = strict_json(p.stdout)
+    assert close(abs(d["sliders"][0]["sliding"]), 1.0)
+
+
+def test_lengths_beyond_the_working_range_are_refused_where_written(write):
+    """Lengths 1e307 m once gave NaN velocities with exit 0; now the file is refused at the value."""
+    f = write(slider_crank_text(1e307, 4e307, 90, 10, near_x=5e307))
+    p = mech("velocity", "--json", str(f))
+    assert_bad_input(p, f)
+    assert "outside the range mech works in" in p.stderr
+    assert p.stdout == ""
+
+
+def test_velocity_directions_are_reported_in_0_to_360_deg(write):
+    """A velocity along +x with a -1e-15 y component once printed direction 360.0 (Khurmi Ex. 7.2)."""
+    f = write(
+        """\
+links: [frame, crank, rod, piston]
+joints:
+  O: {type: revolute, links: [frame, crank], at: [0, 0]}
+  A: {type: revolute, links: [crank, rod]}
+  B: {type: revolute, links: [rod, piston], near: [-700, 0]}
+  P: {type: prismatic, links: [piston, frame], path: {through: [0, 0], angle: 0}}
+units: {length: mm}
+lengths: {OA: 150, AB: 600}
+drive: {link: crank, angle: 135, rpm: 300, direction: cw}
+"""
+    )
+    p = mech("velocity", "--json", str(f))
+    assert p.returncode == 0, p.stderr
+    d = strict_json(p.stdout)
+    for q in d["points"]:
+        if q["direction"] is not None:
+            assert 0.0 <= q["direction"] < 360.0, q
+    for q in d["relative"]:
+        assert q.get("direction") is None or 0.0 <= q["direction"] < 360.0, q
+
+
+def test_a_path_the_slider_cannot_reach_is_a_located_error_with_a_hint(write):
+    """Path 1 m off a 0.5 m reach: file:line:col and a hint, as every error (cli.md)."""
+    f = write(slider_crank_text(0.1, 0.4, 90, 10, offset=1.0))
+    p = mech("velocity", str(f))
+    assert_bad_input(p, f)
+    assert "hint:" in p.stderr

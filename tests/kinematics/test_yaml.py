@@ -7,13 +7,13 @@ import math
 
 import pytest
 from rich.console import Console
-from test_fourbar import closed_form
 
 from mech.errors import GeometryError, InputError
 from mech.kinematics import solve
 from mech.loader import loads
 from mech.options import OutputUnits, SolveOptions
 from mech.render.kinematics import kinematics_json, kinematics_table
+from oracles.four_bar import four_bar as closed_form
 
 FOUR_BAR = """
 name: Four-bar chain ABCD
