@@ -1,6 +1,6 @@
 """Sweeps: extremes, dead centres, toggles and time ratios against closed forms derived here.
 
-The references are the textbook's geometry, worked in this file (not taken
+The references are the textbook's geometry, worked in tests/oracles (not taken
 from mech): the slider's travel from the collinear crank-and-rod triangles,
 the rocker's extreme angles from the law of cosines, the limit of a crank
 that cannot turn fully from |BD| = b + c, and extremes of speeds by mpmath
@@ -21,37 +21,14 @@ from hypothesis import strategies as st
 from mech.errors import InputError, UnsupportedError
 from mech.kinematics import sweep
 from mech.options import SolveOptions
+from oracles.four_bar import rocker_angle
+from oracles.slider_crank import slider_dead_centres, slider_x
 
 FAST = settings(max_examples=15, deadline=None)
 FULL = np.radians(np.linspace(0.0, 360.0, 361))
 
 
 # -- closed forms ------------------------------------------------------------------------------
-def slider_x(r, rod, e, th):
-    """Slider on y = e: x = r cosθ + √(rod² − (e − r sinθ)²) (the slider ahead of the crank)."""
-    return r * mpmath.cos(th) + mpmath.sqrt(rod**2 - (e - r * mpmath.sin(th)) ** 2)
-
-
-def slider_dead_centres(r, rod, e):
-    """Outer: O, A, B in line with A between, sin ψ = e/(rod + r); inner: crank opposite, sin ψ = e/(rod − r)."""
-    outer = math.asin(e / (rod + r))
-    inner = math.pi + math.asin(e / (rod - r))
-    return outer, inner, math.sqrt((rod + r) ** 2 - e**2), math.sqrt((rod - r) ** 2 - e**2)
-
-
-def rocker_angle(a, b, c, d, th):
-    """Direction D→C of the rocker (C above the line of the B–D diagonal, the drawn branch)."""
-    bx, by = a * mpmath.cos(th), a * mpmath.sin(th)
-    dx, dy = d - bx, -by
-    f = mpmath.sqrt(dx**2 + dy**2)
-    # apex C left of B→D at distances b from B and c from D
-    t = (b**2 - c**2 + f**2) / (2 * f)
-    h = mpmath.sqrt(b**2 - t**2)
-    cx = bx + t * dx / f - h * dy / f
-    cy = by + t * dy / f + h * dx / f
-    return mpmath.atan2(cy, cx - d)
-
-
 def speed_extreme(f, guess):
     """(θ, f(θ)) where f'(θ) = 0 near ``guess``: mpmath root of the derivative, 30 digits."""
     with mpmath.workdps(30):

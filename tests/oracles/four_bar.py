@@ -10,10 +10,12 @@ of cosines (crank and coupler in line).  Nothing of mech is used.
 from __future__ import annotations
 
 import math
+from typing import Any
 
+import mpmath
 import numpy as np
 
-__all__ = ["crank_rocker_limits", "crank_rocker_sweep", "four_bar"]
+__all__ = ["crank_rocker_limits", "crank_rocker_sweep", "four_bar", "rocker_angle"]
 
 
 def _k(v: np.ndarray) -> np.ndarray:
@@ -88,3 +90,19 @@ def crank_rocker_limits(a: float, b: float, c: float, d: float) -> tuple[float, 
     t_ext, t_fold = dac(a + b), dac(b - a) + 180.0
     alpha = t_fold - t_ext - 180.0
     return t_ext, t_fold, (180 + alpha) / (180 - alpha)
+
+
+def rocker_angle(a: float, b: float, c: float, d: float, th: Any) -> Any:
+    """Direction D→C of the rocker in mpmath (C left of B→D, the drawn branch), for exact derivatives.
+
+    The same circle intersection as :func:`four_bar`, written in mpmath so that ``mpmath.diff``
+    gives ω4/ω2 to 30 digits.
+    """
+    bx, by = a * mpmath.cos(th), a * mpmath.sin(th)
+    dx, dy = d - bx, -by
+    f = mpmath.sqrt(dx**2 + dy**2)
+    t = (b**2 - c**2 + f**2) / (2 * f)
+    h = mpmath.sqrt(b**2 - t**2)
+    cx = bx + t * dx / f - h * dy / f
+    cy = by + t * dy / f + h * dx / f
+    return mpmath.atan2(cy, cx - d)

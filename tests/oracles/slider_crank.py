@@ -11,8 +11,11 @@ Nothing of mech is used.
 from __future__ import annotations
 
 import math
+from typing import Any
 
-__all__ = ["slider_crank", "slider_dead_centres"]
+import mpmath
+
+__all__ = ["slider_crank", "slider_dead_centres", "slider_x"]
 
 
 def slider_crank(
@@ -51,3 +54,8 @@ def slider_dead_centres(r: float, rod: float, e: float) -> tuple[float, float, f
     outer = math.asin(e / (rod + r))
     inner = math.pi + math.asin(e / (rod - r))
     return outer, inner, math.sqrt((rod + r) ** 2 - e**2), math.sqrt((rod - r) ** 2 - e**2)
+
+
+def slider_x(r: float, rod: float, e: float, th: Any) -> Any:
+    """x_B = r cosθ + √(l² − (e − r sinθ)²) in mpmath (the slider ahead), for exact derivatives."""
+    return r * mpmath.cos(th) + mpmath.sqrt(rod**2 - (e - r * mpmath.sin(th)) ** 2)

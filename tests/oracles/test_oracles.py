@@ -8,11 +8,12 @@ from __future__ import annotations
 
 import math
 
+import mpmath
 import numpy as np
 import pytest
 
-from oracles.four_bar import crank_rocker_limits, crank_rocker_sweep, four_bar
-from oracles.slider_crank import slider_crank, slider_dead_centres
+from oracles.four_bar import crank_rocker_limits, crank_rocker_sweep, four_bar, rocker_angle
+from oracles.slider_crank import slider_crank, slider_dead_centres, slider_x
 from oracles.velocity_field import icentre, velocity_field
 
 # Khurmi & Gupta, *Theory of Machines*, Example 7.1: AD = 150 mm fixed, crank AB = 40 mm at
@@ -132,3 +133,18 @@ def test_velocity_field_of_a_slider_crank_agrees_with_the_closed_form():
     # the piston translates: I14 at infinity, across the path
     P, direction = icentre(field, "frame", "piston")
     assert P is None and abs(direction[1]) == pytest.approx(1.0)
+
+
+def test_mpmath_forms_agree_with_the_float_closed_forms():
+    """rocker_angle and slider_x (for mpmath.diff) against four_bar and slider_crank in floats."""
+    th = 0.7
+    C, _w3, w4, _, _ = four_bar(1.0, 3.0, 2.5, 3.0, th, 1.0)
+    assert float(rocker_angle(1.0, 3.0, 2.5, 3.0, th)) == pytest.approx(
+        math.atan2(C[1], C[0] - 3.0), abs=1e-14
+    )
+    assert float(mpmath.diff(lambda t: rocker_angle(1.0, 3.0, 2.5, 3.0, t), th)) == pytest.approx(
+        w4, rel=1e-12
+    )
+    x, _, v, _, _ = slider_crank(0.1, 0.4, 0.03, th, 1.0)
+    assert float(slider_x(0.1, 0.4, 0.03, th)) == pytest.approx(x, rel=1e-14)
+    assert float(mpmath.diff(lambda t: slider_x(0.1, 0.4, 0.03, t), th)) == pytest.approx(v, rel=1e-12)
