@@ -7,9 +7,10 @@ says what it derives and from what; ``tests/oracles/test_oracles.py`` checks the
 themselves against textbook answers, so they are trusted for a reason.
 
 - :mod:`oracles.four_bar`: the four-bar chain (positions, ω, α by the vector loop; the
-  crank-rocker's limit positions and time ratio by the law of cosines).
+  crank-rocker's limit positions and time ratio by the law of cosines; the rocker angle in
+  mpmath for derivatives to 30 digits).
 - :mod:`oracles.slider_crank`: the slider crank, in line or offset (loop equations
-  differentiated; dead centres from the collinear crank-and-rod triangles).
+  differentiated; dead centres from the collinear crank-and-rod triangles; x_B in mpmath).
 - :mod:`oracles.velocity_field`: the velocity of every link of any planar chain from its
   pin, slider and contact constraints (a linear solve), and I-centres read off that field.
 - :mod:`oracles.field_cases`: mechanisms written both as mech YAML and as those constraints.
