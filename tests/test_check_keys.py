@@ -138,3 +138,42 @@ def test_asks_reports_every_bad_key_located() -> None:
 def test_asks_must_be_a_list() -> None:
     with pytest.raises(InputError, match="asks"):
         loads(SLIDER + "asks: omega.rod\n")
+
+
+# -- I-centre names, accepted without being built ------------------------------------------------
+def _all_icentres(n: int) -> set[str]:
+    """Textbook names by hand: I13 while both numbers are single digits, I1,12 beyond (cli.md)."""
+    return {f"I{a}{b}" if b < 10 else f"I{a},{b}" for a in range(1, n + 1) for b in range(a + 1, n + 1)}
+
+
+@pytest.mark.parametrize("n", [2, 4, 9, 10, 12])
+def test_icentre_names_accept_exactly_the_textbook_names(n: int) -> None:
+    from mech.answers import names_by_kind
+
+    icpoint = names_by_kind(["frame"], ["A", "B"], ["E"], n)["icpoint"]
+    assert set(icpoint) == {"A", "B", "E"} | _all_icentres(n)
+    assert len(icpoint) == len({"A", "B", "E"} | _all_icentres(n))
+    for name in ("I31", "I11", "I0,3", f"I1,{n + 1}", "I1,2", "I", "E2"):
+        assert name not in icpoint, name
+
+
+def test_icentre_names_of_ten_thousand_links_are_not_built() -> None:
+    # 49,995,000 names: membership is decided from the name (it took 2.9 GB and a minute).
+    from mech.answers import ICentreNames, names_by_kind
+
+    icpoint = names_by_kind([], [], ["P"], 10_000)["icpoint"]
+    assert isinstance(icpoint, ICentreNames)
+    assert "I9999,10000" in icpoint and "I1,10000" in icpoint and "I12" in icpoint
+    assert "I1,10001" not in icpoint and "I10000,9999" not in icpoint
+    assert len(icpoint) == 1 + 10_000 * 9_999 // 2
+
+
+def test_a_misspelt_icentre_answer_on_a_large_file_is_refused_with_a_hint() -> None:
+    links = [f"l{i}" for i in range(1, 200)]
+    joints = "\n".join(
+        f"  J{i}: {{type: revolute, links: [{a}, {b}]}}"
+        for i, (a, b) in enumerate(zip(["frame", *links], [*links, "frame"], strict=True))
+    )
+    text = f"links: [frame, {', '.join(links)}]\njoints:\n{joints}\nanswers:\n  distance.J1.I1,300: 1\n"
+    with pytest.raises(InputError, match="names unknown point or I-centre 'I1,300'"):
+        loads(text)

@@ -46,7 +46,8 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Set as AbstractSet
 from enum import Enum
 from functools import lru_cache
 from typing import Any
@@ -65,6 +66,7 @@ __all__ = [
     "AnswerKind",
     "AtInfinity",
     "Compare",
+    "ICentreNames",
     "Undefined",
     "icentre_name",
     "names_by_kind",
@@ -271,22 +273,66 @@ _parse_cached = lru_cache(maxsize=4096)(_parse)
 
 def names_by_kind(
     links: Iterable[str], joints: Iterable[str], points: Iterable[str], n_links: int
-) -> dict[str, set[str]]:
+) -> dict[str, AbstractSet[str]]:
     """The names each placeholder kind accepts in one mechanism (for the loader's checks).
 
     ``points`` are the named points (joints are points too); I-centres are
-    named ``I12`` … for ``n_links`` links, ground first.
+    named ``I12`` … for ``n_links`` links, ground first: a lazy set
+    (:class:`ICentreNames`), since a 10,000-link file has 50 million of them.
     """
     link_names, joint_names = set(links), set(joints)
     point_names = joint_names | set(points)
-    ic = {icentre_name(a, b) for a in range(1, n_links + 1) for b in range(a + 1, n_links + 1)}
     return {
         "link": link_names,
         "joint": joint_names,
         "point": point_names,
-        "icpoint": point_names | ic,
+        "icpoint": ICentreNames(frozenset(point_names), n_links),
         "linkpoint": link_names | point_names,
     }
+
+
+class ICentreNames(AbstractSet[str]):
+    """The named points of a mechanism and its I-centres' names, without building the latter.
+
+    Membership parses the name (``I13``, ``I1,12``) and checks its numbers
+    against the number of links, so ``mech dof`` on a 10,000-link file with
+    answers no longer spends a minute and 2.9 GB naming 50 million I-centres
+    (issue 11).  Iterating still yields every name, lazily.
+    """
+
+    __slots__ = ("n_links", "points")
+
+    #: Above this many I-centres a near-miss hint looks among the named points only.
+    SUGGEST = 5_000
+
+    def __init__(self, points: frozenset[str], n_links: int) -> None:
+        self.points, self.n_links = points, n_links
+
+    def _icentre(self, name: str) -> bool:
+        pair = parse_icentre_name(name)
+        if pair is None:
+            return False
+        a, b = min(pair), max(pair)
+        return a >= 1 and b <= self.n_links and icentre_name(a, b) == name
+
+    def __contains__(self, name: object) -> bool:
+        return isinstance(name, str) and (name in self.points or self._icentre(name))
+
+    def _icentres(self) -> Iterator[str]:
+        n = self.n_links
+        return (icentre_name(a, b) for a in range(1, n + 1) for b in range(a + 1, n + 1))
+
+    def __iter__(self) -> Iterator[str]:
+        yield from self.points
+        yield from (ic for ic in self._icentres() if ic not in self.points)
+
+    def __len__(self) -> int:
+        shared = sum(1 for p in self.points if self._icentre(p))
+        return len(self.points) + self.n_links * (self.n_links - 1) // 2 - shared
+
+    def suggestions(self) -> AbstractSet[str] | Iterator[str]:
+        """What a did-you-mean hint looks among: every name, or the points alone when too many."""
+        return self if self.n_links * (self.n_links - 1) // 2 <= self.SUGGEST else self.points
 
 
 # -- built-in keys: compute functions (an: mech.check.Analysis; names: the key's names) ------

@@ -428,8 +428,16 @@ class Mechanism:
         return tuple(ground + [link for link in self.links if not link.is_ground])
 
     def joints_of(self, link: str) -> tuple[Joint, ...]:
-        """The joints a link takes part in."""
-        return tuple(j for j in self.joints if link in j.links)
+        """The joints a link takes part in (from an index made once: a link at a time over
+        every joint made classifying a 10,000-link file take 70 s)."""
+        return self.memo.get("joints_of", self._joints_by_link).get(link, ())
+
+    def _joints_by_link(self) -> dict[str, tuple[Joint, ...]]:
+        index: dict[str, list[Joint]] = {}
+        for j in self.joints:
+            for lk in dict.fromkeys(j.links):
+                index.setdefault(lk, []).append(j)
+        return {lk: tuple(js) for lk, js in index.items()}
 
     def points_of(self, link: str) -> tuple[str, ...]:
         """Names of every located thing on a link: its joints (those with a point) and points."""

@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import contextlib
 import re
+from collections.abc import Set as AbstractSet
 
 import yaml
 
-from mech.answers import KIND_LABELS, AnswerKey, Compare, key_forms, parse_key
+from mech.answers import KIND_LABELS, AnswerKey, Compare, ICentreNames, key_forms, parse_key
 from mech.loader.nodes import article, did_you_mean, text_of
 from mech.loader.reader import NodeReader, Skip
 from mech.model import Claim, Tolerance, Vec
@@ -26,7 +27,7 @@ ANSWER_KEYS = ("value", "tolerance")
 #: The file's tolerance when ``answers`` sets none.
 DEFAULT_TOLERANCE = Tolerance(0.02)
 
-Kinds = dict[str, set[str]]
+Kinds = dict[str, AbstractSet[str]]
 
 
 def read_answers(r: NodeReader, node: yaml.Node, kinds: Kinds) -> tuple[list[Claim], Tolerance]:
@@ -77,9 +78,9 @@ def _answer_key(r: NodeReader, key: str, knode: yaml.Node, kinds: Kinds) -> Answ
     for name, kind in zip(akey.names, akey.kinds, strict=False):
         if name not in kinds[kind]:
             label = KIND_LABELS.get(kind, kind)
-            raise r.problem(
-                knode, f"answer {key} names unknown {label} {name!r}", did_you_mean(name, kinds[kind])
-            )
+            choices = kinds[kind]
+            near = choices.suggestions() if isinstance(choices, ICentreNames) else choices
+            raise r.problem(knode, f"answer {key} names unknown {label} {name!r}", did_you_mean(name, near))
     if akey.kind.distinct and len(set(akey.names)) < len(akey.names):
         raise r.problem(
             knode,

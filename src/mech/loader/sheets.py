@@ -9,6 +9,7 @@ same grammar and messages as a file's own ``answers``.
 
 from __future__ import annotations
 
+from collections.abc import Set as AbstractSet
 from typing import Any
 
 import yaml
@@ -86,7 +87,7 @@ def own_tolerances(node: yaml.MappingNode, path: str) -> dict[str, Where]:
     return out
 
 
-def _kinds(mechanism: Mechanism) -> dict[str, set[str]]:
+def _kinds(mechanism: Mechanism) -> dict[str, AbstractSet[str]]:
     return names_by_kind(
         (link.name for link in mechanism.links),
         (j.name for j in mechanism.joints),
