@@ -216,6 +216,7 @@ def kinematics(request: Request, level: str, explain: bool = False) -> None:
     if explain:
         from mech.explain import explain as write_out
 
+        assert result.kinematics is not None  # solved at the level asked
         construction = write_out(result.mechanism, result.kinematics, kind=level)
     emit(
         "kinematics",

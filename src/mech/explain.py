@@ -29,10 +29,13 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from mech.errors import UnsupportedError
 from mech.model import Mechanism
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.kinematics.result import Kinematics
 
 __all__ = ["Construction", "Known", "Measured", "Step", "UnknownLine", "explain"]
 
@@ -152,7 +155,7 @@ _STEP = re.compile(
 class _Builder:
     """Walks the dyad order and writes the steps, keeping the polygon's points by label."""
 
-    def __init__(self, mech: Mechanism, kin: Any, acc: bool) -> None:
+    def __init__(self, mech: Mechanism, kin: Kinematics, acc: bool) -> None:
         self.mech, self.kin, self.acc = mech, kin, acc
         self.mark = "′" if acc else ""
         self.numbers = {link.name: i + 1 for i, link in enumerate(mech.numbered_links)}
@@ -367,6 +370,7 @@ class _Builder:
         guide = self.mech.joint(joint).links[1]
         geom = self.kin.joints[joint]
         u = geom.direction
+        assert u is not None, f"{joint} is a slider: its line of stroke is solved"
         rod = self.link_of(a, b)
         la, lb = self.label(a), self.label(b)
         k1, s1, d1 = self.rel_chain(la, rod, a, b, f"{b}1")
@@ -436,6 +440,7 @@ class _Builder:
             and self.kin.joints[j.name].point == p
         )
         u = self.kin.joints[joint.name].direction
+        assert u is not None, f"{joint.name} is a slot: its direction is solved"
         lo, lp, lpg = self.label(o), self.label(p), self.label(p, guide)
         r = _sub(self.pos(p), self.pos(o))
         known: list[Known] = []
@@ -561,7 +566,7 @@ class _Builder:
                     self.image_step(link.name, name, (n0, self.label(n0)), (n1, self.label(n1)))
 
 
-def explain(mech: Mechanism, kin: Any, *, kind: str = "velocity") -> Construction:
+def explain(mech: Mechanism, kin: Kinematics, *, kind: str = "velocity") -> Construction:
     """The velocity (or acceleration) polygon of ``mech`` at the instant solved in ``kin``, step by step.
 
     Raises

@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
 from mech.draw.config import configuration
 from mech.draw.polygon import acceleration_polygon, polygon_figure, velocity_polygon
@@ -26,6 +26,10 @@ from mech.draw.scene import Figure, Page, Text
 from mech.errors import InputError
 from mech.model import Mechanism
 from mech.options import OutputUnits
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.icentres.locate import ICentre
+    from mech.kinematics.result import Kinematics
 
 __all__ = ["FORMATS", "draw", "save"]
 
@@ -35,11 +39,11 @@ GAP = 6.0
 
 def draw(
     mech: Mechanism,
-    kin: Any,
+    kin: Kinematics,
     *,
     velocity: bool = False,
     acceleration: bool = False,
-    icentres: Iterable[Any] | None = None,
+    icentres: Iterable[ICentre] | None = None,
     units: OutputUnits | None = None,
     curves: Sequence[tuple[str, Sequence[tuple[float, float]], str]] = (),
 ) -> Figure:
@@ -88,7 +92,7 @@ def draw(
     return page.figure(mech.label)
 
 
-def _state_line(kin: Any) -> str:
+def _state_line(kin: Kinematics) -> str:
     """ "crank at 60°, 120 rpm cw" for each drive: the instant the drawing shows."""
     parts = []
     for d in getattr(kin, "drives", ()):

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from mech._records import dataclass
 from mech.draw.scene import (
@@ -37,7 +37,11 @@ from mech.draw.scene import (
     place_label,
     scale_bar,
 )
-from mech.model import JointType, Mechanism
+from mech.model import Joint, JointType, Mechanism
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.icentres.locate import ICentre
+    from mech.kinematics.result import Kinematics
 
 __all__ = ["GLYPHS", "View", "configuration", "display_name", "link_colours", "link_members"]
 
@@ -84,7 +88,7 @@ def link_colours(mech: Mechanism) -> dict[str, str]:
 
 
 def link_members(
-    mech: Mechanism, kin: Any, positions: Mapping[str, Vec] | None = None
+    mech: Mechanism, kin: Kinematics, positions: Mapping[str, Vec] | None = None
 ) -> dict[str, list[str]]:
     """Located names fixed in each link, in file order, plus the slider points it guides.
 
@@ -101,7 +105,12 @@ def link_members(
                     members[link].append(name)
     for j in mech.joints:
         geom = kin.joints.get(j.name)
-        if GLYPHS[j.type] in ("slider", "slot") and geom is not None and geom.point in pos:
+        if (
+            GLYPHS[j.type] in ("slider", "slot")
+            and geom is not None
+            and geom.point is not None
+            and geom.point in pos
+        ):
             guide = j.links[1]
             if guide != mech.ground and geom.point not in members[guide]:
                 members[guide].append(geom.point)
@@ -147,11 +156,11 @@ def fit_view(points: Iterable[Vec], room: Vec = (120.0, 90.0)) -> View:
 
 def configuration(
     mech: Mechanism,
-    kin: Any,
+    kin: Kinematics,
     *,
     positions: Mapping[str, Vec] | None = None,
     view: View | None = None,
-    icentres: Sequence[Any] = (),
+    icentres: Sequence[ICentre] = (),
     title: str = "Configuration diagram",
     room: Vec = (130.0, 95.0),
     curves: Sequence[tuple[str, Sequence[Vec], str]] = (),
@@ -228,7 +237,7 @@ def configuration(
 
 def curves_figure(
     mech: Mechanism,
-    kin: Any,
+    kin: Kinematics,
     curves: Sequence[tuple[str, Sequence[Vec], str]],
     *,
     title: str = "Coupler curves",
@@ -315,7 +324,7 @@ def _unit_factor(unit: str) -> float:
         return 1.0
 
 
-def _directions(mech: Mechanism, kin: Any, pos: Mapping[str, Vec]) -> dict[str, Vec]:
+def _directions(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec]) -> dict[str, Vec]:
     """Each path's direction in ``pos``: the solved one, turned with a moving guide."""
     out: dict[str, Vec] = {}
     for j in mech.joints:
@@ -332,7 +341,7 @@ def _directions(mech: Mechanism, kin: Any, pos: Mapping[str, Vec]) -> dict[str, 
     return out
 
 
-def _turn(kin: Any, link: str, pos: Mapping[str, Vec]) -> float:
+def _turn(kin: Kinematics, link: str, pos: Mapping[str, Vec]) -> float:
     """How far ``link`` has turned from ``kin`` to ``pos`` (from two of its points)."""
     names = [n for n, links in kin.carriers.items() if link in links and n in pos and n in kin.positions]
     if len(names) < 2:
@@ -349,7 +358,7 @@ def _page_dir(u: Vec) -> Vec:
 
 def _guides(
     mech: Mechanism,
-    kin: Any,
+    kin: Kinematics,
     pos: Mapping[str, Vec],
     tr: Transform,
     directions: Mapping[str, Vec],
@@ -362,7 +371,7 @@ def _guides(
         if GLYPHS[j.type] != "slider" or j.links[1] != mech.ground or j.name not in directions:
             continue
         point = kin.joints[j.name].point
-        if point not in pos:
+        if point is None or point not in pos:
             continue
         p, u = pos[point], directions[j.name]
         ts = [(q[0] - p[0]) * u[0] + (q[1] - p[1]) * u[1] for q in pos.values()]
@@ -449,7 +458,7 @@ def _links(
     return plates + bars
 
 
-def _ground_pivots(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform) -> list[Item]:
+def _ground_pivots(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec], tr: Transform) -> list[Item]:
     """A small triangle under each ground pivot, standing on a hatched base."""
     items: list[Item] = []
     for j in mech.joints:
@@ -463,7 +472,7 @@ def _ground_pivots(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transf
 
 def _blocks(
     mech: Mechanism,
-    kin: Any,
+    kin: Kinematics,
     pos: Mapping[str, Vec],
     tr: Transform,
     directions: Mapping[str, Vec],
@@ -475,7 +484,7 @@ def _blocks(
         if j.name not in directions:
             continue
         point = kin.joints[j.name].point
-        if point not in pos:
+        if point is None or point not in pos:
             continue
         c = tr(pos[point])
         du = _page_dir(directions[j.name])
@@ -502,7 +511,7 @@ def _blocks(
 
 
 def _contacts(
-    mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform, *, frame: bool = False
+    mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec], tr: Transform, *, frame: bool = False
 ) -> list[Item]:
     """Higher pairs at the drawn instant: pitch circles of gears, the common normal of cams."""
     items: list[Item] = []
@@ -568,7 +577,7 @@ def _contacts(
 
 
 def _profiles(
-    mech: Mechanism, kin: Any, j: Any, pos: Mapping[str, Vec], tr: Transform, *, frame: bool = False
+    mech: Mechanism, kin: Kinematics, j: Joint, pos: Mapping[str, Vec], tr: Transform, *, frame: bool = False
 ) -> list[Item]:
     """Each link's profile where it is now: a circle about its centre, a flat face along the
     tangent at the contact, a closed curve (a cam's surface) carried with its link.
@@ -616,7 +625,7 @@ def _profiles(
     return items
 
 
-def _carried(mech: Mechanism, kin: Any, link: str) -> Any:
+def _carried(mech: Mechanism, kin: Kinematics, link: str) -> Any:
     """A function taking a point of ``link`` as drawn to where the link has carried it in ``kin``."""
     if link == mech.ground:
         return lambda p: p
@@ -643,7 +652,7 @@ def _carried(mech: Mechanism, kin: Any, link: str) -> Any:
     return move
 
 
-def _profile_list(mech: Mechanism, kin: Any, j: Any, contact: Vec | None) -> list[tuple[str, Any]]:
+def _profile_list(mech: Mechanism, kin: Kinematics, j: Joint, contact: Vec | None) -> list[tuple[str, Any]]:
     """The profiles to draw: given, a cam programme's, or a rolling pair's ``radii`` (circles about each pin)."""
     from mech.model import Ref
     from mech.pairs.specs import Circle as CircleProfile
@@ -668,7 +677,7 @@ def _profile_list(mech: Mechanism, kin: Any, j: Any, contact: Vec | None) -> lis
     return out
 
 
-def _follower_rods(mech: Mechanism, kin: Any, pos: Mapping[str, Vec]) -> list[tuple[str, Vec, Vec]]:
+def _follower_rods(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec]) -> list[tuple[str, Vec, Vec]]:
     """Followers known only by a contact and a guide: (link, tip, far end) of a rod along the guide.
 
     The rod is half the mechanism's size long and leaves the cam, as a
@@ -698,6 +707,8 @@ def _follower_rods(mech: Mechanism, kin: Any, pos: Mapping[str, Vec]) -> list[tu
             if guide is None:
                 continue
             u = kin.joints[guide.name].direction
+            if u is None:  # a guide without a direction solved: nothing to draw along
+                continue
             tip = pos[j.name]
             other = next((lk for lk in j.links if lk != link), None)
             pivot = _pivot_of(mech, other, pos) if other else None
@@ -707,7 +718,9 @@ def _follower_rods(mech: Mechanism, kin: Any, pos: Mapping[str, Vec]) -> list[tu
     return out
 
 
-def _follower(mech: Mechanism, kin: Any, link: str, tip: Vec, tr: Transform, colour: str) -> list[Item]:
+def _follower(
+    mech: Mechanism, kin: Kinematics, link: str, tip: Vec, tr: Transform, colour: str
+) -> list[Item]:
     """The rod of a knife-edge follower, with its guide hatched on both sides."""
     for name, t, end in _follower_rods(mech, kin, kin.positions):
         if name != link or t != tip:
@@ -735,7 +748,9 @@ def _contact_partners(mech: Mechanism, link: str) -> list[str]:
     ]
 
 
-def _circle_extents(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], *, frame: bool = False) -> list[Vec]:
+def _circle_extents(
+    mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec], *, frame: bool = False
+) -> list[Vec]:
     """Corners of the boxes round gears' pitch circles, so the view holds them."""
     out: list[Vec] = []
     for j in mech.joints:
@@ -769,7 +784,7 @@ def _pivot_of(mech: Mechanism, link: str, pos: Mapping[str, Vec]) -> Vec | None:
 
 
 def _drive_arrows(
-    mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform, labels: Sequence[Text] = ()
+    mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec], tr: Transform, labels: Sequence[Text] = ()
 ) -> list[Item]:
     """A curved arrow round each driven pivot showing the sense of ω, as the notes draw it."""
     items: list[Item] = []
@@ -814,7 +829,7 @@ def _drive_arrows(
     return items
 
 
-def _pins_and_points(mech: Mechanism, kin: Any, pos: Mapping[str, Vec], tr: Transform) -> list[Item]:
+def _pins_and_points(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec], tr: Transform) -> list[Item]:
     """An open circle for every pin (revolute joint, or slot pin), a dot for every named point."""
     items: list[Item] = []
     pins = set()

@@ -10,9 +10,12 @@ writes out.
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING
 
 from mech.draw.scene import INK, Circle, Figure, Line, Page, Style, Text
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.icentres.locate import ICentres
 
 __all__ = ["circle_diagram"]
 
@@ -20,7 +23,7 @@ R = 32.0  # circle radius, mm
 MARGIN = 22.0
 
 
-def circle_diagram(ics: Any, *, title: str = "Kennedy's circle diagram") -> Figure:
+def circle_diagram(ics: ICentres, *, title: str = "Kennedy's circle diagram") -> Figure:
     """The circle diagram of located I-centres (:func:`mech.icentres.locate`)."""
     n = len(ics.links)
     cx = cy = MARGIN + R

@@ -16,10 +16,14 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
 from mech._records import dataclass
 from mech.draw.raster import DPI, use_matplotlib
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.kinematics.result import Kinematics
+    from mech.model import Mechanism
 
 __all__ = ["Series", "animate", "extremes", "sweep_plot"]
 
@@ -129,8 +133,8 @@ def sweep_plot(
 
 def animate(
     path: str | Path,
-    mech: Any,
-    kin: Any,
+    mech: Mechanism,
+    kin: Kinematics,
     frames: Sequence[Mapping[str, Vec]],
     *,
     fps: int = 24,

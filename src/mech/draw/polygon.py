@@ -31,7 +31,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING
 
 from mech._records import dataclass
 from mech.draw.config import display_name, link_colours, link_members
@@ -53,9 +53,12 @@ from mech.draw.scene import (
     scale_bar,
     text_box,
 )
-from mech.model import Mechanism
+from mech.model import Joint, Mechanism
 from mech.options import OutputUnits
 from mech.units import unit_factor
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.kinematics.result import Kinematics
 
 __all__ = ["Image", "PolygonData", "Vector", "acceleration_polygon", "polygon_figure", "velocity_polygon"]
 
@@ -137,17 +140,17 @@ def _numbers(mech: Mechanism) -> dict[str, int]:
     return {link.name: i + 1 for i, link in enumerate(mech.numbered_links)}
 
 
-def velocity_polygon(mech: Mechanism, kin: Any) -> PolygonData:
+def velocity_polygon(mech: Mechanism, kin: Kinematics) -> PolygonData:
     """The velocity polygon of ``mech`` at the instant solved in ``kin`` (velocity level or more)."""
     return _build(mech, kin, "velocity")
 
 
-def acceleration_polygon(mech: Mechanism, kin: Any) -> PolygonData:
+def acceleration_polygon(mech: Mechanism, kin: Kinematics) -> PolygonData:
     """The acceleration polygon, with normal/tangential (and Coriolis) components drawn."""
     return _build(mech, kin, "acceleration")
 
 
-def _build(mech: Mechanism, kin: Any, kind: str) -> PolygonData:
+def _build(mech: Mechanism, kin: Kinematics, kind: str) -> PolygonData:
     acc = kind == "acceleration"
     mark = PRIME if acc else ""
     numbers = _numbers(mech)
@@ -167,10 +170,15 @@ def _build(mech: Mechanism, kin: Any, kind: str) -> PolygonData:
     images: dict[str, Image] = {}
     order: list[str] = []
     link_keys: dict[str, list[str]] = {link.name: [] for link in mech.links}
-    guided = {}
+    guided: dict[tuple[str, str], Joint] = {}
     for j in mech.joints:
         geom = kin.joints.get(j.name)
-        if j.type.kind.role == "path" and geom is not None and j.links[1] != ground:
+        if (
+            j.type.kind.role == "path"
+            and geom is not None
+            and geom.point is not None
+            and j.links[1] != ground
+        ):
             guided[(geom.point, j.links[1])] = j
     for link in mech.links:
         for name in members[link.name]:
@@ -316,7 +324,7 @@ def _fixed_point(names: list[str], ground_names: list[str]) -> str:
 
 
 def _components(
-    kin: Any,
+    kin: Kinematics,
     link: str,
     p: str | None,
     q: str | None,

@@ -47,6 +47,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from rich.console import Console
 
     from mech.analysis import Result
+    from mech.explain import Construction
     from mech.options import OutputUnits
     from mech.topology import Topology
 
@@ -140,7 +141,9 @@ def classify_table(topology: Topology, *, echo: Echo) -> None:
     classify_tables(topology, _console())
 
 
-def kinematics_json(result: Result, *, echo: Echo, units: OutputUnits, construction: Any = None) -> None:
+def kinematics_json(
+    result: Result, *, echo: Echo, units: OutputUnits, construction: Construction | None = None
+) -> None:
     """``mech position|velocity|acceleration --json`` (with ``construction`` under ``--explain``)."""
     from mech.render.kinematics import kinematics_json as record_of
 
@@ -153,7 +156,9 @@ def kinematics_json(result: Result, *, echo: Echo, units: OutputUnits, construct
     _json(echo, record)
 
 
-def kinematics_table(result: Result, *, echo: Echo, units: OutputUnits, construction: Any = None) -> None:
+def kinematics_table(
+    result: Result, *, echo: Echo, units: OutputUnits, construction: Construction | None = None
+) -> None:
     """``mech position|velocity|acceleration``: the tables, then the construction written out."""
     from mech.render.kinematics import kinematics_table as tables
 

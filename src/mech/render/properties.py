@@ -11,7 +11,9 @@ from typing import TYPE_CHECKING, Any
 from mech.units import to_unit
 
 if TYPE_CHECKING:  # pragma: no cover
+    from mech.options import OutputUnits
     from mech.properties.grashof import FourBarLoop, SliderCrankLoop
+    from mech.properties.summary import LinkageProperties
 
 
 def _len(value: float, unit: str) -> str:
@@ -109,7 +111,9 @@ def _crank_deg(rad: float) -> float:
     return math.degrees(rad) % 360.0
 
 
-def properties_dict(props: Any, *, units: Any, file: str | None = None) -> dict[str, Any]:
+def properties_dict(
+    props: LinkageProperties, *, units: OutputUnits, file: str | None = None
+) -> dict[str, Any]:
     """``mech properties --json``: keys named as the answer keys (angles in degrees, lengths in ``units``)."""
     length = units.length
     out: dict[str, Any] = {
@@ -195,7 +199,7 @@ def properties_dict(props: Any, *, units: Any, file: str | None = None) -> dict[
     return out
 
 
-def properties_table(props: Any, console: Any, *, units: Any) -> None:
+def properties_table(props: LinkageProperties, console: Any, *, units: OutputUnits) -> None:
     """``mech properties``: Grashof worked, transmission angle, limit positions, strokes, time ratio."""
     from rich.table import Table
     from rich.text import Text
@@ -256,7 +260,7 @@ def properties_table(props: Any, console: Any, *, units: Any) -> None:
         console.print(f"  time ratio (slow / fast stroke of {d['time_ratio_output']}): {d['time_ratio']:.6g}")
 
 
-def _advantage_tables(props: Any, d: dict[str, Any], console: Any) -> None:
+def _advantage_tables(props: LinkageProperties, d: dict[str, Any], console: Any) -> None:
     """Mechanical advantage three ways, the I-centre ratio written out, and the input effort."""
     from rich.table import Table
     from rich.text import Text
