@@ -26,7 +26,6 @@ IN_FLIGHT: dict[str, str] = {
     "render/cam.py:cam_table": "pipeline: render/ typed and emitters registered (issue 14 part 1)",
     "render/kinematics.py:kinematics_table": "pipeline: render/ typed and emitters registered (issue 14 part 1)",
     "render/kinematics.py:kinematics_json": "pipeline: render/ typed and emitters registered (issue 14 part 1)",
-    "render/properties.py:properties_dict": "pipeline: render/ typed and emitters registered (issue 14 part 1)",
     "draw/polygon.py:_build": "pipeline: draw/ takes typed results (issue 14 part 1)",
     "draw/polygon.py:polygon_figure": "pipeline: draw/ takes typed results (issue 14 part 1)",
     "draw/cam.py:profile_figure": "pipeline: draw/ takes typed results (issue 14 part 1)",

@@ -12,6 +12,7 @@ from mech.units import to_unit
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.options import OutputUnits
+    from mech.properties.cycle import Cycle
     from mech.properties.grashof import FourBarLoop, SliderCrankLoop
     from mech.properties.summary import LinkageProperties
 
@@ -115,6 +116,9 @@ def properties_dict(
     props: LinkageProperties, *, units: OutputUnits, file: str | None = None
 ) -> dict[str, Any]:
     """``mech properties --json``: keys named as the answer keys (angles in degrees, lengths in ``units``)."""
+    from mech.properties.grashof import FourBarLoop
+    from mech.properties.keys import main_loop
+
     length = units.length
     out: dict[str, Any] = {
         "file": file,
@@ -122,42 +126,57 @@ def properties_dict(
         "units": {"length": length, "angle": "deg"},
     }
     out["loops"] = [loop_dict(loop) for loop in props.loops]
-    from mech.properties.grashof import FourBarLoop
-    from mech.properties.keys import main_loop
-
     drive = props.transmission.driver if props.transmission else None
     main = main_loop(props.loops, drive)
     out["grashof"] = main.kind if isinstance(main, FourBarLoop) else None
+    out["transmission_angle"] = _transmission_dict(props)
+    if props.cycle is not None:
+        out.update(_cycle_dict(props.cycle, length))
+    out["cycle_error"] = props.cycle_error
+    out.update(_advantage_dict(props))
+    out["advantage_error"] = props.advantage_error
+    return out
+
+
+def _transmission_dict(props: LinkageProperties) -> dict[str, Any] | None:
+    """The transmission angle now, and its least and greatest over the cycle with their crank angles."""
     t, c = props.transmission, props.cycle
-    if t is not None:
-        out["transmission_angle"] = {
-            "value": _deg(props.mu),
-            "at": t.joint,
-            "between": [t.coupler, t.output],
-            "angle": [t.coupler_joint, t.joint, t.pivot],
-            "min": _deg(c.mu_min) if c else None,
-            "min_crank_angle": _crank_deg(c.mu_min_angle) if c and c.mu_min_angle is not None else None,
-            "max": _deg(c.mu_max) if c else None,
-            "max_crank_angle": _crank_deg(c.mu_max_angle) if c and c.mu_max_angle is not None else None,
-        }
-    else:
-        out["transmission_angle"] = None
-    if c is not None:
-        out["stroke"] = {
+    if t is None:
+        return None
+    return {
+        "value": _deg(props.mu),
+        "at": t.joint,
+        "between": [t.coupler, t.output],
+        "angle": [t.coupler_joint, t.joint, t.pivot],
+        "min": _deg(c.mu_min) if c else None,
+        "min_crank_angle": _crank_deg(c.mu_min_angle) if c and c.mu_min_angle is not None else None,
+        "max": _deg(c.mu_max) if c else None,
+        "max_crank_angle": _crank_deg(c.mu_max_angle) if c and c.mu_max_angle is not None else None,
+    }
+
+
+def _cycle_dict(c: Cycle, length: str) -> dict[str, Any]:
+    """What the cycle gives: strokes, time ratio, limit positions, the links that turn fully."""
+
+    def value(v: float, unit: str) -> float:
+        return to_unit(v, length) if unit == "m" else math.degrees(v)
+
+    return {
+        "stroke": {
             j: {
                 "subject": s.subject,
-                "value": to_unit(s.value, length) if s.unit == "m" else math.degrees(s.value),
+                "value": value(s.value, s.unit),
                 "unit": length if s.unit == "m" else "deg",
-                "low": to_unit(s.low, length) if s.unit == "m" else math.degrees(s.low),
+                "low": value(s.low, s.unit),
                 "low_crank_angle": _crank_deg(s.low_angle),
-                "high": to_unit(s.high, length) if s.unit == "m" else math.degrees(s.high),
+                "high": value(s.high, s.unit),
                 "high_crank_angle": _crank_deg(s.high_angle),
             }
             for j, s in c.strokes.items()
-        }
-        out["time_ratio"] = c.time_ratio
-        out["time_ratio_output"] = c.time_ratio_output
-        out["limit_positions"] = [
+        },
+        "time_ratio": c.time_ratio,
+        "time_ratio_output": c.time_ratio_output,
+        "limit_positions": [
             {
                 "output": lp.output,
                 "crank_angle": _crank_deg(lp.crank_angle),
@@ -165,27 +184,31 @@ def properties_dict(
                 "unit": length if lp.unit == "m" else "deg",
             }
             for lp in c.limits
-        ]
-        out["turns_fully_at"] = list(c.turning)
-    out["cycle_error"] = props.cycle_error
-    out["mechanical_advantage"] = {
-        a.output: {
-            "value": a.value,
-            "unit": a.unit,
-            "kind": a.kind,
-            "driver": a.driver,
-            "velocity_ratio": a.velocity_ratio,
-            "by_icentres": a.by_icentres,
-            "by_virtual_work": a.by_virtual_work,
-            "construction": a.construction,
-        }
-        for a in props.advantages
+        ],
+        "turns_fully_at": list(c.turning),
     }
+
+
+def _advantage_dict(props: LinkageProperties) -> dict[str, Any]:
+    """Mechanical advantage of each output, and the input torque or force the loads ask for."""
     e = props.effort
-    out["input_torque"] = e.value if e is not None and e.kind == "torque" else None
-    out["input_force"] = e.value if e is not None and e.kind == "force" else None
-    out["input_effort"] = (
-        None
+    return {
+        "mechanical_advantage": {
+            a.output: {
+                "value": a.value,
+                "unit": a.unit,
+                "kind": a.kind,
+                "driver": a.driver,
+                "velocity_ratio": a.velocity_ratio,
+                "by_icentres": a.by_icentres,
+                "by_virtual_work": a.by_virtual_work,
+                "construction": a.construction,
+            }
+            for a in props.advantages
+        },
+        "input_torque": e.value if e is not None and e.kind == "torque" else None,
+        "input_force": e.value if e is not None and e.kind == "force" else None,
+        "input_effort": None
         if e is None
         else {
             "driver": e.driver,
@@ -193,10 +216,8 @@ def properties_dict(
             "value": e.value,
             "by_virtual_work": e.by_virtual_work,
             "terms": {name: -t for name, t in e.terms},
-        }
-    )
-    out["advantage_error"] = props.advantage_error
-    return out
+        },
+    }
 
 
 def properties_table(props: LinkageProperties, console: Any, *, units: OutputUnits) -> None:
