@@ -286,3 +286,134 @@ def test_plain_errors_have_no_escape_codes(write):
         "dof", str(write("links: [frame, crank]\njoints:\n  A: {type: revolute, links: [frame, crankk]}\n"))
     )
     assert "\x1b" not in p.stderr
+
+
+def _main_exit(argv: list[str], *, via_click: bool = False) -> int:
+    """Run the console script's entry point (or click's half of it) in-process; its exit status."""
+    from mech.cli import main as click_main
+    from mech.entry import main
+
+    with pytest.raises(SystemExit) as info:
+        (click_main if via_click else main)(argv)
+    return int(info.value.code or 0)
+
+
+def test_a_bug_exits_70_with_one_line_on_how_to_report_it(monkeypatch, capsys):
+    import mech.loader
+
+    def broken(*args, **kwargs):
+        raise ZeroDivisionError("float division by zero")
+
+    monkeypatch.setattr(mech.loader, "load", broken)
+    monkeypatch.delenv("MECH_DEBUG", raising=False)
+    for args, via_click in (
+        (["dof", FOUR_BAR], False),
+        (["dof", FOUR_BAR], True),
+        (["sweep", FOUR_BAR], False),
+    ):
+        assert _main_exit(args, via_click=via_click) == 70
+        err = capsys.readouterr().err
+        assert err.startswith("mech: internal error at ")
+        assert "ZeroDivisionError: float division by zero" in err
+        assert "bug in mech" in err and "MECH_DEBUG=1" in err and "--debug" in err
+        assert "Traceback" not in err
+        assert len(err.strip().splitlines()) == 2  # the line, and how to report it
+
+
+def test_exit_statuses_of_the_entry_point_are_the_documented_ones():
+    from mech import entry
+    from mech.commands import ExitStatus
+
+    assert (entry.INTERNAL_ERROR, entry.INTERRUPTED, entry.PIPE_CLOSED) == (
+        ExitStatus.INTERNAL_ERROR,
+        ExitStatus.INTERRUPTED,
+        ExitStatus.PIPE_CLOSED,
+    )
+    doc = (ROOT / "cli.md").read_text(encoding="utf-8")
+    section = doc.split("### Exit statuses", 1)[1].split("\n### ", 1)[0]
+    for status in ExitStatus:
+        assert f"| {int(status)} |" in section, status
+
+
+def test_mech_debug_shows_a_bugs_traceback(monkeypatch, capsys):
+    import mech.loader
+
+    monkeypatch.setattr(mech.loader, "load", lambda *a, **k: 1 / 0)
+    monkeypatch.setenv("MECH_DEBUG", "1")
+    assert _main_exit(["dof", FOUR_BAR]) == 70
+    assert "Traceback" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("via_click", [False, True])
+def test_debug_option_shows_a_bugs_traceback(monkeypatch, capsys, via_click):
+    import mech.loader
+
+    monkeypatch.setattr(mech.loader, "load", lambda *a, **k: 1 / 0)
+    monkeypatch.delenv("MECH_DEBUG", raising=False)
+    assert _main_exit(["--debug", "velocity", FOUR_BAR], via_click=via_click) == 70
+    err = capsys.readouterr().err
+    assert "Traceback" in err and "ZeroDivisionError" in err
+
+
+def test_an_interrupt_exits_130_with_one_line(monkeypatch, capsys):
+    import mech.loader
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(mech.loader, "load", interrupted)
+    for args in (["dof", FOUR_BAR], ["velocity", FOUR_BAR], ["sweep", FOUR_BAR], ["icentres", FOUR_BAR]):
+        assert _main_exit(args) == 130
+        err = capsys.readouterr().err
+        assert err == "mech: interrupted\n"
+
+
+def test_the_entry_point_keeps_each_commands_own_status(capsys, tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(BAD, encoding="utf-8")
+    assert _main_exit(["dof", FOUR_BAR]) == 0
+    assert _main_exit(["dof", str(bad)]) == 2
+    assert _main_exit(["dof", "--no-such-option"]) == 2
+    assert "No such option" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["dof", FOUR_BAR],
+        ["velocity", FOUR_BAR],
+        ["velocity", FOUR_BAR, "--json"],
+        ["sweep", FOUR_BAR],
+        ["icentres", FOUR_BAR, "--units", "mm"],
+        ["check", FOUR_BAR],
+    ],
+)
+def test_a_reader_that_has_closed_the_pipe_gives_141_and_no_message(args):
+    """As for ``seq 1000000 | head -1``: 141, not 1 (which means a check failed).
+
+    The pipe's reading end is closed before mech starts, so its first write finds
+    the reader gone, whatever the machine's speed.
+    """
+    read, write = os.pipe()
+    os.close(read)
+    try:
+        result = subprocess.run(
+            [sys.executable, "-m", "mech", *args],
+            stdout=write,
+            stderr=subprocess.PIPE,
+            env={**os.environ, "NO_COLOR": "1"},
+            check=False,
+        )
+    finally:
+        os.close(write)
+    assert result.returncode == 141
+    assert result.stderr == b""
+
+
+def test_output_to_an_ascii_only_stream_spells_the_symbols_out():
+    """A Windows console or a C-locale redirect: omega and deg, never UnicodeEncodeError."""
+    result = _run_subprocess("-m", "mech", "velocity", FOUR_BAR, env={"PYTHONIOENCODING": "ascii"})
+    assert result.returncode == 0, result.stderr
+    assert "omega = 12.566 rad/s" in result.stdout
+    assert "60.000 deg" in result.stdout
+    result.stdout.encode("ascii")

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import re
 
-__all__ = ["INVISIBLE", "NOT_XML", "visible", "xml_safe"]
+__all__ = ["INVISIBLE", "NOT_XML", "register_ascii_fallback", "visible", "xml_safe"]
 
 # C0 controls but tab and newline, DEL, the C1 controls (CSI and friends), and the
 # invisible format characters that reorder or hide text: Arabic letter mark, zero-width
@@ -49,3 +49,74 @@ def xml_safe(document: str) -> str:
     drawings importing the report (:mod:`mech.render.safe` re-exports it).
     """
     return NOT_XML.sub(_escape, document)
+
+
+# how mech's own symbols are spelt where the output cannot encode them
+_SPELLINGS = {
+    "θ": "theta",
+    "ω": "omega",
+    "α": "alpha",
+    "φ": "phi",
+    "ψ": "psi",
+    "γ": "gamma",
+    "β": "beta",
+    "μ": "u",
+    "Δ": "delta",
+    "Σ": "sum",
+    "π": "pi",
+    "ρ": "rho",
+    "τ": "tau",
+    "σ": "sigma",
+    "°": " deg",
+    "−": "-",
+    "–": "-",
+    "—": "--",
+    "·": "*",
+    "×": "x",
+    "²": "^2",
+    "³": "^3",
+    "′": "'",
+    "″": "''",
+    "→": "->",
+    "←": "<-",
+    "≈": "~",
+    "≤": "<=",
+    "≥": ">=",
+    "≠": "!=",
+    "⟂": "perp",
+    "∠": "angle ",
+    "∞": "inf",
+    "…": "...",
+    "│": "|",
+    "─": "-",
+    "━": "-",
+    "┃": "|",
+}
+
+
+def _spell(error: UnicodeError) -> tuple[str, int]:
+    if not isinstance(error, UnicodeEncodeError):
+        raise error
+    chunk = error.object[error.start : error.end]
+    out = []
+    for ch in chunk:
+        spelt = _SPELLINGS.get(ch)
+        out.append(
+            spelt
+            if spelt is not None
+            else (
+                f"\\x{ord(ch):02x}"
+                if ord(ch) < 0x100
+                else f"\\u{ord(ch):04x}"
+                if ord(ch) < 0x10000
+                else f"\\U{ord(ch):08x}"
+            )
+        )
+    return "".join(out), error.end
+
+
+def register_ascii_fallback() -> None:
+    """Register the ``mech-spell`` codec error handler: symbols spelt out, the rest escaped."""
+    import codecs
+
+    codecs.register_error("mech-spell", _spell)

@@ -2,7 +2,8 @@
 
 This module imports click and nothing heavy: numpy and rich are imported inside
 the commands that need them, so ``mech dof`` over a folder starts fast.
-Exit status: 0 success, 1 a failed check, 2 bad input or usage.
+Exit status: 0 success, 1 a failed check, 2 bad input or usage, 70 a bug, 130 interrupted,
+141 the reader closed the pipe (cli.md, "Exit status").
 """
 
 from __future__ import annotations
@@ -32,8 +33,32 @@ json_option = click.option(
 )
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+class _PastClick(Exception):
+    """A closed pipe or an interrupt, carried past click's main (see :func:`run_click`)."""
+
+    def __init__(self, original: BaseException) -> None:
+        super().__init__(original)
+        self.original = original
+
+
+class _Group(click.Group):
+    def invoke(self, ctx: click.Context) -> Any:
+        try:
+            return super().invoke(ctx)
+        except (BrokenPipeError, KeyboardInterrupt) as exc:
+            raise _PastClick(exc) from None
+
+
+@click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, "-V", "--version", prog_name="mech", message="%(prog)s %(version)s")
+@click.option(
+    "--debug",
+    is_flag=True,
+    expose_value=False,
+    is_eager=True,
+    callback=lambda ctx, param, value: _debug(value),
+    help="Show the traceback of a bug in mech (as MECH_DEBUG=1 does).",
+)
 def cli() -> None:
     """Analyse planar mechanisms described in YAML.
 
@@ -45,6 +70,14 @@ def cli() -> None:
 
     FILE defaults to mechanism.yaml in this folder; - reads standard input.
     """
+
+
+def _debug(on: bool) -> None:
+    """``mech --debug …``: a bug's traceback is shown (read by :func:`mech.entry.guarded`)."""
+    if on:
+        import os
+
+        os.environ["MECH_DEBUG"] = "1"
 
 
 # -- counting -------------------------------------------------------------------------
@@ -724,8 +757,36 @@ def cam_command(
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    """Entry point of the ``mech`` console script and ``python -m mech``."""
-    cli.main(args=list(argv) if argv is not None else None, prog_name="mech")
+    """Run a command line through click, with every way out given its own status.
+
+    The console script is :func:`mech.entry.main`; this is its click half, also
+    callable on its own (tests, scripts).  See :func:`mech.entry.guarded`.
+    """
+    from mech.entry import guarded, prepare
+
+    args = prepare(sys.argv[1:] if argv is None else argv)
+    guarded(lambda: run_click(args))
+
+
+def run_click(args: list[str]) -> None:
+    """Parse ``args`` with click and run the command; exit with its status.
+
+    click's standalone mode would turn a closed pipe (EPIPE) into status 1 — a
+    failed check's — and ^C into "Aborted!" with status 1; here a closed pipe
+    and an interrupt leave as :class:`BrokenPipeError` and
+    :class:`KeyboardInterrupt` for :func:`mech.entry.guarded` to answer, and
+    usage errors keep click's message and status 2.
+    """
+    try:
+        status = cli.main(args=args, prog_name="mech", standalone_mode=False)
+    except _PastClick as carried:
+        raise carried.original from None
+    except click.exceptions.Abort:  # ^C at a prompt, or click's own wrapping of it
+        raise KeyboardInterrupt from None
+    except click.ClickException as error:
+        error.show()
+        sys.exit(error.exit_code)
+    sys.exit(status if isinstance(status, int) else 0)
 
 
 if __name__ == "__main__":  # pragma: no cover

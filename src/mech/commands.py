@@ -45,11 +45,16 @@ DEFAULT_FILE = "mechanism.yaml"
 
 
 class ExitStatus(IntEnum):
-    """What ``mech`` returns to the shell."""
+    """What ``mech`` returns to the shell (cli.md, "Exit statuses"); no other status is returned."""
 
     OK = 0
     CHECK_FAILED = 1
     BAD_INPUT = 2
+    # sysexits.h's EX_SOFTWARE: a bug in mech, never confused with a failed check or bad input
+    INTERNAL_ERROR = 70
+    # what a shell reports for a process SIGINT or SIGPIPE stopped (128 + the signal's number)
+    INTERRUPTED = 130
+    PIPE_CLOSED = 141
 
 
 def _utf8(stream: Any) -> bool:

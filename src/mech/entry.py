@@ -25,6 +25,7 @@ here, so forgetting this module costs speed, never behaviour.
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import os
 import sys
@@ -40,14 +41,14 @@ _KINEMATIC = ("position", "velocity", "acceleration")
 
 def main(argv: Sequence[str] | None = None) -> None:
     """Entry point of the ``mech`` console script and ``python -m mech``."""
-    args = list(sys.argv[1:] if argv is None else argv)
+    args = prepare(sys.argv[1:] if argv is None else argv)
     run = _fast(args)
     if run is None:
-        from mech.cli import main as click_main
+        from mech.cli import run_click
 
-        click_main(args)
+        guarded(lambda: run_click(args))
         return
-    _standalone(run)
+    guarded(run)
 
 
 def _fast(args: list[str]) -> Callable[[], None] | None:
@@ -154,23 +155,125 @@ def _utf8(stream: Any) -> bool:
     return encoding == "utf8"
 
 
-def _standalone(run: Callable[[], None]) -> None:
-    """Run as click's standalone mode runs a command: the same exits on ^C and a closed pipe."""
+# mech.commands.ExitStatus, written out so that a run that goes well imports nothing for them
+INTERNAL_ERROR = 70
+INTERRUPTED = 130
+PIPE_CLOSED = 141
+ISSUES_URL = "https://github.com/planar-mech/mech/issues"
+
+
+def guarded(run: Callable[[], None]) -> None:
+    """Run a command and exit so that a script can tell every way out apart.
+
+    The command's own status (0, 1 a failed check, 2 bad input) is kept; an
+    interrupt is 130 with one line; a reader that closed the pipe (``mech velocity
+    f.yaml | head -1``) is 141 with no message; anything else is a bug in mech: 70,
+    with one line saying so and how to report it (``MECH_DEBUG=1`` or ``--debug``
+    before the command adds the traceback).  stdout is flushed here, before the
+    interpreter's own last flush, so that a closed pipe is noticed while it can
+    still be answered.
+    """
+    status: Any = 0
     try:
-        run()
-    except (EOFError, KeyboardInterrupt):
-        from mech.commands import echo
+        try:
+            run()
+        except SystemExit as done:
+            status = done.code
+        sys.stdout.flush()
+    except KeyboardInterrupt:
+        _quiet_stdout()
+        _say("mech: interrupted")
+        status = INTERRUPTED
+    except BrokenPipeError:
+        _quiet_stdout()
+        status = PIPE_CLOSED
+    except Exception as error:  # the last line of defence: a bug, said to be one
+        if isinstance(error, OSError) and error.errno == errno.EPIPE:
+            _quiet_stdout()
+            status = PIPE_CLOSED
+        else:
+            _report_bug(error)
+            status = INTERNAL_ERROR
+    if status is None:
+        status = 0
+    elif not isinstance(status, int):  # sys.exit("message"): printed, as the interpreter would
+        _say(str(status))
+        status = 1
+    sys.exit(status)
 
-        echo("", err=True)
-        echo("Aborted!", err=True)
-        sys.exit(1)
-    except OSError as error:
-        if error.errno != errno.EPIPE:
-            raise
-        import click.utils
 
-        pacify: Any = click.utils.PacifyFlushWrapper  # what click's standalone mode does on EPIPE
-        sys.stdout = pacify(sys.stdout)
-        sys.stderr = pacify(sys.stderr)
-        sys.exit(1)
-    sys.exit(0)
+def prepare(argv: Sequence[str]) -> list[str]:
+    """Set up what every command line needs before it runs; the arguments left to parse.
+
+    A leading ``--debug`` (the group's option) is read here, so that the plain forms
+    that skip click honour it too; streams that cannot encode Unicode get mech's
+    ASCII spellings (:func:`_make_streams_safe`).
+    """
+    args = list(argv)
+    if args[:1] == ["--debug"]:
+        os.environ["MECH_DEBUG"] = "1"
+        del args[0]
+    _make_streams_safe()
+    return args
+
+
+def _say(line: str) -> None:
+    """One line on stderr, whatever state the streams are in."""
+    try:
+        sys.stderr.write(line + "\n")
+        sys.stderr.flush()
+    except (OSError, ValueError):
+        pass
+
+
+def _quiet_stdout() -> None:
+    """Point stdout at the null device, so the interpreter's last flush cannot fail again."""
+    try:
+        null = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(null, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):
+        pass
+
+
+def debugging() -> bool:
+    """True when a bug should show its traceback (``MECH_DEBUG`` set, not 0 or empty)."""
+    return os.environ.get("MECH_DEBUG", "") not in ("", "0")
+
+
+def _report_bug(error: BaseException) -> None:
+    """One line saying mech failed (not the user's file), and how to report it."""
+    import traceback
+
+    from mech import __version__
+    from mech._text import visible
+
+    if debugging():
+        traceback.print_exception(error)
+    frames = traceback.extract_tb(error.__traceback__) if error.__traceback__ else []
+    at = f" at {os.path.basename(frames[-1].filename)}:{frames[-1].lineno}" if frames else ""
+    message = visible(
+        f"{type(error).__name__}: {error}".splitlines()[0] if str(error) else type(error).__name__
+    )
+    _say(
+        f"mech: internal error{at}: {message}\n"
+        f"  This is a bug in mech {__version__}, not in your input. Please report it at {ISSUES_URL} "
+        "with the command line and the file; run it again as mech --debug … (or with MECH_DEBUG=1) to include the traceback."
+    )
+
+
+def _make_streams_safe() -> None:
+    """Let output reach a terminal or file that cannot encode all of Unicode.
+
+    mech writes θ, ω, α, °, − and box rules; a Windows console or a C-locale
+    redirect may only take ASCII.  There they are spelt out (``omega``, ``deg``,
+    ``-``) instead of crashing with UnicodeEncodeError; other characters become
+    ``\\uNNNN`` escapes.  A UTF-8 stream (the usual case) is left alone.
+    """
+    for stream in (sys.stdout, sys.stderr):
+        if stream is None or _utf8(stream) or not hasattr(stream, "reconfigure"):
+            continue
+        from mech._text import register_ascii_fallback
+
+        register_ascii_fallback()
+        with contextlib.suppress(AttributeError, ValueError, OSError):
+            stream.reconfigure(errors="mech-spell")

@@ -24,19 +24,37 @@ def stdout() -> Console:
         from mech.render.plain import PlainConsole
 
         return PlainConsole(int(os.environ.get("COLUMNS", 120)))  # type: ignore[return-value]
-    from rich.console import Console
+    console_class = rich_console_class()
 
     # markup=False: names, claims and messages come from users' files, and "[/b]" in a
     # mechanism's name must print as written, not be read (or fail) as rich markup.
     # Styles are given as Text styles instead.
-    console = Console(highlight=False, markup=False)
+    console = console_class(highlight=False, markup=False)
     if not console.is_terminal:
         width = int(os.environ.get("COLUMNS", 120))
-        return Console(highlight=False, markup=False, width=width, color_system=None)
+        return console_class(highlight=False, markup=False, width=width, color_system=None)
     if os.environ.get("NO_COLOR"):
         # rich drops colour for NO_COLOR but keeps bold; we promise plain text
-        return Console(highlight=False, markup=False, color_system=None)
+        return console_class(highlight=False, markup=False, color_system=None)
     return console
+
+
+@lru_cache(maxsize=1)
+def rich_console_class() -> type[Console]:
+    """rich's Console, except that a reader who closed the pipe is not a failed run.
+
+    rich answers EPIPE by exiting with status 1, which in mech means "a check
+    failed"; this one stops writing and lets :func:`mech.entry.guarded` give the
+    pipe's own status (141).  Every rich console mech prints reports with is one.
+    """
+    from rich.console import Console as RichConsole
+
+    class Console(RichConsole):
+        def on_broken_pipe(self) -> None:
+            self.quiet = True
+            raise BrokenPipeError
+
+    return Console
 
 
 def is_plain(console: Console) -> bool:

@@ -147,9 +147,10 @@ class PlainConsole:
     def rich(self) -> Any:
         """The rich console this one stands for (made once, on first need)."""
         if self._rich is None:
-            from rich.console import Console
+            from mech.render.console import rich_console_class
 
-            self._rich = Console(highlight=False, markup=False, width=self.width, color_system=None)
+            console_class = rich_console_class()  # EPIPE is the pipe's status, not rich's exit 1
+            self._rich = console_class(highlight=False, markup=False, width=self.width, color_system=None)
         return self._rich
 
     def __getattr__(self, name: str) -> Any:
