@@ -417,3 +417,59 @@ def test_output_to_an_ascii_only_stream_spells_the_symbols_out():
     assert "omega = 12.566 rad/s" in result.stdout
     assert "60.000 deg" in result.stdout
     result.stdout.encode("ascii")
+
+
+# -- the JSON contract (cli.md, "The JSON contract") --------------------------------------------
+_CONTRACT_COMMANDS = [
+    ("dof", []),
+    ("classify", []),
+    ("icentres", []),
+    ("position", []),
+    ("velocity", []),
+    ("acceleration", []),
+    ("sweep", ["--steps", "12"]),
+    ("properties", []),
+    ("draw", ["-o", "{tmp}/drawing.svg"]),
+]
+
+
+@pytest.mark.parametrize(("command", "extra"), _CONTRACT_COMMANDS)
+def test_json_reports_share_command_file_name_and_units(run, tmp_path, command, extra):
+    args = [a.replace("{tmp}", str(tmp_path)) for a in extra]
+    result = run(command, FOUR_BAR, "--json", *args)
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.stdout)
+    assert list(data)[:3] == ["command", "file", "name"]
+    assert data["command"] == command
+    assert data["file"] == FOUR_BAR
+    assert data["name"] == "Four-bar chain ABCD (Khurmi Ex. 7.1)"
+    assert isinstance(data["units"], dict) and data["units"]["length"] in ("m", "mm")
+    if "mechanism" in data:  # the older key, kept as an alias
+        assert data["mechanism"] == data["name"]
+
+
+def test_check_json_names_its_command_and_units_and_each_file(run):
+    data = json.loads(run("check", FOUR_BAR, "--json").stdout)
+    assert data["command"] == "check" and data["units"]["velocity"] == "m/s"
+    assert data["results"][0]["file"] == FOUR_BAR
+    assert data["results"][0]["name"] == "Four-bar chain ABCD (Khurmi Ex. 7.1)"
+
+
+@pytest.mark.parametrize(("command", "extra"), [*_CONTRACT_COMMANDS, ("cam", [])])
+def test_an_error_under_json_is_json_with_its_location(run, write, tmp_path, command, extra):
+    """On stderr (stdout is for results), except in mech dof's list of files."""
+    bad = write("name: x\nlinks: [a\x01]\n")
+    args = [a.replace("{tmp}", str(tmp_path)) for a in extra]
+    result = run(command, str(bad), "--json", *args)
+    assert result.exit_code == 2
+    if command == "dof":
+        assert result.stderr == ""
+        data = json.loads(result.stdout)[0]
+    else:
+        assert result.stdout == ""
+        data = json.loads(result.stderr)
+        assert data["text"].startswith(f"{bad}:2:10: error: ")
+    assert (data["command"], data["file"], data["name"]) == (command, str(bad), None)
+    problem = data["error"]["problems"][0]
+    assert (problem["file"], problem["line"], problem["column"]) == (str(bad), 2, 10)
+    assert "control character" in problem["message"] and problem["hint"]

@@ -109,7 +109,7 @@ def classify_command(file: str, as_json: bool) -> None:
     sliding, rolling, screw, spherical, cam or gear), by contact (lower or
     higher) and by closure (self-closed or force-closed).
     """
-    classify_files(file, as_json)
+    classify_files(file=file, as_json=as_json)
 
 
 @cli.command()
@@ -545,6 +545,19 @@ def check_command(
         sys.exit(130)
 
 
+#: The units of every computed value in ``mech check --json`` (claims are compared in SI).
+_CHECK_UNITS = {
+    "length": "m",
+    "velocity": "m/s",
+    "acceleration": "m/s^2",
+    "angle": "rad",
+    "angular_velocity": "rad/s",
+    "angular_acceleration": "rad/s^2",
+    "force": "N",
+    "torque": "N m",
+}
+
+
 def _check(
     options: Any, targets: list[tuple[str, str]], *, quiet: bool, verbose: bool, as_json: bool
 ) -> None:
@@ -592,7 +605,11 @@ def _check(
     for option, path in targets:
         _write(path, outputs[option](report))
     if as_json:
-        click.echo(render.dumps(render.report_dict(report)))
+        from mech.render.jsonout import stamp
+
+        # the batch's report: each result names its file and mechanism; the top level has no one file
+        record = stamp(render.report_dict(report), command="check", file=None, name=None, units=_CHECK_UNITS)
+        click.echo(render.dumps(record))
     elif stream:
         stream[0].end(report)
     else:
@@ -682,7 +699,7 @@ def draw_command(
     summary = draw_file(
         result, output, file=request.file, velocity=velocity, acceleration=acceleration, units=request.units
     )
-    emit("draw", choose(request.as_json), summary, echo=click.echo)
+    emit("draw", choose(request.as_json), summary, echo=click.echo, name=mechanism.label)
 
 
 # -- cams -----------------------------------------------------------------------------

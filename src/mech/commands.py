@@ -87,7 +87,12 @@ def echo(message: str, *, err: bool = False) -> None:
 
 
 def report_error(error: MechError) -> None:
-    """Print every problem of ``error`` to stderr, with the offending line when it has one.
+    """Print every problem of ``error`` to stderr, with the offending line when it has one."""
+    echo(error_text(error), err=True)
+
+
+def error_text(error: MechError) -> str:
+    """Every problem of ``error`` as ``file:line:col: error: …`` with the line, a caret and the hint.
 
     Errors found after loading (a length that cannot close a loop) carry a
     location but not the text; the file is read again here to show the line.
@@ -100,25 +105,39 @@ def report_error(error: MechError) -> None:
                     error.source = f.read()
             except (OSError, UnicodeDecodeError):
                 pass
-    echo(error.format(), err=True)
+    return error.format()
 
 
-def handles_errors(fn: F) -> F:
+def handles_errors(fn: F | None = None, *, command: str | None = None) -> Any:
     """Turn a :class:`MechError` into its message on stderr and exit status 2.
 
     Only errors mech raises on purpose are caught: a bug still shows its
     traceback, so that it gets reported rather than disguised as bad input.
+    Under ``--json`` (an ``as_json`` keyword, or a :class:`Request` asking for it)
+    the error is JSON on stderr instead, its ``text`` the message as people read it
+    (cli.md, "The JSON contract"), naming ``command``: by default the function's
+    name without ``_command``.  stdout stays for results only.
     """
+    if fn is None:
+        return lambda f: handles_errors(f, command=command)
 
     @wraps(fn)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         try:
             return fn(*args, **kwargs)
         except MechError as error:
-            report_error(error)
+            request = next((a for a in (*args, *kwargs.values()) if isinstance(a, Request)), None)
+            if kwargs.get("as_json", request is not None and request.as_json):
+                from mech.render.jsonout import dumps, error_record
+
+                name = command or wrapper.__name__.removesuffix("_command")
+                file = kwargs.get("file", request.file if request is not None else None)
+                echo(dumps({**error_record(name, file, error), "text": error_text(error)}), err=True)
+            else:
+                report_error(error)
             sys.exit(error.exit_code)
 
-    return wrapper  # type: ignore[return-value]
+    return wrapper
 
 
 # -- counting -------------------------------------------------------------------------
@@ -147,7 +166,7 @@ def count_dof(files: Sequence[str], mobility: bool, as_json: bool) -> None:
         sys.exit(ExitStatus.BAD_INPUT)
 
 
-@handles_errors
+@handles_errors(command="classify")
 def classify_files(file: str, as_json: bool) -> None:
     """``mech classify``: links, joints and pairs of one file, as tables or JSON."""
     from mech.analysis import Request as Asked

@@ -71,7 +71,9 @@ def _fast(args: list[str]) -> Callable[[], None] | None:
         files, options = read
         from mech.commands import classify_files
 
-        return lambda: classify_files(files[0] if files else "mechanism.yaml", "--json" in options)
+        return lambda: classify_files(
+            file=files[0] if files else "mechanism.yaml", as_json="--json" in options
+        )
     if command in _KINEMATIC:
         flags = ("--json",) if command == "position" else ("--json", "--explain")
         values = (*_FLOATS, *_CHOICES, *(("--alpha",) if command == "acceleration" else ()))
@@ -133,8 +135,8 @@ def _kinematic(command: str, file: str, options: dict[str, Any]) -> Callable[[],
     from mech.commands import Request, handles_errors, kinematics, solve_options
     from mech.options import OutputUnits
 
-    @handles_errors
-    def run() -> None:
+    @handles_errors(command=command)
+    def run(*, file: str, as_json: bool) -> None:
         solved = solve_options(
             options.get("--rpm"),
             options.get("--omega"),
@@ -144,10 +146,10 @@ def _kinematic(command: str, file: str, options: dict[str, Any]) -> Callable[[],
             options.get("--alpha"),
             options.get("--speed"),
         )
-        request = Request(file, solved, OutputUnits.named(options.get("--units", "si")), "--json" in options)
+        request = Request(file, solved, OutputUnits.named(options.get("--units", "si")), as_json)
         kinematics(request, command, bool(options.get("--explain")))
 
-    return run
+    return lambda: run(file=file, as_json="--json" in options)
 
 
 def _utf8(stream: Any) -> bool:

@@ -118,9 +118,20 @@ def _console() -> Console:
 
 
 def _json(echo: Echo, record: Any) -> None:
+    """Write a report's JSON; its contract keys were added by :func:`mech.render.jsonout.stamp`."""
     from mech.render.jsonout import dumps
 
     echo(dumps(record))
+
+
+COUNT_UNITS = {"length": "m"}  # the counts' reports: loop lengths in metres
+
+
+def stamp(record: dict[str, Any], **contract: Any) -> dict[str, Any]:
+    """The JSON contract's keys on ``record`` (:func:`mech.render.jsonout.stamp`, imported on use)."""
+    from mech.render.jsonout import stamp as stamped
+
+    return stamped(record, **contract)
 
 
 # -- the emitters of mech's own reports -------------------------------------------------------
@@ -131,7 +142,8 @@ def classify_json(topology: Topology, *, echo: Echo) -> None:
     """``mech classify --json``."""
     from mech.render.topology import classify_dict
 
-    _json(echo, classify_dict(topology))
+    t = classify_dict(topology)
+    _json(echo, stamp(t, command="classify", file=topology.path, name=topology.name, units=COUNT_UNITS))
 
 
 def classify_table(topology: Topology, *, echo: Echo) -> None:
@@ -149,6 +161,7 @@ def kinematics_json(
 
     assert result.kinematics is not None
     record = record_of(result.kinematics, units=units)
+    record = stamp(record, command=record["level"], file=result.file, name=record["mechanism"])
     if construction is not None:
         from mech.explain import construction_dict
 
@@ -179,7 +192,9 @@ def icentres_json(
     from mech.render.icentres import icentres_dict
 
     assert result.icentres is not None
-    record = icentres_dict(result.icentres, units=units, file=file)
+    record = stamp(
+        icentres_dict(result.icentres, units=units, file=file), command="icentres", file=file, name=None
+    )
     if explain:
         from mech.explain import explain_icentres
 
@@ -211,7 +226,8 @@ def properties_json(result: Result, *, echo: Echo, units: OutputUnits, file: str
     from mech.render.properties import properties_dict
 
     assert result.properties is not None
-    _json(echo, properties_dict(result.properties, units=units, file=file))
+    record = properties_dict(result.properties, units=units, file=file)
+    _json(echo, stamp(record, command="properties", file=file, name=record["mechanism"]))
 
 
 def properties_table(result: Result, *, echo: Echo, units: OutputUnits, file: str | None = None) -> None:
@@ -229,7 +245,8 @@ def sweep_json(
     from mech.render.sweep import sweep_json as record_of
 
     assert result.sweep is not None
-    _json(echo, record_of(result.sweep, units=units, file=file, series=series))
+    record = record_of(result.sweep, units=units, file=file, series=series)
+    _json(echo, stamp(record, command="sweep", file=file, name=record["mechanism"]))
 
 
 def sweep_table(
@@ -244,7 +261,7 @@ def sweep_table(
 
 def dof_json(counted: list[tuple[str, Result | MechError]], *, echo: Echo, mobility: bool = False) -> None:
     """``mech dof --json``: one record per file (errors last), a lone record not in a list."""
-    from mech.render.jsonout import error_dict
+    from mech.render.jsonout import error_record
     from mech.render.topology import topology_dict
 
     out = []
@@ -253,11 +270,17 @@ def dof_json(counted: list[tuple[str, Result | MechError]], *, echo: Echo, mobil
         if isinstance(r, MechError):
             continue
         assert r.topology is not None
-        record = topology_dict(r.topology)
+        record = stamp(
+            topology_dict(r.topology),
+            command="dof",
+            file=r.topology.path,
+            name=r.topology.name,
+            units=COUNT_UNITS,
+        )
         if mobility:
             record["mobility"] = mobility_record(r)
         out.append(record)
-    out += [{"file": p, "error": error_dict(e)} for p, e in errors]
+    out += [error_record("dof", p, e) for p, e in errors]
     _json(echo, out if len(out) != 1 or errors else out[0])
 
 
@@ -292,7 +315,15 @@ def cam_json(
     from mech.render.cam import cam_json as record_of
 
     setup, analysis = value
-    _json(echo, record_of(setup, analysis, path=file, name=name, step_deg=step_deg))
+    _json(
+        echo,
+        stamp(
+            record_of(setup, analysis, path=file, name=name, step_deg=step_deg),
+            command="cam",
+            file=file,
+            name=label,
+        ),
+    )
 
 
 def cam_table(
@@ -305,9 +336,9 @@ def cam_table(
     table(setup, analysis, _console(), name=label, step_deg=step_deg)
 
 
-def summary_json(summary: dict[str, Any], *, echo: Echo) -> None:
+def summary_json(summary: dict[str, Any], *, echo: Echo, name: str | None = None) -> None:
     """A summary already made JSON-able (``mech draw --json``: what was drawn, at what scales)."""
-    _json(echo, summary)
+    _json(echo, stamp(summary, command="draw", file=summary.get("file"), name=name, units={"length": "mm"}))
 
 
 def nothing(value: Any, *, echo: Echo, **context: Any) -> None:

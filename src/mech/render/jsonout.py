@@ -1,4 +1,13 @@
-"""JSON for machines: plain dicts, stable keys, no rich."""
+"""JSON for machines: plain dicts, stable keys, no rich.
+
+The contract every command's ``--json`` keeps (cli.md, "The JSON contract"): each
+report — one per mechanism file — opens with ``command`` (the command that made
+it), ``file`` (the path as given, ``<stdin>`` for ``-``), ``name`` (the
+mechanism's name, or its file's when it has none) and carries ``units`` (the
+unit of every kind of number in it); an error under ``--json`` is JSON too, on
+stdout, with the same three keys and ``error``.  :func:`stamp` and
+:func:`error_record` are the one place these keys are written.
+"""
 
 from __future__ import annotations
 
@@ -22,6 +31,28 @@ def _clean(value: Any) -> Any:
     if isinstance(value, (list, tuple)):
         return [_clean(v) for v in value]
     return value
+
+
+def stamp(
+    record: dict[str, Any], *, command: str, file: str | None, name: str | None, units: Any = None
+) -> dict[str, Any]:
+    """``record`` with the contract's keys first: ``command``, ``file``, ``name``; then its own.
+
+    ``units`` is added where the record has none.  A key the record already has
+    (``file``, ``name``) keeps the record's value only if the contract has none.
+    """
+    head = {"command": command, "file": file if file is not None else record.get("file"), "name": name}
+    if head["name"] is None:
+        head["name"] = record.get("name", record.get("mechanism"))
+    out = {**head, **{k: v for k, v in record.items() if k not in head}}
+    if "units" not in out:
+        out["units"] = units
+    return out
+
+
+def error_record(command: str, file: str | None, error: MechError) -> dict[str, Any]:
+    """An error under ``--json``: the contract's keys, ``name`` null, and ``error``."""
+    return {"command": command, "file": file, "name": None, "error": error_dict(error)}
 
 
 def error_dict(error: MechError) -> dict[str, Any]:
