@@ -96,7 +96,10 @@ def test_every_command_keeps_its_top_level_keys_with_centres_at_infinity_and_lin
     out = tmp_path / "m.svg"
     p = mech("draw", "--json", str(m), "-o", str(out), "--velocity", "--icentres")
     assert p.returncode == 0
-    assert set(strict_json(p.stdout)) == {"file", "output", "size_mm", "scales", "icentres", "notes"}
+    assert set(strict_json(p.stdout)) == {
+        *("command", "file", "name", "units"),  # the contract every --json keeps (cli.md)
+        *("output", "size_mm", "scales", "icentres", "notes"),
+    }
 
 
 def test_expected_refusal_reads_the_file_not_mech():
