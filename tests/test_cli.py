@@ -215,7 +215,9 @@ def test_rounding_noise_prints_as_zero(run):
     points = {p["point"]: p for p in data["points"]}
     assert points["B"]["position"][1] == 0.0
     assert points["B"]["velocity"] == [0.0, 0.0] and points["B"]["direction"] is None
-    assert data["links"]["rod"]["angle"] in (0.0, 180.0)
+    # the rod's angle is the direction from its origin A = (150, 0) mm to the piston B = (-450, 0) mm
+    assert data["links"]["rod"]["origin"] == [0.15, 0.0]
+    assert data["links"]["rod"]["angle"] == 180.0
 
 
 TINY_CRANK = """
