@@ -148,3 +148,20 @@ def test_a_length_disagreeing_with_the_drawing_is_located_at_the_length(write):
     p = mech("velocity", str(f))
     assert_bad_input(p, f)
     assert "0.5" in p.stderr
+
+
+def test_a_drawing_copied_to_one_decimal_is_accepted_and_the_numbers_win():
+    # B copied as (102.2, 591.2) mm instead of (102.170, 591.237): 0.035 mm off on a figure of
+    # about 600 mm (6e-5 of its size, within drawing precision 1e-3). It was refused (1e-6).
+    # The exact crank angle and lengths still decide: the closed form of the first test.
+    text = FILE.read_text().replace(
+        "B: {link: lever, at: [102.170, 591.237]}", "B: {link: lever, at: [102.2, 591.2]}"
+    )
+    kin = solve(loads(text, path="lever.yaml"), level="velocity")
+    w2, r, th = 600 * 2 * math.pi / 60, 0.12, math.radians(35)
+    ax, ay = r * math.cos(th), 0.5 + r * math.sin(th)
+    d = math.hypot(ax, ay)
+    omega_lever = (-w2 * r * math.sin(th) * -ay / d + w2 * r * math.cos(th) * ax / d) / d
+    assert kin.links["crank"].angle == pytest.approx(th, abs=1e-11)
+    assert kin.links["lever"].omega == pytest.approx(omega_lever, rel=1e-9)
+    assert any("drawn positions moved" in n and "B" in n for n in kin.notes)

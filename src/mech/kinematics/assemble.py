@@ -44,7 +44,16 @@ from mech.units import to_unit
 
 __all__ = ["Drawn", "assemble", "gear_centre", "gear_pitch_points"]
 
-_AGREE = 1e-6  # drawn vs given data: relative to size
+_AGREE = 1e-6  # exact data (lengths, angles) that must close together: relative to size
+#: Drawing precision: a moving point drawn with ``at`` may lie this far (relative to the
+#: mechanism's size) from where the exact lengths and angles put it — 0.1 mm on a 100 mm
+#: figure, a coordinate copied to three significant figures.  The exact data win (the point
+#: is moved, with a note); farther than this, the drawing and the numbers disagree (an error
+#: naming the point).  It was 1e-6, which refused coordinates copied to two decimals.
+_DRAWING = 1e-3
+#: The springs' weight in the polishing pass: what a drawing may still pull the exact data by
+#: is w² of its disagreement (1e-18 of it), while a location only the drawing fixes stays put.
+_LET_GO = 1e-9
 _CONVERGED = 1e-12  # Gauss-Newton residual, relative to size
 _ACCEPT = 1e-10  # accepted residual when convergence is slow (tangent circles)
 
@@ -531,6 +540,8 @@ def _solve(
         return res, jac
 
     x, res_all, jac = _gauss_newton(system, x)
+    if springs:
+        x, res_all, jac = _let_go(system, x, springs)
     res = res_all[: sum(e.rows for e in live)]  # the file's equations, without the springs
     worst = float(np.max(np.abs(res))) if res.size else 0.0
     if worst > _AGREE:
@@ -540,7 +551,7 @@ def _solve(
             hint="check the lengths; a rocker or a slider has limits: try another crank angle (--angle)",
         )
     moved = {n: float(np.hypot(*(x[2 * col[n] : 2 * col[n] + 2] - v))) for n, v in soft.items()}
-    far = [n for n, d in moved.items() if d > _AGREE]
+    far = [n for n, d in moved.items() if d > _DRAWING]
     if far:
         raise InputError(
             problems=[
@@ -560,7 +571,7 @@ def _solve(
         n = max(moved, key=moved.__getitem__)
         notes.append(
             f"drawn positions moved by up to {fmt(moved[n] * scale)} ({n}) to agree with the given "
-            f"lengths and angles (drawing precision: within {_AGREE:g} of the size)"
+            f"lengths and angles (drawing precision: within {_DRAWING:g} of the size)"
         )
     if allow_free:
         if jac.shape[0] < x.size or np.linalg.matrix_rank(jac, tol=1e-8) < x.size:
@@ -745,6 +756,20 @@ class _Guess:
             )
             return t + float((c - t) @ u) * u
         return self.pick(n, [fwd, back], "the intersection farther along the path")
+
+
+def _let_go(system: _System, x: np.ndarray, springs: list[_Eq]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Polish with the springs all but let go, so the exact data win (a spring leaks w² of a gap).
+
+    Returns x and the residual and Jacobian with the springs at their usual weight again.
+    """
+    for spring in springs:
+        spring.weight = _LET_GO  # type: ignore[attr-defined]
+    x, _, _ = _gauss_newton(system, x)
+    for spring in springs:
+        spring.weight = _Drawn.weight  # type: ignore[attr-defined]
+    res, jac = system(x)
+    return x, res, jac
 
 
 def _gauss_newton(
