@@ -245,9 +245,23 @@ def icentres(request: Request, explain: bool, circle_path: str | None) -> None:
     """
     from mech.analysis import Request as Asked
     from mech.analysis import analyse
+    from mech.loader import load
     from mech.render.emit import choose, emit
 
-    result = analyse(request.file, Asked(level="velocity", options=request.options, icentres=True))
+    mechanism = load(request.file)
+    if not mechanism.has_geometry and not explain and not circle_path:
+        # nothing placed: the centres can still be counted, named and ordered (no coordinates)
+        from mech.icentres.order import kennedy_order
+
+        emit(
+            "icentre-order",
+            choose(request.as_json),
+            kennedy_order(mechanism),
+            echo=click.echo,
+            file=request.file,
+        )
+        return
+    result = analyse(mechanism, Asked(level="velocity", options=request.options, icentres=True))
     assert result.icentres is not None
     if circle_path:
         from mech.draw import save

@@ -48,6 +48,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
     from mech.analysis import Result
     from mech.explain import Construction
+    from mech.icentres.order import TopologyCentres
     from mech.options import OutputUnits
     from mech.topology import Topology
 
@@ -221,6 +222,20 @@ def icentres_table(
             console.print(Text(line), soft_wrap=True)
 
 
+def icentre_order_json(order: TopologyCentres, *, echo: Echo, file: str | None = None) -> None:
+    """``mech icentres --json`` on a file that places nothing: the centres without coordinates."""
+    from mech.render.icentres import order_dict
+
+    _json(echo, stamp(order_dict(order), command="icentres", file=file, name=order.name))
+
+
+def icentre_order_table(order: TopologyCentres, *, echo: Echo, file: str | None = None) -> None:
+    """``mech icentres`` on a file that places nothing: primary centres, then Kennedy's order."""
+    from mech.render.icentres import order_table
+
+    order_table(order, _console())
+
+
 def properties_json(result: Result, *, echo: Echo, units: OutputUnits, file: str | None = None) -> None:
     """``mech properties --json``."""
     from mech.render.properties import properties_dict
@@ -348,5 +363,7 @@ def nothing(value: Any, *, echo: Echo, **context: Any) -> None:
 for _kind in ("dof", "classify", "cam", "kinematics", "icentres", "properties", "sweep"):
     register(_kind, "table", f"{_HERE}:{_kind}_table")
     register(_kind, "json", f"{_HERE}:{_kind}_json")
+register("icentre-order", "table", f"{_HERE}:icentre_order_table")
+register("icentre-order", "json", f"{_HERE}:icentre_order_json")
 register("draw", "table", nothing)
 register("draw", "json", summary_json)

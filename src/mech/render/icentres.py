@@ -11,9 +11,10 @@ if TYPE_CHECKING:  # pragma: no cover
     from rich.console import Console
 
     from mech.icentres import ICentre, ICentres
+    from mech.icentres.order import TopologyCentres
     from mech.options import OutputUnits
 
-__all__ = ["icentres_dict", "icentres_table"]
+__all__ = ["icentres_dict", "icentres_table", "order_dict", "order_table"]
 
 
 def _angle(direction: tuple[float, float]) -> float:
@@ -141,3 +142,53 @@ def icentres_table(ic: ICentres, console: Console, *, units: OutputUnits | None 
             om.add_row(o.link, _omega(o.omega), o.via, _omega(o.solver))
         console.print(om)
         console.print("  ω_j/ω_i = I1i·Iij / I1j·Iij: the point Iij moves alike on links i and j")
+
+
+def order_dict(order: TopologyCentres) -> dict[str, Any]:
+    """``mech icentres --json`` without coordinates: each centre, how and in which step it is found."""
+    return {
+        "file": order.path,
+        "name": order.name,
+        "links": list(order.numbered),
+        "count": order.count,
+        "located": False,
+        "centres": [
+            {
+                "name": c.name,
+                "links": list(c.links),
+                "numbers": list(c.numbers),
+                "primary": c.step == 0,
+                "step": c.step,
+                "lines": [[a, b] if b else [a] for a, b in c.lines],
+                "how": c.how,
+            }
+            for c in order.centres
+        ],
+    }
+
+
+def order_table(order: TopologyCentres, console: Console) -> None:
+    """``mech icentres`` on a file that places nothing: the count, the primary centres, Kennedy's order."""
+    from mech.render.console import kit
+
+    Table, Text, box = kit(console)
+    n = len(order.numbered)
+    console.print(Text(order.name, style="bold"))
+    numbering = ", ".join(f"{k + 1} {name}" for k, name in enumerate(order.numbered))
+    console.print(f"  links, numbered (ground = 1): {numbering}")
+    console.print(f"  instantaneous centres: N = n(n − 1)/2 = {n}·{n - 1}/2 = {order.count}")
+    table = Table(box=box)
+    table.add_column("I-centre")
+    table.add_column("links")
+    table.add_column("found", justify="right")
+    table.add_column("how found", overflow="fold")
+    for c in order.centres:
+        found = "primary" if c.step == 0 else ("—" if c.step is None else f"step {c.step}")
+        table.add_row(c.name, f"{c.links[0]}–{c.links[1]}", found, c.how)
+    console.print(table)
+    console.print(
+        f"  {len(order.primary)} primary by inspection, {order.count - len(order.primary) - len(order.unreached)} "
+        f"by Kennedy's theorem, {len(order.unreached)} not reached; no coordinates: the file places nothing "
+        "(give positions and lengths to locate them)",
+        soft_wrap=True,
+    )
