@@ -140,12 +140,15 @@ def expected_refusal(text: str, command: str) -> str | None:
     Read from the file's own content: counting (dof, classify) needs no geometry; positions
     need a path for every slider and a placed joint; velocities need a speed for every drive;
     accelerations need profile curvature, which a contact given only as a point and a normal
-    (``at`` + ``normal``) does not have.
+    (``at`` + ``normal``) does not have.  I-centres of a file that places nothing are listed
+    without coordinates.
     """
     if command not in KINEMATIC:
         return None
     data = yaml.safe_load(text)
     joints = list((data.get("joints") or {}).values())
+    if command == "icentres" and not any("at" in j for j in joints):
+        return None  # joints alone: the centres in Kennedy's order, without coordinates
     if any(j.get("type") == "prismatic" and "path" not in j for j in joints):
         return "has no path"  # a slider needs its line before anything can be placed
     if not any("at" in j for j in joints):

@@ -57,11 +57,15 @@ def test_icentres_bad_file_exits_2_without_traceback(run, write):
     assert "unknown link 'crankk'" in result.stderr and "Traceback" not in result.stderr
 
 
-def test_icentres_without_geometry_is_a_clean_error(run):
-    """A file with nothing placed (four_bar_dof.yaml counts only) has no I-centres to find."""
+def test_icentres_without_geometry_orders_the_centres_without_coordinates(run):
+    """A file with nothing placed (four_bar_dof.yaml counts only): the centres by name and
+    Kennedy's order, no coordinates; --explain, which draws lines in the plane, needs positions."""
     result = run("icentres", str(MECHANISMS / "four_bar_dof.yaml"))
-    assert result.exit_code == 2
-    assert "positions need geometry" in result.stderr and "Traceback" not in result.stderr
+    assert result.exit_code == 0
+    assert "4 primary by inspection, 2 by Kennedy's theorem, 0 not reached" in result.stdout
+    refused = run("icentres", "--explain", str(MECHANISMS / "four_bar_dof.yaml"))
+    assert refused.exit_code == 2
+    assert "positions need geometry" in refused.stderr and "Traceback" not in refused.stderr
 
 
 # -- through the command line as a user runs it (cli_runner: in process, tracebacks shown) --
