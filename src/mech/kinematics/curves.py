@@ -29,12 +29,26 @@ all in scaled reference-point coordinates):
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
 from mech._records import dataclass
 
 __all__ = ["CurveRow", "Spline", "curve_row", "curve_rows"]
+
+
+def _piece(p0: Any, p1: Any, m0: Any, m1: Any, t: Any) -> tuple[Any, Any, Any]:
+    """c, c', c'' of the cubic piece from ``p0`` to ``p1`` (second derivatives ``m0``, ``m1``) at ``t``.
+
+    Elementwise, so one configuration (floats, points (2,)) and K at once (``t`` (K, 1),
+    points (K, 2)) share it.
+    """
+    s = 1.0 - t
+    c = s * p0 + t * p1 + ((s**3 - s) * m0 + (t**3 - t) * m1) / 6.0
+    c1 = p1 - p0 + ((1.0 - 3.0 * s * s) * m0 + (3.0 * t * t - 1.0) * m1) / 6.0
+    c2 = s * m0 + t * m1
+    return c, c1, c2
 
 
 class Spline:
@@ -58,11 +72,7 @@ class Spline:
         t = u - i
         j = (i + 1) % self.n
         p0, p1, m0, m1 = self.p[i], self.p[j], self.m[i], self.m[j]
-        s = 1.0 - t
-        c = s * p0 + t * p1 + ((s**3 - s) * m0 + (t**3 - t) * m1) / 6.0
-        c1 = p1 - p0 + ((1.0 - 3.0 * s * s) * m0 + (3.0 * t * t - 1.0) * m1) / 6.0
-        c2 = s * m0 + t * m1
-        return c, c1, c2
+        return _piece(p0, p1, m0, m1, t)
 
     def outward(self, c1: np.ndarray) -> np.ndarray:
         """The unit outward normal for tangent ``c1``."""
@@ -100,11 +110,7 @@ class Spline:
         t = (u - i)[:, None]
         j = (i + 1) % self.n
         p0, p1, m0, m1 = self.p[i], self.p[j], self.m[i], self.m[j]
-        s = 1.0 - t
-        c = s * p0 + t * p1 + ((s**3 - s) * m0 + (t**3 - t) * m1) / 6.0
-        c1 = p1 - p0 + ((1.0 - 3.0 * s * s) * m0 + (3.0 * t * t - 1.0) * m1) / 6.0
-        c2 = s * m0 + t * m1
-        return c, c1, c2
+        return _piece(p0, p1, m0, m1, t)
 
     def outward_many(self, c1: np.ndarray) -> np.ndarray:
         """Unit outward normals (K, 2) for tangents ``c1`` (K, 2)."""
