@@ -332,7 +332,12 @@ def properties_command(request: Request, outputs: tuple[str, ...]) -> None:
     multiple=True,
     help="A quantity to report (repeatable): omega.rocker, velocity.B, displacement.P … (default: all).",
 )
-@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), help="Write the series as CSV.")
+@click.option(
+    "--csv",
+    "csv_path",
+    type=click.Path(dir_okay=False, allow_dash=True),
+    help="Write the series as CSV (- for standard output, instead of the report).",
+)
 @click.option(
     "--method",
     type=click.Choice(["auto", "closed", "newton"]),
@@ -388,6 +393,11 @@ def sweep_command(
         raise InputError("--from and --to must be two different finite angles (degrees)")
     if svg_path and not paths:
         raise InputError("--svg draws the --path curves: name a point with --path")
+    if csv_path == "-" and request.as_json:
+        raise InputError(
+            "--csv - writes the CSV to standard output, where --json would write too",
+            hint="write the CSV to a file (--csv series.csv), or leave out --json",
+        )
     quantities = tuple(quantities) + tuple(f"position.{p}.{c}" for p in paths for c in ("x", "y"))
     if plot_path or gif_path:
         from mech.draw.raster import use_matplotlib
@@ -413,6 +423,8 @@ def sweep_command(
             paths=paths,
             svg_path=svg_path,
         )
+        if csv_path == "-":  # the CSV is the report on standard output
+            return
         emit(
             "sweep",
             choose(request.as_json),
@@ -442,7 +454,9 @@ def _sweep_files(
 
     sweep, quantities, drawn = result.sweep, quantities_asked, result.drawn
     assert sweep is not None
-    if csv_path:
+    if csv_path == "-":
+        click.echo(render.sweep_csv(sweep, units=units, quantities=quantities), nl=False)
+    elif csv_path:
         _write(csv_path, render.sweep_csv(sweep, units=units, quantities=quantities))
     if plot_path:
         render.sweep_plot_file(plot_path, sweep, units=units, quantities=quantities)

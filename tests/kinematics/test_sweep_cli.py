@@ -342,3 +342,23 @@ def test_sweep_of_two_turns_in_three_steps_reports_four_dead_centres(run):
     assert result.exit_code == 0, result.output
     angles = [d["angle"] for d in json.loads(result.output)["dead_centres"]]
     assert [round(a, 2) for a in angles] == [23.68, 211.29, 383.68, 571.29]
+
+
+def test_csv_dash_writes_the_series_to_standard_output_and_no_file(run, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    args = ("sweep", FOUR_BAR, "--steps", "12", "--quantity", "omega.rocker", "--units", "mm")
+    result = run(*args, "--csv", "-")
+    assert result.exit_code == 0, result.output
+    assert not (tmp_path / "-").exists()
+    # the CSV is the whole of standard output: the same text --csv FILE writes, no report
+    run(*args, "--csv", "s.csv")
+    assert result.stdout == (tmp_path / "s.csv").read_text(encoding="utf-8")
+    rows = list(csv.reader(io.StringIO(result.stdout)))
+    assert rows[0] == ["angle [deg]", "omega.rocker [rad/s]"] and len(rows) == 14
+
+
+def test_csv_dash_with_json_is_refused_as_two_documents_on_one_stream(run, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    result = run("sweep", FOUR_BAR, "--csv", "-", "--json")
+    assert result.exit_code == 2
+    assert not (tmp_path / "-").exists()
