@@ -36,6 +36,7 @@ import numpy as np
 from mech.errors import GeometryError
 from mech.kinematics.constraints import System
 from mech.kinematics.curves import curve_rows
+from mech.kinematics.solve import snap_to_error
 
 __all__ = ["MAX_SPAN", "Marcher", "Stacked", "Walker", "march", "stacked"]
 
@@ -307,7 +308,13 @@ class _Rates:
         self.at = int(np.flatnonzero(keep == drive_row)[0])  # the drive row's place among ``keep``
 
     def __call__(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(bad, q̇, q̈) for configurations ``q`` (K, 3n): ``bad`` marks the singular ones."""
+        """(bad, q̇, q̈) for configurations ``q`` (K, 3n): ``bad`` marks the singular ones.
+
+        Each solve is refined once and its components below their own error
+        bound set to zero, by the rule one solve uses
+        (:func:`~mech.kinematics.solve.snap_to_error`): a 1e-12 m crank on 1 m
+        links keeps its 5e-13 rad/s, a pivot's round-off does not show.
+        """
         full = self.rows.jacobian(q)
         jac = full[:, self.keep, :]
         k, n = q.shape[0], jac.shape[2]
@@ -318,35 +325,44 @@ class _Rates:
         except np.linalg.LinAlgError:  # one step exactly singular: every step by the SVD
             inv = np.zeros_like(jac)
             unsure = np.ones(k, bool)
-        rhs = np.zeros((k, n))
-        rhs[:, self.at] = self.rate
-        qd = np.einsum("kij,kj->ki", inv, rhs)
-        bad = np.zeros(k, bool)
         svds: dict[int, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
+        bad = np.zeros(k, bool)
         for t in np.flatnonzero(unsure).tolist():
             u, s, vt = np.linalg.svd(full[t], full_matrices=False)
             svds[t] = (u, s, vt)
             bad[t] = not (s[-1] > 0 and s[0] / s[-1] <= self.singular)
-            b = np.zeros(full.shape[1])
-            b[self.drive_row] = self.rate
-            qd[t] = _svd_solve(u, s, vt, b)
-        qd = _snap(qd)
+        rhs = np.zeros((k, full.shape[1]))
+        rhs[:, self.drive_row] = self.rate
+        qd = self._solve(full, jac, inv, svds, rhs)
         gamma = self.rows.gamma(q, qd)
         gamma[:, self.drive_row] += self.accel
-        qdd = np.einsum("kij,kj->ki", inv, gamma[:, self.keep])
-        for t, (u, s, vt) in svds.items():
-            qdd[t] = _svd_solve(u, s, vt, gamma[t])
-        return bad, qd, _snap(qdd)
+        return bad, qd, self._solve(full, jac, inv, svds, gamma)
+
+    def _solve(
+        self,
+        full: np.ndarray,
+        jac: np.ndarray,
+        inv: np.ndarray,
+        svds: dict[int, tuple[np.ndarray, np.ndarray, np.ndarray]],
+        rhs: np.ndarray,
+    ) -> np.ndarray:
+        """x with Φ_q x = b for every step (K, 3n): refined once, then snapped to its error bound."""
+        b = rhs[:, self.keep]
+        x = np.einsum("kij,kj->ki", inv, b)
+        x += np.einsum("kij,kj->ki", inv, b - np.einsum("kij,kj->ki", jac, x))
+        x = snap_to_error(jac, inv, x, b)
+        for t, (u, s, vt) in svds.items():  # on all rows, as one solve does
+            y = _svd_solve(u, s, vt, rhs[t])
+            y += _svd_solve(u, s, vt, rhs[t] - full[t] @ y)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                pinv = vt.T @ (u.T / np.where(s > 0, s, np.inf)[:, None])
+            x[t] = snap_to_error(full[t], pinv, y, rhs[t])
+        return x
 
 
 def _svd_solve(u: np.ndarray, s: np.ndarray, vt: np.ndarray, b: np.ndarray) -> np.ndarray:
     with np.errstate(divide="ignore", invalid="ignore"):
         return vt.T @ ((u.T @ b) / np.where(s > 0, s, np.inf))
-
-
-def _snap(x: np.ndarray) -> np.ndarray:
-    x[np.abs(x) < 1e-13] = 0.0  # as one solve does: round-off below the solve's accuracy is zero
-    return x
 
 
 def march(backend: Any, phi: np.ndarray, k0: int) -> dict[str, np.ndarray] | None:
