@@ -646,7 +646,6 @@ def snap_to_error(jac: np.ndarray, inverse: np.ndarray | None, x: np.ndarray, rh
     return x
 
 
-
 def _svd_checked(comp: Compiled, jac: np.ndarray, drives: tuple[Drive, ...]) -> tuple:
     """SVD of Φ_q, refusing a singular configuration with the links that lose their guidance."""
     n = jac.shape[1]
