@@ -63,9 +63,10 @@ import numpy as np
 from mech._records import dataclass
 from mech.errors import InputError, UnsupportedError
 from mech.kinematics.dyads import ACCURATE_COND, DyadProgram, numpy_namespace, program
+from mech.kinematics.march import MAX_SPAN, Marcher
 from mech.kinematics.quantities import LEVELS, check_quantity, default_quantities, quantity_unit
 from mech.kinematics.solve import SINGULAR, Compiled, compiled, instant_pairs, solve
-from mech.kinematics.sweep_backends import Closed, Newton, newton_series
+from mech.kinematics.sweep_backends import Closed, Newton, law_series, newton_series
 from mech.kinematics.sweep_events import (
     circuits_note,
     find_dead_centres,
@@ -74,9 +75,10 @@ from mech.kinematics.sweep_events import (
     find_time_ratio,
     runs,
 )
-from mech.kinematics.sweep_result import Event, Extreme, Gap, Sweep, TimeRatio, frozen
+from mech.kinematics.sweep_result import DriveLaw, Event, Extreme, Gap, Sweep, TimeRatio, frozen
 from mech.model import Mechanism
 from mech.options import SolveOptions
+from mech.units import to_unit
 
 __all__ = ["Event", "Extreme", "Gap", "Sweep", "TimeRatio", "default_quantities", "quantity_unit", "sweep"]
 
@@ -92,6 +94,7 @@ def sweep(
     options: SolveOptions | None = None,
     quantities: Sequence[str] | None = None,
     analyse: bool = True,
+    drive: str | None = None,
 ) -> Sweep:
     """Solve ``mech`` at every drive angle of ``angles`` and find what happens over the range.
 
@@ -113,6 +116,13 @@ def sweep(
         Keys whose extremes to report (:func:`quantity_unit`); default: every
         link's angle, ω, α, every point's speed and acceleration, every
         slider's displacement and sliding speed, as the level allows.
+    drive
+        With a slider drive or several drives: the drive (its link or joint)
+        whose coordinate ``angles`` holds — its angle (rad) or its slider's
+        position along its path from the path's ``through`` (m); default the
+        first.  Every drive follows a linear law in it: each is where the file
+        draws it when the lead is, and moves in proportion to its speed
+        (:class:`~mech.kinematics.march.LinearLaw`).  Swept by Newton (marched).
     analyse
         False: the series only (no toggles, dead centres, extremes, time
         ratio) — the bare vectorised solve, for timing or when only arrays
@@ -128,8 +138,8 @@ def sweep(
     InputError
         No speed at velocity level, an unknown quantity, ``options.angle`` given.
     UnsupportedError
-        Not one turning drive (a slider drive, several drives), or pairs known
-        only at the drawn instant (cam, contact): they cannot be moved.
+        Pairs known only at the drawn instant (cam, contact): they cannot be
+        moved; ``method="closed"`` with a slider drive or several drives.
     GeometryError
         The mechanism cannot be assembled as drawn, or at none of the angles.
 
@@ -139,7 +149,14 @@ def sweep(
     >>> [(math.degrees(e.angle), e.subject) for e in s.dead_centres]                  # doctest: +SKIP
     [(0.0, 'P'), (180.0, 'P')]
     """
-    plan = _plan(mech, angles, level, options or SolveOptions())
+    options = options or SolveOptions()
+    if not mech.drives:
+        raise InputError(
+            f"{mech.label} has no drive: a sweep moves its drive",
+            hint="add drive: {link: crank, angle: …, rpm: …}",
+        )
+    several = drive is not None or len(mech.drives) != 1 or mech.drives[0].link is None
+    plan = (_plan_laws if several else _plan)(mech, angles, level, options, drive)
     backend, data, fine, pick = _evaluate(plan, analyse)
     ok, cond, singular = _masked(data, plan.prog is not None)
     keys = _quantity_keys(backend, plan, quantities)
@@ -172,6 +189,9 @@ class _Plan:
     options: SolveOptions
     phi: np.ndarray
     notes: list[str]
+    lead: int | None = None  # several drives or a slider drive: the drive whose coordinate phi holds
+    parameter: str = "angle"  # or "position" (m): a slider drive leads
+    laws: tuple[DriveLaw, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -185,23 +205,25 @@ class _Found:
     ratio: TimeRatio | None = None
 
 
-def _plan(
-    mech: Mechanism, angles: Sequence[float] | np.ndarray | None, level: str, options: SolveOptions
-) -> _Plan:
-    """Check the request (level, drive, speed, angles, memory) and compile the mechanism."""
+def _checked_level(level: str, options: SolveOptions) -> int:
     if level not in LEVELS:
         raise InputError(f"level must be one of {', '.join(LEVELS)}, not {level!r}")
     if options.angle is not None:
         raise InputError(
             "a sweep sets the crank angle itself", hint="give the range (--from, --to) instead of --angle"
         )
-    lvl = LEVELS.index(level)
-    if len(mech.drives) != 1 or mech.drives[0].link is None:
-        raise UnsupportedError(
-            f"a sweep turns one crank; {mech.label} has "
-            + ("a slider drive" if mech.drives and mech.drives[0].joint else f"{len(mech.drives)} drives"),
-            hint="give one drive: {link: crank, angle: …, rpm: …}",
-        )
+    return LEVELS.index(level)
+
+
+def _plan(
+    mech: Mechanism,
+    angles: Sequence[float] | np.ndarray | None,
+    level: str,
+    options: SolveOptions,
+    lead: str | None = None,
+) -> _Plan:
+    """Check the request (level, drive, speed, angles, memory) and compile the mechanism: one crank."""
+    lvl = _checked_level(level, options)
     base = solve(
         mech, "position", options.with_(omega=None, direction=None, alpha=None)
     )  # validates, assembles
@@ -247,6 +269,8 @@ def _plan(
 def _evaluate(plan: _Plan, analyse: bool) -> tuple[Any, dict[str, np.ndarray], np.ndarray, np.ndarray | None]:
     """The back-end, its arrays on the analysis grid, the grid, and the steps asked in it (or None)."""
     comp, prog, notes = plan.comp, plan.prog, plan.notes
+    if plan.lead is not None:
+        return _evaluate_laws(plan, analyse)
     fine, pick = _analysis_grid(plan.phi, comp, prog, plan.lvl_int, notes) if analyse else (plan.phi, None)
     w_int = plan.omega if plan.omega else 1.0  # velocities are needed for dead centres even at position level
     if prog is not None:
@@ -299,7 +323,7 @@ def _find(
     gaps, toggles = find_gaps(backend, fine, data, ok)
     dead, outputs = find_dead_centres(backend, plan.comp, fine, data, ok, names)
     extremes = find_extremes(backend, fine, data, ok & ~singular, names, keys)
-    ratio = find_time_ratio(fine, ok, dead, outputs)
+    ratio = find_time_ratio(fine, ok, dead, outputs) if plan.lead is None else None
     return _Found(gaps, toggles, dead, extremes, ratio)
 
 
@@ -312,7 +336,11 @@ def _closing_notes(plan: _Plan, ok: np.ndarray, singular: np.ndarray, ratio: Tim
             f"{ACCURATE_COND if plan.prog is not None else SINGULAR:.0e}): velocities and accelerations there "
             "would be good to less than 1e-6 and are not reported"
         )
-    circuits = circuits_note(plan.phi, ok, plan.comp.drawn.drive_angles[0])
+    circuits = (
+        circuits_note(plan.phi, ok, plan.comp.drawn.drive_angles[plan.lead or 0])
+        if plan.parameter == "angle"
+        else None
+    )
     if circuits:
         notes.append(circuits)
     if ratio is not None and abs(ratio.ratio - 1.0) > 1e-9:
@@ -353,6 +381,8 @@ def _result(
         extremes=found.extremes,
         time_ratio=found.ratio,
         notes=tuple(plan.notes),
+        parameter=plan.parameter,
+        drives=plan.laws,
     )
 
 
@@ -412,7 +442,12 @@ def _check_precision(phi: np.ndarray) -> None:
 
 
 def _analysis_grid(
-    phi: np.ndarray, comp: Compiled, prog: DyadProgram | None, lvl: int, notes: list[str]
+    phi: np.ndarray,
+    comp: Compiled,
+    prog: DyadProgram | None,
+    lvl: int,
+    notes: list[str],
+    resolve: float = RESOLVE,
 ) -> tuple[np.ndarray, np.ndarray | None]:
     """The angles to analyse: ``phi`` with each step cut into parts of at most :data:`RESOLVE`.
 
@@ -427,7 +462,7 @@ def _analysis_grid(
     if phi.size < 2:
         return phi, None
     widths = np.abs(np.diff(phi))
-    parts = np.maximum(1, np.ceil(widths / RESOLVE * (1.0 - 1e-12))).astype(np.int64)
+    parts = np.maximum(1, np.ceil(widths / resolve * (1.0 - 1e-12))).astype(np.int64)
     if int(parts.max()) == 1:
         return phi, None
     total = int(parts.sum()) + 1
@@ -479,3 +514,173 @@ def _drive_omega(mech: Mechanism, options: SolveOptions) -> float | None:
     elif options.direction is not None and omega is not None:
         omega = abs(omega) * (-1.0 if options.direction == "cw" else 1.0)
     return omega
+
+
+# -- a slider drive, several drives: every drive linear in the sweep's parameter ----------------
+def _plan_laws(
+    mech: Mechanism,
+    angles: Sequence[float] | np.ndarray | None,
+    level: str,
+    options: SolveOptions,
+    lead: str | None = None,
+) -> _Plan:
+    """:func:`_plan` for a slider drive or several drives: the lead, each drive's law, the parameter."""
+    lvl = _checked_level(level, options)
+    names = [d.link or d.joint or "" for d in mech.drives]
+    overrides = [
+        o
+        for o, v in (
+            ("--rpm/--omega", options.omega),
+            ("--speed", options.speed),
+            ("--direction", options.direction),
+            ("--alpha", options.alpha),
+        )
+        if v is not None
+    ]
+    if len(mech.drives) > 1 and overrides:
+        raise InputError(
+            f"{', '.join(overrides)} set a single drive; {mech.label} has {len(mech.drives)} drives, each "
+            "swept at the speed the file gives it",
+            hint="give the speeds in the file",
+        )
+    if lead is not None and lead not in names:
+        raise InputError(f"no drive of {lead!r} to sweep", hint=f"choose from {', '.join(names) or 'none'}")
+    k = names.index(lead) if lead is not None else 0
+    if options.method == "closed":
+        raise UnsupportedError(
+            f"the closed form turns one crank; {mech.label} has "
+            + (f"{len(names)} drives" if len(names) > 1 else "a slider drive"),
+            hint="use method auto or newton",
+        )
+    solve(mech, "position", options.with_(omega=None, direction=None, alpha=None, speed=None))  # validates
+    comp = compiled(mech, None)
+    if comp.system.velocity_only:
+        raise UnsupportedError(
+            f"cannot sweep {mech.label}: {instant_pairs(comp.system.velocity_only)} only the instant drawn "
+            "(no profile is given)",
+        )
+    options, laws = _laws(mech, comp, options, lvl, k)
+    d = mech.drives[k]
+    parameter = "angle" if d.link is not None else "position"
+    if angles is None and parameter == "position":
+        raise InputError(
+            f"a sweep of the slider drive of {d.joint} needs its stroke: the positions along its path "
+            "to sweep between",
+            hint="give --from and --to (positions from the path's through point, in the file's length unit)",
+        )
+    phi = np.radians(np.arange(0.0, 360.5, 1.0)) if angles is None else np.asarray(angles, float).ravel()
+    if phi.size == 0 or not np.all(np.isfinite(phi)):
+        raise InputError("the sweep needs at least one finite value of its parameter")
+    if parameter == "angle":
+        _check_precision(phi)
+    _check_memory(comp, None, phi.size, max(lvl, 1))
+    omega = laws[0].rate if parameter == "angle" else None
+    alpha = (d.alpha or 0.0) if d.link is not None else (d.accel or 0.0)
+    return _Plan(
+        mech,
+        comp,
+        None,
+        level,
+        lvl,
+        max(lvl, 1),
+        names[k],
+        omega,
+        alpha,
+        options,
+        phi,
+        list(comp.drawn.notes),
+        lead=k,
+        parameter=parameter,
+        laws=laws,
+    )
+
+
+def _laws(
+    mech: Mechanism, comp: Compiled, options: SolveOptions, lvl: int, k: int
+) -> tuple[SolveOptions, tuple[DriveLaw, ...]]:
+    """Each drive's law (the lead first) and the options the marched solve runs with.
+
+    Several drives advance in proportion to their speeds, so each needs one; a
+    lone slider drive without a speed is swept at 1 m/s for positions (and the
+    dead centres, found from the speeds), as a crank without one is at 1 rad/s.
+    """
+    drives = mech.drives
+    rates = [
+        d.omega if d.link is not None else (options.speed if options.speed is not None else d.speed)
+        for d in drives
+    ]
+    missing = [d.link or d.joint for d, r in zip(drives, rates, strict=True) if r is None]
+    if missing and (len(drives) > 1 or lvl >= 1):
+        raise InputError(
+            f"no speed for the drive of {', '.join(str(m) for m in missing)}: "
+            + (
+                "several drives are swept in proportion to their speeds"
+                if len(drives) > 1
+                else "give speed (m/s along its path) or --speed"
+            ),
+            where=drives[0].where,
+            hint="give each drive its rpm or omega (a slider its speed)",
+        )
+    if missing:  # one slider drive, positions only
+        rates, options = [1.0], options.with_(speed=1.0)
+    if rates[k] == 0:
+        raise InputError(
+            f"the drive of {drives[k].link or drives[k].joint} does not move (speed 0): it cannot lead a sweep",
+            hint="lead with a moving drive (--drive)",
+        )
+    laws = [
+        DriveLaw(
+            d.link or d.joint or "",
+            "angle" if d.link is not None else "position",
+            None if missing else rates[i],
+            float(rates[i]) / float(rates[k]),  # type: ignore[arg-type]
+            d.relative_to,
+        )
+        for i, d in enumerate(drives)
+    ]
+    return options, (laws[k], *laws[:k], *laws[k + 1 :])
+
+
+def _evaluate_laws(
+    plan: _Plan, analyse: bool
+) -> tuple[Any, dict[str, np.ndarray], np.ndarray, np.ndarray | None]:
+    """:func:`_evaluate` for a slider drive or several drives: the marched Newton series."""
+    w_int = plan.omega if plan.omega else 1.0
+    backend = Newton(plan.mech, plan.comp, plan.options, w_int, plan.alpha, plan.lvl_int, lead=plan.lead)
+    marcher = Marcher.make(backend)
+    if marcher is None:
+        raise UnsupportedError(
+            f"cannot sweep {plan.mech.label} with these drives: its constraint rows do not stack "
+            "(a slider drive or several drives are swept by the marched solver only)",
+            hint="sweep one crank, the other drives held in the file",
+        )
+    resolve = RESOLVE * marcher.law.span / MAX_SPAN  # 1° of the fastest drive (or 1.7% of the size)
+    fine, pick = (
+        _analysis_grid(plan.phi, plan.comp, None, plan.lvl_int, plan.notes, resolve)
+        if analyse
+        else (plan.phi, None)
+    )
+    length = plan.mech.length_unit
+
+    def fmt(p: float) -> str:
+        return (
+            f"{math.degrees(p):.6g}°" if plan.parameter == "angle" else f"{to_unit(p, length):.6g} {length}"
+        )
+
+    data = law_series(backend, marcher, fine, plan.notes, fmt)
+    plan.notes.append(
+        "drives linear in the parameter ("
+        + ", ".join(
+            f"{law.drive}: {law.per_parameter:.6g} {_PER[(law.kind, plan.parameter)]}" for law in plan.laws
+        )
+        + "), Newton continuation (marched)"
+    )
+    return backend, data, fine, pick
+
+
+_PER = {
+    ("angle", "angle"): "rad/rad",
+    ("position", "angle"): "m/rad",
+    ("angle", "position"): "rad/m",
+    ("position", "position"): "m/m",
+}

@@ -12,6 +12,7 @@ branch.  Both give the same dict of arrays (``positions``, ``link_angles``,
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -25,7 +26,7 @@ from mech.kinematics.solve import Compiled, continuation
 from mech.model import Mechanism
 from mech.options import SolveOptions
 
-__all__ = ["Closed", "Newton", "Walk", "newton_series", "stack_rows"]
+__all__ = ["Closed", "Newton", "Walk", "law_series", "newton_series", "stack_rows"]
 
 _TWO_PI = 2.0 * math.pi
 
@@ -137,11 +138,25 @@ class Newton:
     method = "newton"
 
     def __init__(
-        self, mech: Mechanism, comp: Compiled, options: SolveOptions, omega: float, alpha: float, lvl: int
+        self,
+        mech: Mechanism,
+        comp: Compiled,
+        options: SolveOptions,
+        omega: float,
+        alpha: float,
+        lvl: int,
+        lead: int | None = None,
     ) -> None:
         self.mech, self.comp, self.lvl = mech, comp, lvl
-        self.options = options.with_(
-            omega=abs(omega), direction="ccw" if omega >= 0 else "cw", alpha=alpha, method="newton"
+        # lead: the drive whose coordinate is the parameter when every drive follows a linear law
+        # (a slider drive, several drives; mech.kinematics.march.LinearLaw): the file's speeds hold
+        self.lead = lead
+        self.options = (
+            options.with_(method="newton")
+            if lead is not None
+            else options.with_(
+                omega=abs(omega), direction="ccw" if omega >= 0 else "cw", alpha=alpha, method="newton"
+            )
         )
         self.links = comp.system.links
         self.slides = tuple(ps.joint for ps in comp.layout.paths)
@@ -314,3 +329,30 @@ def newton_series(
             + " (a limit position, or out of reach): the steps beyond are not solved"
         )
     return stack_rows(rows, (phi.size,))
+
+
+def law_series(
+    backend: Newton, marcher: Marcher, phi: np.ndarray, notes: list[str], fmt: Callable[[float], str]
+) -> dict[str, np.ndarray]:
+    """The series of a sweep whose drives follow linear laws in its parameter, marched from the drawing.
+
+    As :func:`newton_series`: outward from the step nearest the drawn
+    parameter, each way until a step cannot be reached (said in the notes,
+    ``fmt`` writing a parameter value).
+    """
+    p0 = marcher.law.p0  # type: ignore[union-attr]
+    k0 = int(np.argmin(np.abs(phi - p0)))
+    marched = marcher.series(phi, k0)
+    backend.marcher = marcher
+    ok = marched["assembled"]
+    if not ok.all():
+        reached = np.flatnonzero(ok)
+        stops = [k for k in (reached[0] - 1, reached[-1] + 1) if 0 <= k < phi.size] if reached.size else [k0]
+        notes.append(
+            "Newton continuation from the drawing cannot reach "
+            + " or ".join(fmt(float(phi[k])) for k in stops)
+            + " (a limit position, or out of reach): the steps beyond are not solved"
+        )
+    if not ok.any():
+        raise GeometryError("the mechanism cannot be moved to any parameter asked")
+    return marched

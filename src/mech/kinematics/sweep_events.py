@@ -10,7 +10,7 @@ branch (:class:`~.sweep_backends.Walk`).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Collection, Sequence
 from typing import Any
 
 import numpy as np
@@ -108,18 +108,20 @@ def _edge(backend: Closed, good: float, bad: float) -> float:
     return closing_edge(backend.prog, float(good), float(bad))
 
 
-def _outputs(comp: Compiled, names: dict[str, tuple[str, ...]], drive: str) -> list[tuple[str, str]]:
-    """Candidate outputs for dead centres: sliders on the frame, then links pivoted on the frame."""
+def _outputs(
+    comp: Compiled, names: dict[str, tuple[str, ...]], driven: Collection[str]
+) -> list[tuple[str, str]]:
+    """Candidate outputs for dead centres: sliders on the frame, then links pivoted on the frame (not driven)."""
     lay, mech = comp.layout, comp.mech
     out: list[tuple[str, str]] = []
     for ps in lay.paths:
-        if ps.guide == mech.ground:
+        if ps.guide == mech.ground and ps.joint not in driven:
             out.append(("slide", ps.joint))
     pivoted = []
     for j in mech.joints:
         if j.type is JointType.REVOLUTE and mech.ground in j.links:
             for lk in j.links:
-                if lk not in (mech.ground, drive) and lk in names["links"] and lk not in pivoted:
+                if lk != mech.ground and lk not in driven and lk in names["links"] and lk not in pivoted:
                     pivoted.append(lk)
     out += [("link", lk) for lk in pivoted]
     return out
@@ -182,7 +184,8 @@ def find_dead_centres(
     Closed form: a bracket zoom on the speed.  Newton: regula falsi (Illinois)
     with a solve per iterate.
     """
-    outputs = _outputs(comp, names, comp.layout.drives[0].link or "")
+    driven = {d.link or d.joint or "" for d in comp.layout.drives}
+    outputs = _outputs(comp, names, driven)
     brackets: list[tuple[str, str, float, float, float, float]] = []  # name, key, lo, hi, v_lo, v_hi
     for kind, name in outputs:
         key = f"sliding.{name}" if kind == "slide" else f"omega.{name}"

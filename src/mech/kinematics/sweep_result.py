@@ -9,7 +9,7 @@ import numpy as np
 from mech._records import dataclass
 from mech.kinematics.quantities import LEVELS, check_quantity, pick
 
-__all__ = ["Event", "Extreme", "Gap", "Sweep", "TimeRatio", "frozen"]
+__all__ = ["DriveLaw", "Event", "Extreme", "Gap", "Sweep", "TimeRatio", "frozen"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -67,6 +67,25 @@ class TimeRatio:
         return self.slow / self.fast
 
 
+@dataclass(frozen=True, slots=True)
+class DriveLaw:
+    """How one drive moves over a sweep: linear in the sweep's parameter.
+
+    ``kind`` is ``"angle"`` (a turning drive: its angle, rad, relative to
+    ``relative_to`` when the file says so, else absolute) or ``"position"`` (a
+    slider drive: its point's position along its path from the path's
+    ``through``, m).  ``rate`` is its speed (rad/s or m/s, None where the file
+    gives none); ``per_parameter`` how much it moves per unit of the parameter
+    (1 for the lead drive: rad/rad, m/rad, rad/m or m/m).
+    """
+
+    drive: str
+    kind: str
+    rate: float | None
+    per_parameter: float
+    relative_to: str | None = None
+
+
 def frozen(a: np.ndarray | None) -> np.ndarray | None:
     if a is not None:
         a.flags.writeable = False
@@ -104,6 +123,13 @@ class Sweep:
         (N,) the largest dyad condition number at each step (Newton: of Φ_q).
     gaps, toggles, dead_centres, extremes, time_ratio, notes
         What the sweep found (see the classes).
+    parameter
+        What ``angles`` holds: ``"angle"`` (the drive's angle, rad: one crank,
+        or the lead of several drives) or ``"position"`` (a slider drive's
+        position along its path, m).  Every event's ``angle`` is a value of it.
+    drives
+        With a slider drive or several drives, how each moves (:class:`DriveLaw`),
+        the lead (``drive``) first; empty for one crank.
     """
 
     mechanism: str
@@ -132,6 +158,8 @@ class Sweep:
     extremes: tuple[Extreme, ...]
     time_ratio: TimeRatio | None
     notes: tuple[str, ...]
+    parameter: str = "angle"
+    drives: tuple[DriveLaw, ...] = ()
 
     def series(self, quantity: str) -> np.ndarray:
         """The (N,) values of one quantity (see :func:`quantity_unit` for the keys)."""
