@@ -385,8 +385,11 @@ def test_elliptic_trammel_beyond_the_rods_length_is_a_gap():
     # |s| > L cannot be assembled: the continuation stops at the limit (s = ±L, rod along the guide)
     sw = sweep(mech.load(TRAMMEL), np.linspace(-0.25, 0.25, 51), level="velocity")
     assert np.array_equal(sw.assembled, np.abs(np.linspace(-0.25, 0.25, 51)) <= 0.2 + 1e-12)
-    assert [(round(g.start, 6), round(g.end, 6)) for g in sw.gaps] == [(-0.25, -0.2025), (0.2025, 0.25)]
     assert any("cannot reach" in n for n in sw.notes)
+    # the limits are located between the steps (bisection on reachability): the toggles at s = ±L
+    assert [t.angle for t in sw.toggles] == pytest.approx([-0.2, 0.2], rel=0, abs=1e-9)
+    edges = [x for g in sw.gaps for x in (g.start, g.end)]
+    assert edges == pytest.approx([-0.25, -0.2, 0.2, 0.25], rel=0, abs=1e-9)
 
 
 def _five_bar_closed_form(t2, t5, w2, w5):
@@ -430,7 +433,16 @@ def test_two_crank_five_bar_sweep_is_one_dyad_at_each_step():
     reach = d <= 0.16
     first_out = int(np.argmin(reach[45:])) + 45
     assert ok[45:first_out].all() and not ok[first_out:].any()
-    assert sw.gaps and sw.gaps[-1].start == pytest.approx(phi[first_out])
+    # the toggle, located between the steps: where |BD| = BC + CD, found here by bisection on the closed form
+    lo, hi = float(phi[first_out - 1]), float(phi[first_out])
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        if _five_bar_closed_form(mid, math.radians(270) - 2 * mid, 10.0, -20.0)[4] <= 0.16:
+            lo = mid
+        else:
+            hi = mid
+    (toggle,) = sw.toggles
+    assert toggle.angle == pytest.approx(lo, abs=1e-8) and sw.gaps[-1].start == toggle.angle
 
 
 def test_five_bar_sweep_led_by_either_crank_or_with_a_relative_drive_is_the_same_motion():

@@ -517,6 +517,39 @@ class Marcher:
         out = _arrays(self.backend, self.comp, q, qd, qdd, ok, bad, self.omega_ref, self.lvl)
         return {k: v.reshape(*shape, *v.shape[1:]) for k, v in out.items()}
 
+    def edge(self, k: int, bad: float) -> float:
+        """The last parameter reached going from solved step ``k`` toward ``bad`` (a limit: a toggle).
+
+        Bisection on reachability: each probe is one predicted Newton solve from
+        the nearest configuration reached on this side, so it stays on the
+        sweep's branch; about 50 solves, to rounding of the parameter or where
+        Newton stops converging at the toggle.
+        """
+        phi, q_s = self.solved[0], self.solved[1]
+        good, q = float(phi[k]), q_s[k]
+        bad = float(bad)
+        for _ in range(80):
+            mid = 0.5 * (good + bad)
+            if mid in (good, bad):
+                break
+            _, qd, _ = self.rates(q[None, :])
+            h = np.array([mid - good])
+            c_line, c_ang = self.law.targets(q, good, h)
+            q_mid, conv = _newton(
+                self.rows,
+                self.rates.keep,
+                q[None, :] + h[:, None] * qd / self.rate,
+                c_line,
+                c_ang,
+                self.options.tol,
+                self.options.max_iter,
+            )
+            if conv[0] and np.all(np.isfinite(qd)):
+                good, q = mid, q_mid[0]
+            else:
+                bad = mid
+        return good
+
     def walker(self, start: float) -> Walker:
         return Walker(self, start)
 

@@ -99,6 +99,15 @@ def find_gaps(
             if e < phi.size:
                 end = _edge(backend, phi[e], phi[e - 1])
                 toggles.append(Event("toggle", end, what))
+        elif getattr(backend, "lead", None) is not None and backend.marcher is not None:
+            # drives on linear laws: the limits the continuation reaches, bisected between the steps
+            what = "a limit: the loop cannot close beyond (links in line)"
+            if s > 0:
+                start = backend.marcher.edge(s - 1, phi[s])
+                toggles.append(Event("toggle", start, what))
+            if e < phi.size:
+                end = backend.marcher.edge(e, phi[e - 1])
+                toggles.append(Event("toggle", end, what))
         gaps.append(Gap(start, end, float(np.max(miss)) if miss.size else math.nan, what))
     return tuple(gaps), tuple(sorted(toggles, key=lambda t: t.angle))
 
