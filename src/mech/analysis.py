@@ -234,10 +234,17 @@ def _sweep(mech: Mechanism, spec: SweepSpec, level: str, options: SolveOptions) 
             level=level,
             options=options.with_(method=spec.method),
             quantities=spec.quantities or None,
-            drive=spec.drive,
+            drive=_lead(mech, spec),
         )
     except MemoryError:
         raise out_of_memory(mech, spec) from None
+
+
+def _lead(mech: Mechanism, spec: SweepSpec) -> str | None:
+    """The drive a sweep's values belong to: ``spec.drive``, else the first of a slider or several drives."""
+    if spec.drive is not None or not mech.drives or (len(mech.drives) == 1 and mech.drives[0].link):
+        return spec.drive
+    return mech.drives[0].link or mech.drives[0].joint
 
 
 def _sweep_values(mech: Mechanism, spec: SweepSpec) -> Any:

@@ -242,10 +242,12 @@ def test_sweep_refuses_what_it_cannot_do():
     with pytest.raises(InputError, match="unknown quantity"):
         sweep(four_bar(), FULL, quantities=["speed.C"])
     trammel = mech.load(TRAMMEL)  # driven by a slider
+    with pytest.raises(UnsupportedError, match="names the drive"):  # angles or positions: it must be said
+        sweep(trammel, FULL)
     with pytest.raises(InputError, match="needs its stroke"):  # a slider drive sweeps positions, not angles
-        sweep(trammel)
+        sweep(trammel, drive="PA")
     with pytest.raises(UnsupportedError, match="closed form turns one crank"):
-        sweep(trammel, np.linspace(-0.1, 0.1, 5), options=SolveOptions(method="closed"))
+        sweep(trammel, np.linspace(-0.1, 0.1, 5), options=SolveOptions(method="closed"), drive="PA")
 
 
 PEAUCELLIER = """
@@ -358,7 +360,7 @@ def test_elliptic_trammel_swept_by_its_slider_matches_the_closed_form():
     m = mech.load(TRAMMEL)
     big_l, p, sd = 0.2, 0.08, 0.1
     s_ = np.linspace(-0.19, 0.19, 77)
-    sw = sweep(m, s_, level="acceleration")
+    sw = sweep(m, s_, level="acceleration", drive="PA")
     assert sw.parameter == "position" and sw.drive == "PA" and sw.method == "newton"
     assert sw.assembled.all() and sw.drives[0].rate == pytest.approx(sd)
     y = np.sqrt(big_l**2 - s_**2)
@@ -383,7 +385,7 @@ def test_elliptic_trammel_swept_by_its_slider_matches_the_closed_form():
 
 def test_elliptic_trammel_beyond_the_rods_length_is_a_gap():
     # |s| > L cannot be assembled: the continuation stops at the limit (s = ±L, rod along the guide)
-    sw = sweep(mech.load(TRAMMEL), np.linspace(-0.25, 0.25, 51), level="velocity")
+    sw = sweep(mech.load(TRAMMEL), np.linspace(-0.25, 0.25, 51), level="velocity", drive="PA")
     assert np.array_equal(sw.assembled, np.abs(np.linspace(-0.25, 0.25, 51)) <= 0.2 + 1e-12)
     assert any("cannot reach" in n for n in sw.notes)
     # the limits are located between the steps (bisection on reachability): the toggles at s = ±L
@@ -417,7 +419,7 @@ def test_two_crank_five_bar_sweep_is_one_dyad_at_each_step():
     # DESIGN § 1.1): each step is one RRR dyad on B and D, closed by a circle intersection
     m = mech.load(FIVE_BAR)
     phi = np.radians(np.arange(0.0, 360.5, 2.0))
-    sw = sweep(m, phi, level="velocity", quantities=["velocity.C"])
+    sw = sweep(m, phi, level="velocity", quantities=["velocity.C"], drive="link_2")
     assert sw.parameter == "angle" and [law.drive for law in sw.drives] == ["link_2", "link_5"]
     assert sw.drives[1].per_parameter == pytest.approx(-2.0)
     t2, t5 = phi, math.radians(90) - 2 * (phi - math.radians(90))
@@ -447,7 +449,7 @@ def test_two_crank_five_bar_sweep_is_one_dyad_at_each_step():
 
 def test_five_bar_sweep_led_by_either_crank_or_with_a_relative_drive_is_the_same_motion():
     m = mech.load(FIVE_BAR)
-    lead2 = sweep(m, np.radians([90.0, 80.0, 70.0]), level="velocity")
+    lead2 = sweep(m, np.radians([90.0, 80.0, 70.0]), level="velocity", drive="link_2")
     # link_5 leading: at θ5 = 90° + 20°, 90° + 40° the lead link_2 is at 80°, 70° (−1/2 of link_5's turn)
     lead5 = sweep(m, np.radians([90.0, 110.0, 130.0]), level="velocity", drive="link_5")
     assert lead5.drive == "link_5" and lead5.drives[1].per_parameter == pytest.approx(-0.5)
@@ -457,7 +459,12 @@ def test_five_bar_sweep_led_by_either_crank_or_with_a_relative_drive_is_the_same
     from dataclasses import replace
 
     second = replace(m.drives[1], relative_to="link_2", angle=0.0, omega=-30.0, about="E")
-    rel = sweep(replace(m, drives=(m.drives[0], second)), np.radians([90.0, 80.0, 70.0]), level="velocity")
+    rel = sweep(
+        replace(m, drives=(m.drives[0], second)),
+        np.radians([90.0, 80.0, 70.0]),
+        level="velocity",
+        drive="link_2",
+    )
     assert rel.drives[1].relative_to == "link_2" and rel.drives[1].per_parameter == pytest.approx(-3.0)
     assert np.allclose(rel.positions, lead2.positions, rtol=0, atol=1e-15)
     assert np.allclose(rel.velocities, lead2.velocities, rtol=0, atol=1e-14)
@@ -468,8 +475,12 @@ def test_several_drives_need_every_speed_and_take_no_single_drive_override():
     from dataclasses import replace
 
     with pytest.raises(InputError, match="in proportion to their speeds"):
-        sweep(replace(m, drives=(m.drives[0], replace(m.drives[1], omega=None))), level="position")
+        sweep(
+            replace(m, drives=(m.drives[0], replace(m.drives[1], omega=None))),
+            level="position",
+            drive="link_2",
+        )
     with pytest.raises(InputError, match="set a single drive"):
-        sweep(m, options=SolveOptions(omega=3.0))
+        sweep(m, options=SolveOptions(omega=3.0), drive="link_2")
     with pytest.raises(InputError, match="no drive of 'link_3'"):
         sweep(m, drive="link_3")

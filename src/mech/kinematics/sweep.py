@@ -117,10 +117,9 @@ def sweep(
         link's angle, ω, α, every point's speed and acceleration, every
         slider's displacement and sliding speed, as the level allows.
     drive
-        With a slider drive or several drives: the drive (its link or joint)
-        whose coordinate ``angles`` holds — its angle (rad) or its slider's
-        position along its path from the path's ``through`` (m); default the
-        first.  Every drive follows a linear law in it: each is where the file
+        With a slider drive or several drives (required then): the drive (its
+        link or joint) whose coordinate ``angles`` holds — its angle (rad) or
+        its slider's position along its path from the path's ``through`` (m).  Every drive follows a linear law in it: each is where the file
         draws it when the lead is, and moves in proportion to its speed
         (:class:`~mech.kinematics.march.LinearLaw`).  Swept by Newton (marched).
     analyse
@@ -138,8 +137,9 @@ def sweep(
     InputError
         No speed at velocity level, an unknown quantity, ``options.angle`` given.
     UnsupportedError
-        Pairs known only at the drawn instant (cam, contact): they cannot be
-        moved; ``method="closed"`` with a slider drive or several drives.
+        A slider drive or several drives without ``drive``; pairs known only
+        at the drawn instant (cam, contact): they cannot be moved;
+        ``method="closed"`` with a slider drive or several drives.
     GeometryError
         The mechanism cannot be assembled as drawn, or at none of the angles.
 
@@ -155,7 +155,17 @@ def sweep(
             f"{mech.label} has no drive: a sweep moves its drive",
             hint="add drive: {link: crank, angle: …, rpm: …}",
         )
-    several = drive is not None or len(mech.drives) != 1 or mech.drives[0].link is None
+    several = len(mech.drives) != 1 or mech.drives[0].link is None
+    if several and drive is None:  # what ``angles`` holds must be said: a caller written for cranks refuses
+        raise UnsupportedError(
+            f"{mech.label} has "
+            + (f"{len(mech.drives)} drives" if len(mech.drives) > 1 else "a slider drive")
+            + ": a sweep of it names the drive whose angle or position it sweeps",
+            hint=f"sweep(..., drive={(mech.drives[0].link or mech.drives[0].joint)!r}) "
+            "(mech sweep: the first drive, or --drive)",
+        )
+    if not several and drive not in (None, mech.drives[0].link):
+        raise InputError(f"no drive of {drive!r} to sweep", hint=f"choose {mech.drives[0].link}")
     plan = (_plan_laws if several else _plan)(mech, angles, level, options, drive)
     backend, data, fine, pick = _evaluate(plan, analyse)
     ok, cond, singular = _masked(data, plan.prog is not None)
