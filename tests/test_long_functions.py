@@ -22,7 +22,6 @@ LIMIT = 80
 
 #: "path relative to src/mech:function" → who is splitting it and where it stands.
 IN_FLIGHT: dict[str, str] = {
-    "kinematics/sweep.py:sweep": "trust-num: kinematics/sweep.py split by job (issue 14 part 3)",
     "render/cam.py:cam_table": "pipeline: render/ typed and emitters registered (issue 14 part 1)",
     "render/kinematics.py:kinematics_table": "pipeline: render/ typed and emitters registered (issue 14 part 1)",
     "render/kinematics.py:kinematics_json": "pipeline: render/ typed and emitters registered (issue 14 part 1)",

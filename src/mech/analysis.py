@@ -27,7 +27,7 @@ them, so ``mech dof`` stays light.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from mech._records import dataclass
 from mech.errors import InputError, MechError
@@ -69,14 +69,19 @@ class SweepSpec:
     """A sweep over the drive's angle: ``steps + 1`` angles from ``start`` to ``stop`` (degrees).
 
     ``level`` None: velocity when a drive speed is known (options or file), else position.
+    ``drive`` names the drive whose coordinate is swept (a mechanism with a slider drive or
+    several drives; default the first): for a slider, ``start`` and ``stop`` are positions along
+    its path in the file's length unit (no default: a stroke must be given); for a crank, angles
+    in degrees (default 0 and 360).
     """
 
-    start: float = 0.0
-    stop: float = 360.0
+    start: float | None = 0.0
+    stop: float | None = 360.0
     steps: int = 360
     level: str | None = None
     quantities: tuple[str, ...] = ()
     method: str = "auto"
+    drive: str | None = None
 
     def __post_init__(self) -> None:
         if self.level is not None and self.level not in LEVELS:
@@ -217,23 +222,56 @@ def drawn_positions(mech: Mechanism, options: SolveOptions) -> Kinematics:
 
 def _sweep(mech: Mechanism, spec: SweepSpec, level: str, options: SolveOptions) -> Sweep:
     """The sweep of ``spec``; running out of memory is bad input (exit 2), never a traceback."""
-    import numpy as np
 
     from mech.kinematics import sweep
 
     # the sweep refuses up front when its arrays would exceed its budget (MEMORY_BUDGET, 1 GiB); a
     # machine with less memory than that can still run out: say so
     try:
-        angles = np.radians(np.linspace(spec.start, spec.stop, spec.steps + 1))
         return sweep(
             mech,
-            angles,
+            _sweep_values(mech, spec),
             level=level,
             options=options.with_(method=spec.method),
             quantities=spec.quantities or None,
+            drive=_lead(mech, spec),
         )
     except MemoryError:
         raise out_of_memory(mech, spec) from None
+
+
+def _lead(mech: Mechanism, spec: SweepSpec) -> str | None:
+    """The drive a sweep's values belong to: ``spec.drive``, else the first of a slider or several drives."""
+    if spec.drive is not None or not mech.drives or (len(mech.drives) == 1 and mech.drives[0].link):
+        return spec.drive
+    return mech.drives[0].link or mech.drives[0].joint
+
+
+def _sweep_values(mech: Mechanism, spec: SweepSpec) -> Any:
+    """The sweep's parameter values (SI): a crank's angles (rad), or a slider's positions (m), or None.
+
+    None (a slider drive without ``start``/``stop``) lets the sweep say a stroke is needed.
+    """
+    import numpy as np
+
+    from mech.units import unit_factor
+
+    names = [d.link or d.joint for d in mech.drives]
+    lead = mech.drives[names.index(spec.drive)] if spec.drive in names else (mech.drives or [None])[0]
+    if lead is not None and lead.link is None:  # a slider leads: positions in the file's length unit
+        if spec.start is None or spec.stop is None:
+            return None
+        if spec.start == spec.stop:
+            raise InputError("--from and --to must be two different positions along the slider's path")
+        factor = unit_factor(mech.length_unit)[1]
+        return np.linspace(spec.start * factor, spec.stop * factor, spec.steps + 1)
+    start = 0.0 if spec.start is None else spec.start
+    stop = 360.0 if spec.stop is None else spec.stop
+    if start == stop:
+        raise InputError(
+            "--from and --to must be two different finite values (degrees, or a slider's positions)"
+        )
+    return np.radians(np.linspace(start, stop, spec.steps + 1))
 
 
 def out_of_memory(mech: Mechanism, spec: SweepSpec) -> InputError:

@@ -310,9 +310,26 @@ def properties_command(request: Request, outputs: tuple[str, ...]) -> None:
 
 @cli.command(name="sweep")
 @click.option(
-    "--from", "start", type=float, default=0.0, show_default=True, help="First crank angle, degrees."
+    "--from",
+    "start",
+    type=float,
+    default=None,
+    help="First crank angle, degrees (default 0); a slider drive's first position, file's length unit.",
 )
-@click.option("--to", "stop", type=float, default=360.0, show_default=True, help="Last crank angle, degrees.")
+@click.option(
+    "--to",
+    "stop",
+    type=float,
+    default=None,
+    help="Last crank angle, degrees (default 360); a slider drive's last position, file's length unit.",
+)
+@click.option(
+    "--drive",
+    "lead",
+    default=None,
+    help="With several drives: the drive (link or slider joint) whose angle or position is swept "
+    "(default the first); the others move in proportion to their speeds.",
+)
 @click.option(
     "--steps",
     type=click.IntRange(min=1, max=10_000_000),
@@ -332,7 +349,12 @@ def properties_command(request: Request, outputs: tuple[str, ...]) -> None:
     multiple=True,
     help="A quantity to report (repeatable): omega.rocker, velocity.B, displacement.P … (default: all).",
 )
-@click.option("--csv", "csv_path", type=click.Path(dir_okay=False), help="Write the series as CSV.")
+@click.option(
+    "--csv",
+    "csv_path",
+    type=click.Path(dir_okay=False, allow_dash=True),
+    help="Write the series as CSV (- for standard output, instead of the report).",
+)
 @click.option(
     "--method",
     type=click.Choice(["auto", "closed", "newton"]),
@@ -364,9 +386,10 @@ def properties_command(request: Request, outputs: tuple[str, ...]) -> None:
 @kinematic_command()
 def sweep_command(
     request: Request,
-    start: float,
-    stop: float,
+    start: float | None,
+    stop: float | None,
     steps: int,
+    lead: str | None,
     level: str | None,
     quantities: tuple[str, ...],
     csv_path: str | None,
@@ -376,7 +399,7 @@ def sweep_command(
     paths: tuple[str, ...],
     svg_path: str | None,
 ) -> None:
-    """Solve over a range of crank angles: gaps, toggles, dead centres, extremes, time ratio.
+    """Solve over a range of crank angles (or a slider's stroke): gaps, toggles, dead centres, extremes, time ratio.
 
     Each step continues the last one's assembly branch.  Extremes and dead
     centres are refined between steps, not read off the grid; for a
@@ -384,10 +407,18 @@ def sweep_command(
     """
     if request.options.angle is not None:
         raise InputError("--angle does not apply to a sweep", hint="give the range with --from and --to")
-    if not (math.isfinite(start) and math.isfinite(stop)) or start == stop:
-        raise InputError("--from and --to must be two different finite angles (degrees)")
+    given = [x for x in (start, stop) if x is not None]
+    if not all(math.isfinite(x) for x in given) or (len(given) == 2 and start == stop):
+        raise InputError(
+            "--from and --to must be two different finite values (degrees, or a slider's positions)"
+        )
     if svg_path and not paths:
         raise InputError("--svg draws the --path curves: name a point with --path")
+    if csv_path == "-" and request.as_json:
+        raise InputError(
+            "--csv - writes the CSV to standard output, where --json would write too",
+            hint="write the CSV to a file (--csv series.csv), or leave out --json",
+        )
     quantities = tuple(quantities) + tuple(f"position.{p}.{c}" for p in paths for c in ("x", "y"))
     if plot_path or gif_path:
         from mech.draw.raster import use_matplotlib
@@ -397,7 +428,7 @@ def sweep_command(
     from mech.analysis import SweepSpec, analyse, out_of_memory
     from mech.render.emit import choose, emit
 
-    spec = SweepSpec(start, stop, steps, level=level, quantities=quantities, method=method)
+    spec = SweepSpec(start, stop, steps, level=level, quantities=quantities, method=method, drive=lead)
     asked = Asked(level=None, options=request.options, sweep=spec, drawn=bool(gif_path or svg_path))
     result = analyse(request.file, asked)
     # the sweep refuses up front when its arrays would exceed its budget; the CSV, series or plot of
@@ -413,6 +444,8 @@ def sweep_command(
             paths=paths,
             svg_path=svg_path,
         )
+        if csv_path == "-":  # the CSV is the report on standard output
+            return
         emit(
             "sweep",
             choose(request.as_json),
@@ -442,7 +475,9 @@ def _sweep_files(
 
     sweep, quantities, drawn = result.sweep, quantities_asked, result.drawn
     assert sweep is not None
-    if csv_path:
+    if csv_path == "-":
+        click.echo(render.sweep_csv(sweep, units=units, quantities=quantities), nl=False)
+    elif csv_path:
         _write(csv_path, render.sweep_csv(sweep, units=units, quantities=quantities))
     if plot_path:
         render.sweep_plot_file(plot_path, sweep, units=units, quantities=quantities)

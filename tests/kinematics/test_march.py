@@ -152,3 +152,30 @@ def test_moving_higher_pairs_march_in_stacks_as_the_step_by_step_sweep_solves_th
     for key, unit in (("omegas", w), ("alphas", w * w)):
         a, b = getattr(got, key), getattr(ref, key)
         assert np.nanmax(np.abs(a - b)) <= 1e-9 * unit, key
+
+
+@pytest.mark.parametrize("r", [1e-12, 1e-13])
+def test_marched_sweep_keeps_a_tiny_cranks_rates_to_their_own_digits(r):
+    # A 1e-12 m crank on a 1 m rod, 60 rpm, swept by the marched back-end.  Every rate is
+    # judged against what it is computed from (solve.snap_to_error, Skeel's bound), not
+    # against an absolute 1e-13: near 5° and 85° the rod's ω and the piston's speed are
+    # 5.5e-13 and were set to zero.  Truth: the slider-crank closed form (oracles.slider_crank,
+    # ω₃ = −r ω cosθ / (l cosφ), v = −r ω sinθ − l ω₃ sinφ …) and the crank pin's speed ω·r.
+    from oracles.slider_crank import slider_crank as closed
+
+    rod, w = 1.0, 2 * math.pi
+    m = slider_crank(r=r, rod=rod, angle=math.radians(45), omega=w)
+    phi = np.radians(np.arange(0.0, 361.0, 5.0))
+    s = sweep(m, phi, level="acceleration", analyse=False, options=NEWTON)
+    assert s.method == "newton" and s.assembled.all()
+    pin = s.velocities[:, s.points.index("A"), :]
+    assert np.allclose(np.hypot(pin[:, 0], pin[:, 1]), w * r, rtol=1e-12, atol=0)
+    series = {k: s.series(k) for k in ("omega.rod", "sliding.P", "alpha.rod", "acceleration.B.x")}
+    for k, th in enumerate(phi):
+        _, w3, v, a3, a = closed(r, rod, 0.0, float(th), w)
+        for key, want in zip(series, (w3, v, a3, a), strict=True):
+            got = series[key][k]
+            if abs(want) < 1e-20 * w:  # zero by symmetry (cos 90°): round-off of the formula itself
+                assert abs(got) < 1e-20 * w, (key, math.degrees(th))
+            else:
+                assert got == pytest.approx(want, rel=1e-10), (key, math.degrees(th))

@@ -10,6 +10,7 @@ root-finding on the derivative of the closed-form velocity (30 digits).
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import mpmath
 import numpy as np
@@ -18,6 +19,7 @@ from builders import four_bar, slider_crank
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+import mech
 from mech.errors import InputError, UnsupportedError
 from mech.kinematics import sweep
 from mech.options import SolveOptions
@@ -239,13 +241,13 @@ def test_sweep_refuses_what_it_cannot_do():
         sweep(four_bar(omega=None), FULL, level="velocity")
     with pytest.raises(InputError, match="unknown quantity"):
         sweep(four_bar(), FULL, quantities=["speed.C"])
-    slider_driven = slider_crank()
-    from dataclasses import replace
-
-    from mech.model import Drive
-
-    with pytest.raises(UnsupportedError, match="one crank"):
-        sweep(replace(slider_driven, drives=(Drive(joint="P", speed=1.0),)), FULL)
+    trammel = mech.load(TRAMMEL)  # driven by a slider
+    with pytest.raises(UnsupportedError, match="names the drive"):  # angles or positions: it must be said
+        sweep(trammel, FULL)
+    with pytest.raises(InputError, match="needs its stroke"):  # a slider drive sweeps positions, not angles
+        sweep(trammel, drive="PA")
+    with pytest.raises(UnsupportedError, match="closed form turns one crank"):
+        sweep(trammel, np.linspace(-0.1, 0.1, 5), options=SolveOptions(method="closed"), drive="PA")
 
 
 PEAUCELLIER = """
@@ -343,3 +345,142 @@ def test_steps_too_many_to_resolve_say_events_may_be_missed(monkeypatch):
     m = four_bar(0.04, 0.15, 0.08, 0.15, angle=math.radians(60), omega=-4 * math.pi)
     s = sweep(m, np.radians(np.linspace(0.0, 720.0, 5)))
     assert any("may be missed" in n for n in s.notes), s.notes
+
+
+# -- a slider drive, several drives: every drive linear in the sweep's parameter ------------------
+ROOT = Path(__file__).resolve().parents[2]
+TRAMMEL = ROOT / "mechanisms" / "elliptic_trammel.yaml"
+FIVE_BAR = ROOT / "mechanisms" / "five_bar_two_cranks.yaml"
+
+
+def test_elliptic_trammel_swept_by_its_slider_matches_the_closed_form():
+    # A = (s, 0) driven at s' = 0.1 m/s, B = (0, y) with y = sqrt(L² − s²), L = 0.2 m; P on AB
+    # p = 0.08 m from A: P = (s(1 − p/L), p y / L), on x²/(L−p)² + y²/p² = 1.  Differentiating:
+    # y' = −s s'/y, ω_rod = s'/y (cos φ = −s/L), y'' = −s'² L²/y³, α_rod = −s' y'/y².
+    m = mech.load(TRAMMEL)
+    big_l, p, sd = 0.2, 0.08, 0.1
+    s_ = np.linspace(-0.19, 0.19, 77)
+    sw = sweep(m, s_, level="acceleration", drive="PA")
+    assert sw.parameter == "position" and sw.drive == "PA" and sw.method == "newton"
+    assert sw.assembled.all() and sw.drives[0].rate == pytest.approx(sd)
+    y = np.sqrt(big_l**2 - s_**2)
+    yd = -s_ * sd / y
+    assert np.allclose(sw.series("displacement.PA"), s_, rtol=0, atol=1e-15)
+    assert np.allclose(sw.series("position.B.y"), y, rtol=1e-13)
+    px, py = sw.series("position.P.x"), sw.series("position.P.y")
+    assert np.allclose(px, s_ * (1 - p / big_l), rtol=0, atol=1e-15)
+    assert np.allclose(px**2 / (big_l - p) ** 2 + py**2 / p**2, 1.0, rtol=0, atol=1e-13)
+    assert np.allclose(sw.series("velocity.B.y"), yd, rtol=1e-12, atol=1e-16)
+    assert np.allclose(sw.series("omega.rod"), sd / y, rtol=1e-12)
+    assert np.allclose(sw.series("velocity.P.x"), sd * (1 - p / big_l), rtol=1e-12)
+    assert np.allclose(sw.series("acceleration.B.y"), -(sd**2) * big_l**2 / y**3, rtol=1e-10)
+    assert np.allclose(sw.series("alpha.rod"), -sd * yd / y**2, rtol=1e-10, atol=1e-15)
+    # B's guide reverses where A passes the crossing (s = 0): a dead centre, refined between steps
+    (dead,) = sw.dead_centres
+    assert dead.subject == "PB" and abs(dead.angle) < 1e-12 and dead.value == pytest.approx(big_l, rel=1e-13)
+    top = next(e for e in sw.extremes if e.quantity == "displacement.PB")
+    assert top.max_value == pytest.approx(big_l, rel=1e-14) and abs(top.max_angle) < 1e-6
+    assert sw.time_ratio is None
+
+
+def test_elliptic_trammel_beyond_the_rods_length_is_a_gap():
+    # |s| > L cannot be assembled: the continuation stops at the limit (s = ±L, rod along the guide)
+    sw = sweep(mech.load(TRAMMEL), np.linspace(-0.25, 0.25, 51), level="velocity", drive="PA")
+    assert np.array_equal(sw.assembled, np.abs(np.linspace(-0.25, 0.25, 51)) <= 0.2 + 1e-12)
+    assert any("cannot reach" in n for n in sw.notes)
+    # the limits are located between the steps (bisection on reachability): the toggles at s = ±L
+    assert [t.angle for t in sw.toggles] == pytest.approx([-0.2, 0.2], rel=0, abs=1e-9)
+    edges = [x for g in sw.gaps for x in (g.start, g.end)]
+    assert edges == pytest.approx([-0.25, -0.2, 0.2, 0.25], rel=0, abs=1e-9)
+
+
+def _five_bar_closed_form(t2, t5, w2, w5):
+    """C and v_C of the five-bar A=(0,0), E=(0.1,0), AB=ED=0.04, BC=CD=0.08 (m), C left of B→D."""
+    a, b, c, e = 0.04, 0.08, 0.08, 0.04
+    bx, by = a * np.cos(t2), a * np.sin(t2)
+    dx, dy = 0.1 + e * np.cos(t5), e * np.sin(t5)
+    ux, uy = dx - bx, dy - by
+    d = np.hypot(ux, uy)
+    x = (b * b - c * c + d * d) / (2 * d)
+    with np.errstate(invalid="ignore"):  # beyond reach (|BD| > BC + CD): NaN
+        h = np.sqrt(b * b - x * x)
+    cx, cy = bx + (x * ux - h * uy) / d, by + (x * uy + h * ux) / d
+    # v_B + ω3 k×(C−B) = v_D + ω4 k×(C−D): two equations for ω3, ω4 (Cramer)
+    vbx, vby = -a * w2 * np.sin(t2), a * w2 * np.cos(t2)
+    vdx, vdy = -e * w5 * np.sin(t5), e * w5 * np.cos(t5)
+    r3x, r3y, r4x, r4y = cx - bx, cy - by, cx - dx, cy - dy
+    det = (-r3y) * (-r4x) - r4y * r3x
+    w3 = ((vdx - vbx) * (-r4x) - r4y * (vdy - vby)) / det
+    return cx, cy, vbx - w3 * r3y, vby + w3 * r3x, d
+
+
+def test_two_crank_five_bar_sweep_is_one_dyad_at_each_step():
+    # drives: link_2 at 90° + p, 10 rad/s ccw (the lead); link_5 at 90° − 2 p, 20 rad/s cw (absolute,
+    # DESIGN § 1.1): each step is one RRR dyad on B and D, closed by a circle intersection
+    m = mech.load(FIVE_BAR)
+    phi = np.radians(np.arange(0.0, 360.5, 2.0))
+    sw = sweep(m, phi, level="velocity", quantities=["velocity.C"], drive="link_2")
+    assert sw.parameter == "angle" and [law.drive for law in sw.drives] == ["link_2", "link_5"]
+    assert sw.drives[1].per_parameter == pytest.approx(-2.0)
+    t2, t5 = phi, math.radians(90) - 2 * (phi - math.radians(90))
+    cx, cy, vx, vy, d = _five_bar_closed_form(t2, t5, 10.0, -20.0)
+    ok = sw.assembled
+    k = sw.points.index("C")
+    assert np.allclose(sw.positions[ok, k, 0], cx[ok], rtol=0, atol=1e-15)
+    assert np.allclose(sw.positions[ok, k, 1], cy[ok], rtol=0, atol=1e-15)
+    regular = ok & np.isfinite(sw.velocities[:, k, 0])
+    assert np.allclose(sw.velocities[regular, k, 0], vx[regular], rtol=1e-11, atol=1e-14)
+    assert np.allclose(sw.velocities[regular, k, 1], vy[regular], rtol=1e-11, atol=1e-14)
+    # reached from the drawing (90°) until |BD| = BC + CD (the couplers in line), then a gap
+    reach = d <= 0.16
+    first_out = int(np.argmin(reach[45:])) + 45
+    assert ok[45:first_out].all() and not ok[first_out:].any()
+    # the toggle, located between the steps: where |BD| = BC + CD, found here by bisection on the closed form
+    lo, hi = float(phi[first_out - 1]), float(phi[first_out])
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        if _five_bar_closed_form(mid, math.radians(270) - 2 * mid, 10.0, -20.0)[4] <= 0.16:
+            lo = mid
+        else:
+            hi = mid
+    (toggle,) = sw.toggles
+    assert toggle.angle == pytest.approx(lo, abs=1e-8) and sw.gaps[-1].start == toggle.angle
+
+
+def test_five_bar_sweep_led_by_either_crank_or_with_a_relative_drive_is_the_same_motion():
+    m = mech.load(FIVE_BAR)
+    lead2 = sweep(m, np.radians([90.0, 80.0, 70.0]), level="velocity", drive="link_2")
+    # link_5 leading: at θ5 = 90° + 20°, 90° + 40° the lead link_2 is at 80°, 70° (−1/2 of link_5's turn)
+    lead5 = sweep(m, np.radians([90.0, 110.0, 130.0]), level="velocity", drive="link_5")
+    assert lead5.drive == "link_5" and lead5.drives[1].per_parameter == pytest.approx(-0.5)
+    assert np.allclose(lead5.positions, lead2.positions, rtol=0, atol=1e-15)
+    assert np.allclose(lead5.velocities, lead2.velocities, rtol=0, atol=1e-14)
+    # the second drive relative to link_2: θ5 − θ2 = 0, ω5 − ω2 = −30 rad/s is the same motion
+    from dataclasses import replace
+
+    second = replace(m.drives[1], relative_to="link_2", angle=0.0, omega=-30.0, about="E")
+    rel = sweep(
+        replace(m, drives=(m.drives[0], second)),
+        np.radians([90.0, 80.0, 70.0]),
+        level="velocity",
+        drive="link_2",
+    )
+    assert rel.drives[1].relative_to == "link_2" and rel.drives[1].per_parameter == pytest.approx(-3.0)
+    assert np.allclose(rel.positions, lead2.positions, rtol=0, atol=1e-15)
+    assert np.allclose(rel.velocities, lead2.velocities, rtol=0, atol=1e-14)
+
+
+def test_several_drives_need_every_speed_and_take_no_single_drive_override():
+    m = mech.load(FIVE_BAR)
+    from dataclasses import replace
+
+    with pytest.raises(InputError, match="in proportion to their speeds"):
+        sweep(
+            replace(m, drives=(m.drives[0], replace(m.drives[1], omega=None))),
+            level="position",
+            drive="link_2",
+        )
+    with pytest.raises(InputError, match="set a single drive"):
+        sweep(m, options=SolveOptions(omega=3.0), drive="link_2")
+    with pytest.raises(InputError, match="no drive of 'link_3'"):
+        sweep(m, drive="link_3")

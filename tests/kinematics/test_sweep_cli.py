@@ -342,3 +342,68 @@ def test_sweep_of_two_turns_in_three_steps_reports_four_dead_centres(run):
     assert result.exit_code == 0, result.output
     angles = [d["angle"] for d in json.loads(result.output)["dead_centres"]]
     assert [round(a, 2) for a in angles] == [23.68, 211.29, 383.68, 571.29]
+
+
+def test_csv_dash_writes_the_series_to_standard_output_and_no_file(run, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    args = ("sweep", FOUR_BAR, "--steps", "12", "--quantity", "omega.rocker", "--units", "mm")
+    result = run(*args, "--csv", "-")
+    assert result.exit_code == 0, result.output
+    assert not (tmp_path / "-").exists()
+    # the CSV is the whole of standard output: the same text --csv FILE writes, no report
+    run(*args, "--csv", "s.csv")
+    assert result.stdout == (tmp_path / "s.csv").read_text(encoding="utf-8")
+    rows = list(csv.reader(io.StringIO(result.stdout)))
+    assert rows[0] == ["angle [deg]", "omega.rocker [rad/s]"] and len(rows) == 14
+
+
+def test_csv_dash_with_json_is_refused_as_two_documents_on_one_stream(run, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    result = run("sweep", FOUR_BAR, "--csv", "-", "--json")
+    assert result.exit_code == 2
+    assert not (tmp_path / "-").exists()
+
+
+TRAMMEL = str(ROOT / "mechanisms" / "elliptic_trammel.yaml")
+FIVE_BAR_TWO = str(ROOT / "mechanisms" / "five_bar_two_cranks.yaml")
+
+
+def test_slider_drive_sweeps_its_stroke_in_the_files_length_unit(run):
+    # --from/--to are A's positions along its path in mm (the file's unit); B rises to L = 200 mm
+    # where A crosses the other guide: y_B = sqrt(L² − s²) (closed form)
+    args = ("sweep", TRAMMEL, "--from", "-150", "--to", "150", "--steps", "6", "--units", "mm")
+    result = run(*args, "--json", "--quantity", "position.B.y")
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.output)
+    assert data["parameter"] == {"drive": "PA", "kind": "position", "unit": "mm"}
+    assert data["range"] == [-150.0, 150.0] and data["time_ratio"] is None
+    assert data["series"]["position"] == pytest.approx([-150, -100, -50, 0, 50, 100, 150])
+    want = [math.sqrt(200**2 - s**2) for s in (-150, -100, -50, 0, 50, 100, 150)]
+    assert data["series"]["position.B.y"] == pytest.approx(want, rel=1e-12)
+    (dead,) = data["dead_centres"]
+    assert dead["output"] == "PB" and abs(dead["angle"]) < 1e-9 and dead["position"] == pytest.approx(200)
+    table = run(*args)
+    assert table.exit_code == 0 and "sweep of PA along its path from -150 to 150 mm" in table.output
+    rows = list(csv.reader(io.StringIO(run(*args, "--csv", "-").stdout)))
+    assert rows[0][0] == "position [mm]" and float(rows[1][0]) == -150.0
+
+
+def test_slider_drive_without_a_stroke_is_refused(run):
+    result = run("sweep", TRAMMEL)
+    assert result.exit_code == 2 and "needs its stroke" in result.stderr
+
+
+def test_several_drives_sweep_each_in_proportion_and_name_the_lead(run):
+    result = run("sweep", FIVE_BAR_TWO, "--json", "--steps", "36")
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.output)
+    assert data["parameter"]["drive"] == "link_2" and data["parameter"]["kind"] == "angle"
+    assert [(d["drive"], d["per_parameter"]) for d in data["drives"]] == [("link_2", 1.0), ("link_5", -2.0)]
+    led = json.loads(
+        run("sweep", FIVE_BAR_TWO, "--json", "--drive", "link_5", "--from", "90", "--to", "0").output
+    )
+    assert led["parameter"]["drive"] == "link_5" and led["drives"][1]["per_parameter"] == -0.5
+    refused = run("sweep", FIVE_BAR_TWO, "--rpm", "100")
+    assert refused.exit_code == 2 and "set a single drive" in refused.stderr
+    unknown = run("sweep", FIVE_BAR_TWO, "--drive", "link_3")
+    assert unknown.exit_code == 2 and "no drive of 'link_3'" in unknown.stderr

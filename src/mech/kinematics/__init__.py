@@ -12,7 +12,8 @@ The public API::
 Modules: :mod:`.geometry` (closed-form primitives), :mod:`.layout` (what the
 file locates), :mod:`.assemble` (the drawn configuration), :mod:`.constraints`
 (Φ, Φ_q, γ in reference-point coordinates), :mod:`.solve` (Newton, velocity,
-acceleration), :mod:`.dyads` (closed form), :mod:`.sweep` (cycles), :mod:`.mobility` (Jacobian rank), :mod:`.result` (frozen results).
+acceleration), :mod:`.dyads` (closed form), :mod:`.sweep` (cycles: the driver; :mod:`.sweep_backends`, :mod:`.sweep_events`,
+:mod:`.roots`, :mod:`.quantities`, :mod:`.sweep_result`), :mod:`.mobility` (Jacobian rank), :mod:`.result` (frozen results).
 numpy is imported here, never by ``mech`` itself.
 """
 

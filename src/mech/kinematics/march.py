@@ -36,8 +36,9 @@ import numpy as np
 from mech.errors import GeometryError
 from mech.kinematics.constraints import System
 from mech.kinematics.curves import curve_rows
+from mech.kinematics.solve import snap_to_error
 
-__all__ = ["MAX_SPAN", "Marcher", "Stacked", "Walker", "march", "stacked"]
+__all__ = ["MAX_SPAN", "LinearLaw", "Marcher", "Stacked", "Walker", "march", "stacked"]
 
 #: Largest crank angle one stack may span (rad); continuation's own step limit.
 MAX_SPAN = math.radians(15.0)
@@ -300,14 +301,26 @@ class _Rates:
     """
 
     def __init__(
-        self, rows: Stacked, keep: np.ndarray, drive_row: int, rate: float, accel: float, singular: float
+        self,
+        rows: Stacked,
+        keep: np.ndarray,
+        drive_row: np.ndarray,
+        rate: np.ndarray,
+        accel: np.ndarray,
+        singular: float,
     ):
+        # per drive: its row, its rate (scaled) and its acceleration (scaled) in that row
         self.rows, self.keep, self.rate, self.accel, self.singular = rows, keep, rate, accel, singular
         self.drive_row = drive_row
-        self.at = int(np.flatnonzero(keep == drive_row)[0])  # the drive row's place among ``keep``
 
     def __call__(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(bad, q̇, q̈) for configurations ``q`` (K, 3n): ``bad`` marks the singular ones."""
+        """(bad, q̇, q̈) for configurations ``q`` (K, 3n): ``bad`` marks the singular ones.
+
+        Each solve is refined once and its components below their own error
+        bound set to zero, by the rule one solve uses
+        (:func:`~mech.kinematics.solve.snap_to_error`): a 1e-12 m crank on 1 m
+        links keeps its 5e-13 rad/s, a pivot's round-off does not show.
+        """
         full = self.rows.jacobian(q)
         jac = full[:, self.keep, :]
         k, n = q.shape[0], jac.shape[2]
@@ -318,35 +331,44 @@ class _Rates:
         except np.linalg.LinAlgError:  # one step exactly singular: every step by the SVD
             inv = np.zeros_like(jac)
             unsure = np.ones(k, bool)
-        rhs = np.zeros((k, n))
-        rhs[:, self.at] = self.rate
-        qd = np.einsum("kij,kj->ki", inv, rhs)
-        bad = np.zeros(k, bool)
         svds: dict[int, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
+        bad = np.zeros(k, bool)
         for t in np.flatnonzero(unsure).tolist():
             u, s, vt = np.linalg.svd(full[t], full_matrices=False)
             svds[t] = (u, s, vt)
             bad[t] = not (s[-1] > 0 and s[0] / s[-1] <= self.singular)
-            b = np.zeros(full.shape[1])
-            b[self.drive_row] = self.rate
-            qd[t] = _svd_solve(u, s, vt, b)
-        qd = _snap(qd)
+        rhs = np.zeros((k, full.shape[1]))
+        rhs[:, self.drive_row] = self.rate
+        qd = self._solve(full, jac, inv, svds, rhs)
         gamma = self.rows.gamma(q, qd)
-        gamma[:, self.drive_row] += self.accel
-        qdd = np.einsum("kij,kj->ki", inv, gamma[:, self.keep])
-        for t, (u, s, vt) in svds.items():
-            qdd[t] = _svd_solve(u, s, vt, gamma[t])
-        return bad, qd, _snap(qdd)
+        gamma[:, self.drive_row] += self.accel[None, :]
+        return bad, qd, self._solve(full, jac, inv, svds, gamma)
+
+    def _solve(
+        self,
+        full: np.ndarray,
+        jac: np.ndarray,
+        inv: np.ndarray,
+        svds: dict[int, tuple[np.ndarray, np.ndarray, np.ndarray]],
+        rhs: np.ndarray,
+    ) -> np.ndarray:
+        """x with Φ_q x = b for every step (K, 3n): refined once, then snapped to its error bound."""
+        b = rhs[:, self.keep]
+        x = np.einsum("kij,kj->ki", inv, b)
+        x += np.einsum("kij,kj->ki", inv, b - np.einsum("kij,kj->ki", jac, x))
+        x = snap_to_error(jac, inv, x, b)
+        for t, (u, s, vt) in svds.items():  # on all rows, as one solve does
+            y = _svd_solve(u, s, vt, rhs[t])
+            y += _svd_solve(u, s, vt, rhs[t] - full[t] @ y)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                pinv = vt.T @ (u.T / np.where(s > 0, s, np.inf)[:, None])
+            x[t] = snap_to_error(full[t], pinv, y, rhs[t])
+        return x
 
 
 def _svd_solve(u: np.ndarray, s: np.ndarray, vt: np.ndarray, b: np.ndarray) -> np.ndarray:
     with np.errstate(divide="ignore", invalid="ignore"):
         return vt.T @ ((u.T @ b) / np.where(s > 0, s, np.inf))
-
-
-def _snap(x: np.ndarray) -> np.ndarray:
-    x[np.abs(x) < 1e-13] = 0.0  # as one solve does: round-off below the solve's accuracy is zero
-    return x
 
 
 def march(backend: Any, phi: np.ndarray, k0: int) -> dict[str, np.ndarray] | None:
@@ -365,7 +387,7 @@ class Marcher:
     """What a marched series or walk of one sweep shares: stacked rows, the drive, the rate solver."""
 
     def __init__(self, backend: Any, rows: Stacked, keep: np.ndarray) -> None:
-        from mech.kinematics.solve import SINGULAR, continue_along, drives_as_used, omega_ref_of
+        from mech.kinematics.solve import SINGULAR, drives_as_used, omega_ref_of
 
         comp = backend.comp
         sys_ = comp.system
@@ -373,37 +395,40 @@ class Marcher:
         self.options = backend.options
         self.lvl = max(backend.lvl, 1)
         self.drives = drives_as_used(comp.mech, comp.layout, comp.drawn, self.options, self.lvl)
-        drive = self.drives[0]
         self.omega_ref = omega_ref_of(self.drives, comp.drawn.scale)
-        self.rate = drive.omega / self.omega_ref  # type: ignore[operator]
-        self.accel = (drive.alpha or 0.0) / self.omega_ref**2
-        offset = 2 * sys_.pc_i.size + sys_.ln_s.size
-        self.arow = int(sys_.drive_rows[0]) - offset  # the drive's row among the angle rows
-        self.ci = 3 * sys_.link_index[drive.link] + 2
-        self.rates = _Rates(rows, keep, int(sys_.drive_rows[0]), self.rate, self.accel, SINGULAR)
-        self.step_once = continue_along
+        lead = getattr(backend, "lead", None)
+        self.law: _CrankLaw | LinearLaw = (
+            _CrankLaw(self) if lead is None else LinearLaw(self, lead)  # type: ignore[arg-type]
+        )
+        self.rate, self.accel = self.law.rate, self.law.accel
+        self.rates = _Rates(
+            rows, keep, sys_.drive_rows.astype(int), self.law.row_rates, self.law.row_accels, SINGULAR
+        )
         self.solved: tuple[np.ndarray, ...] = (np.zeros(0),) * 4 + (np.zeros(0, bool),)
 
     @classmethod
     def make(cls, backend: Any) -> Marcher | None:
-        """A marcher for ``backend``'s mechanism, or None: rows that do not stack, not one crank."""
+        """A marcher for ``backend``'s mechanism, or None: rows that do not stack, not one crank.
+
+        A backend with a ``lead`` (a slider drive, or several drives following
+        linear laws in the sweep's parameter, :class:`LinearLaw`) is marched
+        whatever its drives; otherwise the mechanism has one turning drive.
+        """
         sys_ = backend.comp.system
         rows = stacked(sys_)
         keep = square_rows(sys_) if rows is not None else None
-        if rows is None or keep is None or sys_.velocity_only or len(sys_.drive_rows) != 1:
+        if rows is None or keep is None or sys_.velocity_only:
             return None
-        if len(backend.mech.drives) != 1 or backend.mech.drives[0].link is None:
+        if getattr(backend, "lead", None) is None and (
+            len(sys_.drive_rows) != 1 or len(backend.mech.drives) != 1 or backend.mech.drives[0].link is None
+        ):
             return None
         return cls(backend, rows, keep)
 
     def start(self, angle: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool] | None:
         """(q, q̇, q̈, singular) at ``angle``, reached from the drawing as one solve does; None if not."""
-        from mech.kinematics.solve import move_to
-
-        base = self.options.with_(angle=float(angle), method="newton")
-        try:
-            q0 = move_to(self.comp, tuple(replace(d, angle=float(angle)) for d in self.drives), base)
-        except GeometryError:
+        q0 = self.law.reach(float(angle))
+        if q0 is None:
             return None
         b0, qd0, qdd0 = self.rates(q0[None, :])
         return q0, qd0[0], qdd0[0], bool(b0[0])
@@ -425,16 +450,11 @@ class Marcher:
                 _walk(
                     self.rows,
                     self.rates,
-                    self.sys,
+                    self.law,
                     self.options,
                     phi,
                     k0,
                     order,
-                    self.arow,
-                    self.ci,
-                    self.rate,
-                    self.accel,
-                    self.step_once,
                     q_all,
                     qd_all,
                     qdd_all,
@@ -486,18 +506,49 @@ class Marcher:
             d1 = qd_s[anchor] / self.rate
             d2 = (qdd_s[anchor] - self.accel * d1) / self.rate**2
             pred = q_s[anchor] + h[:, None] * d1 + 0.5 * (h * h)[:, None] * d2
-            sys_ = self.sys
-            c_ang = np.tile(sys_.ang_c, (n_out, 1))
-            c_ang[:, self.arow] = sys_.ang_c[self.arow] + (q_s[anchor, self.ci] - sys_.q0[self.ci]) + h
+            c_line, c_ang = self.law.targets(q_s[anchor], phi[anchor], h)
             q_n, conv = _newton(
-                self.rows, self.rates.keep, pred, sys_.ln_c, c_ang, self.options.tol, self.options.max_iter
+                self.rows, self.rates.keep, pred, c_line, c_ang, self.options.tol, self.options.max_iter
             )
-            conv &= np.abs(h) <= MAX_SPAN
+            conv &= np.abs(h) <= self.law.span
             if conv.any():
                 b, v, acc = self.rates(q_n[conv])
                 q[conv], qd[conv], qdd[conv], ok[conv], bad[conv] = q_n[conv], v, acc, True, b
         out = _arrays(self.backend, self.comp, q, qd, qdd, ok, bad, self.omega_ref, self.lvl)
         return {k: v.reshape(*shape, *v.shape[1:]) for k, v in out.items()}
+
+    def edge(self, k: int, bad: float) -> float:
+        """The last parameter reached going from solved step ``k`` toward ``bad`` (a limit: a toggle).
+
+        Bisection on reachability: each probe is one predicted Newton solve from
+        the nearest configuration reached on this side, so it stays on the
+        sweep's branch; about 50 solves, to rounding of the parameter or where
+        Newton stops converging at the toggle.
+        """
+        phi, q_s = self.solved[0], self.solved[1]
+        good, q = float(phi[k]), q_s[k]
+        bad = float(bad)
+        for _ in range(80):
+            mid = 0.5 * (good + bad)
+            if mid in (good, bad):
+                break
+            _, qd, _ = self.rates(q[None, :])
+            h = np.array([mid - good])
+            c_line, c_ang = self.law.targets(q, good, h)
+            q_mid, conv = _newton(
+                self.rows,
+                self.rates.keep,
+                q[None, :] + h[:, None] * qd / self.rate,
+                c_line,
+                c_ang,
+                self.options.tol,
+                self.options.max_iter,
+            )
+            if conv[0] and np.all(np.isfinite(qd)):
+                good, q = mid, q_mid[0]
+            else:
+                bad = mid
+        return good
 
     def walker(self, start: float) -> Walker:
         return Walker(self, start)
@@ -526,7 +577,7 @@ class Walker:
                 return None
             self.state = (self.start, first)
         here, state = self.state
-        pieces = max(1, math.ceil(abs(angle - here) / (0.5 * MAX_SPAN)))
+        pieces = max(1, math.ceil(abs(angle - here) / (0.5 * mr.law.span)))
         route = np.linspace(here, angle, pieces + 1)
         q, qd, qdd, ok, bad = mr.fill(route, 0, state)
         if not ok[-1]:
@@ -542,16 +593,11 @@ class Walker:
 def _walk(
     rows: Stacked,
     rates: _Rates,
-    sys_: System,
+    law: _CrankLaw | LinearLaw,
     options: Any,
     phi: np.ndarray,
     k0: int,
     order: np.ndarray,
-    arow: int,
-    ci: int,
-    rate: float,
-    accel: float,
-    step_once: Any,
     q_all: np.ndarray,
     qd_all: np.ndarray,
     qdd_all: np.ndarray,
@@ -561,13 +607,11 @@ def _walk(
     """March from ``k0`` through the steps ``order`` (one direction), filling the arrays in place."""
     last, size, i = k0, _FIRST, 0
     anchor = None if bad[k0] else k0  # the last step with derivatives to predict from
-    ang_rows = [arow]
+    rate, accel = law.rate, law.accel
 
     def plain(h: float) -> np.ndarray | None:
         """One step from ``last`` by step-by-step continuation (its own predictor, step halving)."""
-        q = q_all[last]
-        c_last = sys_.ang_c[arow] + (q[ci] - sys_.q0[ci])  # the drive row's target there
-        q_new, _ = step_once(sys_, q, _c_ang(sys_, arow, c_last), sys_.ln_c, ang_rows, np.array([h]), options)
+        q_new = law.plain(q_all[last], float(phi[last]), h)
         return None if q_new is None else q_new[None, :]
 
     while i < order.size:
@@ -580,17 +624,15 @@ def _walk(
         else:
             # predict from the last regular step, across a singular one if it came since
             q = q_all[anchor]
-            c_anchor = sys_.ang_c[arow] + (q[ci] - sys_.q0[ci])
             d1 = qd_all[anchor] / rate
             d2 = (qdd_all[anchor] - accel * d1) / rate**2
             h = phi[idx] - phi[anchor]
-            within = np.abs(h) <= MAX_SPAN
+            within = np.abs(h) <= law.span
             cut = idx.size if within.all() else max(1, int(np.argmin(within)))
             idx, h = idx[:cut], h[:cut]
             pred = q + h[:, None] * d1 + 0.5 * (h * h)[:, None] * d2
-            c_ang = np.tile(sys_.ang_c, (idx.size, 1))
-            c_ang[:, arow] = c_anchor + h
-            q_acc, conv = _newton(rows, rates.keep, pred, sys_.ln_c, c_ang, options.tol, options.max_iter)
+            c_line, c_ang = law.targets(q, float(phi[anchor]), h)
+            q_acc, conv = _newton(rows, rates.keep, pred, c_line, c_ang, options.tol, options.max_iter)
             got = int(np.argmin(conv)) if not conv.all() else conv.size
             if got == 0:
                 if size > 1:
@@ -618,6 +660,135 @@ def _c_ang(sys_: System, arow: int, c: float) -> np.ndarray:
     out = sys_.ang_c.copy()
     out[arow] = c
     return out
+
+
+class _CrankLaw:
+    """One crank turning about the ground: the sweep's parameter is its angle (rad).
+
+    The drive row's target is read from the crank's own angle in ``q`` (no 2π
+    ambiguity); a step the march cannot take is handed to the step-by-step
+    continuation of :mod:`.solve`, and the start is reached as one solve does.
+    """
+
+    def __init__(self, mr: Marcher) -> None:
+        sys_ = mr.sys
+        drive = mr.drives[0]
+        self.mr, self.sys = mr, sys_
+        self.rate = drive.omega / mr.omega_ref  # type: ignore[operator]
+        self.accel = (drive.alpha or 0.0) / mr.omega_ref**2
+        self.row_rates, self.row_accels = np.array([self.rate]), np.array([self.accel])
+        offset = 2 * sys_.pc_i.size + sys_.ln_s.size
+        self.arow = int(sys_.drive_rows[0]) - offset  # the drive's row among the angle rows
+        self.ci = 3 * sys_.link_index[drive.link] + 2
+        self.span = MAX_SPAN
+
+    def targets(self, q: np.ndarray, p: Any, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(line, angle) row constants for the steps ``h`` (rad) beyond the solved ``q``."""
+        sys_ = self.sys
+        c_ang = np.tile(sys_.ang_c, (np.size(h), 1))
+        c_ang[:, self.arow] = sys_.ang_c[self.arow] + (q[..., self.ci] - sys_.q0[self.ci]) + h
+        return sys_.ln_c, c_ang
+
+    def plain(self, q: np.ndarray, p: float, h: float) -> np.ndarray | None:
+        from mech.kinematics.solve import continue_along
+
+        sys_, arow, ci = self.sys, self.arow, self.ci
+        c_last = sys_.ang_c[arow] + (q[ci] - sys_.q0[ci])  # the drive row's target there
+        q_new, _ = continue_along(
+            sys_, q, _c_ang(sys_, arow, c_last), sys_.ln_c, [arow], np.array([h]), self.mr.options
+        )
+        return q_new
+
+    def reach(self, angle: float) -> np.ndarray | None:
+        from mech.kinematics.solve import move_to
+
+        base = self.mr.options.with_(angle=angle, method="newton")
+        try:
+            return move_to(self.mr.comp, tuple(replace(d, angle=angle) for d in self.mr.drives), base)
+        except GeometryError:
+            return None
+
+
+class LinearLaw:
+    """Every drive linear in the sweep's parameter p: a slider drive, or several drives.
+
+    p is the lead drive's coordinate in SI: its angle (rad) for a turning drive,
+    its slider point's position along its path from the path's ``through``
+    point (m) for a slider.  Drive k's row constant (its angle, relative to its
+    reference; its slider's position, scaled) is ``c_k(p) = c_k,drawn + r_k (p −
+    p_drawn)``: every drive is where the file draws it when the lead is, and
+    moves in proportion to its speed, ``r_k`` its rate over the lead's (the
+    others advance as they would in time).  Steps are limited so that no drive
+    moves more than :data:`MAX_SPAN` (rad, or that fraction of the size) at once.
+    """
+
+    def __init__(self, mr: Marcher, lead: int) -> None:
+        sys_, drawn = mr.sys, mr.comp.drawn
+        self.mr, self.sys, self.lead = mr, sys_, lead
+        scale, w = drawn.scale, mr.omega_ref
+        n_pc, kl = sys_.pc_i.size, sys_.ln_s.size
+        rows = sys_.drive_rows.astype(int)
+        self.line = (rows >= 2 * n_pc) & (rows < 2 * n_pc + kl)  # slider drives: line rows
+        self.local = np.where(self.line, rows - 2 * n_pc, rows - 2 * n_pc - kl)
+        # each drive's rate in its row's units per unit of time, SI (rad/s, or scaled length per s)
+        si = np.array(
+            [d.omega if d.link is not None else d.speed / scale for d in mr.drives],  # type: ignore[operator]
+            float,
+        )
+        acc = np.array(
+            [(d.alpha or 0.0) if d.link is not None else (d.accel or 0.0) / scale for d in mr.drives], float
+        )
+        lead_si = si[lead] * (scale if self.line[lead] else 1.0)  # dp/dt: rad/s, or m/s
+        self.ratio = si / lead_si  # dc_k/dp
+        self.row_rates, self.row_accels = si / w, acc / w**2
+        self.rate = lead_si / w  # dp/dτ
+        self.accel = self.row_accels[lead] / self.ratio[lead]
+        self.c0 = np.array(
+            [(sys_.ln_c if ln else sys_.ang_c)[i] for ln, i in zip(self.line, self.local, strict=True)]
+        )
+        self.p0 = float(self.c0[lead] / self.ratio[lead]) if self.line[lead] else self.drawn_angle()
+        self.span = MAX_SPAN / float(np.max(np.abs(self.ratio)))
+
+    def drawn_angle(self) -> float:
+        """The lead crank's drawn angle (rad): where its row constant stands in the drawing."""
+        return float(self.mr.comp.drawn.drive_angles[self.lead])
+
+    def targets(self, q: np.ndarray, p: Any, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(line, angle) row constants (K, …) at the parameters ``p + h``."""
+        sys_ = self.sys
+        at = p + np.atleast_1d(h)
+        c = self.c0[None, :] + (at - self.p0)[:, None] * self.ratio[None, :]
+        c_line = np.tile(sys_.ln_c, (at.size, 1))
+        c_ang = np.tile(sys_.ang_c, (at.size, 1))
+        c_line[:, self.local[self.line]] = c[:, self.line]
+        c_ang[:, self.local[~self.line]] = c[:, ~self.line]
+        return c_line, c_ang
+
+    def plain(self, q: np.ndarray, p: float, h: float) -> np.ndarray | None:
+        """From ``q`` at ``p`` to ``p + h`` by first-order steps, halved where Newton fails."""
+        mr, done, step = self.mr, 0.0, min(abs(h), self.span)
+        while abs(h - done) > 1e-14 * abs(h):
+            rest = h - done
+            step = rest if abs(rest) <= abs(step) else math.copysign(abs(step), rest)
+            _, qd, _ = mr.rates(q[None, :])
+            c_line, c_ang = self.targets(q, p + done, np.array([step]))
+            pred = q[None, :] + step * qd / self.rate
+            q_new, conv = _newton(
+                mr.rows, mr.rates.keep, pred, c_line, c_ang, mr.options.tol, mr.options.max_iter
+            )
+            if not conv[0] or not np.all(np.isfinite(qd)):
+                step /= 2.0
+                if abs(step) < 1e-9 * self.span:
+                    return None
+                continue
+            q, done = q_new[0], done + step
+            step = min(abs(step) * 2.0, self.span)
+        return q
+
+    def reach(self, p: float) -> np.ndarray | None:
+        """The configuration at ``p``, continued from the drawing (where p is ``p0``)."""
+        h = p - self.p0
+        return self.sys.q0.copy() if h == 0 else self.plain(self.sys.q0.copy(), self.p0, h)
 
 
 def _newton(

@@ -247,7 +247,7 @@ def _rates(
     """q̇ and q̈ (scaled) at ``q`` by the linear solves Φ_q q̇ = −Φ_t, Φ_q q̈ = γ (None above ``lvl``).
 
     Each solve is refined once and each component below its own error bound
-    set to zero (:func:`_snap_to_error`): a 1e-12 m crank on 1 m links keeps its
+    set to zero (:func:`snap_to_error`): a 1e-12 m crank on 1 m links keeps its
     4.4e-12 m/s, a pivot's 1e-17 m/s of round-off does not show.
     """
     sys_ = comp.system
@@ -404,13 +404,13 @@ def _closed_form(
             qd[2::3] = np.asarray(parts["lw"]) / omega_ref
             jac = sys_.jacobian(q)
             inverse = _pinv(np.linalg.svd(jac, full_matrices=False))
-            qd = _snap_to_error(jac, inverse, qd, _rate_rhs(comp, drives, omega_ref))
+            qd = snap_to_error(jac, inverse, qd, _rate_rhs(comp, drives, omega_ref))
         if lvl >= 2 and qd is not None:
             qdd = np.empty(3 * n)
             qdd[0::3] = np.asarray(parts["lax"]) / (scale * omega_ref**2)
             qdd[1::3] = np.asarray(parts["lay"]) / (scale * omega_ref**2)
             qdd[2::3] = np.asarray(parts["lal"]) / omega_ref**2
-            qdd = _snap_to_error(jac, inverse, qdd, _accel_rhs(comp, q, qd, drives, omega_ref))
+            qdd = snap_to_error(jac, inverse, qdd, _accel_rhs(comp, q, qd, drives, omega_ref))
         return q, qd, qdd
 
     def note() -> str:
@@ -582,20 +582,20 @@ def _checked(
     Rank and conditioning are judged here, once per configuration: by one SVD
     (small systems), or block by block for a large chain (:mod:`.blocks`).  The
     solver refines its answer once and zeroes what is below its error bound
-    (:func:`_snap_to_error`).
+    (:func:`snap_to_error`).
     """
     form = _blocks(comp.system)
     if form is None:
         svd = _svd_checked(comp, jac, drives)
         inverse = _pinv(svd) if jac.shape[1] else None
-        return lambda rhs: _snap_to_error(jac, inverse, _refined(jac, lambda b: _lin_solve(svd, b), rhs), rhs)
+        return lambda rhs: snap_to_error(jac, inverse, _refined(jac, lambda b: _lin_solve(svd, b), rhs), rhs)
     cond, null = form.condition(jac)
     if cond > SINGULAR:
         raise GeometryError(
             _singular_message(comp, null, cond, drives),  # type: ignore[arg-type]
             hint="analyse a slightly different angle: velocities here are undetermined",
         )
-    return lambda rhs: _snap_to_error(jac, None, _refined(jac, lambda b: form.solve(jac, b), rhs), rhs)
+    return lambda rhs: snap_to_error(jac, None, _refined(jac, lambda b: form.solve(jac, b), rhs), rhs)
 
 
 #: Safety factor on the first-order error bound below which a rate is shown as zero.
@@ -623,7 +623,7 @@ def _pinv(svd: tuple) -> np.ndarray:
     return vt.T @ (u.T / s[:, None])
 
 
-def _snap_to_error(jac: np.ndarray, inverse: np.ndarray | None, x: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+def snap_to_error(jac: np.ndarray, inverse: np.ndarray | None, x: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     """Components of ``x`` within their own error bound of zero set to exactly zero.
 
     The bound is Skeel's first-order componentwise one for a refined solve,
@@ -637,6 +637,9 @@ def _snap_to_error(jac: np.ndarray, inverse: np.ndarray | None, x: np.ndarray, r
         return x
     if inverse is None:
         floor = np.full(x.shape, 1e3 * NOISE_FACTOR * _EPS * float(np.max(np.abs(x))))
+    elif x.ndim == 2:  # a stack of K solves (march): jac (K, m, n), inverse (K, n, m), x (K, n), rhs (K, m)
+        bound = np.abs(jac) @ np.abs(x)[..., None] + np.abs(rhs)[..., None]
+        floor = NOISE_FACTOR * _EPS * (np.abs(inverse) @ bound)[..., 0]
     else:
         floor = NOISE_FACTOR * _EPS * (np.abs(inverse) @ (np.abs(jac) @ np.abs(x) + np.abs(rhs)))
     x[np.abs(x) <= floor] = 0.0

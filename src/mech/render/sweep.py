@@ -47,6 +47,51 @@ def _deg(a: float) -> float:
     return math.degrees(a)
 
 
+def _par(sw: Sweep, units: OutputUnits) -> Any:
+    """The sweep's parameter in output units: a crank's angle in degrees, a slider's position in --units."""
+    if sw.parameter == "angle":
+        return _deg
+    return lambda x: to_unit(x, units.length)
+
+
+def _par_text(sw: Sweep, units: OutputUnits, x: float, digits: int) -> str:
+    """A parameter value for people: ``12.345678°`` or ``0.125 m`` (a slider's position)."""
+    if sw.parameter == "angle":
+        return f"{_deg(x):.{digits}f}°"
+    return f"{to_unit(x, units.length):.{digits}g} {format_unit(units.length)}"
+
+
+def _par_unit(sw: Sweep, units: OutputUnits) -> str:
+    return "deg" if sw.parameter == "angle" else units.length
+
+
+def _drives_json(sw: Sweep, units: OutputUnits) -> list[dict[str, Any]]:
+    """Each drive's law over the sweep (a slider drive or several drives), the lead first.
+
+    ``per_parameter``: how far the drive moves per unit of the parameter, in its own output
+    unit (deg or the length unit) per the parameter's (deg or the length unit).
+    """
+    par = _deg(1.0) if sw.parameter == "angle" else to_unit(1.0, units.length)
+    out = []
+    for law in sw.drives:
+        own, speed = (
+            ("deg", units.angular_velocity) if law.kind == "angle" else (units.length, units.velocity)
+        )
+        mine = _deg(1.0) if law.kind == "angle" else to_unit(1.0, units.length)
+        out.append(
+            {
+                "drive": law.drive,
+                "kind": law.kind,
+                "rate": None if law.rate is None else to_unit(law.rate, speed),
+                "rate_unit": speed,
+                "per_parameter": law.per_parameter * mine / par,
+                "per_parameter_unit": f"{own}/{_par_unit(sw, units)}",
+                "relative_to": law.relative_to,
+            }
+        )
+    return out
+
+
 def quantities_of(sw: Sweep, asked: tuple[str, ...] = ()) -> list[str]:
     """The quantities a report shows: those asked, else the sweep's defaults."""
     if asked:
@@ -75,14 +120,17 @@ def sweep_json(
          "series": {"angle": [...], key: [...]}   # only the keys asked with --quantity
         }
     """
+    at = _par(sw, units)
     out: dict[str, Any] = {
         "file": file,
         "mechanism": sw.mechanism,
         "level": sw.level,
         "method": sw.method,
         "drive": sw.drive,
+        "parameter": {"drive": sw.drive, "kind": sw.parameter, "unit": _par_unit(sw, units)},
+        "drives": _drives_json(sw, units),
         "steps": int(sw.angles.size),
-        "range": [_deg(float(sw.angles[0])), _deg(float(sw.angles[-1]))],
+        "range": [at(float(sw.angles[0])), at(float(sw.angles[-1]))],
         "omega": sw.omega,
         "alpha": sw.alpha,
         "units": {
@@ -94,13 +142,13 @@ def sweep_json(
             "angular_acceleration": units.angular_acceleration,
         },
         "gaps": [
-            {"from": _deg(g.start), "to": _deg(g.end), "miss": _conv(g.miss, "m", units), "what": g.what}
+            {"from": at(g.start), "to": at(g.end), "miss": _conv(g.miss, "m", units), "what": g.what}
             for g in sw.gaps
         ],
-        "toggles": [{"angle": _deg(t.angle), "what": t.subject} for t in sw.toggles],
+        "toggles": [{"angle": at(t.angle), "what": t.subject} for t in sw.toggles],
         "dead_centres": [
             {
-                "angle": _deg(e.angle),
+                "angle": at(e.angle),
                 "output": e.subject,
                 "position": _conv(e.value, "m" if e.subject in sw.slides else "rad", units),
             }
@@ -119,9 +167,9 @@ def sweep_json(
                 "quantity": e.quantity,
                 "unit": _out_unit(e.unit, units),
                 "max": _conv(e.max_value, e.unit, units),
-                "max_angle": _deg(e.max_angle),
+                "max_angle": at(e.max_angle),
                 "min": _conv(e.min_value, e.unit, units),
-                "min_angle": _deg(e.min_angle),
+                "min_angle": at(e.min_angle),
             }
             for e in sw.extremes
         ],
@@ -129,7 +177,7 @@ def sweep_json(
         "notes": list(sw.notes),
     }
     if series:
-        out["series"] = {"angle": [_deg(a) for a in sw.angles.tolist()]}
+        out["series"] = {sw.parameter: [at(a) for a in sw.angles.tolist()]}
         for key in series:
             si = quantity_unit(key)
             out["series"][key] = [_conv(v, si, units) for v in sw.series(key).tolist()]
@@ -141,7 +189,9 @@ def sweep_csv(sw: Sweep, *, units: OutputUnits, quantities: tuple[str, ...] = ()
     keys = quantities_of(sw, quantities)
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["angle [deg]"] + [f"{k} [{_out_unit(quantity_unit(k), units)}]" for k in keys])
+    first = "angle [deg]" if sw.parameter == "angle" else f"position [{units.length}]"
+    at = _par(sw, units)
+    w.writerow([first] + [f"{k} [{_out_unit(quantity_unit(k), units)}]" for k in keys])
     cols = []
     for k in keys:
         si = quantity_unit(k)
@@ -149,7 +199,7 @@ def sweep_csv(sw: Sweep, *, units: OutputUnits, quantities: tuple[str, ...] = ()
         cols.append(np.asarray(sw.series(k)) * factor)
     for i, a in enumerate(sw.angles.tolist()):
         w.writerow(
-            [repr(round(_deg(a), 12))] + ["" if not np.isfinite(c[i]) else repr(float(c[i])) for c in cols]
+            [repr(round(at(a), 12))] + ["" if not np.isfinite(c[i]) else repr(float(c[i])) for c in cols]
         )
     return buf.getvalue()
 
@@ -161,31 +211,38 @@ def sweep_table(sw: Sweep, console: Any, *, units: OutputUnits) -> None:
 
     from mech.render.console import table_box
 
-    lo, hi = _deg(float(sw.angles[0])), _deg(float(sw.angles[-1]))
     console.print(Text(sw.mechanism, style="bold"))
     speed = "" if sw.omega is None else f", ω = {sw.omega:.6g} rad/s"
+    if sw.parameter == "angle":
+        lo, hi = _deg(float(sw.angles[0])), _deg(float(sw.angles[-1]))
+        span = f"from {lo:g}° to {hi:g}°"
+    else:
+        lo, hi = (to_unit(float(x), units.length) for x in (sw.angles[0], sw.angles[-1]))
+        span = f"along its path from {lo:g} to {hi:g} {format_unit(units.length)}"
+    others = [law.drive for law in sw.drives[1:]]
+    with_ = f" (with {', '.join(others)} in proportion)" if others else ""
     console.print(
-        f"  sweep of {sw.drive} from {lo:g}° to {hi:g}° in {sw.angles.size - 1} steps ({sw.level}{speed}); "
-        f"{sw.method}"
+        f"  sweep of {sw.drive}{with_} {span} in {sw.angles.size - 1} steps ({sw.level}{speed}); {sw.method}"
     )
     if sw.gaps:
         for g in sw.gaps:
             miss = _conv(g.miss, "m", units)
             gap = f", misses by {miss:.4g} {format_unit(units.length)}" if miss is not None else ""
             console.print(
-                f"  cannot be assembled from {_deg(g.start):.6f}° to {_deg(g.end):.6f}°: {g.what}{gap}"
+                f"  cannot be assembled from {_par_text(sw, units, g.start, 6)} to "
+                f"{_par_text(sw, units, g.end, 6)}: {g.what}{gap}"
             )
     else:
         console.print("  assembled at every step")
     for t in sw.toggles:
-        console.print(f"  toggle at {_deg(t.angle):.9f}°: {t.subject}")
+        console.print(f"  toggle at {_par_text(sw, units, t.angle, 9)}: {t.subject}")
     for e in sw.dead_centres:
         si = "m" if e.subject in sw.slides else "rad"
         v = _conv(e.value, si, units)
         unit = format_unit(_out_unit(si, units))
         word = "at" if e.subject in sw.slides else "angle"
         at = f" ({word} {v:.6g} {unit})" if v is not None else ""
-        console.print(f"  dead centre of {e.subject} at {_deg(e.angle):.6f}°{at}")
+        console.print(f"  dead centre of {e.subject} at {_par_text(sw, units, e.angle, 6)}{at}")
     if sw.time_ratio is not None:
         tr = sw.time_ratio
         console.print(
@@ -214,9 +271,9 @@ def sweep_table(sw: Sweep, console: Any, *, units: OutputUnits) -> None:
             table.add_row(
                 ex.quantity,
                 f"{mx:.6g}" if mx is not None else "–",
-                f"{_deg(ex.max_angle):.4f}°",
+                _par_text(sw, units, ex.max_angle, 4),
                 f"{mn:.6g}" if mn is not None else "–",
-                f"{_deg(ex.min_angle):.4f}°",
+                _par_text(sw, units, ex.min_angle, 4),
                 format_unit(unit),
             )
         console.print()
@@ -240,9 +297,9 @@ def sweep_plot_file(path: str, sw: Sweep, *, units: OutputUnits, quantities: tup
         series.append(Series(k, format_unit(unit), (np.asarray(sw.series(k)) * factor).tolist()))
     sweep_plot(
         path,
-        [_deg(a) for a in sw.angles.tolist()],
+        [_par(sw, units)(a) for a in sw.angles.tolist()],
         series,
-        dead_centres=[_deg(e.angle) for e in sw.dead_centres],
+        dead_centres=[_par(sw, units)(e.angle) for e in sw.dead_centres],
         title=sw.mechanism,
     )
 

@@ -1,0 +1,369 @@
+"""What a sweep finds over its range: gaps and their toggles, dead centres, extremes, time ratio, circuits.
+
+Each is found on the analysis grid and refined between its neighbouring
+steps: with the closed form (or a marched Newton series) by :func:`~.roots.zoom`
+on grids of angles, otherwise by :func:`~.roots.illinois` (dead centres) and
+:func:`~.roots.brent` (extremes) on Newton solves walked along the sweep's own
+branch (:class:`~.sweep_backends.Walk`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Collection, Sequence
+from typing import Any
+
+import numpy as np
+
+from mech.kinematics.dyads import closing_edge
+from mech.kinematics.quantities import pick, quantity_unit
+from mech.kinematics.roots import brent, illinois, zoom
+from mech.kinematics.solve import Compiled
+from mech.kinematics.sweep_backends import Closed, Walk
+from mech.kinematics.sweep_result import Event, Extreme, Gap, TimeRatio
+from mech.model import JointType
+
+__all__ = ["circuits_note", "find_dead_centres", "find_extremes", "find_gaps", "find_time_ratio", "runs"]
+
+_TWO_PI = 2.0 * math.pi
+
+
+def runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """Index ranges [i, j) where ``mask`` is True."""
+    edges = np.flatnonzero(np.diff(np.concatenate(([0], mask.astype(np.int8), [0]))))
+    return [(int(i), int(j)) for i, j in zip(edges[0::2], edges[1::2], strict=True)]
+
+
+def circuits_note(phi: np.ndarray, ok: np.ndarray, drawn: float | None) -> str | None:
+    """Say so when the assembled steps fall into separate ranges: separate circuits.
+
+    A crank that cannot turn fully between two limit positions reaches only the
+    range its drawing lies in; another assembled range (same branch sign of the
+    dyads) is a different circuit, reachable only by taking the mechanism apart.
+    A full turn whose first and last steps are both assembled wraps into one range.
+    """
+    runs: list[list[int]] = []
+    for i, good in enumerate(ok):
+        if good and runs and runs[-1][1] == i - 1:
+            runs[-1][1] = i
+        elif good:
+            runs.append([i, i])
+    full_turn = phi.size > 1 and abs(abs(phi[-1] - phi[0]) - _TWO_PI) < 1e-9
+    if full_turn and len(runs) > 1 and runs[0][0] == 0 and runs[-1][1] == phi.size - 1:
+        runs[0][0] = runs.pop()[0]  # wrapped: the last range continues into the first
+    if len(runs) < 2:
+        return None
+
+    def span(run: list[int]) -> str:
+        return f"{math.degrees(phi[run[0]]):.4g}°–{math.degrees(phi[run[1]]):.4g}°"
+
+    def holds(run: list[int]) -> bool:
+        if drawn is None:
+            return False
+        lo, hi = phi[run[0]], phi[run[1]]
+        if lo > hi:  # wrapped range
+            return bool(wrap(drawn - lo) >= 0 or wrap(drawn - hi) <= 0)
+        k = math.floor((lo - drawn) / _TWO_PI + 1.0)
+        a = drawn + k * _TWO_PI
+        return bool(lo - 1e-12 <= a <= hi + 1e-12 or lo - 1e-12 <= a - _TWO_PI <= hi + 1e-12)
+
+    def wrap(x: float) -> float:
+        return (x + math.pi) % _TWO_PI - math.pi
+
+    mine = [r for r in runs if holds(r)]
+    ranges = ", ".join(span(r) for r in runs)
+    if mine:
+        return (
+            f"the assembled ranges {ranges} are separate circuits: the drawing lies on {span(mine[0])}; "
+            "the others are the same branch on another circuit, reached only by taking the mechanism apart"
+        )
+    return f"the assembled ranges {ranges} are separate circuits, and none holds the drawn angle"
+
+
+def find_gaps(
+    backend: Any, phi: np.ndarray, data: dict[str, np.ndarray], ok: np.ndarray
+) -> tuple[tuple[Gap, ...], tuple[Event, ...]]:
+    """Unassembled runs, their edges located as toggles (closed form: bisection on the discriminant)."""
+    gaps: list[Gap] = []
+    toggles: list[Event] = []
+    prog = getattr(backend, "prog", None)
+    for s, e in runs(~ok):
+        miss = data["miss"][s:e]
+        worst = int(np.argmax(np.max(miss, axis=0))) if miss.size else 0
+        what = prog.dyads[worst][2] if prog is not None and prog.dyads else "the loop cannot close"
+        start, end = float(phi[s]), float(phi[e - 1])
+        if prog is not None:
+            if s > 0:
+                start = _edge(backend, phi[s - 1], phi[s])
+                toggles.append(Event("toggle", start, what))
+            if e < phi.size:
+                end = _edge(backend, phi[e], phi[e - 1])
+                toggles.append(Event("toggle", end, what))
+        elif getattr(backend, "lead", None) is not None and backend.marcher is not None:
+            # drives on linear laws: the limits the continuation reaches, bisected between the steps
+            what = "a limit: the loop cannot close beyond (links in line)"
+            if s > 0:
+                start = backend.marcher.edge(s - 1, phi[s])
+                toggles.append(Event("toggle", start, what))
+            if e < phi.size:
+                end = backend.marcher.edge(e, phi[e - 1])
+                toggles.append(Event("toggle", end, what))
+        gaps.append(Gap(start, end, float(np.max(miss)) if miss.size else math.nan, what))
+    return tuple(gaps), tuple(sorted(toggles, key=lambda t: t.angle))
+
+
+def _edge(backend: Closed, good: float, bad: float) -> float:
+    """Bisect on the worst dyad discriminant to the last angle that still closes."""
+    return closing_edge(backend.prog, float(good), float(bad))
+
+
+def _outputs(
+    comp: Compiled, names: dict[str, tuple[str, ...]], driven: Collection[str]
+) -> list[tuple[str, str]]:
+    """Candidate outputs for dead centres: sliders on the frame, then links pivoted on the frame (not driven)."""
+    lay, mech = comp.layout, comp.mech
+    out: list[tuple[str, str]] = []
+    for ps in lay.paths:
+        if ps.guide == mech.ground and ps.joint not in driven:
+            out.append(("slide", ps.joint))
+    pivoted = []
+    for j in mech.joints:
+        if j.type is JointType.REVOLUTE and mech.ground in j.links:
+            for lk in j.links:
+                if lk != mech.ground and lk not in driven and lk in names["links"] and lk not in pivoted:
+                    pivoted.append(lk)
+    out += [("link", lk) for lk in pivoted]
+    return out
+
+
+def _refiner(
+    backend: Any, names: dict[str, tuple[str, ...]], keys: Sequence[str], refs: np.ndarray
+) -> Callable[[np.ndarray], np.ndarray]:
+    """fn(grid (K, m)) → values (K, m) of ``keys[k]`` on row k, one backend call for all rows.
+
+    Angles of links are brought to the branch of ``refs[k]`` (the grid value
+    the row refines), since the closed form returns them in (−π, π].
+    """
+
+    groups: dict[str, list[int]] = {}
+    for k, key in enumerate(keys):
+        groups.setdefault(key, []).append(k)
+    index = {key: np.array(rows) for key, rows in groups.items()}
+
+    def fn(grid: np.ndarray) -> np.ndarray:
+        data = backend.evaluate(grid)
+        out = np.empty(grid.shape)
+        for key, rows in index.items():
+            vals = pick(data, names, key)[rows]
+            if key.startswith("angle."):
+                ref = refs[rows][:, None]
+                vals = np.where(np.isfinite(ref), vals + _TWO_PI * np.round((ref - vals) / _TWO_PI), vals)
+            out[rows] = vals
+        return out
+
+    return fn
+
+
+def _dedupe(events: list[Event], phi: np.ndarray) -> list[Event]:
+    """One event per place: over a full cycle 0° and 360° are the same crank position."""
+    full = abs(abs(phi[-1] - phi[0]) - _TWO_PI) < 1e-9
+    out: list[Event] = []
+    for e in sorted(events, key=lambda e: e.angle):
+        same = [
+            o
+            for o in out
+            if o.subject == e.subject
+            and (abs(o.angle - e.angle) < 1e-9 or (full and abs(abs(o.angle - e.angle) - _TWO_PI) < 1e-9))
+        ]
+        if not same:
+            out.append(e)
+    return out
+
+
+def find_dead_centres(
+    backend: Any,
+    comp: Compiled,
+    phi: np.ndarray,
+    data: dict[str, np.ndarray],
+    ok: np.ndarray,
+    names: dict[str, tuple[str, ...]],
+) -> tuple[tuple[Event, ...], list[tuple[str, str]]]:
+    """Where each output reverses: the sign change of its speed, root-found to rounding.
+
+    Closed form: a bracket zoom on the speed.  Newton: regula falsi (Illinois)
+    with a solve per iterate.
+    """
+    driven = {d.link or d.joint or "" for d in comp.layout.drives}
+    outputs = _outputs(comp, names, driven)
+    brackets: list[tuple[str, str, float, float, float, float]] = []  # name, key, lo, hi, v_lo, v_hi
+    for kind, name in outputs:
+        key = f"sliding.{name}" if kind == "slide" else f"omega.{name}"
+        v = pick(data, names, key)
+        finite = v[np.isfinite(v)]
+        tiny = 1e-12 * (float(np.max(np.abs(finite))) if finite.size else 1.0)
+        sgn = np.where(np.abs(v) <= tiny, 0.0, np.sign(v))
+        for s, e in runs(ok & np.isfinite(v)):
+            for k in range(s, e):
+                if sgn[k] == 0.0:  # on a grid angle: refine only if the neighbours bracket it
+                    if s < k < e - 1 and sgn[k - 1] * sgn[k + 1] < 0:
+                        brackets.append((name, key, phi[k - 1], phi[k + 1], v[k - 1], v[k + 1]))
+                    else:
+                        brackets.append((name, key, phi[k], phi[k], v[k], v[k]))
+                elif k + 1 < e and sgn[k] * sgn[k + 1] < 0:
+                    brackets.append((name, key, phi[k], phi[k + 1], v[k], v[k + 1]))
+    if not brackets:
+        return (), outputs
+    lo = np.array([b[2] for b in brackets], float)
+    hi = np.array([b[3] for b in brackets], float)
+    keys = [b[1] for b in brackets]
+    pos_keys = [f"displacement.{b[0]}" if b[1].startswith("sliding") else f"angle.{b[0]}" for b in brackets]
+    if backend.vectorised:
+        roots, _ = zoom(_refiner(backend, names, keys, np.full(len(keys), np.nan)), lo, hi, "root")
+        at = _refiner(backend, names, pos_keys, np.full(len(keys), np.nan))(roots[:, None])[:, 0]
+    else:  # one bracket at a time along a warm-started walk, on the sweep's branch
+        roots, at = np.empty(len(brackets)), np.empty(len(brackets))
+        walk = Walk(backend, phi[0])
+        for i in sorted(range(len(brackets)), key=lambda i: abs(lo[i] - phi[0])):  # along the sweep
+            probe = _probe(walk, names, keys[i], math.nan)
+            roots[i] = illinois(
+                lambda g, probe=probe: np.array([[probe(float(g[0, 0]))]]),  # type: ignore[misc]
+                lo[i : i + 1],
+                hi[i : i + 1],
+                np.array([brackets[i][4]]),
+                np.array([brackets[i][5]]),
+            )[0]
+            at[i] = _probe(walk, names, pos_keys[i], math.nan)(float(roots[i]))
+    at = np.where(
+        [k.startswith("angle.") for k in pos_keys], np.mod(at, _TWO_PI), at
+    )  # link angles in [0, 2π)
+    events = [
+        Event("dead centre", float(r), b[0], float(x)) for r, x, b in zip(roots, at, brackets, strict=True)
+    ]
+    return tuple(_dedupe(events, phi)), outputs
+
+
+def find_extremes(
+    backend: Any,
+    phi: np.ndarray,
+    data: dict[str, np.ndarray],
+    ok: np.ndarray,
+    names: dict[str, tuple[str, ...]],
+    keys: Sequence[str],
+) -> tuple[Extreme, ...]:
+    """Grid extremes of every quantity, refined between the neighbouring steps.
+
+    Closed form: all at once by :func:`zoom`.  Newton: Brent's method on the
+    Newton solve, along a :class:`Walk` (warm-started, on the sweep's branch).
+    Over a full turn a quantity that comes back to its first value (periodic)
+    is refined across the seam (0° and 360° are neighbours); one that does not
+    (a 2:1 wheel turns half a turn) is refined only inside the range, never
+    extrapolated beyond it.  A quantity that does not vary (a piston's angle)
+    or a link that turns right round (its unwrapped angle only grows) has no
+    extreme worth reporting and is left out.
+    """
+    turn = phi.size > 2 and abs(abs(phi[-1] - phi[0]) - _TWO_PI) < 1e-9 and bool(np.all(ok))
+    rows: list[tuple[str, str, int, float, float, float]] = []  # key, mode, k, lo, hi, grid value
+    wraps: dict[str, bool] = {}
+    for key in keys:
+        v = pick(data, names, key)
+        valid = ok & np.isfinite(v)
+        if not np.any(valid):
+            continue
+        size = max(float(np.max(np.abs(v[valid]))), 1e-300)
+        span = float(np.max(v[valid]) - np.min(v[valid]))
+        if span <= 1e-12 * size:
+            continue
+        if key.startswith("angle.") and span >= _TWO_PI - 1e-9:
+            continue
+        # periodic over the range: back to its first value after the turn (to the solver's accuracy)
+        full = wraps[key] = turn and bool(valid[0] and valid[-1] and abs(v[-1] - v[0]) <= 1e-8 * size)
+        for mode in ("max", "min"):
+            vv = np.where(valid, v, -np.inf if mode == "max" else np.inf)
+            k = int(np.argmax(vv) if mode == "max" else np.argmin(vv))
+            lo = (
+                phi[k - 1]
+                if k > 0 and valid[k - 1]
+                else (phi[-2] - _TWO_PI * np.sign(phi[-1] - phi[0]) if full and k == 0 else phi[k])
+            )
+            hi = (
+                phi[k + 1]
+                if k + 1 < phi.size and valid[k + 1]
+                else (phi[1] + _TWO_PI * np.sign(phi[-1] - phi[0]) if full and k == phi.size - 1 else phi[k])
+            )
+            rows.append((key, mode, k, min(lo, hi), max(lo, hi), float(v[k])))
+    sign = np.array([1.0 if r[1] == "max" else -1.0 for r in rows])
+    ang, val = np.full(len(rows), np.nan), np.full(len(rows), np.nan)
+    if rows and backend.vectorised:
+        # minima are maxima of −v: one zoom refines every extreme of every quantity at once
+        inner = _refiner(backend, names, [r[0] for r in rows], np.array([r[5] for r in rows]))
+        ang, val = zoom(
+            lambda g: sign[:, None] * inner(g),
+            np.array([r[3] for r in rows]),
+            np.array([r[4] for r in rows]),
+            "max",
+        )
+    elif rows:
+        walk = Walk(backend, phi[0])
+        for i in sorted(range(len(rows)), key=lambda i: abs(phi[rows[i][2]] - phi[0])):  # along the sweep
+            key, _mode, k, lo, hi, grid = rows[i]
+            probe, sg = _probe(walk, names, key, grid), float(sign[i])
+            x, fx = brent(lambda a, p=probe, sg=sg: -sg * p(a), lo, hi, float(phi[k]), -sg * grid)  # type: ignore[misc]
+            ang[i], val[i] = x, -fx
+    results: dict[tuple[str, str], tuple[float, float]] = {}
+    for i, r in enumerate(rows):
+        x = sign[i] * val[i]
+        better = (x >= r[5]) if r[1] == "max" else (x <= r[5])
+        results[(r[0], r[1])] = (
+            (float(ang[i]), float(x)) if better and math.isfinite(x) else (float(phi[r[2]]), r[5])
+        )
+    out = []
+    for key in dict.fromkeys(r[0] for r in rows):
+        (amax, vmax), (amin, vmin) = results[(key, "max")], results[(key, "min")]
+        if wraps[key]:
+            amax, amin = _into(amax, phi), _into(amin, phi)
+        out.append(Extreme(key, quantity_unit(key), amax, vmax, amin, vmin))
+    return tuple(out)
+
+
+def _into(a: float, phi: np.ndarray) -> float:
+    """An angle of a full-cycle sweep brought into the swept range."""
+    lo, hi = min(phi[0], phi[-1]), max(phi[0], phi[-1])
+    while a < lo:
+        a += _TWO_PI
+    while a > hi:
+        a -= _TWO_PI
+    return a
+
+
+def _probe(walk: Walk, names: dict[str, tuple[str, ...]], key: str, ref: float) -> Callable[[float], float]:
+    """fn(angle) → ``key`` there along the walk (NaN where not reached); a link's angle on ``ref``'s turn."""
+
+    def fn(angle: float) -> float:
+        arrays = walk.to(angle)
+        if arrays is None:
+            return math.nan
+        v = float(pick(arrays, names, key))
+        if key.startswith("angle.") and math.isfinite(ref) and math.isfinite(v):
+            v += _TWO_PI * round((ref - v) / _TWO_PI)
+        return v
+
+    return fn
+
+
+def find_time_ratio(
+    phi: np.ndarray, ok: np.ndarray, dead: tuple[Event, ...], outputs: list[tuple[str, str]]
+) -> TimeRatio | None:
+    """Slow/fast stroke of the primary output over one full, gap-free revolution."""
+    if phi.size < 3 or not np.all(ok) or abs(phi[-1] - phi[0]) < _TWO_PI - 1e-9:
+        return None
+    order = [name for kind, name in outputs if kind == "slide"][-1:] or [name for kind, name in outputs][-1:]
+    if not order:
+        return None
+    out = order[0]
+    start = min(phi[0], phi[-1])
+    angles = sorted({round((e.angle - start) % _TWO_PI, 12) for e in dead if e.subject == out})
+    if len(angles) != 2:
+        return None
+    arc = angles[1] - angles[0]
+    slow, fast = max(arc, _TWO_PI - arc), min(arc, _TWO_PI - arc)
+    return TimeRatio(out, slow, fast) if fast > 0 else None

@@ -1,0 +1,183 @@
+"""What a sweep returns: the frozen :class:`Sweep` and what it found (gaps, events, extremes, time ratio)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mech._records import dataclass
+from mech.kinematics.quantities import LEVELS, check_quantity, pick
+
+__all__ = ["DriveLaw", "Event", "Extreme", "Gap", "Sweep", "TimeRatio", "frozen"]
+
+
+@dataclass(frozen=True, slots=True)
+class Gap:
+    """Drive angles ``start``–``end`` (rad) where the mechanism cannot be assembled.
+
+    ``miss`` is how far the loop is from closing at worst (m), ``what`` the
+    dyad that fails (which links cannot reach).
+    """
+
+    start: float
+    end: float
+    miss: float
+    what: str
+
+
+@dataclass(frozen=True, slots=True)
+class Event:
+    """A located event: a toggle (``kind="toggle"``) or a dead centre (``"dead centre"``).
+
+    ``angle`` is the drive angle (rad); ``subject`` the output or the links in
+    line; ``value`` the output's position there (slider displacement, m, or
+    link angle, rad), None for a toggle.
+    """
+
+    kind: str
+    angle: float
+    subject: str
+    value: float | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Extreme:
+    """Largest and smallest value of one quantity over the sweep, with the drive angles (rad)."""
+
+    quantity: str
+    unit: str
+    max_angle: float
+    max_value: float
+    min_angle: float
+    min_value: float
+
+
+@dataclass(frozen=True, slots=True)
+class TimeRatio:
+    """Quick return: crank angles (rad) of the slow and fast strokes of ``output`` and their ratio."""
+
+    output: str
+    slow: float
+    fast: float
+
+    @property
+    def ratio(self) -> float:
+        """Slow stroke over fast stroke (cutting / return for a shaper), ≥ 1."""
+        return self.slow / self.fast
+
+
+@dataclass(frozen=True, slots=True)
+class DriveLaw:
+    """How one drive moves over a sweep: linear in the sweep's parameter.
+
+    ``kind`` is ``"angle"`` (a turning drive: its angle, rad, relative to
+    ``relative_to`` when the file says so, else absolute) or ``"position"`` (a
+    slider drive: its point's position along its path from the path's
+    ``through``, m).  ``rate`` is its speed (rad/s or m/s, None where the file
+    gives none); ``per_parameter`` how much it moves per unit of the parameter
+    (1 for the lead drive: rad/rad, m/rad, rad/m or m/m).
+    """
+
+    drive: str
+    kind: str
+    rate: float | None
+    per_parameter: float
+    relative_to: str | None = None
+
+
+def frozen(a: np.ndarray | None) -> np.ndarray | None:
+    if a is not None:
+        a.flags.writeable = False
+    return a
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """A mechanism solved over an array of drive angles.  Arrays are read-only.
+
+    Attributes
+    ----------
+    mechanism, level, method
+        The mechanism's label, the level solved, ``"closed form"`` or ``"newton"``.
+    drive
+        The driving link; ``omega``/``alpha`` its speed (rad/s, ccw +; None
+        at position level without a speed) and angular acceleration.
+    angles
+        (N,) drive angles, rad, in the order swept.
+    points
+        Names of the points, in the order of the second axis of ``positions``.
+    positions, velocities, accelerations
+        (N, P, 2) arrays, m, m/s, m/s² (None above the level); NaN where not
+        assembled (and velocities, accelerations NaN where singular).
+    links
+        Moving links; ``link_angles`` (N, L) rad, unwrapped along the sweep;
+        ``omegas``, ``alphas`` (N, L) rad/s, rad/s².
+    slides
+        Prismatic and slot joints; ``displacement`` (N, S) the slider point's
+        position along its path from the path's ``through`` point, m;
+        ``sliding`` (N, S) its speed along the path relative to the guide, m/s.
+    assembled
+        (N,) bool.
+    condition
+        (N,) the largest dyad condition number at each step (Newton: of Φ_q).
+    gaps, toggles, dead_centres, extremes, time_ratio, notes
+        What the sweep found (see the classes).
+    parameter
+        What ``angles`` holds: ``"angle"`` (the drive's angle, rad: one crank,
+        or the lead of several drives) or ``"position"`` (a slider drive's
+        position along its path, m).  Every event's ``angle`` is a value of it.
+    drives
+        With a slider drive or several drives, how each moves (:class:`DriveLaw`),
+        the lead (``drive``) first; empty for one crank.
+    """
+
+    mechanism: str
+    level: str
+    method: str
+    drive: str
+    omega: float | None
+    alpha: float
+    angles: np.ndarray
+    points: tuple[str, ...]
+    positions: np.ndarray
+    velocities: np.ndarray | None
+    accelerations: np.ndarray | None
+    links: tuple[str, ...]
+    link_angles: np.ndarray
+    omegas: np.ndarray | None
+    alphas: np.ndarray | None
+    slides: tuple[str, ...]
+    displacement: np.ndarray
+    sliding: np.ndarray | None
+    assembled: np.ndarray
+    condition: np.ndarray
+    gaps: tuple[Gap, ...]
+    toggles: tuple[Event, ...]
+    dead_centres: tuple[Event, ...]
+    extremes: tuple[Extreme, ...]
+    time_ratio: TimeRatio | None
+    notes: tuple[str, ...]
+    parameter: str = "angle"
+    drives: tuple[DriveLaw, ...] = ()
+
+    def series(self, quantity: str) -> np.ndarray:
+        """The (N,) values of one quantity (see :func:`quantity_unit` for the keys)."""
+        check_quantity(self.points, self.links, self.slides, quantity, LEVELS.index(self.level))
+        arrays = {
+            "link_angles": self.link_angles,
+            "omegas": self.omegas,
+            "alphas": self.alphas,
+            "displacement": self.displacement,
+            "sliding": self.sliding,
+            "positions": self.positions,
+            "velocities": self.velocities,
+            "accelerations": self.accelerations,
+        }
+        return pick(arrays, {"links": self.links, "slides": self.slides, "points": self.points}, quantity)
+
+    @property
+    def max_condition(self) -> float:
+        """The largest condition number met at an assembled step."""
+        c = self.condition[self.assembled]
+        return float(np.max(c)) if c.size else math.nan
