@@ -49,8 +49,14 @@ def test_five_bar_takes_two_drives():
 
 
 def test_too_few_or_too_many_drives_are_input_errors():
+    one_drive = five_bar([{"link": "left", "angle": 1.0, "omega": 1.0}])
     with pytest.raises(GeometryError, match="does not fix where") as err:  # positions undetermined
-        solve(five_bar([{"link": "left", "angle": 1.0, "omega": 1.0}]))
+        solve(one_drive, "position")
+    assert "one drive per degree of freedom" in (err.value.hint or "") and "2 degrees of freedom" in str(
+        err.value
+    )
+    with pytest.raises(InputError, match="it needs 2 inputs") as err:  # refused by the count, unassembled
+        solve(one_drive)
     assert "one drive per degree of freedom" in (err.value.hint or "") and "2 degrees of freedom" in str(
         err.value
     )
@@ -74,7 +80,7 @@ def test_too_few_or_too_many_drives_are_input_errors():
         },
         drive={"link": "left", "omega": 1.0},
     )
-    with pytest.raises(InputError, match=r"mobility 2 .* 1 drive: give a list of 2 drives"):
+    with pytest.raises(InputError, match=r"2 degrees of freedom .* 1 drive: it needs 2 inputs"):
         solve(fixed)
     m = four_bar()
     extra = build(

@@ -45,7 +45,7 @@ from mech.kinematics.result import Fields, JointGeom, Kinematics, LinkState, Mob
 from mech.model import Drive, Mechanism
 from mech.options import SolveOptions
 
-__all__ = ["Compiled", "closed_form", "compiled", "continuation", "mobility", "solve"]
+__all__ = ["Compiled", "closed_form", "compiled", "continuation", "mobility", "refuse_underdriven", "solve"]
 
 LEVELS = ("position", "velocity", "acceleration")
 #: Condition number of Φ_q (scaled) above which a configuration is refused as singular.
@@ -177,6 +177,9 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
             if mech.drives
             else "add drive: {link: ..., angle: ..., rpm: ...}",
         )
+    if lvl > 0 or options.angle is not None:
+        layout(mech)  # the file's own mistakes first (a drive's frame, a spatial pair): linear, remembered
+        refuse_underdriven(mech)  # then the count, before the assembly and the rank (cubic in the chain)
     try:
         comp = compiled(mech, None)
     except GeometryError:
@@ -203,8 +206,14 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
         raise InputError(
             f"{mech.label} has mobility {numeric} (from the constraint Jacobian's rank) but "
             f"{n_drives} drive{'s' if n_drives != 1 else ''}: "
-            + ("more drives than it can take" if more else f"give a list of {numeric} drives"),
-            hint=("remove a drive" if more else "drive: [{link: ..., rpm: ...}, ...]"),
+            + ("more drives than it can take" if more else f"it needs {numeric} inputs"),
+            where=mech.drives[0].where if mech.drives else None,
+            hint=(
+                "remove a drive"
+                if more
+                else f"give one drive per degree of freedom: drive: [{{link: …, rpm: …}}, …] ({numeric} of them)"
+            ),
+            source=mech.source,
         )
 
     q = sys_.q0
@@ -232,6 +241,41 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
 
     qd, qdd = _rates(comp, q, drives, lvl, omega_ref)
     return _result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
+
+
+def refuse_underdriven(mech: Mechanism) -> None:
+    """Refuse, from the counts alone, a mechanism with more degrees of freedom than drives.
+
+    Each joint writes at most the rows Kutzbach counts for it (a pin of k links
+    2(k − 1), a prismatic or rolling pair 2, a slot, cam, contact or gear 1:
+    :func:`mech.kinematics.mobility.kutzbach`), so ``rank Φ_q ≤ 2j + h`` and the
+    true mobility ``3(l − 1) − rank Φ_q`` is at least Kutzbach's count.  When
+    that count alone exceeds the drives, the mechanism can move with every
+    drive held whatever its geometry: refused here, before the assembly and the
+    rank (a dense SVD that takes minutes on a 2,000-link chain).  The count may
+    be *below* the true mobility (a double parallelogram: 0 against 1), so it
+    never refuses the other way; that is the rank's test in :func:`solve`.
+
+    Raises
+    ------
+    InputError
+        Kutzbach's count exceeds the number of drives: the message names both
+        and how many inputs are needed.
+    """
+    count = kutzbach(mech)
+    given = len(mech.drives)
+    if count <= given:
+        return
+    from mech.topology import dof
+
+    drives = f"{given} drive{'s' if given != 1 else ''}" if given else "no drive"
+    raise InputError(
+        f"{mech.label} has {count} degrees of freedom ({dof(mech).formula}; special geometry can only "
+        f"add to that) but {drives}: it needs {count} inputs, one drive per degree of freedom",
+        where=mech.drives[0].where if mech.drives else None,
+        hint=f"give one drive per degree of freedom: drive: [{{link: …, angle: …, rpm: …}}, …] ({count} of them)",
+        source=mech.source,
+    )
 
 
 def instant_pairs(names: Sequence[str]) -> str:
