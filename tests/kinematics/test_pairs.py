@@ -141,6 +141,24 @@ def test_structure_is_locked():
     assert mob.locked == ("a", "b") and mob.free == ()
 
 
+def test_links_moved_by_a_tiny_crank_are_free_not_locked():
+    # A 1e-12 m crank on 1 m links: the coupler and rocker turn at about 1e-12 of the crank's rate
+    # (rocker ω = −v_A·AB / (k×DB·AB) by hand: 1.2e-12 of it at 30°), never zero: they are not locked.
+    m = build(
+        ["frame", "crank", "coupler", "rocker"],
+        {
+            "O": {"links": ["frame", "crank"], "at": (0, 0)},
+            "A": {"links": ["crank", "coupler"]},
+            "B": {"links": ["coupler", "rocker"], "near": (0.5, 0.9)},
+            "D": {"links": ["rocker", "frame"], "at": (1, 0)},
+        },
+        lengths={"O-A": 1e-12, "A-B": 1.0, "B-D": 1.0},
+        drive={"link": "crank", "angle": 30.0, "omega": 1.0},
+    )
+    mob = solve(m).mobility
+    assert mob.free == ("crank", "coupler", "rocker") and mob.locked == ()
+
+
 def test_mobility_without_drive_or_angle_uses_some_configuration():
     m = build(
         ["frame", "crank", "coupler", "rocker"],

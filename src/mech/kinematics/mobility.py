@@ -23,6 +23,8 @@ __all__ = ["kutzbach", "numeric_mobility"]
 
 #: singular values below this fraction of the largest count as zero (scaled units)
 RANK_TOL = 1e-9
+#: a null vector's component below this times the condition number is rounding (64 ε)
+_NOISE = 64 * float(np.finfo(float).eps)
 
 
 def kutzbach(mech: Mechanism) -> int:
@@ -65,8 +67,12 @@ def numeric_mobility(
         if null.size
         else np.zeros(len(system.links))
     )
-    free = tuple(name for name, w in zip(system.links, weight, strict=False) if w > 1e-6)
-    locked = tuple(name for name, w in zip(system.links, weight, strict=False) if w <= 1e-6)
+    # A link the null space does not touch has components at rounding: ε·condition (Wedin's
+    # bound for the null space of a perturbed matrix).  A fixed 1e-6 called the coupler of a
+    # 1e-12 m crank locked while it turns at 1.2e-12 of the crank's rate.
+    touch = min(1e-6, _NOISE * condition)
+    free = tuple(name for name, w in zip(system.links, weight, strict=False) if w > touch)
+    locked = tuple(name for name, w in zip(system.links, weight, strict=False) if w <= touch)
     extra = list(notes)
     if numeric != k:
         why = f" ({redundant} redundant constraint{'s' if redundant != 1 else ''})" if redundant else ""
