@@ -159,6 +159,47 @@ def test_links_moved_by_a_tiny_crank_are_free_not_locked():
     assert mob.free == ("crank", "coupler", "rocker") and mob.locked == ()
 
 
+def ladder(dyads: int) -> str:
+    """A crank and a chain of dyads, each hung from the last dyad's pin and a ground pivot."""
+    joints = ["  O: {type: revolute, links: [frame, crank], at: [0, 0]}"]
+    joints.append("  P0: {type: revolute, links: [crank, u1], at: [0.2, 0.9]}")
+    for k in range(1, dyads + 1):
+        carried = [f"u{k}", f"v{k}"] + ([f"u{k + 1}"] if k < dyads else [])
+        joints.append(
+            f"  P{k}: {{type: revolute, links: [{', '.join(carried)}], at: [{k + 0.2}, {0.9 + 0.05 * (k % 2)}]}}"
+        )
+        joints.append(f"  G{k}: {{type: revolute, links: [v{k}, frame], at: [{k + 1}, 0]}}")
+    links = [
+        "frame",
+        "crank",
+        *(f"u{k}" for k in range(1, dyads + 1)),
+        *(f"v{k}" for k in range(1, dyads + 1)),
+    ]
+    return f"links: [{', '.join(links)}]\njoints:\n" + "\n".join(joints) + "\ndrive: {link: crank, rpm: 60}\n"
+
+
+def test_a_large_chain_s_mobility_from_its_blocks_matches_the_whole_svd():
+    # 20 dyads: 41 moving links, 123 unknowns, solved block by block.  The rank, the links that
+    # move and those that do not are the dense SVD's (the condition number is the blocks').
+    import numpy as np
+
+    from mech.kinematics.mobility import numeric_mobility
+    from mech.kinematics.solve import _blocks, compiled
+    from mech.loader import loads
+
+    mech = loads(ladder(20), path="ladder.yaml")
+    comp = compiled(mech, None)
+    sys_ = comp.system
+    jac = sys_.jacobian(sys_.q0)
+    form = _blocks(sys_)
+    assert form is not None
+    dense = numeric_mobility(mech, sys_, sys_.q0, jacobian=jac)
+    assert comp.mobility.numeric == dense.numeric == 1 and comp.mobility.redundant == dense.redundant == 0
+    assert comp.mobility.free == dense.free and comp.mobility.locked == dense.locked == ()
+    assert not comp.singular
+    assert comp.mobility.condition == pytest.approx(form.condition(jac)[0]) and np.isfinite(dense.condition)
+
+
 def test_mobility_without_drive_or_angle_uses_some_configuration():
     m = build(
         ["frame", "crank", "coupler", "rocker"],
