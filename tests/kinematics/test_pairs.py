@@ -200,6 +200,23 @@ def test_a_large_chain_s_mobility_from_its_blocks_matches_the_whole_svd():
     assert comp.mobility.condition == pytest.approx(form.condition(jac)[0]) and np.isfinite(dense.condition)
 
 
+def test_mobility_of_a_gear_pair_with_an_unplaced_pivot_names_the_pivot_not_a_made_up_distance():
+    from mech.loader import loads
+
+    text = """
+units: {length: mm}
+links: [frame, pinion, wheel]
+joints:
+  O1: {type: revolute, links: [frame, pinion], at: [0, 0]}
+  O2: {type: revolute, links: [frame, wheel]}
+  mesh: {type: gear, links: [pinion, wheel], teeth: [20, 40], module: 5, pressure_angle: 20}
+drive: {link: pinion, rpm: 1200}
+"""
+    with pytest.raises(GeometryError, match="O2 is on the ground link frame but not placed") as err:
+        mobility(loads(text, path="gears.yaml"))
+    assert err.value.problems[0].where.line == 6 and "at: [x, y]" in (err.value.hint or "")
+
+
 def test_mobility_without_drive_or_angle_uses_some_configuration():
     m = build(
         ["frame", "crank", "coupler", "rocker"],

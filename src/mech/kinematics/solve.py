@@ -131,7 +131,30 @@ def mobility(mech: Mechanism) -> Mobility:
             "numeric mobility needs geometry: nothing in the file is placed",
             hint="place the ground joints with at and give the links' lengths",
         )
-    return compiled(mech, None, allow_free=True).mobility
+    try:
+        return compiled(mech, None, allow_free=True).mobility
+    except (GeometryError, InputError) as error:
+        # A ground pivot without `at` is put anywhere by a free assembly: a gear mesh or a length
+        # that then fails quotes a distance mech made up.  Name the pivot instead.
+        unplaced = [
+            j
+            for j in mech.joints
+            if mech.ground in j.links
+            and j.type.kind.located != "none"
+            and j.place.at is None
+            and not j.place.is_relative
+            and not j.type.is_higher
+        ]
+        if not unplaced:
+            raise
+        first = unplaced[0]
+        raise GeometryError(
+            f"{first.name} is on the ground link {mech.ground} but not placed, so the assembly put it "
+            f"anywhere and then: {error.problems[0].message}",
+            where=first.where,
+            hint=f"place it with at: [x, y] (every joint on the {mech.ground} needs one)",
+            source=mech.source,
+        ) from error
 
 
 def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None = None) -> Kinematics:
