@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 import os
@@ -76,6 +77,23 @@ def test_several_files_json_has_an_error_entry(run, write):
     assert [d.get("dof") for d in data] == [1, None]
     problem = data[1]["error"]["problems"][0]
     assert (problem["line"], problem["column"]) == (3, 38)
+
+
+def test_too_few_drives_are_refused_by_the_count_with_the_inputs_needed(run, write):
+    # A ring of 7 links and 7 pins: Kutzbach 3·6 − 2·7 = 4 freedoms, one drive: exit 2, the drive located.
+    names = ["frame", "l1", "l2", "l3", "l4", "l5", "l6", "frame"]
+    joints = "\n".join(
+        f"  J{i}: {{type: revolute, links: [{a}, {b}]"
+        + (", at: [0, 0]}" if i == 0 else ", at: [1, 0]}" if i == 6 else "}")
+        for i, (a, b) in enumerate(itertools.pairwise(names))
+    )
+    lengths = ", ".join(f"J{i}J{i + 1}: 1" for i in range(6))
+    text = f"links: [{', '.join(names[:-1])}]\njoints:\n{joints}\nlengths: {{{lengths}}}\ndrive: {{link: l1, angle: 60, rpm: 60}}\n"
+    path = write(text, "ring.yaml")
+    for command in ("velocity", "acceleration", "icentres"):
+        result = run(command, str(path))
+        assert result.exit_code == 2 and result.stdout == ""
+        assert "ring.yaml:11:8: error:" in result.stderr and "it needs 4 inputs" in result.stderr, command
 
 
 def test_missing_file_exits_2(run, tmp_path):

@@ -7,14 +7,17 @@ rad/s.  Feeding one to the other once printed a crank turning 129 rad/s for
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import pytest
+from tests.conftest import MECHANISMS, example_files
 
 from cli_runner import close, mech, no_traceback, points, strict_json
 from mech.errors import InputError
 from mech.kinematics import solve
-from mech.loader import loads
+from mech.kinematics.mobility import kutzbach
+from mech.loader import load, loads
 from mech.options import SolveOptions
 from mechanism_texts import slider_crank as slider_crank_text
 
@@ -149,3 +152,82 @@ def test_rpm_zero_gives_every_link_omega_zero(write):
     assert p.returncode == 0
     d = strict_json(p.stdout)
     assert all(v["omega"] == 0 for v in d["links"].values())
+
+
+# -- fewer drives than degrees of freedom: refused by the count, before the assembly -------------
+FIVE_BAR = """
+name: five-bar
+links: [frame, a, b, c, d]
+joints:
+  A: {type: revolute, links: [frame, a], at: [0, 0]}
+  B: {type: revolute, links: [a, b]}
+  C: {type: revolute, links: [b, c]}
+  D: {type: revolute, links: [c, d]}
+  E: {type: revolute, links: [d, frame], at: [0.1, 0]}
+lengths: {AB: 0.04, BC: 0.07, CD: 0.07, DE: 0.04}
+drive: {link: a, angle: 80, rpm: 60}
+"""
+
+
+def seven_link_ring(length: float = 1.0) -> str:
+    """Seven links (frame and six moving) in one ring of seven pins, the ends 1 m apart."""
+    names = ["frame", *(f"l{i}" for i in range(1, 7)), "frame"]
+    joints = "\n".join(
+        f"  J{i}: {{type: revolute, links: [{a}, {b}]"
+        + (", at: [0, 0]}" if i == 0 else ", at: [1, 0]}" if i == 6 else "}")
+        for i, (a, b) in enumerate(itertools.pairwise(names))
+    )
+    lengths = ", ".join(f"J{i}J{i + 1}: {length}" for i in range(6))
+    return (
+        "name: ring\nlinks: [frame, l1, l2, l3, l4, l5, l6]\njoints:\n"
+        + joints
+        + f"\nlengths: {{{lengths}}}\ndrive: {{link: l1, angle: 60, rpm: 60}}\n"
+    )
+
+
+@pytest.mark.parametrize("level", ["velocity", "acceleration"])
+def test_a_five_bar_with_one_drive_is_refused_as_needing_two_inputs(level):
+    # Kutzbach by hand: l = 5, j = 5: 3·4 − 2·5 = 2 freedoms, one drive given
+    with pytest.raises(InputError, match=r"2 degrees of freedom .* but 1 drive: it needs 2 inputs") as err:
+        solve(loads(FIVE_BAR, path="five.yaml"), level)
+    assert err.value.problems[0].where is not None and err.value.problems[0].where.line == 11  # the drive
+    assert "(2 of them)" in (err.value.hint or "")
+
+
+def test_a_seven_link_ring_with_one_drive_needs_four_inputs_even_where_it_cannot_close():
+    # l = 7, j = 7 (a single loop): 3·6 − 2·7 = 4.  Links of 0.1 m cannot span the 1 m between the
+    # ground pins: the count refuses first, so the message is the count's, not the assembler's gap.
+    for text in (seven_link_ring(), seven_link_ring(0.1)):
+        with pytest.raises(InputError, match=r"4 degrees of freedom .* but 1 drive: it needs 4 inputs"):
+            solve(loads(text, path="ring.yaml"), "velocity")
+    with pytest.raises(InputError, match="it needs 4 inputs"):  # moving it to an angle needs them too
+        solve(loads(seven_link_ring(), path="ring.yaml"), "position", SolveOptions(angle=30.0))
+
+
+def test_a_double_parallelogram_below_kutzbach_is_not_refused_by_the_count():
+    # Kutzbach 3·4 − 2·6 = 0 < 1 drive, but the third crank repeats a constraint: it moves.
+    # Parallel equal cranks turn together: every crank at 60 rpm = 2π rad/s ccw, the coupler translates.
+    kin = solve(load(MECHANISMS / "double_parallelogram.yaml"), "velocity")
+    assert kin.mobility.kutzbach == 0 and kin.mobility.numeric == 1
+    assert kin.links["crank_3"].omega == pytest.approx(2 * math.pi, rel=1e-9)
+    assert kin.links["coupler"].omega == pytest.approx(0.0, abs=1e-9)
+
+
+def test_kutzbach_counts_at_least_the_rows_the_solver_writes():
+    # Why the count may refuse: rank Φ_q ≤ rows ≤ 2j + h, so mobility = 3(l − 1) − rank ≥ Kutzbach.
+    from mech.errors import MechError
+    from mech.kinematics.solve import compiled
+
+    checked = 0
+    for path in example_files():
+        mech = load(path)
+        if not mech.has_geometry:
+            continue
+        try:
+            sys_ = compiled(mech, None, allow_free=True).system
+        except MechError:
+            continue
+        rows = sys_.m - len(sys_.drive_rows)
+        assert rows <= 3 * sys_.n - kutzbach(mech), mech.label
+        checked += 1
+    assert checked >= 20

@@ -49,8 +49,14 @@ def test_five_bar_takes_two_drives():
 
 
 def test_too_few_or_too_many_drives_are_input_errors():
+    one_drive = five_bar([{"link": "left", "angle": 1.0, "omega": 1.0}])
     with pytest.raises(GeometryError, match="does not fix where") as err:  # positions undetermined
-        solve(five_bar([{"link": "left", "angle": 1.0, "omega": 1.0}]))
+        solve(one_drive, "position")
+    assert "one drive per degree of freedom" in (err.value.hint or "") and "2 degrees of freedom" in str(
+        err.value
+    )
+    with pytest.raises(InputError, match="it needs 2 inputs") as err:  # refused by the count, unassembled
+        solve(one_drive)
     assert "one drive per degree of freedom" in (err.value.hint or "") and "2 degrees of freedom" in str(
         err.value
     )
@@ -74,7 +80,7 @@ def test_too_few_or_too_many_drives_are_input_errors():
         },
         drive={"link": "left", "omega": 1.0},
     )
-    with pytest.raises(InputError, match=r"mobility 2 .* 1 drive: give a list of 2 drives"):
+    with pytest.raises(InputError, match=r"2 degrees of freedom .* 1 drive: it needs 2 inputs"):
         solve(fixed)
     m = four_bar()
     extra = build(
@@ -133,6 +139,82 @@ def test_structure_is_locked():
     mob = mobility(m)
     assert mob.numeric == 0 and mob.kutzbach == 0
     assert mob.locked == ("a", "b") and mob.free == ()
+
+
+def test_links_moved_by_a_tiny_crank_are_free_not_locked():
+    # A 1e-12 m crank on 1 m links: the coupler and rocker turn at about 1e-12 of the crank's rate
+    # (rocker ω = −v_A·AB / (k×DB·AB) by hand: 1.2e-12 of it at 30°), never zero: they are not locked.
+    m = build(
+        ["frame", "crank", "coupler", "rocker"],
+        {
+            "O": {"links": ["frame", "crank"], "at": (0, 0)},
+            "A": {"links": ["crank", "coupler"]},
+            "B": {"links": ["coupler", "rocker"], "near": (0.5, 0.9)},
+            "D": {"links": ["rocker", "frame"], "at": (1, 0)},
+        },
+        lengths={"O-A": 1e-12, "A-B": 1.0, "B-D": 1.0},
+        drive={"link": "crank", "angle": 30.0, "omega": 1.0},
+    )
+    mob = solve(m).mobility
+    assert mob.free == ("crank", "coupler", "rocker") and mob.locked == ()
+
+
+def ladder(dyads: int) -> str:
+    """A crank and a chain of dyads, each hung from the last dyad's pin and a ground pivot."""
+    joints = ["  O: {type: revolute, links: [frame, crank], at: [0, 0]}"]
+    joints.append("  P0: {type: revolute, links: [crank, u1], at: [0.2, 0.9]}")
+    for k in range(1, dyads + 1):
+        carried = [f"u{k}", f"v{k}"] + ([f"u{k + 1}"] if k < dyads else [])
+        joints.append(
+            f"  P{k}: {{type: revolute, links: [{', '.join(carried)}], at: [{k + 0.2}, {0.9 + 0.05 * (k % 2)}]}}"
+        )
+        joints.append(f"  G{k}: {{type: revolute, links: [v{k}, frame], at: [{k + 1}, 0]}}")
+    links = [
+        "frame",
+        "crank",
+        *(f"u{k}" for k in range(1, dyads + 1)),
+        *(f"v{k}" for k in range(1, dyads + 1)),
+    ]
+    return f"links: [{', '.join(links)}]\njoints:\n" + "\n".join(joints) + "\ndrive: {link: crank, rpm: 60}\n"
+
+
+def test_a_large_chain_s_mobility_from_its_blocks_matches_the_whole_svd():
+    # 20 dyads: 41 moving links, 123 unknowns, solved block by block.  The rank, the links that
+    # move and those that do not are the dense SVD's (the condition number is the blocks').
+    import numpy as np
+
+    from mech.kinematics.mobility import numeric_mobility
+    from mech.kinematics.solve import _blocks, compiled
+    from mech.loader import loads
+
+    mech = loads(ladder(20), path="ladder.yaml")
+    comp = compiled(mech, None)
+    sys_ = comp.system
+    jac = sys_.jacobian(sys_.q0)
+    form = _blocks(sys_)
+    assert form is not None
+    dense = numeric_mobility(mech, sys_, sys_.q0, jacobian=jac)
+    assert comp.mobility.numeric == dense.numeric == 1 and comp.mobility.redundant == dense.redundant == 0
+    assert comp.mobility.free == dense.free and comp.mobility.locked == dense.locked == ()
+    assert not comp.singular
+    assert comp.mobility.condition == pytest.approx(form.condition(jac)[0]) and np.isfinite(dense.condition)
+
+
+def test_mobility_of_a_gear_pair_with_an_unplaced_pivot_names_the_pivot_not_a_made_up_distance():
+    from mech.loader import loads
+
+    text = """
+units: {length: mm}
+links: [frame, pinion, wheel]
+joints:
+  O1: {type: revolute, links: [frame, pinion], at: [0, 0]}
+  O2: {type: revolute, links: [frame, wheel]}
+  mesh: {type: gear, links: [pinion, wheel], teeth: [20, 40], module: 5, pressure_angle: 20}
+drive: {link: pinion, rpm: 1200}
+"""
+    with pytest.raises(GeometryError, match="O2 is on the ground link frame but not placed") as err:
+        mobility(loads(text, path="gears.yaml"))
+    assert err.value.problems[0].where.line == 6 and "at: [x, y]" in (err.value.hint or "")
 
 
 def test_mobility_without_drive_or_angle_uses_some_configuration():

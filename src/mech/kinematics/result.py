@@ -76,7 +76,10 @@ class Mobility:
         parallelogram has kutzbach 0 and numeric 1).  None without geometry.
     condition
         Largest over smallest non-zero singular value of Φ_q: how far the
-        configuration is from losing a constraint (large: near a toggle).
+        configuration is from losing a constraint (large: near a toggle).  For a
+        large chain solved block by block (:mod:`mech.kinematics.blocks`), the
+        largest condition number of a block of Φ_q with its drive rows, which
+        is what decides a toggle there (an SVD of the whole is cubic in the chain).
     free
         Moving links that can move with no drive held: the links the null
         space of Φ_q touches.
