@@ -12,12 +12,15 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from mech.errors import InputError
 from mech.kinematics import Kinematics
 from mech.options import OutputUnits
 from mech.units import format_unit, to_unit
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.render.console import ReportConsole
 
 __all__ = ["kinematics_json", "kinematics_table"]
 
@@ -402,7 +405,7 @@ def _point_label(p: dict[str, Any]) -> str:
 _LEVEL_TITLES = {"position": "positions", "velocity": "velocities", "acceleration": "accelerations"}
 
 
-def kinematics_table(kin: Kinematics, console: Any, *, units: OutputUnits) -> None:
+def kinematics_table(kin: Kinematics, console: ReportConsole, *, units: OutputUnits) -> None:
     """Print the solve as rich tables on ``console`` (numbers in ``units``)."""
     from mech.render.console import kit
 
