@@ -168,7 +168,17 @@ class _Noise:
         return v, a + 2.0 * w * v
 
 
-def _drive_frames(kin: Kinematics, d: Any, num: Any, ANG: str, W: str, AL: str) -> dict[str, Any]:
+def _vec(v: tuple[float, float] | None, unit: str) -> list[float] | None:
+    """A vector in ``unit`` as a JSON list, or None."""
+    return None if v is None else [to_unit(v[0], unit), to_unit(v[1], unit)]
+
+
+def _num(x: float | None, unit: str) -> float | None:
+    """A number in ``unit``, or None."""
+    return None if x is None else to_unit(x, unit)
+
+
+def _drive_frames(kin: Kinematics, d: Any, units: OutputUnits) -> dict[str, Any]:
     """A turning drive both ways: ``absolute`` (from the ground) and ``relative`` (to a moving link).
 
     The drive's own values are in its convention (absolute unless it says
@@ -178,6 +188,7 @@ def _drive_frames(kin: Kinematics, d: Any, num: Any, ANG: str, W: str, AL: str) 
     pivot joins the driven link to (the pair a student measures at a joint),
     else there is none (``relative`` is null).
     """
+    W, AL, ANG = units.angular_velocity, units.angular_acceleration, units.angle
     ref = d.relative_to
     if ref is None and d.about is not None and d.about in kin.joints:
         others = [lk for lk in kin.joints[d.about].links if lk != d.link]
@@ -197,14 +208,14 @@ def _drive_frames(kin: Kinematics, d: Any, num: Any, ANG: str, W: str, AL: str) 
         angle_rel = None if d.angle is None else math.remainder(d.angle - theta_a, 2 * math.pi)
     w_abs = mine.omega if mine is not None else None
     al_abs = mine.alpha if mine is not None else None
-    absolute = {"angle": num(angle_abs, ANG), "omega": num(w_abs, W), "alpha": num(al_abs, AL)}
+    absolute = {"angle": _num(angle_abs, ANG), "omega": _num(w_abs, W), "alpha": _num(al_abs, AL)}
     relative = None
     if other is not None:
         relative = {
             "to": ref,
-            "angle": num(angle_rel, ANG),
-            "omega": num(diff(w_abs, other.omega), W),
-            "alpha": num(diff(al_abs, other.alpha), AL),
+            "angle": _num(angle_rel, ANG),
+            "omega": _num(diff(w_abs, other.omega), W),
+            "alpha": _num(diff(al_abs, other.alpha), AL),
         }
     return {"absolute": absolute, "relative": relative}
 
@@ -246,106 +257,9 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
         }
     """
     L, V, A = units.length, units.velocity, units.acceleration
-    W, AL, ANG = units.angular_velocity, units.angular_acceleration, units.angle
-
-    def vec(v: tuple[float, float] | None, unit: str) -> list[float] | None:
-        return None if v is None else [to_unit(v[0], unit), to_unit(v[1], unit)]
-
-    def num(x: float | None, unit: str) -> float | None:
-        return None if x is None else to_unit(x, unit)
-
     has_v, has_a = _at_least(kin, "velocity"), _at_least(kin, "acceleration")
     quiet = _Noise(kin, has_v, has_a)
-    drives = []
-    for d in kin.drives:
-        entry: dict[str, Any] = {"link": d.link} if d.link is not None else {"joint": d.joint}
-        entry.update(
-            angle=num(d.angle, ANG) if d.link is not None else None,
-            omega=num(d.omega, W),
-            sense=_sense(d.omega),
-            alpha=num(d.alpha, AL),
-            speed=num(d.speed, V),
-        )
-        if d.link is not None:
-            entry["relative_to"] = d.relative_to
-            entry.update(_drive_frames(kin, d, num, ANG, W, AL))
-        drives.append(entry)
-
-    links = {
-        name: {
-            "origin": vec(quiet.position(s.origin), L),
-            "angle": to_unit(quiet.angle(s.angle), ANG),
-            "omega": num(quiet.omega(s.omega), W),
-            "sense": _sense(quiet.omega(s.omega)),
-            "alpha": num(quiet.alpha(s.alpha), AL),
-        }
-        for name, s in kin.links.items()
-    }
-
-    points = []
-    for name, link in _point_rows(kin):
-        v = quiet.vector(kin.velocity(name, link), quiet.point_v_scale(name, link)) if has_v else None
-        a = quiet.vector(kin.acceleration(name, link), quiet.point_a_scale(name, link)) if has_a else None
-        points.append(
-            {
-                "point": name,
-                "link": link,
-                "position": vec(quiet.position(kin.positions[name]), L),
-                "velocity": vec(v, V),
-                "speed": num(math.hypot(*v), V) if v is not None else None,
-                "direction": _dir(v) if v is not None else None,
-                "acceleration": vec(a, A),
-                "acceleration_magnitude": num(math.hypot(*a), A) if a is not None else None,
-            }
-        )
-
-    relative = []
-    if has_v:
-        for lk, p, q in _link_pairs(kin):
-            state = kin.links[lk]
-            v = quiet.vector(
-                kin.relative_velocity(q, p, link_a=lk, link_b=lk),
-                quiet.point_v_scale(p, lk) + quiet.point_v_scale(q, lk),
-            )
-            r = math.dist(kin.positions[p], kin.positions[q])
-            relative.append(
-                {
-                    "link": lk,
-                    "from": p,
-                    "to": q,
-                    "label": f"{p}{q}".lower(),
-                    "velocity": vec(v, V),
-                    "speed": to_unit(math.hypot(*v), V),
-                    "normal": to_unit((quiet.omega(state.omega) or 0.0) ** 2 * r, A) if has_a else None,
-                    "tangential": to_unit(abs(quiet.alpha(state.alpha) or 0.0) * r, A) if has_a else None,
-                }
-            )
-
-    sliders, rubbing = [], []
-    if has_v:
-        for name, j in kin.joints.items():
-            if j.type in ("prismatic", "slot"):
-                v_sc, a_sc = quiet.joint_scales(name)
-                cor = quiet.vector(kin.coriolis(name), a_sc) if has_a else None
-                sliders.append(
-                    {
-                        "joint": name,
-                        "type": j.type,
-                        "slider": j.links[0],
-                        "guide": j.links[1],
-                        "sliding": to_unit(quiet.scalar(kin.sliding(name), v_sc), V),
-                        "sliding_acceleration": num(
-                            quiet.scalar(kin.sliding_acceleration(name), a_sc) if has_a else None, A
-                        ),
-                        "coriolis": vec(cor, A),
-                        "coriolis_magnitude": num(math.hypot(*cor), A) if cor is not None else None,
-                    }
-                )
-            elif j.type == "revolute" and j.radius is not None:
-                rubbing.append(
-                    {"joint": name, "radius": to_unit(j.radius, L), "rubbing": to_unit(kin.rubbing(name), V)}
-                )
-
+    sliders, rubbing = _joints_json(kin, quiet, units) if has_v else ([], [])
     m = kin.mobility
     return {
         "mechanism": kin.mechanism,
@@ -354,15 +268,15 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
             "length": L,
             "velocity": V,
             "acceleration": A,
-            "angle": ANG,
-            "angular_velocity": W,
-            "angular_acceleration": AL,
+            "angle": units.angle,
+            "angular_velocity": units.angular_velocity,
+            "angular_acceleration": units.angular_acceleration,
         },
         "size": to_unit(kin.size, L),
-        "drives": drives,
-        "links": links,
-        "points": points,
-        "relative": relative,
+        "drives": _drives_json(kin, units),
+        "links": _links_json(kin, quiet, units),
+        "points": _points_json(kin, quiet, units),
+        "relative": _relative_json(kin, quiet, units) if has_v else [],
         "sliders": sliders,
         "rubbing": rubbing,
         "mobility": {
@@ -375,6 +289,125 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
         },
         "notes": list(kin.notes),
     }
+
+
+def _drives_json(kin: Kinematics, units: OutputUnits) -> list[dict[str, Any]]:
+    """Each drive in its own convention; a turning drive also absolute and relative (:func:`_drive_frames`)."""
+    drives = []
+    for d in kin.drives:
+        entry: dict[str, Any] = {"link": d.link} if d.link is not None else {"joint": d.joint}
+        entry.update(
+            angle=_num(d.angle, units.angle) if d.link is not None else None,
+            omega=_num(d.omega, units.angular_velocity),
+            sense=_sense(d.omega),
+            alpha=_num(d.alpha, units.angular_acceleration),
+            speed=_num(d.speed, units.velocity),
+        )
+        if d.link is not None:
+            entry["relative_to"] = d.relative_to
+            entry.update(_drive_frames(kin, d, units))
+        drives.append(entry)
+    return drives
+
+
+def _links_json(kin: Kinematics, quiet: _Noise, units: OutputUnits) -> dict[str, dict[str, Any]]:
+    """Every link (ground too): its origin, angle, ω and sense, α."""
+    return {
+        name: {
+            "origin": _vec(quiet.position(s.origin), units.length),
+            "angle": to_unit(quiet.angle(s.angle), units.angle),
+            "omega": _num(quiet.omega(s.omega), units.angular_velocity),
+            "sense": _sense(quiet.omega(s.omega)),
+            "alpha": _num(quiet.alpha(s.alpha), units.angular_acceleration),
+        }
+        for name, s in kin.links.items()
+    }
+
+
+def _points_json(kin: Kinematics, quiet: _Noise, units: OutputUnits) -> list[dict[str, Any]]:
+    """Every point (a contact point once per link where they differ): position, velocity, acceleration."""
+    V, A = units.velocity, units.acceleration
+    has_v, has_a = quiet.has_v, quiet.has_a
+    points = []
+    for name, link in _point_rows(kin):
+        v = quiet.vector(kin.velocity(name, link), quiet.point_v_scale(name, link)) if has_v else None
+        a = quiet.vector(kin.acceleration(name, link), quiet.point_a_scale(name, link)) if has_a else None
+        points.append(
+            {
+                "point": name,
+                "link": link,
+                "position": _vec(quiet.position(kin.positions[name]), units.length),
+                "velocity": _vec(v, V),
+                "speed": _num(math.hypot(*v), V) if v is not None else None,
+                "direction": _dir(v) if v is not None else None,
+                "acceleration": _vec(a, A),
+                "acceleration_magnitude": _num(math.hypot(*a), A) if a is not None else None,
+            }
+        )
+    return points
+
+
+def _relative_json(kin: Kinematics, quiet: _Noise, units: OutputUnits) -> list[dict[str, Any]]:
+    """Relative velocity along each moving link (the polygon's ab), with ω²·AB and α·AB."""
+    V, A = units.velocity, units.acceleration
+    has_a = quiet.has_a
+    relative = []
+    for lk, p, q in _link_pairs(kin):
+        state = kin.links[lk]
+        v = quiet.vector(
+            kin.relative_velocity(q, p, link_a=lk, link_b=lk),
+            quiet.point_v_scale(p, lk) + quiet.point_v_scale(q, lk),
+        )
+        r = math.dist(kin.positions[p], kin.positions[q])
+        relative.append(
+            {
+                "link": lk,
+                "from": p,
+                "to": q,
+                "label": f"{p}{q}".lower(),
+                "velocity": _vec(v, V),
+                "speed": to_unit(math.hypot(*v), V),
+                "normal": to_unit((quiet.omega(state.omega) or 0.0) ** 2 * r, A) if has_a else None,
+                "tangential": to_unit(abs(quiet.alpha(state.alpha) or 0.0) * r, A) if has_a else None,
+            }
+        )
+    return relative
+
+
+def _joints_json(
+    kin: Kinematics, quiet: _Noise, units: OutputUnits
+) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
+    """(sliders, rubbing): sliding velocity, acceleration and Coriolis at each slider and slot; rubbing at pins."""
+    V, A = units.velocity, units.acceleration
+    has_a = quiet.has_a
+    sliders, rubbing = [], []
+    for name, j in kin.joints.items():
+        if j.type in ("prismatic", "slot"):
+            v_sc, a_sc = quiet.joint_scales(name)
+            cor = quiet.vector(kin.coriolis(name), a_sc) if has_a else None
+            sliders.append(
+                {
+                    "joint": name,
+                    "type": j.type,
+                    "slider": j.links[0],
+                    "guide": j.links[1],
+                    "sliding": to_unit(quiet.scalar(kin.sliding(name), v_sc), V),
+                    "sliding_acceleration": _num(
+                        quiet.scalar(kin.sliding_acceleration(name), a_sc) if has_a else None, A
+                    ),
+                    "coriolis": _vec(cor, A),
+                    "coriolis_magnitude": _num(math.hypot(*cor), A) if cor is not None else None,
+                }
+            )
+        elif j.type == "revolute" and j.radius is not None:
+            rubbing.append(
+                {
+                    "joint": name,
+                    "radius": to_unit(j.radius, units.length),
+                    "rubbing": to_unit(kin.rubbing(name), V),
+                }
+            )
+    return sliders, rubbing
 
 
 def _g(x: float | None, digits: int = 5) -> str:
