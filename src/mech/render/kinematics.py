@@ -446,37 +446,69 @@ def kinematics_table(kin: Kinematics, console: ReportConsole, *, units: OutputUn
     data = kinematics_json(kin, units=units)
     u = {k: format_unit(v) for k, v in data["units"].items()}
 
+    def titled(title: str) -> Any:
+        return Table(title=title, box=box, title_justify="left")
+
     console.print(Text(kin.mechanism, style="bold") + Text(f" — {_LEVEL_TITLES[kin.level]}"))
     for d in data["drives"]:
-        if "link" in d:
-            parts = [f"drive {d['link']}"]
-            if d["angle"] is not None:
-                parts.append(f"at {_g(d['angle'])} {u['angle']}")
-            if d["omega"] is not None:
-                parts.append(f"ω = {_g(abs(d['omega']))} {u['angular_velocity']} {d['sense'] or ''}".rstrip())
-            if d["alpha"]:
-                parts.append(f"α = {_g(d['alpha'])} {u['angular_acceleration']}")
-            other = d["relative"] if d["relative_to"] is None else d["absolute"]
-            if other is not None:
-                what = f"relative to {other['to']}" if d["relative_to"] is None else "absolute"
-                if d["relative_to"] is not None:
-                    parts[0] += f" relative to {d['relative_to']}"
-                extra = [f"{_g(other['angle'])} {u['angle']}"] if other["angle"] is not None else []
-                if other["omega"] is not None:
-                    w = other["omega"]
-                    extra.append(f"ω = {_g(abs(w))} {u['angular_velocity']} {_sense(w) or ''}".rstrip())
-                if other["alpha"] is not None and d["alpha"]:
-                    extra.append(f"α = {_g(other['alpha'])} {u['angular_acceleration']}")
-                parts[-1] += f" ({what}: {', '.join(extra)})"
-        else:
-            parts = [f"drive {d['joint']}"]
-            if d["speed"] is not None:
-                parts.append(f"v = {_g(d['speed'])} {u['velocity']}")
-        console.print(", ".join(parts))
-
+        console.print(_drive_line(d, u))
     has_v, has_a = _at_least(kin, "velocity"), _at_least(kin, "acceleration")
+    console.print(_links_table(titled("Links"), data, u, kin.ground, has_v, has_a))
+    # Positions with velocities, then accelerations in a table of their own: one table with
+    # both is wider than a terminal.
+    console.print(_points_table(titled("Points"), data, u, has_v))
+    if has_a:
+        console.print(_accelerations_table(titled("Point accelerations"), data, u))
+    if data["relative"]:
+        title = "Relative motion along links (velocity polygon)"
+        console.print(_relative_table(titled(title), data, u, has_a))
+    if data["sliders"]:
+        console.print(_sliders_table(titled("Sliders and slots"), data, u, has_a))
+    if data["rubbing"]:
+        t = titled("Rubbing at pins")
+        _col(t, "joint")
+        _col(t, f"radius ({u['length']})", justify="right")
+        _col(t, f"rubbing ({u['velocity']})", justify="right")
+        for r in data["rubbing"]:
+            t.add_row(r["joint"], _g(r["radius"]), _g(r["rubbing"]))
+        console.print(t)
+    for note in data["notes"]:
+        console.print(f"note: {note}", highlight=False)
 
-    t = Table(title="Links", box=box, title_justify="left")
+
+def _drive_line(d: dict[str, Any], u: dict[str, str]) -> str:
+    """``drive crank, at 60 deg, ω = 12.566 rad/s cw``, with the other convention in brackets."""
+    if "link" not in d:
+        parts = [f"drive {d['joint']}"]
+        if d["speed"] is not None:
+            parts.append(f"v = {_g(d['speed'])} {u['velocity']}")
+        return ", ".join(parts)
+    parts = [f"drive {d['link']}"]
+    if d["angle"] is not None:
+        parts.append(f"at {_g(d['angle'])} {u['angle']}")
+    if d["omega"] is not None:
+        parts.append(f"ω = {_g(abs(d['omega']))} {u['angular_velocity']} {d['sense'] or ''}".rstrip())
+    if d["alpha"]:
+        parts.append(f"α = {_g(d['alpha'])} {u['angular_acceleration']}")
+    other = d["relative"] if d["relative_to"] is None else d["absolute"]
+    if other is not None:
+        what = f"relative to {other['to']}" if d["relative_to"] is None else "absolute"
+        if d["relative_to"] is not None:
+            parts[0] += f" relative to {d['relative_to']}"
+        extra = [f"{_g(other['angle'])} {u['angle']}"] if other["angle"] is not None else []
+        if other["omega"] is not None:
+            w = other["omega"]
+            extra.append(f"ω = {_g(abs(w))} {u['angular_velocity']} {_sense(w) or ''}".rstrip())
+        if other["alpha"] is not None and d["alpha"]:
+            extra.append(f"α = {_g(other['alpha'])} {u['angular_acceleration']}")
+        parts[-1] += f" ({what}: {', '.join(extra)})"
+    return ", ".join(parts)
+
+
+def _links_table(
+    t: Any, data: dict[str, Any], u: dict[str, str], ground: str, has_v: bool, has_a: bool
+) -> Any:
+    """θ of each moving link, with ω and its sense, α, as far as solved."""
     _col(t, "link")
     _col(t, f"θ ({u['angle']})", justify="right")
     if has_v:
@@ -485,7 +517,7 @@ def kinematics_table(kin: Kinematics, console: ReportConsole, *, units: OutputUn
     if has_a:
         _col(t, f"α ({u['angular_acceleration']})", justify="right")
     for name, s in data["links"].items():
-        if name == kin.ground:
+        if name == ground:
             continue
         row = [name, _g(s["angle"])]
         if has_v:
@@ -493,11 +525,11 @@ def kinematics_table(kin: Kinematics, console: ReportConsole, *, units: OutputUn
         if has_a:
             row += [_g(s["alpha"])]
         t.add_row(*row)
-    console.print(t)
+    return t
 
-    # Positions with velocities, then accelerations in a table of their own: one table with
-    # both is wider than a terminal.
-    t = Table(title="Points", box=box, title_justify="left")
+
+def _points_table(t: Any, data: dict[str, Any], u: dict[str, str], has_v: bool) -> Any:
+    """Each point's position, with its velocity (magnitude, direction, components) once solved."""
     _col(t, "point")
     _col(t, f"x ({u['length']})", justify="right")
     _col(t, f"y ({u['length']})", justify="right")
@@ -514,71 +546,60 @@ def kinematics_table(kin: Kinematics, console: ReportConsole, *, units: OutputUn
         if has_v:
             row += [_g(p["speed"]), _g(p["direction"], 4), _g(p["velocity"][0]), _g(p["velocity"][1])]
         t.add_row(*row)
-    console.print(t)
+    return t
 
+
+def _accelerations_table(t: Any, data: dict[str, Any], u: dict[str, str]) -> Any:
+    """Each point's acceleration: magnitude, direction, components."""
+    _col(t, "point")
+    for col in (
+        f"|a| ({u['acceleration']})",
+        f"dir ({u['angle']})",
+        f"ax ({u['acceleration']})",
+        f"ay ({u['acceleration']})",
+    ):
+        _col(t, col, justify="right")
+    for p in data["points"]:
+        a = p["acceleration"]
+        t.add_row(_point_label(p), _g(p["acceleration_magnitude"]), _g(_dir(tuple(a)), 4), _g(a[0]), _g(a[1]))
+    return t
+
+
+def _relative_table(t: Any, data: dict[str, Any], u: dict[str, str], has_a: bool) -> Any:
+    """The velocity polygon's vectors along each link, with the normal and tangential parts."""
+    for col in ("link", "vector", f"|v| ({u['velocity']})", f"dir ({u['angle']})"):
+        _col(t, col, justify="left" if col in ("link", "vector") else "right")
     if has_a:
-        t = Table(title="Point accelerations", box=box, title_justify="left")
-        _col(t, "point")
-        for col in (
-            f"|a| ({u['acceleration']})",
-            f"dir ({u['angle']})",
-            f"ax ({u['acceleration']})",
-            f"ay ({u['acceleration']})",
-        ):
-            _col(t, col, justify="right")
-        for p in data["points"]:
-            a = p["acceleration"]
-            t.add_row(
-                _point_label(p), _g(p["acceleration_magnitude"]), _g(_dir(tuple(a)), 4), _g(a[0]), _g(a[1])
-            )
-        console.print(t)
-
-    if data["relative"]:
-        t = Table(title="Relative motion along links (velocity polygon)", box=box, title_justify="left")
-        for col in ("link", "vector", f"|v| ({u['velocity']})", f"dir ({u['angle']})"):
-            _col(t, col, justify="left" if col in ("link", "vector") else "right")
+        _col(t, f"normal ω²r ({u['acceleration']})", justify="right")
+        _col(t, f"tangential αr ({u['acceleration']})", justify="right")
+    for r in data["relative"]:
+        row = [
+            r["link"],
+            f"{r['label']} (v{r['to']}{r['from']})",
+            _g(r["speed"]),
+            _g(_dir(tuple(r["velocity"])), 4),
+        ]
         if has_a:
-            _col(t, f"normal ω²r ({u['acceleration']})", justify="right")
-            _col(t, f"tangential αr ({u['acceleration']})", justify="right")
-        for r in data["relative"]:
-            row = [
-                r["link"],
-                f"{r['label']} (v{r['to']}{r['from']})",
-                _g(r["speed"]),
-                _g(_dir(tuple(r["velocity"])), 4),
+            row += [_g(r["normal"]), _g(r["tangential"])]
+        t.add_row(*row)
+    return t
+
+
+def _sliders_table(t: Any, data: dict[str, Any], u: dict[str, str], has_a: bool) -> Any:
+    """Sliding velocity at each slider and slot; its acceleration and the Coriolis term once solved."""
+    for col in ("joint", "slider on guide", f"sliding ({u['velocity']})"):
+        _col(t, col, justify="right" if "sliding" in col else "left")
+    if has_a:
+        _col(t, f"sliding acc. ({u['acceleration']})", justify="right")
+        _col(t, f"Coriolis 2ωv ({u['acceleration']})", justify="right")
+        _col(t, f"dir ({u['angle']})", justify="right")
+    for s in data["sliders"]:
+        row = [s["joint"], f"{s['slider']} on {s['guide']}", _g(s["sliding"])]
+        if has_a:
+            row += [
+                _g(s["sliding_acceleration"]),
+                _g(s["coriolis_magnitude"]),
+                _g(_dir(tuple(s["coriolis"])), 4),
             ]
-            if has_a:
-                row += [_g(r["normal"]), _g(r["tangential"])]
-            t.add_row(*row)
-        console.print(t)
-
-    if data["sliders"]:
-        t = Table(title="Sliders and slots", box=box, title_justify="left")
-        for col in ("joint", "slider on guide", f"sliding ({u['velocity']})"):
-            _col(t, col, justify="right" if "sliding" in col else "left")
-        if has_a:
-            _col(t, f"sliding acc. ({u['acceleration']})", justify="right")
-            _col(t, f"Coriolis 2ωv ({u['acceleration']})", justify="right")
-            _col(t, f"dir ({u['angle']})", justify="right")
-        for s in data["sliders"]:
-            row = [s["joint"], f"{s['slider']} on {s['guide']}", _g(s["sliding"])]
-            if has_a:
-                row += [
-                    _g(s["sliding_acceleration"]),
-                    _g(s["coriolis_magnitude"]),
-                    _g(_dir(tuple(s["coriolis"])), 4),
-                ]
-            t.add_row(*row)
-        console.print(t)
-
-    if data["rubbing"]:
-        t = Table(title="Rubbing at pins", box=box, title_justify="left")
-        _col(t, "joint")
-        _col(t, f"radius ({u['length']})", justify="right")
-        _col(t, f"rubbing ({u['velocity']})", justify="right")
-        for r in data["rubbing"]:
-            t.add_row(r["joint"], _g(r["radius"]), _g(r["rubbing"]))
-        console.print(t)
-
-    for note in data["notes"]:
-        console.print(f"note: {note}", highlight=False)
+        t.add_row(*row)
+    return t
