@@ -23,13 +23,6 @@ LIMIT = 80
 #: "path relative to src/mech:function" → who is splitting it and where it stands.
 IN_FLIGHT: dict[str, str] = {
     "kinematics/sweep.py:sweep": "trust-num: kinematics/sweep.py split by job (issue 14 part 3)",
-    "render/cam.py:cam_table": "pipeline: render/ typed and emitters registered (issue 14 part 1)",
-    "render/kinematics.py:kinematics_table": "pipeline: render/ typed and emitters registered (issue 14 part 1)",
-    "render/kinematics.py:kinematics_json": "pipeline: render/ typed and emitters registered (issue 14 part 1)",
-    "draw/polygon.py:_build": "pipeline: draw/ takes typed results (issue 14 part 1)",
-    "draw/polygon.py:polygon_figure": "pipeline: draw/ takes typed results (issue 14 part 1)",
-    "draw/cam.py:profile_figure": "pipeline: draw/ takes typed results (issue 14 part 1)",
-    "draw/raster.py:_canvas": "pipeline: draw/ takes typed results (issue 14 part 1)",
 }
 
 
