@@ -291,20 +291,14 @@ def _results_table(a: CamAnalysis, box: Any) -> Any:
         if e is not None:
             res.add_row(label, f"{_fmt(e.value * scale)} {unit}", f"{math.degrees(e.theta):.4g}")
 
+    def infinite(label: str, jumps: tuple[float, ...], what: str) -> None:
+        if jumps:
+            res.add_row(label, f"∞ ({what} jumps)", ", ".join(f"{math.degrees(t):.4g}" for t in jumps))
+
     add("largest velocity", a.velocity, units["v"])
-    if a.velocity_jumps:
-        res.add_row(
-            "acceleration",
-            "∞ (velocity jumps)",
-            ", ".join(f"{math.degrees(t):.4g}" for t in a.velocity_jumps),
-        )
+    infinite("acceleration", a.velocity_jumps, "velocity")
     add("largest acceleration", a.acceleration, units["a"])
-    if a.acceleration_jumps:
-        res.add_row(
-            "jerk",
-            "∞ (acceleration jumps)",
-            ", ".join(f"{math.degrees(t):.4g}" for t in a.acceleration_jumps),
-        )
+    infinite("jerk", a.acceleration_jumps, "acceleration")
     add("largest jerk", a.jerk, units["j"])
     add("largest pressure angle", a.pressure, "°", 180 / math.pi)
     if a.layout.program.follower == "flat":

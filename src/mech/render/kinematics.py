@@ -534,17 +534,11 @@ def _points_table(t: Any, data: dict[str, Any], u: dict[str, str], has_v: bool) 
     _col(t, f"x ({u['length']})", justify="right")
     _col(t, f"y ({u['length']})", justify="right")
     if has_v:
-        for col in (
-            f"|v| ({u['velocity']})",
-            f"dir ({u['angle']})",
-            f"vx ({u['velocity']})",
-            f"vy ({u['velocity']})",
-        ):
-            _col(t, col, justify="right")
+        _vector_columns(t, "v", u["velocity"], u["angle"])
     for p in data["points"]:
         row = [_point_label(p), _g(p["position"][0]), _g(p["position"][1])]
         if has_v:
-            row += [_g(p["speed"]), _g(p["direction"], 4), _g(p["velocity"][0]), _g(p["velocity"][1])]
+            row += _vector_cells(p["speed"], p["direction"], p["velocity"])
         t.add_row(*row)
     return t
 
@@ -552,17 +546,22 @@ def _points_table(t: Any, data: dict[str, Any], u: dict[str, str], has_v: bool) 
 def _accelerations_table(t: Any, data: dict[str, Any], u: dict[str, str]) -> Any:
     """Each point's acceleration: magnitude, direction, components."""
     _col(t, "point")
-    for col in (
-        f"|a| ({u['acceleration']})",
-        f"dir ({u['angle']})",
-        f"ax ({u['acceleration']})",
-        f"ay ({u['acceleration']})",
-    ):
-        _col(t, col, justify="right")
+    _vector_columns(t, "a", u["acceleration"], u["angle"])
     for p in data["points"]:
         a = p["acceleration"]
-        t.add_row(_point_label(p), _g(p["acceleration_magnitude"]), _g(_dir(tuple(a)), 4), _g(a[0]), _g(a[1]))
+        t.add_row(_point_label(p), *_vector_cells(p["acceleration_magnitude"], _dir(tuple(a)), a))
     return t
+
+
+def _vector_columns(t: Any, symbol: str, unit: str, angle: str) -> None:
+    """A vector's four columns: ``|v|``, its direction, ``vx`` and ``vy``."""
+    for col in (f"|{symbol}| ({unit})", f"dir ({angle})", f"{symbol}x ({unit})", f"{symbol}y ({unit})"):
+        _col(t, col, justify="right")
+
+
+def _vector_cells(magnitude: float | None, direction: float | None, xy: list[float]) -> list[str]:
+    """The cells under :func:`_vector_columns` (the direction to four figures)."""
+    return [_g(magnitude), _g(direction, 4), _g(xy[0]), _g(xy[1])]
 
 
 def _relative_table(t: Any, data: dict[str, Any], u: dict[str, str], has_a: bool) -> Any:
