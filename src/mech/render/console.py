@@ -23,8 +23,9 @@ class ReportConsole(Protocol):
 
     A renderer prints tables, ``Text`` and strings with :meth:`print` and asks
     :func:`kit` or :func:`table_box` (which read the three attributes) what
-    kind of table to build.  Typed against this protocol, a renderer cannot
-    come to rely on a rich method the plain console lacks.
+    kind of table to build.  Typed against this protocol, a renderer that
+    reaches for more of rich's console (which the plain one hands on to rich,
+    the slow way) must say so here first.
     """
 
     @property
