@@ -16,6 +16,7 @@ import pytest
 from mech.explain import Construction, explain, explain_icentres
 from mech.kinematics import solve
 from mech.loader import load
+from oracles.lines import meet_along
 
 EXAMPLES = [
     "mechanisms/four_bar.yaml",
@@ -48,10 +49,7 @@ def rebuild(c: Construction) -> dict[str, tuple[float, float]]:
             pts[s.result] = (pts[a][0] + ratio * (ca * dx - sa * dy), pts[a][1] + ratio * (sa * dx + ca * dy))
         elif s.lines:
             (p, u), (q, w) = ((pts[ln.through], ln.direction) for ln in s.lines)
-            d1, d2 = (math.cos(u), math.sin(u)), (math.cos(w), math.sin(w))
-            den = d1[0] * d2[1] - d1[1] * d2[0]
-            t = ((q[0] - p[0]) * d2[1] - (q[1] - p[1]) * d2[0]) / den
-            pts[s.result] = (p[0] + t * d1[0], p[1] + t * d1[1])
+            pts[s.result] = meet_along(p, (math.cos(u), math.sin(u)), q, (math.cos(w), math.sin(w)))
         else:
             assert s.result in pts, f"step {s.number} locates {s.result} from nothing"
     return pts

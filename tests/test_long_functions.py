@@ -21,15 +21,7 @@ SRC = Path(__file__).resolve().parent.parent / "src" / "mech"
 LIMIT = 80
 
 #: "path relative to src/mech:function" → who is splitting it and where it stands.
-IN_FLIGHT: dict[str, str] = {
-    "render/cam.py:cam_table": "pipeline: render/ typed and emitters registered (issue 14 part 1)",
-    "render/kinematics.py:kinematics_table": "pipeline: render/ typed and emitters registered (issue 14 part 1)",
-    "render/kinematics.py:kinematics_json": "pipeline: render/ typed and emitters registered (issue 14 part 1)",
-    "draw/polygon.py:_build": "pipeline: draw/ takes typed results (issue 14 part 1)",
-    "draw/polygon.py:polygon_figure": "pipeline: draw/ takes typed results (issue 14 part 1)",
-    "draw/cam.py:profile_figure": "pipeline: draw/ takes typed results (issue 14 part 1)",
-    "draw/raster.py:_canvas": "pipeline: draw/ takes typed results (issue 14 part 1)",
-}
+IN_FLIGHT: dict[str, str] = {}
 
 
 def _code_lines(fn: ast.FunctionDef | ast.AsyncFunctionDef) -> int:

@@ -9,6 +9,8 @@ import numpy as np
 import pytest
 from tests.conftest import MECHANISMS
 
+from oracles.cam import oscillating_pressure_angle
+
 
 def cam_json(run, name: str, *args: str) -> dict:
     result = run("cam", str(MECHANISMS / name), "--json", *args)
@@ -79,45 +81,6 @@ def test_flat_follower_rpm_option_gives_velocities(run):
     assert d["velocity_max"]["value"] == pytest.approx(
         math.pi * 0.020 * w / (2 * math.radians(120)), rel=1e-9
     )
-
-
-def oscillating_pressure_angle(theta: float, h: float = 1e-6) -> float:
-    """The oscillating example's pressure angle (deg) from its numbers alone (see the file).
-
-    The roller centre C = P + L(cos ψ, sin ψ), ψ = ψ0 ∓ s(θ) (the sign that swings C away from O);
-    its path relative to the cam is C turned back by θ (ccw cam); the tangent of that path, turned
-    forward again, against C's direction of motion k × (C − P).
-    """
-    px, length, rp = 100.0, 80.0, 40.0
-    x0 = (rp**2 - length**2 + px**2) / (2 * px)
-    psi0 = math.atan2(math.sqrt(rp**2 - x0**2), x0 - px)
-
-    def lift(th: float) -> float:
-        d, rise = math.degrees(th) % 360, math.radians(20)
-        if d < 90:
-            x = d / 90
-            return rise * (x - math.sin(2 * math.pi * x) / (2 * math.pi))
-        if d < 150:
-            return rise
-        if d < 270:
-            return rise - rise / 2 * (1 - math.cos(math.pi * (d - 150) / 120))
-        return 0.0
-
-    def centre(psi: float) -> tuple[float, float]:
-        return px + length * math.cos(psi), length * math.sin(psi)
-
-    away = 1.0 if math.hypot(*centre(psi0 + 1e-6)) > math.hypot(*centre(psi0)) else -1.0
-
-    def relative(th: float) -> tuple[float, float]:
-        cx, cy = centre(psi0 + away * lift(th))
-        return math.cos(th) * cx + math.sin(th) * cy, -math.sin(th) * cx + math.cos(th) * cy
-
-    a, b = relative(theta - h), relative(theta + h)
-    c, s = math.cos(theta), math.sin(theta)
-    tx, ty = c * (b[0] - a[0]) - s * (b[1] - a[1]), s * (b[0] - a[0]) + c * (b[1] - a[1])
-    cx, cy = centre(psi0 + away * lift(theta))
-    wx, wy = -away * cy, away * (cx - px)
-    return math.degrees(math.atan2(tx * wx + ty * wy, abs(-tx * wy + ty * wx)))
 
 
 def test_oscillating_example_pressure_angles_match_its_geometry(run):

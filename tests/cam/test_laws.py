@@ -17,37 +17,11 @@ from hypothesis import strategies as st
 
 from mech.cam.laws import LAWS, rise
 from mech.cam.program import CamProgram, Segment, follower_motion
+from oracles.cam import textbook_rise
 
 S = 0.04  # stroke, m
 BETA = math.radians(120)  # outstroke angle θ_O
 OMEGA = 25.0  # rad/s
-
-
-def textbook(law: str, th: float) -> tuple[float, float, float]:
-    """s (m), v (m/s), a (m/s²) at cam angle th (rad) into a rise of S over BETA."""
-    x = th / BETA
-    if law == "uniform":
-        return S * x, OMEGA * S / BETA, 0.0
-    if law == "shm":  # Khurmi: v = π ω S / (2 θ_O) sin(π θ/θ_O), a = π² ω² S / (2 θ_O²) cos(π θ/θ_O)
-        return (
-            S / 2 * (1 - math.cos(math.pi * x)),
-            math.pi * OMEGA * S / (2 * BETA) * math.sin(math.pi * x),
-            math.pi**2 * OMEGA**2 * S / (2 * BETA**2) * math.cos(math.pi * x),
-        )
-    if law == "parabolic":  # uniform acceleration then equal retardation
-        if x <= 0.5:
-            return 2 * S * x**2, 4 * OMEGA * S * th / BETA**2, 4 * OMEGA**2 * S / BETA**2
-        return (
-            S - 2 * S * (1 - x) ** 2,
-            4 * OMEGA * S * (BETA - th) / BETA**2,
-            -4 * OMEGA**2 * S / BETA**2,
-        )
-    assert law == "cycloidal"  # s = S(θ/θ_O − sin(2πθ/θ_O)/2π)
-    return (
-        S * (x - math.sin(2 * math.pi * x) / (2 * math.pi)),
-        OMEGA * S / BETA * (1 - math.cos(2 * math.pi * x)),
-        2 * math.pi * OMEGA**2 * S / BETA**2 * math.sin(2 * math.pi * x),
-    )
 
 
 def programme(law: str, ret: str | None = None) -> CamProgram:
@@ -71,7 +45,7 @@ ANGLES = [math.radians(d) for d in (5, 17.5, 40, 59, 60, 61, 90, 113)]
 def test_rise_matches_textbook_formula_at_several_angles(law):
     m = follower_motion(programme(law), ANGLES)
     for k, th in enumerate(ANGLES):
-        s, v, a = textbook(law, th)
+        s, v, a = textbook_rise(law, th, S, BETA, OMEGA)
         assert m.s[k] == pytest.approx(s, rel=1e-12, abs=1e-15 * S)
         assert m.ds[k] * OMEGA == pytest.approx(v, rel=1e-12, abs=1e-15)
         assert m.d2s[k] * OMEGA**2 == pytest.approx(a, rel=1e-12, abs=1e-12)
@@ -145,7 +119,7 @@ def test_whole_turn_sweep_matches_formula(law):
     m = follower_motion(programme(law), theta)
     for k, th in enumerate(theta):
         if th < BETA:
-            s, v, a = textbook(law, float(th))
+            s, v, a = textbook_rise(law, float(th), S, BETA, OMEGA)
             assert m.s[k] == pytest.approx(s, rel=1e-12, abs=1e-15)
             assert m.ds[k] * OMEGA == pytest.approx(v, rel=1e-12, abs=1e-15)
             if not (law == "parabolic" and th == BETA / 2):

@@ -19,6 +19,7 @@ from hypothesis import strategies as st
 from mech.cam.analysis import analyse
 from mech.cam.profile import CamLayout, evaluate
 from mech.cam.program import CamProgram, Segment, follower_motion
+from oracles.cam import lift_on_polygon, lift_oscillating, three_point_radius
 
 D = math.radians
 R_B = 0.04
@@ -46,28 +47,6 @@ def turned(profile: np.ndarray, angle: float) -> np.ndarray:
     return profile @ np.array([[c, s], [-s, c]])
 
 
-def lift_on_polygon(poly: np.ndarray, follower: str, axis: float, e_n: float, start: float) -> float:
-    """The translating follower's lift when it rests on the polygon (cam frame already turned).
-
-    ``e_n``: the line's distance from O along k × u; ``start``: the follower
-    point's distance along u at zero lift.
-    """
-    u = np.array([math.cos(axis), math.sin(axis)])
-    n = np.array([-u[1], u[0]])
-    along = poly @ u
-    side = poly @ n - e_n
-    if follower == "flat":
-        return float(np.max(along)) - start  # the face rests on the highest point
-    if follower == "roller":
-        ok = np.abs(side) <= R_R
-        return float(np.max(along[ok] + np.sqrt(R_R**2 - side[ok] ** 2))) - start
-    nxt = np.roll(np.arange(len(poly)), -1)
-    cross = np.where(np.sign(side) != np.sign(side[nxt]))[0]
-    j = nxt[cross]
-    t = along[cross] + (along[j] - along[cross]) * (-side[cross]) / (side[j] - side[cross])
-    return float(np.max(t)) - start
-
-
 CHECK_ANGLES = np.radians(np.linspace(3.3, 357.1, 41))  # none on the sampling grid
 
 
@@ -84,34 +63,8 @@ def test_translating_follower_placed_on_profile_reproduces_the_programme(followe
     start = R_B if follower == "flat" else math.sqrt(rp**2 - offset**2)
     s_ref = follower_motion(prog, CHECK_ANGLES).s
     for th, s in zip(CHECK_ANGLES, s_ref, strict=True):
-        got = lift_on_polygon(turned(a.state.profile, sense * th), follower, axis, e_n, start)
+        got = lift_on_polygon(turned(a.state.profile, sense * th), follower, axis, e_n, start, R_R)
         assert got == pytest.approx(s, abs=1e-5 * SIZE), math.degrees(th)
-
-
-def lift_oscillating(poly: np.ndarray, pivot: np.ndarray, arm: float, psi_ref: float, roller: float) -> float:
-    """The arm's angle at which it rests on the polygon: the roller (or edge) just touches it."""
-
-    def gap(psi: float) -> float:
-        c = pivot + arm * np.array([math.cos(psi), math.sin(psi)])
-        if roller > 0:
-            return float(np.min(np.hypot(*(poly - c).T))) - roller
-        # a knife edge: is it outside the polygon? (winding number through the edge's position)
-        rel = poly - c
-        ang = np.arctan2(rel[:, 1], rel[:, 0])
-        winding = np.sum(np.angle(np.exp(1j * (np.roll(ang, -1) - ang)))) / (2 * math.pi)
-        dist = float(np.min(np.hypot(*rel.T)))
-        return -dist if abs(winding) > 0.5 else dist
-
-    lo, hi = psi_ref - 0.05, psi_ref + 0.05
-    glo = gap(lo)
-    assert glo * gap(hi) < 0
-    for _ in range(50):
-        mid = (lo + hi) / 2
-        if (gap(mid) > 0) == (glo > 0):
-            lo = mid
-        else:
-            hi = mid
-    return (lo + hi) / 2
 
 
 @pytest.mark.parametrize("follower", ["knife", "roller"])
@@ -165,14 +118,6 @@ def test_pressure_angle_is_the_angle_between_the_profile_normal_and_the_line_of_
         # the normal is (ty, −tx) up to sign; its angle from the line of stroke (+y)
         phi = math.atan2(abs(ty), abs(tx))  # angle between the tangent and x, i.e. normal and y
         assert abs(st.pressure[k]) == pytest.approx(phi, abs=1e-5)
-
-
-def three_point_radius(p: np.ndarray) -> np.ndarray:
-    """The circle through each point and its neighbours: its radius (signed: + turning left)."""
-    a, b, c = np.roll(p, 1, axis=0), p, np.roll(p, -1, axis=0)
-    ab, bc, ca = np.hypot(*(b - a).T), np.hypot(*(c - b).T), np.hypot(*(a - c).T)
-    cross = (b - a)[:, 0] * (c - b)[:, 1] - (b - a)[:, 1] * (c - b)[:, 0]
-    return ab * bc * ca / (2 * cross)
 
 
 @pytest.mark.parametrize("sense", [1, -1])
@@ -349,7 +294,9 @@ def test_any_roller_programme_without_undercut_is_followed_exactly(
     rp = R_B + R_R
     start = math.sqrt(rp**2 - offset**2)
     for th, s in zip(CHECK_ANGLES[::4], follower_motion(prog, CHECK_ANGLES[::4]).s, strict=True):
-        got = lift_on_polygon(turned(a.state.profile, sense * th), "roller", D(90), -sense * offset, start)
+        got = lift_on_polygon(
+            turned(a.state.profile, sense * th), "roller", D(90), -sense * offset, start, R_R
+        )
         assert got == pytest.approx(s, abs=1e-5 * SIZE)
 
 
@@ -380,7 +327,7 @@ def test_roller_cannot_follow_the_corner_where_uniform_velocity_stops():
     assert math.degrees(a.least_radius.theta) == pytest.approx(120.0)
     start = R_B + R_R
     th = D(121.0)  # just past the corner, on the dwell
-    got = lift_on_polygon(turned(a.state.profile, th), "roller", D(90), 0.0, start)
+    got = lift_on_polygon(turned(a.state.profile, th), "roller", D(90), 0.0, start, R_R)
     assert got > 0.03 + 1e-5  # held up by the corner: the programme says 30 mm exactly
     # a knife edge follows the same corner exactly
     k = analyse(CamLayout(uniform_programme("knife"), sense=1, axis=D(90)), samples=3600)

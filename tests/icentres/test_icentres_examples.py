@@ -12,6 +12,7 @@ from mech.icentres import ICentres, locate
 from mech.kinematics import solve
 from mech.loader import load
 from mech.options import SolveOptions
+from oracles.lines import line_intersection
 
 MECHANISMS = Path(__file__).resolve().parents[2] / "mechanisms"
 
@@ -28,15 +29,6 @@ def located(name: str, **options) -> tuple[ICentres, object]:
     mech = load(MECHANISMS / name)
     kin = solve(mech, level="velocity", options=SolveOptions(**options))
     return locate(mech, kin), kin
-
-
-def line_intersection(p1, p2, q1, q2):
-    a1, b1 = p2[1] - p1[1], p1[0] - p2[0]
-    c1 = a1 * p1[0] + b1 * p1[1]
-    a2, b2 = q2[1] - q1[1], q1[0] - q2[0]
-    c2 = a2 * q1[0] + b2 * q1[1]
-    det = a1 * b2 - a2 * b1
-    return ((c1 * b2 - c2 * b1) / det, (a1 * c2 - a2 * c1) / det)
 
 
 def hom(c, size):

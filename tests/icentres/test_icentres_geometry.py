@@ -9,16 +9,7 @@ import pytest
 from mech.icentres import Contact, Frame, Instant, Pin, Slide, from_instant, kennedy
 from mech.icentres.homogeneous import at_infinity, ideal, join, meet, point, separation, unit
 from mech.icentres.inspection import facts
-
-
-def line_intersection(p1, p2, q1, q2):
-    """Where line p1p2 meets line q1q2 (Cramer's rule on the two line equations)."""
-    a1, b1 = p2[1] - p1[1], p1[0] - p2[0]
-    c1 = a1 * p1[0] + b1 * p1[1]
-    a2, b2 = q2[1] - q1[1], q1[0] - q2[0]
-    c2 = a2 * q1[0] + b2 * q1[1]
-    det = a1 * b2 - a2 * b1
-    return ((c1 * b2 - c2 * b1) / det, (a1 * c2 - a2 * c1) / det)
+from oracles.lines import line_intersection
 
 
 # -- homogeneous ------------------------------------------------------------------------

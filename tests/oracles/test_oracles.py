@@ -12,8 +12,17 @@ import mpmath
 import numpy as np
 import pytest
 
+from oracles.cam import (
+    lift_on_polygon,
+    lift_oscillating,
+    oscillating_pressure_angle,
+    textbook_rise,
+    three_point_radius,
+)
 from oracles.four_bar import crank_rocker_limits, crank_rocker_sweep, four_bar, rocker_angle
+from oracles.lines import line_intersection, meet
 from oracles.slider_crank import slider_crank, slider_dead_centres, slider_x
+from oracles.transmission import crank_turns, diagonal_range, transmission_angle, transmission_angle_at
 from oracles.velocity_field import icentre, velocity_field
 
 # Khurmi & Gupta, *Theory of Machines*, Example 7.1: AD = 150 mm fixed, crank AB = 40 mm at
@@ -148,3 +157,88 @@ def test_mpmath_forms_agree_with_the_float_closed_forms():
     x, _, v, _, _ = slider_crank(0.1, 0.4, 0.03, th, 1.0)
     assert float(slider_x(0.1, 0.4, 0.03, th)) == pytest.approx(x, rel=1e-14)
     assert float(mpmath.diff(lambda t: slider_x(0.1, 0.4, 0.03, t), th)) == pytest.approx(v, rel=1e-12)
+
+
+def test_the_two_line_intersections_agree_and_find_a_3_4_5_crossing():
+    """Cramer's rule and the parametric form share no step; diagonals of a 3 × 4 box cross at its middle."""
+    assert line_intersection((0, 0), (3, 4), (3, 0), (0, 4)) == pytest.approx((1.5, 2.0), abs=1e-15)
+    assert meet((0, 0), (3, 4), (3, 0), (0, 4)) == pytest.approx((1.5, 2.0), abs=1e-15)
+    rng = np.random.default_rng(7)
+    for _ in range(50):
+        p1, p2, q1, q2 = (tuple(rng.uniform(-5, 5, 2)) for _ in range(4))
+        assert line_intersection(p1, p2, q1, q2) == pytest.approx(meet(p1, p2, q1, q2), rel=1e-9, abs=1e-9)
+
+
+def test_transmission_angle_cosine_rule_agrees_with_its_half_angle_form():
+    """μ at a crank angle (BD from triangle ABD) and μ at that BD (half-angle form), and BD's range."""
+    for d, a, b, c in ((0.15, 0.04, 0.15, 0.08), (1.0, 0.3, 0.9, 0.7), (0.2, 0.5, 0.6, 0.55)):
+        lo, hi = diagonal_range(d, a, b, c)
+        bds = []
+        for th in np.linspace(0.0, 2 * math.pi, 721):
+            bd = math.hypot(a * math.cos(th) - d, a * math.sin(th))
+            bds.append(bd)
+            if lo < bd < hi:
+                assert transmission_angle_at(b, c, bd) == pytest.approx(
+                    transmission_angle(d, a, b, c, th), abs=1e-9
+                )
+        # the crank turns fully exactly when BD never leaves the closure's range
+        closes = abs(b - c) <= min(bds) and max(bds) <= b + c
+        assert crank_turns(d, a, b, c) == closes
+        if closes:
+            assert (lo, hi) == pytest.approx((min(bds), max(bds)), abs=1e-12)
+
+
+def test_textbook_rise_laws_are_their_own_derivatives():
+    """v = ω ds/dθ and a = ω dv/dθ, by central differences of the laws' own s and v."""
+    S, beta, w, h = 0.04, math.radians(120), 25.0, 1e-6
+    for law in ("uniform", "shm", "parabolic", "cycloidal"):
+        for th in np.radians([7.0, 33.0, 59.0, 61.0, 97.0, 118.0]):
+            _, v, a = textbook_rise(law, th, S, beta, w)
+            (s_m, v_m, _), (s_p, v_p, _) = (textbook_rise(law, th + k * h, S, beta, w) for k in (-1, 1))
+            assert w * (s_p - s_m) / (2 * h) == pytest.approx(v, rel=1e-7)
+            assert w * (v_p - v_m) / (2 * h) == pytest.approx(a, rel=1e-6, abs=1e-9)
+        assert textbook_rise(law, beta, S, beta, w)[0] == pytest.approx(S, rel=1e-15)
+
+
+def test_three_point_radius_is_exact_on_a_circle_and_close_on_an_ellipse():
+    """A circle through three points of a circle is that circle; an ellipse's ρ = (a²sin²t + b²cos²t)^1.5 / ab."""
+    t = np.linspace(0.0, 2 * math.pi, 4000, endpoint=False)
+    circle = 0.03 * np.stack([np.cos(t), np.sin(t)], axis=-1)
+    assert three_point_radius(circle) == pytest.approx(np.full(len(t), 0.03), rel=1e-9)
+    assert three_point_radius(circle[::-1]) == pytest.approx(np.full(len(t), -0.03), rel=1e-9)
+    a, b = 0.05, 0.03
+    ellipse = np.stack([a * np.cos(t), b * np.sin(t)], axis=-1)
+    rho = (a**2 * np.sin(t) ** 2 + b**2 * np.cos(t) ** 2) ** 1.5 / (a * b)
+    assert three_point_radius(ellipse) == pytest.approx(rho, rel=1e-5)
+
+
+def test_a_follower_put_on_an_eccentric_circle_rests_where_the_circle_puts_it():
+    """A disc of radius R about (e, 0), follower on the y axis: knife √(R² − e²), roller √((R + r)² − e²), flat R."""
+    R, e, r = 0.04, 0.01, 0.008
+    t = np.linspace(0.0, 2 * math.pi, 20000, endpoint=False)
+    disc = np.stack([e + R * np.cos(t), R * np.sin(t)], axis=-1)
+    up = math.pi / 2
+    assert lift_on_polygon(disc, "knife", up, 0.0, 0.0) == pytest.approx(math.sqrt(R**2 - e**2), rel=1e-7)
+    assert lift_on_polygon(disc, "roller", up, 0.0, 0.0, r) == pytest.approx(
+        math.sqrt((R + r) ** 2 - e**2), rel=1e-7
+    )
+    assert lift_on_polygon(disc, "flat", up, 0.0, 0.0) == pytest.approx(R, rel=1e-7)
+    # an arm of length L about P = (d, 0) resting its roller on the disc: |C − (e, 0)| = R + r, so
+    # the arm is γ off P→(e, 0), by the cosine rule in P, (e, 0), C (searched from 0.02 rad away)
+    d, L = 0.09, 0.07
+    gamma = math.acos((L**2 + (d - e) ** 2 - (R + r) ** 2) / (2 * L * (d - e)))
+    psi = lift_oscillating(disc, np.array([d, 0.0]), L, math.pi - gamma + 0.02, r)
+    assert psi == pytest.approx(math.pi - gamma, abs=1e-6)
+
+
+def test_oscillating_pressure_angle_over_a_dwell_is_the_triangle_cam_centre_pivot_roller():
+    """Over a dwell the roller centre C circles the cam centre O: the path's normal lies along OC and C
+    moves across PC, so the pressure angle is 90° − ∠OCP (cosine rule in O, P, C; the example's
+    OP = 100, PC = 80, OC = 40 mm at zero lift, the rise swinging C 20° away from O)."""
+    op, pc, oc0 = 100.0, 80.0, 40.0
+    at_p0 = math.acos((op**2 + pc**2 - oc0**2) / (2 * op * pc))
+    for swing, degrees in ((0.0, (300, 330)), (math.radians(20), (100, 120, 140))):
+        oc = math.sqrt(op**2 + pc**2 - 2 * op * pc * math.cos(at_p0 + swing))
+        at_c = math.degrees(math.acos((oc**2 + pc**2 - op**2) / (2 * oc * pc)))
+        for deg in degrees:
+            assert oscillating_pressure_angle(math.radians(deg)) == pytest.approx(90 - at_c, abs=1e-6)

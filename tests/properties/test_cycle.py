@@ -20,6 +20,10 @@ from hypothesis import strategies as st
 from mech.loader import load, loads
 from mech.properties.cycle import cycle, transmission_angle
 from mech.properties.grashof import FourBarLoop
+from oracles.transmission import crank_turns
+from oracles.transmission import diagonal_range as bd_range
+from oracles.transmission import transmission_angle as mu_closed
+from oracles.transmission import transmission_angle_at as mu_of
 
 
 def four_bar_text(d: float, a: float, b: float, c: float, angle: float = 60.0) -> str:
@@ -34,16 +38,6 @@ joints:
 lengths: {{AB: {a!r}, BC: {b!r}, CD: {c!r}}}
 drive: {{link: crank, angle: {angle!r}, rpm: 60}}
 """
-
-
-def mu_closed(d: float, a: float, b: float, c: float, theta: float) -> float:
-    bd2 = a * a + d * d - 2 * a * d * math.cos(theta)
-    return math.acos((b * b + c * c - bd2) / (2 * b * c))
-
-
-def crank_turns(d: float, a: float, b: float, c: float) -> bool:
-    """BD runs over [|d − a|, d + a]; the loop closes while BD is within [|b − c|, b + c]."""
-    return abs(b - c) < abs(d - a) and d + a < b + c
 
 
 @st.composite
@@ -91,19 +85,6 @@ def test_transmission_angle_at_the_instant_is_the_cosine_rule(links, angle):
     where, mu = transmission_angle(mech, solve(mech, "position"))
     assert (where.coupler_joint, where.joint, where.pivot) == ("B", "C", "D")
     assert mu == pytest.approx(mu_closed(d, a, b, c, math.radians(angle)), abs=1e-9)
-
-
-def bd_range(d: float, a: float, b: float, c: float) -> tuple[float, float]:
-    """The diagonal BD the loop can take: BD(θ) ∈ [|d − a|, d + a] and the closure [|b − c|, b + c]."""
-    return max(abs(d - a), abs(b - c)), min(d + a, b + c)
-
-
-def mu_of(b: float, c: float, bd: float) -> float:
-    """The cosine rule in its half-angle form, exact at the ends (μ = 0 at BD = |b − c|, π at b + c):
-    tan(μ/2) = √((BD² − (b − c)²) / ((b + c)² − BD²))."""
-    return 2 * math.atan2(
-        math.sqrt(max(bd * bd - (b - c) ** 2, 0.0)), math.sqrt(max((b + c) ** 2 - bd * bd, 0.0))
-    )
 
 
 @settings(max_examples=60, deadline=None)

@@ -14,6 +14,7 @@ import pytest
 
 from mech.loader import loads
 from mech.properties.paths import centrodes, point_path
+from oracles.lines import meet
 
 D, A, B, C = 0.15, 0.04, 0.15, 0.08  # Khurmi Ex. 7.1, m
 U, V = 0.06, 0.03  # coupler point E: 60 mm along BC and 30 mm to its left
@@ -44,15 +45,6 @@ def closed_form(theta: float) -> dict[str, tuple[float, float]]:
     ux, uy = (c[0] - b[0]) / B, (c[1] - b[1]) / B
     e = (b[0] + U * ux - V * uy, b[1] + U * uy + V * ux)
     return {"B": b, "C": c, "E": e}
-
-
-def meet(p1, p2, q1, q2) -> tuple[float, float]:
-    """Where line p1p2 meets line q1q2."""
-    d1 = (p2[0] - p1[0], p2[1] - p1[1])
-    d2 = (q2[0] - q1[0], q2[1] - q1[1])
-    den = d1[0] * d2[1] - d1[1] * d2[0]
-    t = ((q1[0] - p1[0]) * d2[1] - (q1[1] - p1[1]) * d2[0]) / den
-    return (p1[0] + t * d1[0], p1[1] + t * d1[1])
 
 
 def test_coupler_curve_is_the_closed_form_position_at_every_step():

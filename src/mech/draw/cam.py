@@ -70,6 +70,31 @@ def profile_figure(setup: CamSetup, a: CamAnalysis, *, title: str = "") -> Figur
     point = (float(now.point[0][0] + cx), float(now.point[0][1] + cy))
     contact = (float(now.contact[0][0] + cx), float(now.contact[0][1] + cy))
     reach = prog.base_radius + prog.stroke * (0 if lay.oscillating else 1) + 2 * lay.roller
+    page, tf, scale = _profile_sheet(setup, a, pts, point, reach)
+    if title:
+        page.add(Text((page.width / 2, 6.0), title, size=3.6, bold=True))
+    _draw_cam(page, tf, setup, a, pts)
+    _draw_follower(page, tf, setup, a, point, contact, reach)
+    page.add(Circle(tf(contact), 0.7, Style(stroke=None, fill=FOLLOWER), cls="contact"))
+    caption = (
+        f"θ = {fmt(math.degrees(setup.angle))}° · base circle {fmt(prog.base_radius * 1000)} mm"
+        + (f" · roller {fmt(lay.roller * 1000)} mm" if lay.roller else "")
+        + f" · largest pressure angle {fmt(math.degrees(abs(a.pressure.value)), 3)}°"
+    )
+    page.add(Text((_MARGIN, page.height - 14), caption, size=2.8, anchor="start"))
+    page.extend(scale_bar((_MARGIN, page.height - 7), scale * 1000, "mm"))
+    return page.figure(title or "cam profile")
+
+
+_MARGIN = 14.0  # page mm around the drawn cam
+
+
+def _profile_sheet(
+    setup: CamSetup, a: CamAnalysis, pts: np.ndarray, point: Vec, reach: float
+) -> tuple[Page, Transform, float]:
+    """An empty page sized to the cam, the follower and its reach, with the round scale (m per cm)."""
+    lay = a.layout
+    cx, cy = setup.centre
     extra: list[Vec] = [point]
     if lay.oscillating and lay.pivot is not None:
         extra.append((lay.pivot[0] + cx, lay.pivot[1] + cy))
@@ -79,23 +104,25 @@ def profile_figure(setup: CamSetup, a: CamAnalysis, *, title: str = "") -> Figur
     room = 150.0
     extent = max(xmax - xmin, ymax - ymin)
     scale = nice_scale(extent, room)  # m per cm
-    margin = 14.0
     drawn = (xmax - xmin) * 10.0 / scale
-    width = max(drawn + 2 * margin, 190.0)
-    tf = Transform(scale, (float(xmin), float(ymax)), ((width - drawn) / 2, margin + 6))
+    width = max(drawn + 2 * _MARGIN, 190.0)
+    tf = Transform(scale, (float(xmin), float(ymax)), ((width - drawn) / 2, _MARGIN + 6))
     page = Page()
-    height = tf.length(ymax - ymin) + 2 * margin + 18
-    page.width, page.height = width, height
-    r = tf.length
+    page.width, page.height = width, tf.length(ymax - ymin) + 2 * _MARGIN + 18
+    return page, tf, scale
+
+
+def _draw_cam(page: Page, tf: Transform, setup: CamSetup, a: CamAnalysis, pts: np.ndarray) -> None:
+    """The base circle, a roller's prime circle and pitch curve, the profile and the cam's centre O."""
+    lay = a.layout
+    cx, cy = setup.centre
     centre = tf((cx, cy))
-    if title:
-        page.add(Text((width / 2, 6.0), title, size=3.6, bold=True))
-    page.add(Circle(centre, r(prog.base_radius), THIN, cls="base-circle"))
+    page.add(Circle(centre, tf.length(lay.program.base_radius), THIN, cls="base-circle"))
     if lay.roller:
         page.add(
             Circle(
                 centre,
-                r(lay.prime_radius),
+                tf.length(lay.prime_radius),
                 Style(stroke="#aaaaaa", width=0.2, dash=(0.6, 0.8)),
                 cls="prime-circle",
             )
@@ -118,7 +145,15 @@ def profile_figure(setup: CamSetup, a: CamAnalysis, *, title: str = "") -> Figur
     )
     page.add(Circle(centre, 1.0, Style(stroke=INK, fill="white"), cls="cam-centre"))
     page.add(Text((centre[0] - 1.6, centre[1] + 2.8), "O", size=2.8, anchor="end"))
-    # the follower at the drive angle
+
+
+def _draw_follower(
+    page: Page, tf: Transform, setup: CamSetup, a: CamAnalysis, point: Vec, contact: Vec, reach: float
+) -> None:
+    """The follower at the drive angle: its arm and pivot or its stem and line of stroke, its roller or face."""
+    lay = a.layout
+    prog = lay.program
+    cx, cy = setup.centre
     fstyle = Style(stroke=FOLLOWER, width=0.5)
     if lay.oscillating:
         assert lay.pivot is not None
@@ -134,35 +169,32 @@ def profile_figure(setup: CamSetup, a: CamAnalysis, *, title: str = "") -> Figur
         page.add(Line(tf(back), tf(top), THIN, cls="line-of-stroke"))
     if prog.follower == "roller":
         page.add(
-            Circle(tf(point), r(lay.roller), Style(stroke=FOLLOWER, width=0.45, fill="white"), cls="roller")
+            Circle(
+                tf(point),
+                tf.length(lay.roller),
+                Style(stroke=FOLLOWER, width=0.45, fill="white"),
+                cls="roller",
+            )
         )
     elif prog.follower == "flat":
-        n = (contact[0] - point[0], contact[1] - point[1])
-        # the face: along the contact's line, a little beyond the contact either way
-        if lay.oscillating:
-            assert lay.pivot is not None
-            pv_w = (lay.pivot[0] + cx, lay.pivot[1] + cy)
-            d = (contact[0] - pv_w[0], contact[1] - pv_w[1])
-            length = math.hypot(*d) or 1.0
-            dirn = (d[0] / length, d[1] / length)
-            a0 = pv_w
-            a1 = (contact[0] + dirn[0] * 0.2 * reach, contact[1] + dirn[1] * 0.2 * reach)
-        else:
-            t = (-math.sin(lay.axis), math.cos(lay.axis))
-            half = max(abs(a.face[0]), abs(a.face[1])) * 1.2 if a.face else 0.3 * reach
-            a0 = (point[0] - t[0] * half, point[1] - t[1] * half)
-            a1 = (point[0] + t[0] * half, point[1] + t[1] * half)
-        del n
+        a0, a1 = _flat_face(setup, a, point, contact, reach)
         page.add(Line(tf(a0), tf(a1), Style(stroke=FOLLOWER, width=0.6), cls="flat-face"))
-    page.add(Circle(tf(contact), 0.7, Style(stroke=None, fill=FOLLOWER), cls="contact"))
-    caption = (
-        f"θ = {fmt(math.degrees(setup.angle))}° · base circle {fmt(prog.base_radius * 1000)} mm"
-        + (f" · roller {fmt(lay.roller * 1000)} mm" if lay.roller else "")
-        + f" · largest pressure angle {fmt(math.degrees(abs(a.pressure.value)), 3)}°"
-    )
-    page.add(Text((margin, height - 14), caption, size=2.8, anchor="start"))
-    page.extend(scale_bar((margin, height - 7), scale * 1000, "mm"))
-    return page.figure(title or "cam profile")
+
+
+def _flat_face(setup: CamSetup, a: CamAnalysis, point: Vec, contact: Vec, reach: float) -> tuple[Vec, Vec]:
+    """A flat face's ends: along the contact's line, a little beyond the contact either way."""
+    lay = a.layout
+    if lay.oscillating:
+        assert lay.pivot is not None
+        cx, cy = setup.centre
+        pv_w = (lay.pivot[0] + cx, lay.pivot[1] + cy)
+        d = (contact[0] - pv_w[0], contact[1] - pv_w[1])
+        length = math.hypot(*d) or 1.0
+        dirn = (d[0] / length, d[1] / length)
+        return pv_w, (contact[0] + dirn[0] * 0.2 * reach, contact[1] + dirn[1] * 0.2 * reach)
+    t = (-math.sin(lay.axis), math.cos(lay.axis))
+    half = max(abs(a.face[0]), abs(a.face[1])) * 1.2 if a.face else 0.3 * reach
+    return (point[0] - t[0] * half, point[1] - t[1] * half), (point[0] + t[0] * half, point[1] + t[1] * half)
 
 
 def diagram_figure(a: CamAnalysis, *, title: str = "", jerk: bool = True) -> Figure:

@@ -832,14 +832,14 @@ def _drive_arrows(
 def _pins_and_points(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec], tr: Transform) -> list[Item]:
     """An open circle for every pin (revolute joint, or slot pin), a dot for every named point."""
     items: list[Item] = []
-    pins = set()
+    pins: dict[str, None] = {}  # in the file's order: a set's order changes with the hash seed
     for j in mech.joints:
         if GLYPHS[j.type] == "pin" and j.name in pos:
-            pins.add(j.name)
+            pins[j.name] = None
         elif GLYPHS[j.type] == "slot":
             point = kin.joints[j.name].point if j.name in kin.joints else None
             if point is not None and point in pos:
-                pins.add(point)
+                pins[point] = None
     for name in pins:
         items.append(Circle(tr(pos[name]), PIN_R, Style(INK, 0.4, fill="#ffffff"), "pin", name))
     for p in mech.points:

@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING
 
 from mech._records import dataclass
@@ -151,25 +151,205 @@ def acceleration_polygon(mech: Mechanism, kin: Kinematics) -> PolygonData:
 
 
 def _build(mech: Mechanism, kin: Kinematics, kind: str) -> PolygonData:
-    acc = kind == "acceleration"
-    mark = PRIME if acc else ""
-    numbers = _numbers(mech)
-    ground = mech.ground
-    pos = kin.positions
+    """The polygon as the notes build it: the images of the points, then the vectors between them."""
+    b = _Builder(mech, kin, kind)
+    b.point_images()
+    b.contact_images()
+    rank = _ranks(b.link_keys, b.order)
+    b.absolute_vectors()
+    b.relative_vectors(rank)
+    b.sliding_vectors()
+    b.slip_vectors()
+    return PolygonData(
+        kind, ", ".join(b.pole_names), tuple(b.images[k] for k in b.order), tuple(b.vectors), b.construction
+    )
 
-    def value(name: str, link: str | None = None) -> Vec:
-        v = kin.acceleration(name, link) if acc else kin.velocity(name, link)
+
+class _Builder:
+    """One polygon while :func:`_build` makes it: images keyed and ordered, then vectors added step by step.
+
+    An image's key is the point's name, ``point@link`` for the point of a
+    moving guide under a slider or a higher pair's contact on each link, and
+    ``o`` for the pole (every fixed point).  Private to :func:`_build`, so its
+    mutation cannot leak; what leaves is a frozen :class:`PolygonData`.
+    """
+
+    def __init__(self, mech: Mechanism, kin: Kinematics, kind: str) -> None:
+        self.mech, self.kin = mech, kin
+        self.acc = kind == "acceleration"
+        self.mark = PRIME if self.acc else ""
+        self.numbers = _numbers(mech)
+        self.ground = mech.ground
+        self.pos = kin.positions
+        self.members = link_members(mech, kin)
+        self.ground_names = [n for n in self.members[self.ground] if n in self.pos]
+        self.pole_names = [display_name(n, lower=True) + self.mark for n in self.ground_names] or [
+            "o" + self.mark
+        ]
+        self.images: dict[str, Image] = {}
+        self.order: list[str] = []
+        self.link_keys: dict[str, list[str]] = {link.name: [] for link in mech.links}
+        self.guided = _guided(mech, kin)
+        self.contacts = [j for j in mech.joints if j.type.kind.role == "contact" and j.name in self.pos]
+        self.vectors: list[Vector] = []
+        self.construction: dict[str, Vec] = {}
+
+    def value(self, name: str, link: str | None = None) -> Vec:
+        v = self.kin.acceleration(name, link) if self.acc else self.kin.velocity(name, link)
         return (float(v[0]), float(v[1]))
 
-    members = link_members(mech, kin)
-    ground_names = [n for n in members[ground] if n in pos]
-    pole_names = [display_name(n, lower=True) + mark for n in ground_names] or ["o" + mark]
-    pole_label = ", ".join(pole_names)
+    def label(self, key: str) -> str:
+        return self.pole_names[0] if key == "o" else self.images[key].label
 
-    # images: fixed points, coincident points of moving guides, contact points per link
-    images: dict[str, Image] = {}
-    order: list[str] = []
-    link_keys: dict[str, list[str]] = {link.name: [] for link in mech.links}
+    def _add(self, image: Image) -> None:
+        self.images[image.key] = image
+        self.order.append(image.key)
+
+    def point_images(self) -> None:
+        """Each link's points: fixed ones at the pole, a moving guide's point under a slider apart."""
+        for link in self.mech.links:
+            for name in self.members[link.name]:
+                key = self._point_image(name, link.name)
+                if key not in self.link_keys[link.name]:
+                    self.link_keys[link.name].append(key)
+
+    def _point_image(self, name: str, link: str) -> str:
+        """The key of ``name``'s image on ``link``, made the first time it is met."""
+        if name in self.ground_names:
+            return "o"
+        if (name, link) in self.guided:
+            key = f"{name}@{link}"
+            if key not in self.images:
+                sub = str(self.numbers[link]).translate(_SUB)
+                self._add(
+                    Image(
+                        key,
+                        display_name(name, lower=True) + sub + self.mark,
+                        name,
+                        link,
+                        self.value(name, link),
+                    )
+                )
+            return key
+        if name not in self.images:
+            self._add(Image(name, display_name(name, lower=True) + self.mark, name, link, self.value(name)))
+        return name
+
+    def contact_images(self) -> None:
+        """A higher pair's contact once per moving link it joins (c₂, c₃), each with that link's motion."""
+        for j in self.contacts:
+            for link_name in j.links:
+                if link_name == self.ground:
+                    continue
+                key = f"{j.name}@{link_name}"
+                short = j.name if len(j.name) <= 2 else j.name[0]
+                if short.lower() in {display_name(n, lower=True) for n in self.pos if n != j.name}:
+                    short = j.name  # "c" is taken by a point C: keep the full name
+                self._add(
+                    Image(
+                        key,
+                        display_name(short, lower=True)
+                        + str(self.numbers[link_name]).translate(_SUB)
+                        + self.mark,
+                        j.name,
+                        link_name,
+                        self.value(j.name, link_name),
+                    )
+                )
+                self.link_keys[link_name].append(key)
+
+    def absolute_vectors(self) -> None:
+        """From the pole to each image, named after the fixed point of the same link, if any."""
+        for key in self.order:
+            im = self.images[key]
+            if math.hypot(*im.value) == 0 and not self.acc:
+                continue
+            start_label, via = self.pole_names[0], None
+            for link_name, keys in self.link_keys.items():
+                if key in keys and "o" in keys and link_name != self.ground:
+                    g = next(n for n in self.members[link_name] if n in self.ground_names)
+                    start_label, via = display_name(g, lower=True) + self.mark, link_name
+                    break
+            self.vectors.append(Vector(start_label + im.label, "o", key, "absolute", via, im.value))
+            if self.acc and via is not None:
+                fixed = _fixed_point(self.members[via], self.ground_names)
+                self._components(via, fixed, im.point, "o", key, (0.0, 0.0), im.value)
+
+    def relative_vectors(self, rank: Mapping[str, int]) -> None:
+        """Between the moving points of each link, from the one the notes reach first."""
+        images, pos = self.images, self.pos
+        for link in self.mech.moving_links:
+            keys = [k for k in self.link_keys[link.name] if k != "o"]
+            edges = _edges(keys, images, pos)
+            if (
+                "o" in self.link_keys[link.name]
+                and len(keys) >= 2
+                and len(edges) == 1
+                and _collinear(
+                    [pos[images[k].point] for k in keys if images[k].point in pos]  # type: ignore[index]
+                    + [pos[n] for n in self.members[link.name] if n in self.ground_names]
+                )
+            ):
+                edges = []  # a lever through its pivot: the absolute vectors already lie along it
+            for a, b in edges:
+                if rank[a] > rank[b] or (rank[a] == rank[b] and self.order.index(a) > self.order.index(b)):
+                    a, b = b, a
+                va, vb = images[a].value, images[b].value
+                rel = (vb[0] - va[0], vb[1] - va[1])
+                self.vectors.append(Vector(self.label(a) + self.label(b), a, b, "relative", link.name, rel))
+                if self.acc:
+                    self._components(link.name, images[a].point, images[b].point, a, b, va, rel)
+
+    def sliding_vectors(self) -> None:
+        """A slider relative to its moving guide; with accelerations, the Coriolis and sliding parts."""
+        for (point, guide), j in self.guided.items():
+            a, b = f"{point}@{guide}", point
+            if a in self.images and b in self.images:
+                va, vb = self.images[a].value, self.images[b].value
+                rel = (vb[0] - va[0], vb[1] - va[1])
+                self.vectors.append(Vector(self.label(a) + self.label(b), a, b, "sliding", j.links[0], rel))
+                if self.acc:
+                    cor = self.kin.coriolis(j.name)
+                    mid = f"~{j.name}"
+                    self.construction[mid] = (va[0] + cor[0], va[1] + cor[1])
+                    self.vectors.append(Vector("", a, mid, "coriolis", guide, (cor[0], cor[1])))
+                    along = (rel[0] - cor[0], rel[1] - cor[1])
+                    self.vectors.append(Vector("", mid, b, "along", j.links[0], along))
+
+    def slip_vectors(self) -> None:
+        """At each higher pair, the contact on one link relative to the contact on the other."""
+        for j in self.contacts:
+            keys = [f"{j.name}@{link}" for link in j.links if link != self.ground]
+            if len(keys) == 2:
+                va, vb = self.images[keys[0]].value, self.images[keys[1]].value
+                slip = (vb[0] - va[0], vb[1] - va[1])
+                self.vectors.append(
+                    Vector(self.label(keys[0]) + self.label(keys[1]), keys[0], keys[1], "slip", None, slip)
+                )
+
+    def _components(
+        self, link: str, p: str | None, q: str | None, a: str, b: str, start: Vec, rel: Vec
+    ) -> None:
+        """Split a relative acceleration of two points of ``link`` into normal and tangential parts."""
+        state = self.kin.links.get(link)
+        if state is None or state.omega is None or state.alpha is None or p is None or q is None:
+            return
+        rp, rq = self.kin.positions[p], self.kin.positions[q]
+        rx, ry = rq[0] - rp[0], rq[1] - rp[1]
+        w2 = state.omega * state.omega
+        normal = (-w2 * rx, -w2 * ry)
+        tangential = (-state.alpha * ry, state.alpha * rx)
+        floor = 1e-9 * max(math.hypot(*rel), 1e-300)
+        if math.hypot(*normal) < floor or math.hypot(*tangential) < floor:
+            return  # one part is nothing: the resultant is the whole story
+        mid = f"~{a}>{b}"
+        self.construction[mid] = (start[0] + normal[0], start[1] + normal[1])
+        self.vectors.append(Vector("", a, mid, "normal", link, normal))
+        self.vectors.append(Vector("", mid, b, "tangential", link, tangential))
+
+
+def _guided(mech: Mechanism, kin: Kinematics) -> dict[tuple[str, str], Joint]:
+    """(point, guide link) → the slider's joint, for each slider on a moving guide."""
     guided: dict[tuple[str, str], Joint] = {}
     for j in mech.joints:
         geom = kin.joints.get(j.name)
@@ -177,138 +357,10 @@ def _build(mech: Mechanism, kin: Kinematics, kind: str) -> PolygonData:
             j.type.kind.role == "path"
             and geom is not None
             and geom.point is not None
-            and j.links[1] != ground
+            and j.links[1] != mech.ground
         ):
             guided[(geom.point, j.links[1])] = j
-    for link in mech.links:
-        for name in members[link.name]:
-            if name in ground_names:
-                key = "o"
-            elif (name, link.name) in guided:
-                key = f"{name}@{link.name}"
-                if key not in images:
-                    images[key] = Image(
-                        key,
-                        display_name(name, lower=True) + str(numbers[link.name]).translate(_SUB) + mark,
-                        name,
-                        link.name,
-                        value(name, link.name),
-                    )
-                    order.append(key)
-            else:
-                key = name
-                if key not in images:
-                    images[key] = Image(
-                        key, display_name(name, lower=True) + mark, name, link.name, value(name)
-                    )
-                    order.append(key)
-            if key not in link_keys[link.name]:
-                link_keys[link.name].append(key)
-    contacts = [j for j in mech.joints if j.type.kind.role == "contact" and j.name in pos]
-    for j in contacts:
-        for link_name in j.links:
-            if link_name == ground:
-                continue
-            key = f"{j.name}@{link_name}"
-            short = j.name if len(j.name) <= 2 else j.name[0]
-            if short.lower() in {display_name(n, lower=True) for n in pos if n != j.name}:
-                short = j.name  # "c" is taken by a point C: keep the full name
-            images[key] = Image(
-                key,
-                display_name(short, lower=True) + str(numbers[link_name]).translate(_SUB) + mark,
-                j.name,
-                link_name,
-                value(j.name, link_name),
-            )
-            order.append(key)
-            link_keys[link_name].append(key)
-
-    rank = _ranks(link_keys, order)
-    vectors: list[Vector] = []
-    construction: dict[str, Vec] = {}
-
-    def label(key: str) -> str:
-        return pole_names[0] if key == "o" else images[key].label
-
-    # absolute vectors, from the pole (named after the fixed point of the same link, if any)
-    for key in order:
-        im = images[key]
-        if math.hypot(*im.value) == 0 and not acc:
-            continue
-        start_label, via = pole_names[0], None
-        for link_name, keys in link_keys.items():
-            if key in keys and "o" in keys and link_name != ground:
-                g = next(n for n in members[link_name] if n in ground_names)
-                start_label, via = display_name(g, lower=True) + mark, link_name
-                break
-        vectors.append(Vector(start_label + im.label, "o", key, "absolute", via, im.value))
-        if acc and via is not None:
-            _components(
-                kin,
-                via,
-                _fixed_point(members[via], ground_names),
-                im.point,
-                "o",
-                key,
-                (0.0, 0.0),
-                im.value,
-                vectors,
-                construction,
-            )
-
-    # relative vectors: between moving points of one link
-    for link in mech.moving_links:
-        keys = [k for k in link_keys[link.name] if k != "o"]
-        edges = _edges(keys, images, pos)
-        if (
-            "o" in link_keys[link.name]
-            and len(keys) >= 2
-            and len(edges) == 1
-            and _collinear(
-                [pos[images[k].point] for k in keys if images[k].point in pos]  # type: ignore[index]
-                + [pos[n] for n in members[link.name] if n in ground_names]
-            )
-        ):
-            edges = []  # a lever through its pivot: the absolute vectors already lie along it
-        for a, b in edges:
-            if rank[a] > rank[b] or (rank[a] == rank[b] and order.index(a) > order.index(b)):
-                a, b = b, a
-            va, vb = images[a].value, images[b].value
-            rel = (vb[0] - va[0], vb[1] - va[1])
-            vectors.append(Vector(label(a) + label(b), a, b, "relative", link.name, rel))
-            if acc:
-                _components(
-                    kin, link.name, images[a].point, images[b].point, a, b, va, rel, vectors, construction
-                )
-
-    # sliding along moving guides, slip at higher pairs
-    for (point, guide), j in guided.items():
-        a, b = f"{point}@{guide}", point
-        if a in images and b in images:
-            va, vb = images[a].value, images[b].value
-            rel = (vb[0] - va[0], vb[1] - va[1])
-            vectors.append(Vector(label(a) + label(b), a, b, "sliding", j.links[0], rel))
-            if acc:
-                cor = kin.coriolis(j.name)
-                mid = f"~{j.name}"
-                construction[mid] = (va[0] + cor[0], va[1] + cor[1])
-                vectors.append(Vector("", a, mid, "coriolis", guide, (cor[0], cor[1])))
-                vectors.append(Vector("", mid, b, "along", j.links[0], (rel[0] - cor[0], rel[1] - cor[1])))
-    for j in contacts:
-        keys = [f"{j.name}@{link}" for link in j.links if link != ground]
-        if len(keys) == 2:
-            va, vb = images[keys[0]].value, images[keys[1]].value
-            vectors.append(
-                Vector(
-                    label(keys[0]) + label(keys[1]),
-                    keys[0],
-                    keys[1],
-                    "slip",
-                    None,
-                    (vb[0] - va[0], vb[1] - va[1]),
-                )
-            )
-    return PolygonData(kind, pole_label, tuple(images[k] for k in order), tuple(vectors), construction)
+    return guided
 
 
 def _collinear(points: list[Vec]) -> bool:
@@ -321,37 +373,6 @@ def _collinear(points: list[Vec]) -> bool:
 
 def _fixed_point(names: list[str], ground_names: list[str]) -> str:
     return next(n for n in names if n in ground_names)
-
-
-def _components(
-    kin: Kinematics,
-    link: str,
-    p: str | None,
-    q: str | None,
-    a: str,
-    b: str,
-    start: Vec,
-    rel: Vec,
-    vectors: list[Vector],
-    construction: dict[str, Vec],
-) -> None:
-    """Split a relative acceleration of two points of ``link`` into normal and tangential parts."""
-    state = kin.links.get(link)
-    if state is None or state.omega is None or state.alpha is None or p is None or q is None:
-        return
-    rp, rq = kin.positions[p], kin.positions[q]
-    rx, ry = rq[0] - rp[0], rq[1] - rp[1]
-    w2 = state.omega * state.omega
-    normal = (-w2 * rx, -w2 * ry)
-    tangential = (-state.alpha * ry, state.alpha * rx)
-    if math.hypot(*normal) < 1e-9 * max(math.hypot(*rel), 1e-300) or math.hypot(*tangential) < 1e-9 * max(
-        math.hypot(*rel), 1e-300
-    ):
-        return
-    mid = f"~{a}>{b}"
-    construction[mid] = (start[0] + normal[0], start[1] + normal[1])
-    vectors.append(Vector("", a, mid, "normal", link, normal))
-    vectors.append(Vector("", mid, b, "tangential", link, tangential))
 
 
 def _ranks(link_keys: Mapping[str, list[str]], order: list[str]) -> dict[str, int]:
@@ -430,11 +451,9 @@ def polygon_figure(
     pw, ph = tr.length(w), tr.length(h)
     tiny = 1e-9 * max((math.hypot(*p) for p in pts), default=1.0)
     named = [v for v in data.vectors if v.name and math.hypot(*v.value) > tiny]
-    table_rows = len(named)
     width = max(2 * MARGIN + pw + 10.0, 62.0)  # labels may stand out to the right
-    list_h = 4.0 * table_rows + 4
-    height = TITLE_H + 2 * MARGIN + ph + 10 + list_h
-    page = Page(width, height)
+    list_h = 4.0 * len(named) + 4
+    page = Page(width, TITLE_H + 2 * MARGIN + ph + 10 + list_h)
     title = "Acceleration diagram" if acc else "Velocity diagram"
     page.add(Text((MARGIN - 6, 5.5), title, 3.4, "start", bold=True, cls="title"))
     if at_rest:
@@ -453,6 +472,29 @@ def polygon_figure(
     def at(key: str) -> Vec:
         return tr(data.at(key))
 
+    drawn, labelled = _vector_items(data, at, colours, tiny)
+    _add_image_points(drawn, data, at, tr(((x0 + x1) / 2, (y0 + y1) / 2)))
+    _add_vector_names(drawn, labelled, at)
+    page.extend(drawn)
+    y = TITLE_H + 2 * MARGIN + ph
+    page.extend(scale_bar((MARGIN - 6, y), scale / factor, unit))
+    y += 7
+    for v in named:
+        mag = math.hypot(*v.value) / factor
+        # in the acceleration polygon the coincident points' difference holds the Coriolis term too
+        sliding = "  (Coriolis + sliding)" if acc else "  (sliding)"
+        what = {"sliding": sliding, "slip": "  (slip)"}.get(v.kind, "")
+        page.add(
+            Text((MARGIN - 6, y), f"{v.name} = {fmt(mag)} {unit}{what}", 2.7, "start", "#333333", cls="value")
+        )
+        y += 4.0
+    return page.figure(title)
+
+
+def _vector_items(
+    data: PolygonData, at: Callable[[str], Vec], colours: Mapping[str, str], tiny: float
+) -> tuple[list[Item], list[tuple[Vector, str]]]:
+    """The vectors' arrows (components thin and dashed, under the rest) and the named ones to label."""
     comps: list[Item] = []
     main: list[Item] = []
     labelled: list[tuple[Vector, str]] = []
@@ -468,9 +510,11 @@ def polygon_figure(
         width_mm = 0.55 if v.kind != "absolute" or v.link else 0.4
         main.extend(arrow(at(v.start), at(v.end), colour, width_mm, cls="vector", name=v.name))
         labelled.append((v, colour))
-    drawn: list[Item] = comps + main
+    return comps + main, labelled
 
-    # image points and their labels (images at one place share a label: "a, d")
+
+def _add_image_points(drawn: list[Item], data: PolygonData, at: Callable[[str], Vec], centre: Vec) -> None:
+    """A dot at each image and its label, away from ``centre`` (images at one place share one: "a, d")."""
     spots: dict[tuple[int, int], tuple[Vec, list[str]]] = {}
     for key, lab in [("o", data.pole)] + [(im.key, im.label) for im in data.images]:
         q = at(key)
@@ -480,16 +524,19 @@ def polygon_figure(
             entry[1].append(lab)
     for q, _ in spots.values():
         drawn.append(Circle(q, 0.7, Style(INK, 0.2, fill=INK), "image"))
-    c = tr(((x0 + x1) / 2, (y0 + y1) / 2))
     for q, labs in spots.values():
-        dx, dy = q[0] - c[0], q[1] - c[1]
+        dx, dy = q[0] - centre[0], q[1] - centre[1]
         n = math.hypot(dx, dy)
         prefer = (dx / n, dy / n) if n > 1 else (-0.7, 0.7)
         drawn.append(
             place_label(q, ", ".join(labs), 3.2, prefer, drawn, italic=True, bold=True, cls="image-label")
         )
 
-    # vector names beside their shafts, where they collide least
+
+def _add_vector_names(
+    drawn: list[Item], labelled: list[tuple[Vector, str]], at: Callable[[str], Vec]
+) -> None:
+    """Each vector's name beside its shaft, where it collides least with what is drawn."""
     for v, colour in labelled:
         p0, p1 = at(v.start), at(v.end)
         n = math.dist(p0, p1)
@@ -505,18 +552,3 @@ def polygon_figure(
                 cands.append(((m[0] + uy * off * side, m[1] - ux * off * side), bonus + sb))
         spot = best_spot(cands, v.name, 2.9, drawn)
         drawn.append(Text(spot, v.name, 2.9, "middle", colour, italic=True, bold=True, cls="vector-label"))
-    page.extend(drawn)
-
-    y = TITLE_H + 2 * MARGIN + ph
-    page.extend(scale_bar((MARGIN - 6, y), scale / factor, unit))
-    y += 7
-    for v in named:
-        mag = math.hypot(*v.value) / factor
-        # in the acceleration polygon the coincident points' difference holds the Coriolis term too
-        sliding = "  (Coriolis + sliding)" if acc else "  (sliding)"
-        what = {"sliding": sliding, "slip": "  (slip)"}.get(v.kind, "")
-        page.add(
-            Text((MARGIN - 6, y), f"{v.name} = {fmt(mag)} {unit}{what}", 2.7, "start", "#333333", cls="value")
-        )
-        y += 4.0
-    return page.figure(title)

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from mech.draw.scene import Circle, Figure, Line, Poly, Text
+from mech.draw.scene import Circle, Figure, Line, Poly, Style, Text
 from mech.errors import MechError
 
 __all__ = ["DPI", "MissingExtraError", "render_rgb", "to_png", "use_matplotlib"]
@@ -41,10 +41,26 @@ def use_matplotlib() -> Any:
 
 
 def _canvas(figure: Figure, dpi: int) -> tuple[Any, Any]:
+    """A matplotlib figure of ``figure``: page mm as data units, items stacked in order."""
+    fig, ax = _blank_page(figure, dpi)
+    z = 0.0
+    for item in figure.items:
+        z += 1e-3
+        if isinstance(item, Text):
+            _add_text(ax, item, z)
+        elif isinstance(item, Line):
+            _add_line(ax, item, z)
+        elif isinstance(item, Poly):
+            _add_poly(ax, item, z)
+        elif isinstance(item, Circle):
+            _add_circle(ax, item, z)
+    return fig, ax
+
+
+def _blank_page(figure: Figure, dpi: int) -> tuple[Any, Any]:
+    """A white figure the page's size, one axes over all of it, y growing down as on the page."""
     use_matplotlib()
     from matplotlib.figure import Figure as MplFigure
-    from matplotlib.patches import Circle as MplCircle
-    from matplotlib.patches import Polygon as MplPolygon
 
     fig = MplFigure(figsize=(figure.width * _MM, figure.height * _MM), dpi=dpi)
     ax = fig.add_axes((0, 0, 1, 1))
@@ -53,77 +69,96 @@ def _canvas(figure: Figure, dpi: int) -> tuple[Any, Any]:
     ax.set_axis_off()
     ax.set_facecolor("white")
     fig.patch.set_facecolor("white")
-    z = 0.0
-    for item in figure.items:
-        z += 1e-3
-        if isinstance(item, Text):
-            ax.text(
-                item.at[0],
-                item.at[1],
-                item.text,
-                fontsize=item.size / 0.73 * _PT,
-                ha=_HA[item.anchor],
-                va="center_baseline",
-                color=item.colour,
-                family="DejaVu Sans",
-                style="italic" if item.italic else "normal",
-                weight="bold" if item.bold else "normal",
+    return fig, ax
+
+
+def _stroke(s: Style) -> tuple[float, Any]:
+    """(line width in points, matplotlib dash pattern) of a style; no stroke is width 0."""
+    lw = s.width * _PT if s.stroke else 0.0
+    dashes = (0, tuple(d * _PT / max(lw, 1e-9) for d in s.dash)) if s.dash and lw else "solid"
+    return lw, dashes
+
+
+def _add_text(ax: Any, item: Text, z: float) -> None:
+    ax.text(
+        item.at[0],
+        item.at[1],
+        item.text,
+        fontsize=item.size / 0.73 * _PT,
+        ha=_HA[item.anchor],
+        va="center_baseline",
+        color=item.colour,
+        family="DejaVu Sans",
+        style="italic" if item.italic else "normal",
+        weight="bold" if item.bold else "normal",
+        zorder=z,
+    )
+
+
+def _add_line(ax: Any, item: Line, z: float) -> None:
+    s = item.style
+    lw, dashes = _stroke(s)
+    ax.plot(
+        [item.p0[0], item.p1[0]],
+        [item.p0[1], item.p1[1]],
+        color=s.stroke or "none",
+        lw=lw,
+        linestyle=dashes,
+        solid_capstyle="round",
+        dash_capstyle="round",
+        zorder=z,
+    )
+
+
+def _add_poly(ax: Any, item: Poly, z: float) -> None:
+    """A polygon or polyline: its fill (with the style's opacity) under its outline."""
+    from matplotlib.patches import Polygon as MplPolygon
+
+    s = item.style
+    lw, dashes = _stroke(s)
+    if s.fill:
+        ax.add_patch(
+            MplPolygon(
+                item.points,
+                closed=item.closed,
+                facecolor=s.fill,
+                alpha=s.fill_opacity,
+                edgecolor="none",
                 zorder=z,
             )
-            continue
-        s = item.style
-        lw = s.width * _PT if s.stroke else 0.0
-        dashes = (0, tuple(d * _PT / max(lw, 1e-9) for d in s.dash)) if s.dash and lw else "solid"
-        if isinstance(item, Line):
-            ax.plot(
-                [item.p0[0], item.p1[0]],
-                [item.p0[1], item.p1[1]],
-                color=s.stroke or "none",
+        )
+    if s.stroke:
+        ax.add_patch(
+            MplPolygon(
+                item.points,
+                closed=item.closed,
+                facecolor="none",
+                edgecolor=s.stroke,
                 lw=lw,
                 linestyle=dashes,
-                solid_capstyle="round",
-                dash_capstyle="round",
+                joinstyle="round",
                 zorder=z,
             )
-        elif isinstance(item, Poly):
-            if s.fill:
-                ax.add_patch(
-                    MplPolygon(
-                        item.points,
-                        closed=item.closed,
-                        facecolor=s.fill,
-                        alpha=s.fill_opacity,
-                        edgecolor="none",
-                        zorder=z,
-                    )
-                )
-            if s.stroke:
-                ax.add_patch(
-                    MplPolygon(
-                        item.points,
-                        closed=item.closed,
-                        facecolor="none",
-                        edgecolor=s.stroke,
-                        lw=lw,
-                        linestyle=dashes,
-                        joinstyle="round",
-                        zorder=z,
-                    )
-                )
-        elif isinstance(item, Circle):
-            ax.add_patch(
-                MplCircle(
-                    item.centre,
-                    item.r,
-                    facecolor=s.fill or "none",
-                    edgecolor=s.stroke or "none",
-                    lw=lw,
-                    linestyle=dashes,
-                    alpha=None,
-                    zorder=z,
-                )
-            )
-    return fig, ax
+        )
+
+
+def _add_circle(ax: Any, item: Circle, z: float) -> None:
+    from matplotlib.patches import Circle as MplCircle
+
+    s = item.style
+    lw, dashes = _stroke(s)
+    ax.add_patch(
+        MplCircle(
+            item.centre,
+            item.r,
+            facecolor=s.fill or "none",
+            edgecolor=s.stroke or "none",
+            lw=lw,
+            linestyle=dashes,
+            alpha=None,
+            zorder=z,
+        )
+    )
 
 
 _HA = {"start": "left", "middle": "center", "end": "right"}

@@ -18,7 +18,7 @@ from mech.cam.profile import evaluate
 from mech.cam.program import follower_motion
 
 if TYPE_CHECKING:  # pragma: no cover
-    from rich.console import Console
+    from mech.render.console import ReportConsole
 
 __all__ = ["cam_json", "cam_table", "motion_rows", "segment_rows"]
 
@@ -158,25 +158,39 @@ def _fmt(x: float | None, digits: int = 5) -> str:
     return f"{x:.{digits}g}"
 
 
-def cam_table(setup: CamSetup, a: CamAnalysis, console: Console, *, name: str, step_deg: float) -> None:
+def cam_table(setup: CamSetup, a: CamAnalysis, console: ReportConsole, *, name: str, step_deg: float) -> None:
     """The human report: set-up, segments, follower motion every ``step_deg``, the profile's checks."""
-    from rich.table import Table
     from rich.text import Text
 
     from mech.render.console import table_box
 
+    box = table_box(console)
+    console.print(Text(name, style="bold"))
+    for line in _setup_lines(setup, a):
+        console.print(line)
+    console.print(_programme_table(a, box))
+    console.print(_motion_table(a, box, step_deg))
+    console.print(_results_table(a, box))
+    console.print(_drawn_line(setup, a))
+    if a.omega is None:
+        console.print("  (no speed given: the drive has no rpm/omega; use --rpm for velocities)")
+
+
+_MM = 1000.0  # mm per m
+
+
+def _lift(a: CamAnalysis, x: float) -> str:
+    """A lift as the table shows it: degrees for an oscillating follower, mm for a translating one."""
+    return f"{math.degrees(x):.4g}°" if a.follower_angular else f"{x * _MM:.5g} mm"
+
+
+def _setup_lines(setup: CamSetup, a: CamAnalysis) -> list[str]:
+    """The set-up in words: how the cam turns, the follower and where it runs, the circles and stroke."""
     lay = a.layout
     prog = lay.program
-    units = _units(a)
-    ang = a.follower_angular
-    mm = 1000.0
-
-    def lift(x: float) -> str:
-        return f"{math.degrees(x):.4g}°" if ang else f"{x * mm:.5g} mm"
-
-    console.print(Text(name, style="bold"))
+    mm = _MM
     speed = "" if a.omega is None else f" at {a.omega * 60 / (2 * math.pi):.5g} rpm ({a.omega:.5g} rad/s)"
-    console.print(
+    turns = (
         f"  {setup.cam} (the cam) turns {'counter-clockwise' if lay.sense > 0 else 'clockwise'}{speed} "
         f"about ({setup.centre[0] * mm:.5g}, {setup.centre[1] * mm:.5g}) mm"
     )
@@ -197,14 +211,20 @@ def cam_table(setup: CamSetup, a: CamAnalysis, console: Console, *, name: str, s
             "in-line" if lay.offset == 0 else f"offset {lay.offset * mm:.5g} mm"
         )
     roller = f" (roller radius {prog.roller_radius * mm:.5g} mm)" if prog.roller_radius else ""
-    console.print(f"  {setup.follower} (the follower): {kind}{roller}, {where}")
-    console.print(
+    circles = (
         f"  base circle {prog.base_radius * mm:.5g} mm"
         + (f", prime circle {lay.prime_radius * mm:.5g} mm" if lay.roller else "")
-        + f", stroke {lift(a.stroke)}"
+        + f", stroke {_lift(a, a.stroke)}"
     )
+    return [turns, f"  {setup.follower} (the follower): {kind}{roller}, {where}", circles]
 
-    seg = Table(box=table_box(console), title="Programme")
+
+def _programme_table(a: CamAnalysis, box: Any) -> Any:
+    """One row per segment of the programme: span, lift, law, largest |v| and |a|."""
+    from rich.table import Table
+
+    units = _units(a)
+    seg = Table(box=box, title="Programme")
     for col, just in (
         ("segment", "left"),
         ("from (°)", "right"),
@@ -220,14 +240,21 @@ def cam_table(setup: CamSetup, a: CamAnalysis, console: Console, *, name: str, s
             row["kind"],
             f"{row['from']:.4g}",
             f"{row['to']:.4g}",
-            "–" if row["kind"] == "dwell" else lift(row["lift"]),
+            "–" if row["kind"] == "dwell" else _lift(a, row["lift"]),
             row["law"] or "–",
             _fmt(row["v_max"]),
             _fmt(row["a_max"]),
         )
-    console.print(seg)
+    return seg
 
-    mot = Table(box=table_box(console), title="Follower motion over the turn")
+
+def _motion_table(a: CamAnalysis, box: Any, step_deg: float) -> Any:
+    """The follower's motion every ``step_deg``: s (v, a, j with a speed), pressure angle, ρ."""
+    from rich.table import Table
+
+    units = _units(a)
+    ang = a.follower_angular
+    mot = Table(box=box, title="Follower motion over the turn")
     s_unit = "°" if ang else "mm"
     cols = [("θ (°)", "right"), (f"s ({s_unit})", "right")]
     if a.omega is not None:
@@ -241,15 +268,21 @@ def cam_table(setup: CamSetup, a: CamAnalysis, console: Console, *, name: str, s
         mot.add_column(col, justify=just)  # type: ignore[arg-type]
     for r in motion_rows(a, step_deg):
         lift_now = float(r["s"] or 0.0)
-        cells = [f"{r['theta']:.4g}", f"{(math.degrees(lift_now) if ang else lift_now * mm):.5g}"]
+        cells = [f"{r['theta']:.4g}", f"{(math.degrees(lift_now) if ang else lift_now * _MM):.5g}"]
         if a.omega is not None:
             cells += [_fmt(r["v"]), _fmt(r["a"]), _fmt(r["j"])]
         rho = r["rho"]
-        cells += [f"{r['pressure_angle']:.4g}", _fmt(None if rho is None else rho * mm)]
+        cells += [f"{r['pressure_angle']:.4g}", _fmt(None if rho is None else rho * _MM)]
         mot.add_row(*cells)
-    console.print(mot)
+    return mot
 
-    res = Table(box=table_box(console), title="Results")
+
+def _results_table(a: CamAnalysis, box: Any) -> Any:
+    """The extremes and where they fall, the jumps, and the profile's verdict (cusp or undercut)."""
+    from rich.table import Table
+
+    units = _units(a)
+    res = Table(box=box, title="Results")
     res.add_column("quantity")
     res.add_column("value", justify="right")
     res.add_column("at θ (°)", justify="right")
@@ -258,63 +291,71 @@ def cam_table(setup: CamSetup, a: CamAnalysis, console: Console, *, name: str, s
         if e is not None:
             res.add_row(label, f"{_fmt(e.value * scale)} {unit}", f"{math.degrees(e.theta):.4g}")
 
+    def infinite(label: str, jumps: tuple[float, ...], what: str) -> None:
+        if jumps:
+            res.add_row(label, f"∞ ({what} jumps)", ", ".join(f"{math.degrees(t):.4g}" for t in jumps))
+
     add("largest velocity", a.velocity, units["v"])
-    if a.velocity_jumps:
-        res.add_row(
-            "acceleration",
-            "∞ (velocity jumps)",
-            ", ".join(f"{math.degrees(t):.4g}" for t in a.velocity_jumps),
-        )
+    infinite("acceleration", a.velocity_jumps, "velocity")
     add("largest acceleration", a.acceleration, units["a"])
-    if a.acceleration_jumps:
-        res.add_row(
-            "jerk",
-            "∞ (acceleration jumps)",
-            ", ".join(f"{math.degrees(t):.4g}" for t in a.acceleration_jumps),
-        )
+    infinite("jerk", a.acceleration_jumps, "acceleration")
     add("largest jerk", a.jerk, units["j"])
     add("largest pressure angle", a.pressure, "°", 180 / math.pi)
-    if prog.follower == "flat":
-        add("least radius of curvature of the profile", a.least_radius_any, "mm", mm)
-        corner = a.least_radius_any.value == -math.inf
-        verdict = (
-            "cusp: a corner where the velocity falls at once; use a law without velocity jumps"
-            if corner
-            else "cusp: the profile folds back (ρ < 0), raise the base circle"
-            if a.cusp
-            else "no cusp (ρ > 0 everywhere)"
-        )
-        res.add_row("profile", verdict, "")
-        if a.face is not None:
-            res.add_row(
-                "face contact from its axis",
-                f"{a.face[0] * mm:.4g} to {a.face[1] * mm:.4g} mm",
-                "",
-            )
+    if a.layout.program.follower == "flat":
+        add("least radius of curvature of the profile", a.least_radius_any, "mm", _MM)
+        for row in _flat_verdict(a):
+            res.add_row(*row)
     else:
-        add("least radius of curvature of the pitch curve (convex)", a.least_radius, "mm", mm)
-        if prog.follower == "roller":
-            assert prog.roller_radius is not None
-            corner = a.least_radius is not None and a.least_radius.value == 0.0
-            verdict = (
-                "undercut: a corner where the velocity falls at once (the roller rounds it); "
-                "use a law without velocity jumps"
-                if a.undercut and corner
-                else f"undercut: ρ_min < roller radius {prog.roller_radius * mm:.4g} mm (the profile loops; "
-                "use a smaller roller or a larger base circle)"
-                if a.undercut
-                else f"no undercut: ρ_min ≥ roller radius {prog.roller_radius * mm:.4g} mm"
-            )
-            res.add_row("roller", verdict, "")
-    console.print(res)
-    now = evaluate(lay, [setup.angle])
-    drawn = f"  at θ = {math.degrees(setup.angle):.4g}°: s = {lift(float(now.s[0]))}"
+        add("least radius of curvature of the pitch curve (convex)", a.least_radius, "mm", _MM)
+        for row in _roller_verdict(a):
+            res.add_row(*row)
+    return res
+
+
+def _flat_verdict(a: CamAnalysis) -> list[tuple[str, str, str]]:
+    """A flat face's rows: cusp or none, and how far from its axis the contact runs."""
+    corner = a.least_radius_any.value == -math.inf
+    verdict = (
+        "cusp: a corner where the velocity falls at once; use a law without velocity jumps"
+        if corner
+        else "cusp: the profile folds back (ρ < 0), raise the base circle"
+        if a.cusp
+        else "no cusp (ρ > 0 everywhere)"
+    )
+    rows = [("profile", verdict, "")]
+    if a.face is not None:
+        rows.append(("face contact from its axis", f"{a.face[0] * _MM:.4g} to {a.face[1] * _MM:.4g} mm", ""))
+    return rows
+
+
+def _roller_verdict(a: CamAnalysis) -> list[tuple[str, str, str]]:
+    """A roller's row: undercut or not, against the roller's radius (none for a knife edge)."""
+    prog = a.layout.program
+    if prog.follower != "roller":
+        return []
+    assert prog.roller_radius is not None
+    corner = a.least_radius is not None and a.least_radius.value == 0.0
+    verdict = (
+        "undercut: a corner where the velocity falls at once (the roller rounds it); "
+        "use a law without velocity jumps"
+        if a.undercut and corner
+        else f"undercut: ρ_min < roller radius {prog.roller_radius * _MM:.4g} mm (the profile loops; "
+        "use a smaller roller or a larger base circle)"
+        if a.undercut
+        else f"no undercut: ρ_min ≥ roller radius {prog.roller_radius * _MM:.4g} mm"
+    )
+    return [("roller", verdict, "")]
+
+
+def _drawn_line(setup: CamSetup, a: CamAnalysis) -> str:
+    """The follower where the drawing shows it: s (v, a with a speed) and the pressure angle."""
+    units = _units(a)
+    now = evaluate(a.layout, [setup.angle])
+    drawn = f"  at θ = {math.degrees(setup.angle):.4g}°: s = {_lift(a, float(now.s[0]))}"
     if a.omega is not None:
         # rounding noise (1e-14 where a law's acceleration is zero) is the zero it is
         v_now = _denoise(float(now.ds[0]), a.state.ds)
         a_now = _denoise(float(now.d2s[0]), a.state.d2s)
         drawn += f", v = {_fmt(v_now * a.omega)} {units['v']}, a = {_fmt(a_now * a.omega**2)} {units['a']}"
     drawn += f", pressure angle {math.degrees(float(now.pressure[0])):.4g}°"
-    console.print(drawn)
-    if a.omega is None:
-        console.print("  (no speed given: the drive has no rpm/omega; use --rpm for velocities)")
+    return drawn

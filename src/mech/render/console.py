@@ -10,11 +10,34 @@ from __future__ import annotations
 import os
 import sys
 from functools import lru_cache
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 if TYPE_CHECKING:  # pragma: no cover
     from rich.box import Box
     from rich.console import Console
+
+
+class ReportConsole(Protocol):
+    """What mech's renderers use of a console: rich's ``Console`` is one, and so is
+    :class:`~mech.render.plain.PlainConsole`.
+
+    A renderer prints tables, ``Text`` and strings with :meth:`print` and asks
+    :func:`kit` or :func:`table_box` (which read the three attributes) what
+    kind of table to build.  Typed against this protocol, a renderer that
+    reaches for more of rich's console (which the plain one hands on to rich,
+    the slow way) must say so here first.
+    """
+
+    @property
+    def is_terminal(self) -> bool: ...
+
+    @property
+    def no_color(self) -> bool: ...
+
+    @property
+    def color_system(self) -> str | None: ...
+
+    def print(self, *objects: Any, soft_wrap: bool = ..., highlight: bool = ...) -> None: ...
 
 
 @lru_cache(maxsize=1)
@@ -23,7 +46,10 @@ def stdout() -> Console:
     if not _isatty() and not _forced_terminal():
         from mech.render.plain import PlainConsole
 
-        return PlainConsole(int(os.environ.get("COLUMNS", 120)))  # type: ignore[return-value]
+        plain: ReportConsole = PlainConsole(int(os.environ.get("COLUMNS", 120)))
+        # a PlainConsole is a ReportConsole, not a rich Console: this says Console for the
+        # renderers (check, topology) still typed against rich's class
+        return plain  # type: ignore[return-value]
     console_class = rich_console_class()
 
     # markup=False: names, claims and messages come from users' files, and "[/b]" in a
@@ -57,19 +83,19 @@ def rich_console_class() -> type[Console]:
     return Console
 
 
-def is_plain(console: Console) -> bool:
+def is_plain(console: ReportConsole) -> bool:
     """True when the console writes plain text (not a terminal, or NO_COLOR set)."""
     return not console.is_terminal or console.no_color or console.color_system is None
 
 
-def table_box(console: Console) -> Box:
+def table_box(console: ReportConsole) -> Box:
     """Rounded boxes on a terminal, simple ruled text otherwise."""
     from rich import box
 
     return box.SIMPLE if is_plain(console) else box.ROUNDED
 
 
-def kit(console: Console) -> tuple[Any, Any, Any]:
+def kit(console: ReportConsole) -> tuple[Any, Any, Any]:
     """``(Table, Text, box)`` for ``console``: mech's plain ones for a plain console, rich's otherwise.
 
     ``box`` is :func:`table_box`'s choice, for tables made with this ``Table``.

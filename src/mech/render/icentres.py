@@ -8,11 +8,10 @@ from typing import TYPE_CHECKING, Any
 from mech.units import format_unit, to_unit
 
 if TYPE_CHECKING:  # pragma: no cover
-    from rich.console import Console
-
     from mech.icentres import ICentre, ICentres
     from mech.icentres.order import TopologyCentres
     from mech.options import OutputUnits
+    from mech.render.console import ReportConsole
 
 __all__ = ["icentres_dict", "icentres_table", "order_dict", "order_table"]
 
@@ -83,7 +82,7 @@ def _omega(w: float | None) -> str:
     return f"{abs(w):.6g} {'ccw' if w > 0 else 'cw'}"
 
 
-def icentres_table(ic: ICentres, console: Console, *, units: OutputUnits | None = None) -> None:
+def icentres_table(ic: ICentres, console: ReportConsole, *, units: OutputUnits | None = None) -> None:
     """``mech icentres``: the count worked, every centre with how it was found, ω by I-centres."""
     from rich.table import Table
     from rich.text import Text
@@ -167,7 +166,7 @@ def order_dict(order: TopologyCentres) -> dict[str, Any]:
     }
 
 
-def order_table(order: TopologyCentres, console: Console) -> None:
+def order_table(order: TopologyCentres, console: ReportConsole) -> None:
     """``mech icentres`` on a file that places nothing: the count, the primary centres, Kennedy's order."""
     from mech.render.console import kit
 

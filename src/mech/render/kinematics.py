@@ -12,12 +12,15 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from mech.errors import InputError
 from mech.kinematics import Kinematics
 from mech.options import OutputUnits
 from mech.units import format_unit, to_unit
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.render.console import ReportConsole
 
 __all__ = ["kinematics_json", "kinematics_table"]
 
@@ -165,7 +168,17 @@ class _Noise:
         return v, a + 2.0 * w * v
 
 
-def _drive_frames(kin: Kinematics, d: Any, num: Any, ANG: str, W: str, AL: str) -> dict[str, Any]:
+def _vec(v: tuple[float, float] | None, unit: str) -> list[float] | None:
+    """A vector in ``unit`` as a JSON list, or None."""
+    return None if v is None else [to_unit(v[0], unit), to_unit(v[1], unit)]
+
+
+def _num(x: float | None, unit: str) -> float | None:
+    """A number in ``unit``, or None."""
+    return None if x is None else to_unit(x, unit)
+
+
+def _drive_frames(kin: Kinematics, d: Any, units: OutputUnits) -> dict[str, Any]:
     """A turning drive both ways: ``absolute`` (from the ground) and ``relative`` (to a moving link).
 
     The drive's own values are in its convention (absolute unless it says
@@ -175,6 +188,7 @@ def _drive_frames(kin: Kinematics, d: Any, num: Any, ANG: str, W: str, AL: str) 
     pivot joins the driven link to (the pair a student measures at a joint),
     else there is none (``relative`` is null).
     """
+    W, AL, ANG = units.angular_velocity, units.angular_acceleration, units.angle
     ref = d.relative_to
     if ref is None and d.about is not None and d.about in kin.joints:
         others = [lk for lk in kin.joints[d.about].links if lk != d.link]
@@ -194,14 +208,14 @@ def _drive_frames(kin: Kinematics, d: Any, num: Any, ANG: str, W: str, AL: str) 
         angle_rel = None if d.angle is None else math.remainder(d.angle - theta_a, 2 * math.pi)
     w_abs = mine.omega if mine is not None else None
     al_abs = mine.alpha if mine is not None else None
-    absolute = {"angle": num(angle_abs, ANG), "omega": num(w_abs, W), "alpha": num(al_abs, AL)}
+    absolute = {"angle": _num(angle_abs, ANG), "omega": _num(w_abs, W), "alpha": _num(al_abs, AL)}
     relative = None
     if other is not None:
         relative = {
             "to": ref,
-            "angle": num(angle_rel, ANG),
-            "omega": num(diff(w_abs, other.omega), W),
-            "alpha": num(diff(al_abs, other.alpha), AL),
+            "angle": _num(angle_rel, ANG),
+            "omega": _num(diff(w_abs, other.omega), W),
+            "alpha": _num(diff(al_abs, other.alpha), AL),
         }
     return {"absolute": absolute, "relative": relative}
 
@@ -243,106 +257,9 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
         }
     """
     L, V, A = units.length, units.velocity, units.acceleration
-    W, AL, ANG = units.angular_velocity, units.angular_acceleration, units.angle
-
-    def vec(v: tuple[float, float] | None, unit: str) -> list[float] | None:
-        return None if v is None else [to_unit(v[0], unit), to_unit(v[1], unit)]
-
-    def num(x: float | None, unit: str) -> float | None:
-        return None if x is None else to_unit(x, unit)
-
     has_v, has_a = _at_least(kin, "velocity"), _at_least(kin, "acceleration")
     quiet = _Noise(kin, has_v, has_a)
-    drives = []
-    for d in kin.drives:
-        entry: dict[str, Any] = {"link": d.link} if d.link is not None else {"joint": d.joint}
-        entry.update(
-            angle=num(d.angle, ANG) if d.link is not None else None,
-            omega=num(d.omega, W),
-            sense=_sense(d.omega),
-            alpha=num(d.alpha, AL),
-            speed=num(d.speed, V),
-        )
-        if d.link is not None:
-            entry["relative_to"] = d.relative_to
-            entry.update(_drive_frames(kin, d, num, ANG, W, AL))
-        drives.append(entry)
-
-    links = {
-        name: {
-            "origin": vec(quiet.position(s.origin), L),
-            "angle": to_unit(quiet.angle(s.angle), ANG),
-            "omega": num(quiet.omega(s.omega), W),
-            "sense": _sense(quiet.omega(s.omega)),
-            "alpha": num(quiet.alpha(s.alpha), AL),
-        }
-        for name, s in kin.links.items()
-    }
-
-    points = []
-    for name, link in _point_rows(kin):
-        v = quiet.vector(kin.velocity(name, link), quiet.point_v_scale(name, link)) if has_v else None
-        a = quiet.vector(kin.acceleration(name, link), quiet.point_a_scale(name, link)) if has_a else None
-        points.append(
-            {
-                "point": name,
-                "link": link,
-                "position": vec(quiet.position(kin.positions[name]), L),
-                "velocity": vec(v, V),
-                "speed": num(math.hypot(*v), V) if v is not None else None,
-                "direction": _dir(v) if v is not None else None,
-                "acceleration": vec(a, A),
-                "acceleration_magnitude": num(math.hypot(*a), A) if a is not None else None,
-            }
-        )
-
-    relative = []
-    if has_v:
-        for lk, p, q in _link_pairs(kin):
-            state = kin.links[lk]
-            v = quiet.vector(
-                kin.relative_velocity(q, p, link_a=lk, link_b=lk),
-                quiet.point_v_scale(p, lk) + quiet.point_v_scale(q, lk),
-            )
-            r = math.dist(kin.positions[p], kin.positions[q])
-            relative.append(
-                {
-                    "link": lk,
-                    "from": p,
-                    "to": q,
-                    "label": f"{p}{q}".lower(),
-                    "velocity": vec(v, V),
-                    "speed": to_unit(math.hypot(*v), V),
-                    "normal": to_unit((quiet.omega(state.omega) or 0.0) ** 2 * r, A) if has_a else None,
-                    "tangential": to_unit(abs(quiet.alpha(state.alpha) or 0.0) * r, A) if has_a else None,
-                }
-            )
-
-    sliders, rubbing = [], []
-    if has_v:
-        for name, j in kin.joints.items():
-            if j.type in ("prismatic", "slot"):
-                v_sc, a_sc = quiet.joint_scales(name)
-                cor = quiet.vector(kin.coriolis(name), a_sc) if has_a else None
-                sliders.append(
-                    {
-                        "joint": name,
-                        "type": j.type,
-                        "slider": j.links[0],
-                        "guide": j.links[1],
-                        "sliding": to_unit(quiet.scalar(kin.sliding(name), v_sc), V),
-                        "sliding_acceleration": num(
-                            quiet.scalar(kin.sliding_acceleration(name), a_sc) if has_a else None, A
-                        ),
-                        "coriolis": vec(cor, A),
-                        "coriolis_magnitude": num(math.hypot(*cor), A) if cor is not None else None,
-                    }
-                )
-            elif j.type == "revolute" and j.radius is not None:
-                rubbing.append(
-                    {"joint": name, "radius": to_unit(j.radius, L), "rubbing": to_unit(kin.rubbing(name), V)}
-                )
-
+    sliders, rubbing = _joints_json(kin, quiet, units) if has_v else ([], [])
     m = kin.mobility
     return {
         "mechanism": kin.mechanism,
@@ -351,15 +268,15 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
             "length": L,
             "velocity": V,
             "acceleration": A,
-            "angle": ANG,
-            "angular_velocity": W,
-            "angular_acceleration": AL,
+            "angle": units.angle,
+            "angular_velocity": units.angular_velocity,
+            "angular_acceleration": units.angular_acceleration,
         },
         "size": to_unit(kin.size, L),
-        "drives": drives,
-        "links": links,
-        "points": points,
-        "relative": relative,
+        "drives": _drives_json(kin, units),
+        "links": _links_json(kin, quiet, units),
+        "points": _points_json(kin, quiet, units),
+        "relative": _relative_json(kin, quiet, units) if has_v else [],
         "sliders": sliders,
         "rubbing": rubbing,
         "mobility": {
@@ -372,6 +289,125 @@ def kinematics_json(kin: Kinematics, *, units: OutputUnits) -> dict[str, Any]:
         },
         "notes": list(kin.notes),
     }
+
+
+def _drives_json(kin: Kinematics, units: OutputUnits) -> list[dict[str, Any]]:
+    """Each drive in its own convention; a turning drive also absolute and relative (:func:`_drive_frames`)."""
+    drives = []
+    for d in kin.drives:
+        entry: dict[str, Any] = {"link": d.link} if d.link is not None else {"joint": d.joint}
+        entry.update(
+            angle=_num(d.angle, units.angle) if d.link is not None else None,
+            omega=_num(d.omega, units.angular_velocity),
+            sense=_sense(d.omega),
+            alpha=_num(d.alpha, units.angular_acceleration),
+            speed=_num(d.speed, units.velocity),
+        )
+        if d.link is not None:
+            entry["relative_to"] = d.relative_to
+            entry.update(_drive_frames(kin, d, units))
+        drives.append(entry)
+    return drives
+
+
+def _links_json(kin: Kinematics, quiet: _Noise, units: OutputUnits) -> dict[str, dict[str, Any]]:
+    """Every link (ground too): its origin, angle, ω and sense, α."""
+    return {
+        name: {
+            "origin": _vec(quiet.position(s.origin), units.length),
+            "angle": to_unit(quiet.angle(s.angle), units.angle),
+            "omega": _num(quiet.omega(s.omega), units.angular_velocity),
+            "sense": _sense(quiet.omega(s.omega)),
+            "alpha": _num(quiet.alpha(s.alpha), units.angular_acceleration),
+        }
+        for name, s in kin.links.items()
+    }
+
+
+def _points_json(kin: Kinematics, quiet: _Noise, units: OutputUnits) -> list[dict[str, Any]]:
+    """Every point (a contact point once per link where they differ): position, velocity, acceleration."""
+    V, A = units.velocity, units.acceleration
+    has_v, has_a = quiet.has_v, quiet.has_a
+    points = []
+    for name, link in _point_rows(kin):
+        v = quiet.vector(kin.velocity(name, link), quiet.point_v_scale(name, link)) if has_v else None
+        a = quiet.vector(kin.acceleration(name, link), quiet.point_a_scale(name, link)) if has_a else None
+        points.append(
+            {
+                "point": name,
+                "link": link,
+                "position": _vec(quiet.position(kin.positions[name]), units.length),
+                "velocity": _vec(v, V),
+                "speed": _num(math.hypot(*v), V) if v is not None else None,
+                "direction": _dir(v) if v is not None else None,
+                "acceleration": _vec(a, A),
+                "acceleration_magnitude": _num(math.hypot(*a), A) if a is not None else None,
+            }
+        )
+    return points
+
+
+def _relative_json(kin: Kinematics, quiet: _Noise, units: OutputUnits) -> list[dict[str, Any]]:
+    """Relative velocity along each moving link (the polygon's ab), with ω²·AB and α·AB."""
+    V, A = units.velocity, units.acceleration
+    has_a = quiet.has_a
+    relative = []
+    for lk, p, q in _link_pairs(kin):
+        state = kin.links[lk]
+        v = quiet.vector(
+            kin.relative_velocity(q, p, link_a=lk, link_b=lk),
+            quiet.point_v_scale(p, lk) + quiet.point_v_scale(q, lk),
+        )
+        r = math.dist(kin.positions[p], kin.positions[q])
+        relative.append(
+            {
+                "link": lk,
+                "from": p,
+                "to": q,
+                "label": f"{p}{q}".lower(),
+                "velocity": _vec(v, V),
+                "speed": to_unit(math.hypot(*v), V),
+                "normal": to_unit((quiet.omega(state.omega) or 0.0) ** 2 * r, A) if has_a else None,
+                "tangential": to_unit(abs(quiet.alpha(state.alpha) or 0.0) * r, A) if has_a else None,
+            }
+        )
+    return relative
+
+
+def _joints_json(
+    kin: Kinematics, quiet: _Noise, units: OutputUnits
+) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
+    """(sliders, rubbing): sliding velocity, acceleration and Coriolis at each slider and slot; rubbing at pins."""
+    V, A = units.velocity, units.acceleration
+    has_a = quiet.has_a
+    sliders, rubbing = [], []
+    for name, j in kin.joints.items():
+        if j.type in ("prismatic", "slot"):
+            v_sc, a_sc = quiet.joint_scales(name)
+            cor = quiet.vector(kin.coriolis(name), a_sc) if has_a else None
+            sliders.append(
+                {
+                    "joint": name,
+                    "type": j.type,
+                    "slider": j.links[0],
+                    "guide": j.links[1],
+                    "sliding": to_unit(quiet.scalar(kin.sliding(name), v_sc), V),
+                    "sliding_acceleration": _num(
+                        quiet.scalar(kin.sliding_acceleration(name), a_sc) if has_a else None, A
+                    ),
+                    "coriolis": _vec(cor, A),
+                    "coriolis_magnitude": _num(math.hypot(*cor), A) if cor is not None else None,
+                }
+            )
+        elif j.type == "revolute" and j.radius is not None:
+            rubbing.append(
+                {
+                    "joint": name,
+                    "radius": to_unit(j.radius, units.length),
+                    "rubbing": to_unit(kin.rubbing(name), V),
+                }
+            )
+    return sliders, rubbing
 
 
 def _g(x: float | None, digits: int = 5) -> str:
@@ -402,7 +438,7 @@ def _point_label(p: dict[str, Any]) -> str:
 _LEVEL_TITLES = {"position": "positions", "velocity": "velocities", "acceleration": "accelerations"}
 
 
-def kinematics_table(kin: Kinematics, console: Any, *, units: OutputUnits) -> None:
+def kinematics_table(kin: Kinematics, console: ReportConsole, *, units: OutputUnits) -> None:
     """Print the solve as rich tables on ``console`` (numbers in ``units``)."""
     from mech.render.console import kit
 
@@ -410,37 +446,69 @@ def kinematics_table(kin: Kinematics, console: Any, *, units: OutputUnits) -> No
     data = kinematics_json(kin, units=units)
     u = {k: format_unit(v) for k, v in data["units"].items()}
 
+    def titled(title: str) -> Any:
+        return Table(title=title, box=box, title_justify="left")
+
     console.print(Text(kin.mechanism, style="bold") + Text(f" — {_LEVEL_TITLES[kin.level]}"))
     for d in data["drives"]:
-        if "link" in d:
-            parts = [f"drive {d['link']}"]
-            if d["angle"] is not None:
-                parts.append(f"at {_g(d['angle'])} {u['angle']}")
-            if d["omega"] is not None:
-                parts.append(f"ω = {_g(abs(d['omega']))} {u['angular_velocity']} {d['sense'] or ''}".rstrip())
-            if d["alpha"]:
-                parts.append(f"α = {_g(d['alpha'])} {u['angular_acceleration']}")
-            other = d["relative"] if d["relative_to"] is None else d["absolute"]
-            if other is not None:
-                what = f"relative to {other['to']}" if d["relative_to"] is None else "absolute"
-                if d["relative_to"] is not None:
-                    parts[0] += f" relative to {d['relative_to']}"
-                extra = [f"{_g(other['angle'])} {u['angle']}"] if other["angle"] is not None else []
-                if other["omega"] is not None:
-                    w = other["omega"]
-                    extra.append(f"ω = {_g(abs(w))} {u['angular_velocity']} {_sense(w) or ''}".rstrip())
-                if other["alpha"] is not None and d["alpha"]:
-                    extra.append(f"α = {_g(other['alpha'])} {u['angular_acceleration']}")
-                parts[-1] += f" ({what}: {', '.join(extra)})"
-        else:
-            parts = [f"drive {d['joint']}"]
-            if d["speed"] is not None:
-                parts.append(f"v = {_g(d['speed'])} {u['velocity']}")
-        console.print(", ".join(parts))
-
+        console.print(_drive_line(d, u))
     has_v, has_a = _at_least(kin, "velocity"), _at_least(kin, "acceleration")
+    console.print(_links_table(titled("Links"), data, u, kin.ground, has_v, has_a))
+    # Positions with velocities, then accelerations in a table of their own: one table with
+    # both is wider than a terminal.
+    console.print(_points_table(titled("Points"), data, u, has_v))
+    if has_a:
+        console.print(_accelerations_table(titled("Point accelerations"), data, u))
+    if data["relative"]:
+        title = "Relative motion along links (velocity polygon)"
+        console.print(_relative_table(titled(title), data, u, has_a))
+    if data["sliders"]:
+        console.print(_sliders_table(titled("Sliders and slots"), data, u, has_a))
+    if data["rubbing"]:
+        t = titled("Rubbing at pins")
+        _col(t, "joint")
+        _col(t, f"radius ({u['length']})", justify="right")
+        _col(t, f"rubbing ({u['velocity']})", justify="right")
+        for r in data["rubbing"]:
+            t.add_row(r["joint"], _g(r["radius"]), _g(r["rubbing"]))
+        console.print(t)
+    for note in data["notes"]:
+        console.print(f"note: {note}", highlight=False)
 
-    t = Table(title="Links", box=box, title_justify="left")
+
+def _drive_line(d: dict[str, Any], u: dict[str, str]) -> str:
+    """``drive crank, at 60 deg, ω = 12.566 rad/s cw``, with the other convention in brackets."""
+    if "link" not in d:
+        parts = [f"drive {d['joint']}"]
+        if d["speed"] is not None:
+            parts.append(f"v = {_g(d['speed'])} {u['velocity']}")
+        return ", ".join(parts)
+    parts = [f"drive {d['link']}"]
+    if d["angle"] is not None:
+        parts.append(f"at {_g(d['angle'])} {u['angle']}")
+    if d["omega"] is not None:
+        parts.append(f"ω = {_g(abs(d['omega']))} {u['angular_velocity']} {d['sense'] or ''}".rstrip())
+    if d["alpha"]:
+        parts.append(f"α = {_g(d['alpha'])} {u['angular_acceleration']}")
+    other = d["relative"] if d["relative_to"] is None else d["absolute"]
+    if other is not None:
+        what = f"relative to {other['to']}" if d["relative_to"] is None else "absolute"
+        if d["relative_to"] is not None:
+            parts[0] += f" relative to {d['relative_to']}"
+        extra = [f"{_g(other['angle'])} {u['angle']}"] if other["angle"] is not None else []
+        if other["omega"] is not None:
+            w = other["omega"]
+            extra.append(f"ω = {_g(abs(w))} {u['angular_velocity']} {_sense(w) or ''}".rstrip())
+        if other["alpha"] is not None and d["alpha"]:
+            extra.append(f"α = {_g(other['alpha'])} {u['angular_acceleration']}")
+        parts[-1] += f" ({what}: {', '.join(extra)})"
+    return ", ".join(parts)
+
+
+def _links_table(
+    t: Any, data: dict[str, Any], u: dict[str, str], ground: str, has_v: bool, has_a: bool
+) -> Any:
+    """θ of each moving link, with ω and its sense, α, as far as solved."""
     _col(t, "link")
     _col(t, f"θ ({u['angle']})", justify="right")
     if has_v:
@@ -449,7 +517,7 @@ def kinematics_table(kin: Kinematics, console: Any, *, units: OutputUnits) -> No
     if has_a:
         _col(t, f"α ({u['angular_acceleration']})", justify="right")
     for name, s in data["links"].items():
-        if name == kin.ground:
+        if name == ground:
             continue
         row = [name, _g(s["angle"])]
         if has_v:
@@ -457,92 +525,80 @@ def kinematics_table(kin: Kinematics, console: Any, *, units: OutputUnits) -> No
         if has_a:
             row += [_g(s["alpha"])]
         t.add_row(*row)
-    console.print(t)
+    return t
 
-    # Positions with velocities, then accelerations in a table of their own: one table with
-    # both is wider than a terminal.
-    t = Table(title="Points", box=box, title_justify="left")
+
+def _points_table(t: Any, data: dict[str, Any], u: dict[str, str], has_v: bool) -> Any:
+    """Each point's position, with its velocity (magnitude, direction, components) once solved."""
     _col(t, "point")
     _col(t, f"x ({u['length']})", justify="right")
     _col(t, f"y ({u['length']})", justify="right")
     if has_v:
-        for col in (
-            f"|v| ({u['velocity']})",
-            f"dir ({u['angle']})",
-            f"vx ({u['velocity']})",
-            f"vy ({u['velocity']})",
-        ):
-            _col(t, col, justify="right")
+        _vector_columns(t, "v", u["velocity"], u["angle"])
     for p in data["points"]:
         row = [_point_label(p), _g(p["position"][0]), _g(p["position"][1])]
         if has_v:
-            row += [_g(p["speed"]), _g(p["direction"], 4), _g(p["velocity"][0]), _g(p["velocity"][1])]
+            row += _vector_cells(p["speed"], p["direction"], p["velocity"])
         t.add_row(*row)
-    console.print(t)
+    return t
 
+
+def _accelerations_table(t: Any, data: dict[str, Any], u: dict[str, str]) -> Any:
+    """Each point's acceleration: magnitude, direction, components."""
+    _col(t, "point")
+    _vector_columns(t, "a", u["acceleration"], u["angle"])
+    for p in data["points"]:
+        a = p["acceleration"]
+        t.add_row(_point_label(p), *_vector_cells(p["acceleration_magnitude"], _dir(tuple(a)), a))
+    return t
+
+
+def _vector_columns(t: Any, symbol: str, unit: str, angle: str) -> None:
+    """A vector's four columns: ``|v|``, its direction, ``vx`` and ``vy``."""
+    for col in (f"|{symbol}| ({unit})", f"dir ({angle})", f"{symbol}x ({unit})", f"{symbol}y ({unit})"):
+        _col(t, col, justify="right")
+
+
+def _vector_cells(magnitude: float | None, direction: float | None, xy: list[float]) -> list[str]:
+    """The cells under :func:`_vector_columns` (the direction to four figures)."""
+    return [_g(magnitude), _g(direction, 4), _g(xy[0]), _g(xy[1])]
+
+
+def _relative_table(t: Any, data: dict[str, Any], u: dict[str, str], has_a: bool) -> Any:
+    """The velocity polygon's vectors along each link, with the normal and tangential parts."""
+    for col in ("link", "vector", f"|v| ({u['velocity']})", f"dir ({u['angle']})"):
+        _col(t, col, justify="left" if col in ("link", "vector") else "right")
     if has_a:
-        t = Table(title="Point accelerations", box=box, title_justify="left")
-        _col(t, "point")
-        for col in (
-            f"|a| ({u['acceleration']})",
-            f"dir ({u['angle']})",
-            f"ax ({u['acceleration']})",
-            f"ay ({u['acceleration']})",
-        ):
-            _col(t, col, justify="right")
-        for p in data["points"]:
-            a = p["acceleration"]
-            t.add_row(
-                _point_label(p), _g(p["acceleration_magnitude"]), _g(_dir(tuple(a)), 4), _g(a[0]), _g(a[1])
-            )
-        console.print(t)
-
-    if data["relative"]:
-        t = Table(title="Relative motion along links (velocity polygon)", box=box, title_justify="left")
-        for col in ("link", "vector", f"|v| ({u['velocity']})", f"dir ({u['angle']})"):
-            _col(t, col, justify="left" if col in ("link", "vector") else "right")
+        _col(t, f"normal ω²r ({u['acceleration']})", justify="right")
+        _col(t, f"tangential αr ({u['acceleration']})", justify="right")
+    for r in data["relative"]:
+        row = [
+            r["link"],
+            f"{r['label']} (v{r['to']}{r['from']})",
+            _g(r["speed"]),
+            _g(_dir(tuple(r["velocity"])), 4),
+        ]
         if has_a:
-            _col(t, f"normal ω²r ({u['acceleration']})", justify="right")
-            _col(t, f"tangential αr ({u['acceleration']})", justify="right")
-        for r in data["relative"]:
-            row = [
-                r["link"],
-                f"{r['label']} (v{r['to']}{r['from']})",
-                _g(r["speed"]),
-                _g(_dir(tuple(r["velocity"])), 4),
+            row += [_g(r["normal"]), _g(r["tangential"])]
+        t.add_row(*row)
+    return t
+
+
+def _sliders_table(t: Any, data: dict[str, Any], u: dict[str, str], has_a: bool) -> Any:
+    """Sliding velocity at each slider and slot; its acceleration and the Coriolis term once solved."""
+    for col in ("joint", "slider on guide", f"sliding ({u['velocity']})"):
+        _col(t, col, justify="right" if "sliding" in col else "left")
+    if has_a:
+        _col(t, f"sliding acc. ({u['acceleration']})", justify="right")
+        _col(t, f"Coriolis 2ωv ({u['acceleration']})", justify="right")
+        _col(t, f"dir ({u['angle']})", justify="right")
+    for s in data["sliders"]:
+        row = [s["joint"], f"{s['slider']} on {s['guide']}", _g(s["sliding"])]
+        if has_a:
+            row += [
+                _g(s["sliding_acceleration"]),
+                _g(s["coriolis_magnitude"]),
+                _g(_dir(tuple(s["coriolis"])), 4),
             ]
-            if has_a:
-                row += [_g(r["normal"]), _g(r["tangential"])]
-            t.add_row(*row)
-        console.print(t)
-
-    if data["sliders"]:
-        t = Table(title="Sliders and slots", box=box, title_justify="left")
-        for col in ("joint", "slider on guide", f"sliding ({u['velocity']})"):
-            _col(t, col, justify="right" if "sliding" in col else "left")
-        if has_a:
-            _col(t, f"sliding acc. ({u['acceleration']})", justify="right")
-            _col(t, f"Coriolis 2ωv ({u['acceleration']})", justify="right")
-            _col(t, f"dir ({u['angle']})", justify="right")
-        for s in data["sliders"]:
-            row = [s["joint"], f"{s['slider']} on {s['guide']}", _g(s["sliding"])]
-            if has_a:
-                row += [
-                    _g(s["sliding_acceleration"]),
-                    _g(s["coriolis_magnitude"]),
-                    _g(_dir(tuple(s["coriolis"])), 4),
-                ]
-            t.add_row(*row)
-        console.print(t)
-
-    if data["rubbing"]:
-        t = Table(title="Rubbing at pins", box=box, title_justify="left")
-        _col(t, "joint")
-        _col(t, f"radius ({u['length']})", justify="right")
-        _col(t, f"rubbing ({u['velocity']})", justify="right")
-        for r in data["rubbing"]:
-            t.add_row(r["joint"], _g(r["radius"]), _g(r["rubbing"]))
-        console.print(t)
-
-    for note in data["notes"]:
-        console.print(f"note: {note}", highlight=False)
+        t.add_row(*row)
+    return t

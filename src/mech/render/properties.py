@@ -15,6 +15,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from mech.properties.cycle import Cycle
     from mech.properties.grashof import FourBarLoop, SliderCrankLoop
     from mech.properties.summary import LinkageProperties
+    from mech.render.console import ReportConsole
 
 
 def _len(value: float, unit: str) -> str:
@@ -220,7 +221,7 @@ def _advantage_dict(props: LinkageProperties) -> dict[str, Any]:
     }
 
 
-def properties_table(props: LinkageProperties, console: Any, *, units: OutputUnits) -> None:
+def properties_table(props: LinkageProperties, console: ReportConsole, *, units: OutputUnits) -> None:
     """``mech properties``: Grashof worked, transmission angle, limit positions, strokes, time ratio."""
     from rich.table import Table
     from rich.text import Text
@@ -281,7 +282,7 @@ def properties_table(props: LinkageProperties, console: Any, *, units: OutputUni
         console.print(f"  time ratio (slow / fast stroke of {d['time_ratio_output']}): {d['time_ratio']:.6g}")
 
 
-def _advantage_tables(props: LinkageProperties, d: dict[str, Any], console: Any) -> None:
+def _advantage_tables(props: LinkageProperties, d: dict[str, Any], console: ReportConsole) -> None:
     """Mechanical advantage three ways, the I-centre ratio written out, and the input effort."""
     from rich.table import Table
     from rich.text import Text
