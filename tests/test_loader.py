@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 import textwrap
 
@@ -688,7 +689,8 @@ def test_a_ten_thousand_joint_chain_is_read_with_every_joint_located():
     links = ["frame"] + [f"l{i}" for i in range(1, n)]
     ring = [*links, "frame"]
     joints = "".join(
-        f"  J{i}: {{type: revolute, links: [{a}, {b}]}}\n" for i, (a, b) in enumerate(zip(ring, ring[1:]))
+        f"  J{i}: {{type: revolute, links: [{a}, {b}]}}\n"
+        for i, (a, b) in enumerate(itertools.pairwise(ring))
     )
     m = loads(f"links: [{', '.join(links)}]\njoints:\n{joints}")
     assert len(m.joints) == n and (m.joints[-1].where.line, m.joints[-1].where.column) == (n + 2, 3)
