@@ -442,3 +442,15 @@ def test_check_jobs_below_one_is_a_usage_error(jobs):
 def test_check_with_a_thousand_jobs_for_one_file_passes():
     p = mech("check", str(ROOT / "mechanisms" / "four_bar.yaml"), "--jobs", "1000")
     assert p.returncode == 0, p.stderr
+
+
+def test_pool_chunks_cover_every_job_once_and_shrink_to_single_jobs_at_the_end():
+    """Guided scheduling: no worker idles at the end while another finishes a full chunk."""
+    from mech.batchpool import _chunks
+
+    for n, largest, workers in ((1000, 32, 2), (7, 3, 2), (1, 32, 4), (100, 1, 2)):
+        chunks = list(_chunks(n, largest, workers))
+        assert [i for c in chunks for i in c] == list(range(n))
+        assert all(1 <= len(c) <= largest for c in chunks)
+        assert len(chunks[-1]) == 1
+    assert len(next(iter(_chunks(1000, 32, 2)))) == 32

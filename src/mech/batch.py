@@ -766,6 +766,13 @@ def run(
         on_start(len(tasks))
     from mech.batchpool import run_jobs
 
+    if options.workers > 1 and len(tasks) > 1:
+        # what every problem file needs (not numpy: a folder of DOF exercises never imports it),
+        # imported once here rather than once in each worker process
+        from mech.diagnose import diagnose  # noqa: F401
+        from mech.loader import load  # noqa: F401
+        from mech.topology import classify  # noqa: F401
+
     results = list(extra)
     used: list[tuple[str, str, str]] = []
     chunk = max(1, min(32, len(tasks) // (options.workers * 8)))

@@ -114,6 +114,20 @@ def run_jobs(
 
 
 # -- the pool -----------------------------------------------------------------------------------
+def _chunks(n: int, largest: int, workers: int) -> Iterator[list[int]]:
+    """Job indices in chunks of at most ``largest``, smaller as the end nears (guided scheduling).
+
+    Each chunk is about a quarter of the jobs left per worker, so the last chunks
+    are single jobs and no worker sits idle at the end while another finishes a
+    full chunk.
+    """
+    i = 0
+    while i < n:
+        size = max(1, min(largest, (n - i) // (4 * workers)))
+        yield list(range(i, min(i + size, n)))
+        i += size
+
+
 def _worker(conn: Any, slot: int, board: Any, limited: _Limited[Any, Any], jobs: Sequence[Any]) -> None:
     """Run the chunks of job indices the parent sends; say on ``board`` which job runs since when."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle: it kills us
@@ -168,9 +182,7 @@ class _Pool(Generic[T, R]):
         self.timeout = timeout
         self.grace = None if timeout is None else 2.0 + 0.5 * timeout
         self.board = self.ctx.Array("d", [-1.0, 0.0] * workers, lock=False)
-        self.queue: deque[list[int]] = deque(
-            list(range(i, min(i + chunk, len(jobs)))) for i in range(0, len(jobs), chunk)
-        )
+        self.queue: deque[list[int]] = deque(_chunks(len(jobs), chunk, workers))
         self.slots: list[_Slot | None] = [None] * workers
         self.done: dict[int, R] = {}
 
