@@ -454,3 +454,11 @@ def test_pool_chunks_cover_every_job_once_and_shrink_to_single_jobs_at_the_end()
         assert all(1 <= len(c) <= largest for c in chunks)
         assert len(chunks[-1]) == 1
     assert len(next(iter(_chunks(1000, 32, 2)))) == 32
+
+
+def test_a_worker_dying_with_a_chunk_waiting_in_its_pipe_loses_only_its_current_job() -> None:
+    """Each worker is sent its next chunk ahead; a crash hands that chunk to a fresh worker."""
+    jobs = [("ok", float(i)) for i in range(12)]
+    jobs[1] = ("crash", 0.0)
+    got = list(run_jobs(jobs, _job, _lost, workers=2, timeout=None, chunk=3))
+    assert got == [f"done {i}" if i != 1 else "lost crash: crash" for i in range(12)]

@@ -147,12 +147,22 @@ def _worker(conn: Any, slot: int, board: Any, limited: _Limited[Any, Any], jobs:
         return
 
 
+#: Chunks sent to a worker ahead of its results: the next one waits in its pipe, so a worker never
+#: sits idle while the parent streams the rows of the chunk it has just finished.
+_IN_FLIGHT = 2
+
+
 class _Slot:
-    __slots__ = ("conn", "held", "proc")
+    __slots__ = ("chunks", "conn", "proc")
 
     def __init__(self, proc: Any, conn: Any) -> None:
         self.proc, self.conn = proc, conn
-        self.held: list[int] = []
+        self.chunks: deque[list[int]] = deque()  # sent, results not yet back (in the order sent)
+
+    @property
+    def held(self) -> list[int]:
+        """The jobs this worker holds: running, or waiting in its pipe."""
+        return [i for chunk in self.chunks for i in chunk]
 
 
 class _Pool(Generic[T, R]):
@@ -223,10 +233,13 @@ class _Pool(Generic[T, R]):
         try:
             while emitted < len(self.jobs):
                 for slot, s in enumerate(self.slots):
-                    if (s is None or not s.held) and self.queue:
+                    while self.queue and (s is None or len(s.chunks) < _IN_FLIGHT):
                         s = s or self._start(slot)
-                        s.held = self.queue.popleft()
-                        s.conn.send(s.held)
+                        s.chunks.append(self.queue.popleft())
+                        try:
+                            s.conn.send(s.chunks[-1])
+                        except OSError:  # it died meanwhile: its end of the pipe says so, and _lose
+                            break  # hands every job it held (this chunk too) to a fresh worker
                 busy = {s.conn: i for i, s in enumerate(self.slots) if s is not None and s.held}
                 ready = wait(list(busy), timeout=0.25) if busy else []
                 for conn in ready:
@@ -240,7 +253,7 @@ class _Pool(Generic[T, R]):
                         continue
                     for index, result in got:
                         self.done[index] = result
-                    s.held = []
+                    s.chunks.popleft()  # a worker answers its chunks in the order they were sent
                 self._police()
                 while emitted in self.done:
                     yield self.done.pop(emitted)
