@@ -72,7 +72,7 @@ class _YamlLoader(getattr(yaml, "CSafeLoader", yaml.SafeLoader)):  # type: ignor
 
 
 MAX_NODES = 200_000  # an alias bomb is refused, not expanded
-MAX_DEPTH = 64  # deeper nesting is refused before libyaml's recursive composer sees it
+MAX_DEPTH = 64  # deeper nesting is refused (before composing, where the composer could crash on it)
 
 
 @contextmanager
