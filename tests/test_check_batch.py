@@ -462,3 +462,15 @@ def test_a_worker_dying_with_a_chunk_waiting_in_its_pipe_loses_only_its_current_
     jobs[1] = ("crash", 0.0)
     got = list(run_jobs(jobs, _job, _lost, workers=2, timeout=None, chunk=3))
     assert got == [f"done {i}" if i != 1 else "lost crash: crash" for i in range(12)]
+
+
+def _blas_threads(_: int) -> str:
+    return os.environ.get("OPENBLAS_NUM_THREADS", "unset")
+
+
+def test_workers_run_blas_on_one_thread_unless_told_otherwise(monkeypatch: pytest.MonkeyPatch) -> None:
+    """One worker per core already: a BLAS thread pool per worker would only oversubscribe them."""
+    monkeypatch.delenv("OPENBLAS_NUM_THREADS", raising=False)
+    assert list(run_jobs([0, 1], _blas_threads, _lost, workers=2)) == ["1", "1"]
+    monkeypatch.setenv("OPENBLAS_NUM_THREADS", "3")
+    assert list(run_jobs([0, 1], _blas_threads, _lost, workers=2)) == ["3", "3"]
