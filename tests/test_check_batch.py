@@ -442,3 +442,35 @@ def test_check_jobs_below_one_is_a_usage_error(jobs):
 def test_check_with_a_thousand_jobs_for_one_file_passes():
     p = mech("check", str(ROOT / "mechanisms" / "four_bar.yaml"), "--jobs", "1000")
     assert p.returncode == 0, p.stderr
+
+
+def test_pool_chunks_cover_every_job_once_and_shrink_to_single_jobs_at_the_end():
+    """Guided scheduling: no worker idles at the end while another finishes a full chunk."""
+    from mech.batchpool import _chunks
+
+    for n, largest, workers in ((1000, 32, 2), (7, 3, 2), (1, 32, 4), (100, 1, 2)):
+        chunks = list(_chunks(n, largest, workers))
+        assert [i for c in chunks for i in c] == list(range(n))
+        assert all(1 <= len(c) <= largest for c in chunks)
+        assert len(chunks[-1]) == 1
+    assert len(next(iter(_chunks(1000, 32, 2)))) == 32
+
+
+def test_a_worker_dying_with_a_chunk_waiting_in_its_pipe_loses_only_its_current_job() -> None:
+    """Each worker is sent its next chunk ahead; a crash hands that chunk to a fresh worker."""
+    jobs = [("ok", float(i)) for i in range(12)]
+    jobs[1] = ("crash", 0.0)
+    got = list(run_jobs(jobs, _job, _lost, workers=2, timeout=None, chunk=3))
+    assert got == [f"done {i}" if i != 1 else "lost crash: crash" for i in range(12)]
+
+
+def _blas_threads(_: int) -> str:
+    return os.environ.get("OPENBLAS_NUM_THREADS", "unset")
+
+
+def test_workers_run_blas_on_one_thread_unless_told_otherwise(monkeypatch: pytest.MonkeyPatch) -> None:
+    """One worker per core already: a BLAS thread pool per worker would only oversubscribe them."""
+    monkeypatch.delenv("OPENBLAS_NUM_THREADS", raising=False)
+    assert list(run_jobs([0, 1], _blas_threads, _lost, workers=2)) == ["1", "1"]
+    monkeypatch.setenv("OPENBLAS_NUM_THREADS", "3")
+    assert list(run_jobs([0, 1], _blas_threads, _lost, workers=2)) == ["3", "3"]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 import textwrap
 
@@ -624,3 +625,75 @@ def test_gear_teeth_without_a_module_are_located_naming_module(write):
     p = mech("dof", str(f))
     assert_bad_input(p, f)
     assert "module" in p.stderr
+
+
+# -- nesting, nulls and the collector on large files ------------------------------------------
+_MANY_BRACKETS = "x: [" + ", ".join(["[a]"] * 300) + "]\n"  # enough brackets that nesting is measured
+
+
+@pytest.mark.parametrize("composer_stops_itself", [True, False], ids=["libyaml>=0.2.5", "older-libyaml"])
+def test_nesting_past_64_is_located_at_the_first_list_too_deep(monkeypatch, composer_stops_itself):
+    """Measured on the composed nodes (libyaml refuses crashing depths itself) or, where composing
+    could crash, on the event stream first: the same message at the same place either way."""
+    from mech.loader import nodes
+
+    monkeypatch.setattr(nodes, "_COMPOSER_STOPS_ITSELF", composer_stops_itself)
+    with pytest.raises(InputError) as info:
+        nodes.compose(_MANY_BRACKETS + "d: " + "[" * 64 + "]" * 64 + "\n", "t.yaml")
+    (p,) = info.value.problems
+    assert (p.where.line, p.where.column) == (2, 4 + 63) and "more than 64 deep" in p.message
+    nodes.compose(_MANY_BRACKETS + "d: " + "[" * 63 + "]" * 63 + "\n", "t.yaml")  # 64 levels: read
+
+
+def test_an_alias_counts_for_nesting_where_its_anchor_is_written():
+    from mech.loader import nodes
+
+    anchored = "a: &a " + "[" * 40 + "]" * 40 + "\nb: " + "[" * 40 + "*a" + "]" * 40 + "\n"
+    assert nodes.compose(anchored + _MANY_BRACKETS, "t.yaml") is not None  # 41 + 41 through the alias
+
+
+def test_only_plain_nulls_are_read_as_empty():
+    """The loader's resolver tags nulls exactly as YAML 1.1 does and nothing else."""
+    from mech.loader.nodes import compose, is_null
+
+    root = compose("a:\nb: ~\nc: null\nd: NULL\ne: ''\nf: 'null'\ng: no\nh: 0\ni: !!str\n", "t.yaml")
+    assert root is not None
+    assert {k.value: is_null(v) for k, v in root.value} == {
+        "a": True,
+        "b": True,
+        "c": True,
+        "d": True,
+        "e": False,
+        "f": False,
+        "g": False,
+        "h": False,
+        "i": False,
+    }
+
+
+def test_reading_leaves_the_cyclic_collector_as_it_was():
+    import gc
+
+    loads(FOUR_BAR)
+    assert gc.isenabled()
+    gc.disable()
+    try:
+        loads(FOUR_BAR)
+        assert not gc.isenabled()
+    finally:
+        gc.enable()
+
+
+def test_a_ten_thousand_joint_chain_is_read_with_every_joint_located():
+    n = 10_000
+    links = ["frame"] + [f"l{i}" for i in range(1, n)]
+    ring = [*links, "frame"]
+    joints = "".join(
+        f"  J{i}: {{type: revolute, links: [{a}, {b}]}}\n"
+        for i, (a, b) in enumerate(itertools.pairwise(ring))
+    )
+    m = loads(f"links: [{', '.join(links)}]\njoints:\n{joints}")
+    assert len(m.joints) == n and (m.joints[-1].where.line, m.joints[-1].where.column) == (n + 2, 3)
+    bad = joints.replace("links: [l4999, l5000]", "links: [l4999, l5000x]")
+    line, column, message = one_problem(f"links: [{', '.join(links)}]\njoints:\n{bad}")
+    assert (line, column) == (4999 + 3, 42) and "l5000x" in message  # J4999, its second link

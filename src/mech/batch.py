@@ -42,8 +42,7 @@ import os
 import stat
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import field, replace
-from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from mech._records import dataclass
 from mech.check import (
@@ -59,6 +58,9 @@ from mech.check import (
 )
 from mech.errors import InputError, MechError, Problem, Where
 from mech.options import SolveOptions
+
+if TYPE_CHECKING:  # pathlib costs mech check ~5 ms of start-up (urllib, ipaddress): only sheets need it
+    from pathlib import Path
 
 __all__ = [
     "DEFAULT_TIMEOUT",
@@ -354,6 +356,8 @@ class _Index:
 
     @classmethod
     def of(cls, files: Sequence[str], roots: Iterable[str]) -> _Index:
+        from pathlib import Path
+
         dirs = [Path(r) for r in roots if Path(r).is_dir()]
         ids: dict[str, list[str]] = {}
         for f in files:
@@ -425,6 +429,8 @@ def read_sheets(path: str) -> tuple[Sheet, ...]:
     InputError
         When ``path`` does not exist or a folder holds no sheets.
     """
+    from pathlib import Path
+
     root = Path(path)
     if root.is_dir():
         files = [Path(p) for p in _yaml_files(path)]
@@ -711,6 +717,8 @@ def _ignored(key: str, where: Where, got: Any, questions: tuple[str, ...]) -> Ve
 
 def _twice(path: str, entries: Sequence[SheetEntry]) -> InputError:
     """One problem answered by two entries of a sheet: neither is graded (which one was meant?)."""
+    from pathlib import Path
+
     entries = sorted(entries, key=lambda e: (e.where.line, e.where.column))
     keys = " and ".join(f"`{e.key}` (line {e.where.line})" for e in entries)
     return InputError(
@@ -752,11 +760,18 @@ def run(
     """
     files = find_problem_files(options.paths)
     sheets = read_sheets(options.answers) if options.answers else None
-    index = _Index.of(files, options.paths)
+    index = _Index.of(files, options.paths) if sheets is not None else _Index({}, {})  # keys name files
     tasks, extra = _plan(files, sheets, options.solve, index)
     if on_start is not None:
         on_start(len(tasks))
     from mech.batchpool import run_jobs
+
+    if options.workers > 1 and len(tasks) > 1:
+        # what every problem file needs (not numpy: a folder of DOF exercises never imports it),
+        # imported once here rather than once in each worker process
+        from mech.diagnose import diagnose  # noqa: F401
+        from mech.loader import load  # noqa: F401
+        from mech.topology import classify  # noqa: F401
 
     results = list(extra)
     used: list[tuple[str, str, str]] = []

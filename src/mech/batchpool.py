@@ -114,9 +114,40 @@ def run_jobs(
 
 
 # -- the pool -----------------------------------------------------------------------------------
+def _chunks(n: int, largest: int, workers: int) -> Iterator[list[int]]:
+    """Job indices in chunks of at most ``largest``, smaller as the end nears (guided scheduling).
+
+    Each chunk is about a quarter of the jobs left per worker, so the last chunks
+    are single jobs and no worker sits idle at the end while another finishes a
+    full chunk.
+    """
+    i = 0
+    while i < n:
+        size = max(1, min(largest, (n - i) // (4 * workers)))
+        yield list(range(i, min(i + size, n)))
+        i += size
+
+
+#: The thread pools of the BLAS libraries numpy may be built on (OpenBLAS, MKL, OpenMP, Accelerate).
+_BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "OMP_NUM_THREADS", "VECLIB_MAXIMUM_THREADS")
+
+
+def _one_blas_thread() -> None:
+    """A worker's numpy (imported in the worker, on its first solve) runs BLAS on one thread.
+
+    The pool already runs one worker per core, so a BLAS thread pool in each
+    worker could only oversubscribe the cores, and the matrices are a few rows
+    each.  Starting OpenBLAS's pool cost ~40 ms of CPU per worker (its threads
+    spin while they wait), as much as 40 files.  A variable the user set is kept.
+    """
+    for name in _BLAS_THREADS:
+        os.environ.setdefault(name, "1")
+
+
 def _worker(conn: Any, slot: int, board: Any, limited: _Limited[Any, Any], jobs: Sequence[Any]) -> None:
     """Run the chunks of job indices the parent sends; say on ``board`` which job runs since when."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle: it kills us
+    _one_blas_thread()
     try:
         while True:
             indices = conn.recv()
@@ -133,12 +164,22 @@ def _worker(conn: Any, slot: int, board: Any, limited: _Limited[Any, Any], jobs:
         return
 
 
+#: Chunks sent to a worker ahead of its results: the next one waits in its pipe, so a worker never
+#: sits idle while the parent streams the rows of the chunk it has just finished.
+_IN_FLIGHT = 2
+
+
 class _Slot:
-    __slots__ = ("conn", "held", "proc")
+    __slots__ = ("chunks", "conn", "proc")
 
     def __init__(self, proc: Any, conn: Any) -> None:
         self.proc, self.conn = proc, conn
-        self.held: list[int] = []
+        self.chunks: deque[list[int]] = deque()  # sent, results not yet back (in the order sent)
+
+    @property
+    def held(self) -> list[int]:
+        """The jobs this worker holds: running, or waiting in its pipe."""
+        return [i for chunk in self.chunks for i in chunk]
 
 
 class _Pool(Generic[T, R]):
@@ -168,9 +209,7 @@ class _Pool(Generic[T, R]):
         self.timeout = timeout
         self.grace = None if timeout is None else 2.0 + 0.5 * timeout
         self.board = self.ctx.Array("d", [-1.0, 0.0] * workers, lock=False)
-        self.queue: deque[list[int]] = deque(
-            list(range(i, min(i + chunk, len(jobs)))) for i in range(0, len(jobs), chunk)
-        )
+        self.queue: deque[list[int]] = deque(_chunks(len(jobs), chunk, workers))
         self.slots: list[_Slot | None] = [None] * workers
         self.done: dict[int, R] = {}
 
@@ -211,10 +250,13 @@ class _Pool(Generic[T, R]):
         try:
             while emitted < len(self.jobs):
                 for slot, s in enumerate(self.slots):
-                    if (s is None or not s.held) and self.queue:
+                    while self.queue and (s is None or len(s.chunks) < _IN_FLIGHT):
                         s = s or self._start(slot)
-                        s.held = self.queue.popleft()
-                        s.conn.send(s.held)
+                        s.chunks.append(self.queue.popleft())
+                        try:
+                            s.conn.send(s.chunks[-1])
+                        except OSError:  # it died meanwhile: its end of the pipe says so, and _lose
+                            break  # hands every job it held (this chunk too) to a fresh worker
                 busy = {s.conn: i for i, s in enumerate(self.slots) if s is not None and s.held}
                 ready = wait(list(busy), timeout=0.25) if busy else []
                 for conn in ready:
@@ -228,7 +270,7 @@ class _Pool(Generic[T, R]):
                         continue
                     for index, result in got:
                         self.done[index] = result
-                    s.held = []
+                    s.chunks.popleft()  # a worker answers its chunks in the order they were sent
                 self._police()
                 while emitted in self.done:
                     yield self.done.pop(emitted)

@@ -458,9 +458,11 @@ def _reason(error: MechError) -> str:
 
 
 def _replace(v: Verdict, **changes: Any) -> Verdict:
-    from dataclasses import replace
+    """``dataclasses.replace`` for a verdict, without its per-call walk over the fields' metadata."""
+    return Verdict(**{name: changes.pop(name, getattr(v, name)) for name in _VERDICT_FIELDS}, **changes)
 
-    return replace(v, **changes)
+
+_VERDICT_FIELDS = Verdict.__match_args__
 
 
 # -- comparisons, one per Compare mode ----------------------------------------------------------

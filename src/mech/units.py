@@ -116,12 +116,18 @@ _UNITS: dict[str, tuple[Dimension, float]] = {
 }
 
 _NUMBER = r"[+-]?(?:\d+(?:[_\d]*)(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?"
+# compiled once: each is matched a dozen times per file read (the module-level re functions
+# re-format and look the pattern up in re's cache on every call)
+_PLAIN_NUMBER = re.compile(_NUMBER.replace("[_\\d]*", "\\d*"))
+_QUANTITY = re.compile(rf"^\s*({_NUMBER})\s*(.*?)\s*$")
+_SENSE = re.compile(r"\s+(cw|ccw|CW|CCW|clockwise|anticlockwise|counterclockwise|counter-clockwise)$")
+_PER_S2 = re.compile(r"/s2$")
 
 
 def _normalise_unit(unit: str) -> str:
     """Spellings users write for the same unit: ``m/s²``, ``m/s2``, ``m/sec^2``, ``RPM``."""
     u = unit.strip().replace("²", "^2").replace("**2", "^2").replace("sec", "s")
-    u = re.sub(r"/s2$", "/s^2", u)
+    u = _PER_S2.sub("/s^2", u)
     u = u.replace(" ", "")
     if u.lower() in ("rpm", "r.p.m.", "r.p.m", "rev/min"):
         return "rpm"
@@ -155,7 +161,7 @@ def parse_number(text: str) -> float:
     which have no place in a mechanism.
     """
     s = text.strip().replace("_", "")
-    if not re.fullmatch(_NUMBER.replace("[_\\d]*", "\\d*"), s):
+    if not _PLAIN_NUMBER.fullmatch(s):
         raise ValueError(f"{text!r} is not a number")
     value = float(s)
     if not math.isfinite(value):
@@ -196,12 +202,12 @@ def parse_quantity(text: str) -> Quantity:
     """
     s = text.strip()
     sense = None
-    m = re.search(r"\s+(cw|ccw|CW|CCW|clockwise|anticlockwise|counterclockwise|counter-clockwise)$", s)
+    m = _SENSE.search(s)
     if m:
         word = m.group(1).lower()
         sense = "cw" if word in ("cw", "clockwise") else "ccw"
         s = s[: m.start()].strip()
-    m = re.match(rf"^\s*({_NUMBER})\s*(.*?)\s*$", s)
+    m = _QUANTITY.match(s)
     if not m:
         raise ValueError(f"{text!r} is not a number with a unit")
     value = parse_number(m.group(1))

@@ -29,7 +29,7 @@ import sys
 
 from mech.errors import InputError, Where
 from mech.loader.mechanism import read_mechanism
-from mech.loader.nodes import compose, decode, is_null, node_kind
+from mech.loader.nodes import compose, decode, is_null, no_cycle_collection, node_kind
 from mech.loader.refs import placement_cycles
 from mech.loader.sheets import parse_answer_entries, parse_answers
 from mech.model import Mechanism
@@ -97,4 +97,5 @@ def loads(text: str | bytes, *, path: str = "<string>") -> Mechanism:
     """
     if isinstance(text, bytes):
         text = decode(text, path)
-    return read_mechanism(text, path)
+    with no_cycle_collection():
+        return read_mechanism(text, path)

@@ -95,12 +95,23 @@ def _joint_type(r: NodeReader, vnode: yaml.Node, fields: Fields, what: str) -> J
 
 def _check_keys(r: NodeReader, fields: Fields, jtype: JointType, pair: PairKind) -> None:
     """Every key is a common one or this type's own; another type's key is named as such."""
-    allowed = set(COMMON_JOINT_KEYS) | set(pair.keys)
+    allowed = _allowed_keys(jtype, pair)
     for key, (kn, _) in fields.items():
         if key not in allowed:
             others = [t.value for t, k in KINDS.items() if key in k.keys]
             hint = f"`{key}` belongs to {', '.join(others)} joints" if others else did_you_mean(key, allowed)
             r.problem(kn, f"unknown key {key!r} for a {jtype.value} joint", hint)
+
+
+def _allowed_keys(jtype: JointType, pair: PairKind) -> frozenset[str]:
+    """The keys a joint of this type may have: the common ones and its own (made once per type)."""
+    allowed = _ALLOWED.get(jtype)
+    if allowed is None:
+        allowed = _ALLOWED[jtype] = frozenset(COMMON_JOINT_KEYS) | frozenset(pair.keys)
+    return allowed
+
+
+_ALLOWED: dict[JointType, frozenset[str]] = {}
 
 
 def _joint_links(

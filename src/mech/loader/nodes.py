@@ -17,19 +17,84 @@ messages.  The small helpers that describe nodes in messages live here too.
 
 from __future__ import annotations
 
+import gc
 import re
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
+from typing import Any
 
 import yaml
 
 from mech.errors import InputError, Where, source_lines
 
-__all__ = ["compose", "decode", "did_you_mean", "is_null", "node_kind", "text_of", "where_of"]
+__all__ = [
+    "compose",
+    "decode",
+    "did_you_mean",
+    "is_null",
+    "no_cycle_collection",
+    "node_kind",
+    "text_of",
+    "where_of",
+]
 
-_YamlLoader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+_NULL = "tag:yaml.org,2002:null"
+_NULLS = frozenset(("", "~", "null", "Null", "NULL"))  # YAML 1.1's plain nulls, as PyYAML resolves them
+_DEFAULT_TAGS = {
+    yaml.ScalarNode: "tag:yaml.org,2002:str",
+    yaml.SequenceNode: "tag:yaml.org,2002:seq",
+    yaml.MappingNode: "tag:yaml.org,2002:map",
+}
+
+
+class _YamlLoader(getattr(yaml, "CSafeLoader", yaml.SafeLoader)):  # type: ignore[misc]
+    """PyYAML's safe loader (libyaml's C parser when present), resolving only the tag mech reads.
+
+    Scalars are read from their text, so of a tag only "is it null" is ever
+    asked (:func:`is_null`).  PyYAML's resolver tries a dozen regular
+    expressions on every plain scalar (bool, int, float, timestamp …) and walks
+    its path resolvers at every node: a third of composing a file, for tags
+    nobody reads.  Here a plain null (empty, ``~``, ``null``, ``Null``,
+    ``NULL``) is tagged null exactly as PyYAML tags it, every other scalar
+    ``str``, a list ``seq``, a mapping ``map``; explicit tags are kept as written.
+    """
+
+    def resolve(self, kind: type[yaml.Node], value: str | None, implicit: tuple[bool, bool]) -> str:
+        if kind is yaml.ScalarNode and implicit[0] and value in _NULLS:
+            return _NULL
+        return _DEFAULT_TAGS[kind]
+
+    def descend_resolver(self, current_node: yaml.Node | None, current_index: object) -> None:
+        return None  # no path resolvers
+
+    def ascend_resolver(self) -> None:
+        return None
+
 
 MAX_NODES = 200_000  # an alias bomb is refused, not expanded
-MAX_DEPTH = 64  # deeper nesting is refused before libyaml's recursive composer sees it
+MAX_DEPTH = 64  # deeper nesting is refused (before composing, where the composer could crash on it)
+
+
+@contextmanager
+def no_cycle_collection() -> Iterator[None]:
+    """Reading a file without the cyclic garbage collector running meanwhile.
+
+    Composing and reading a file allocate a node, two marks and a tag per value,
+    then the model: objects that live until the file is read and form no cycles
+    (reference counting frees them).  The collector cannot know that: it runs
+    every 700 allocations, and each full collection walks every object alive,
+    so on a large file (10,000 joints: 500,000 objects) it cost more than the
+    reading itself (0.4 s of 0.8 s) while finding nothing to free.  It resumes
+    when the file is read (and stays off if it was off).
+    """
+    if not gc.isenabled():
+        yield
+        return
+    gc.disable()
+    try:
+        yield
+    finally:
+        gc.enable()
 
 
 # UTF-32 before UTF-16: the UTF-32-LE mark begins with the UTF-16-LE one
@@ -91,8 +156,10 @@ def compose(text: str, path: str, *, what: str = "this") -> yaml.Node | None:
     InputError
         At the line and column of a syntax error, with a hint.
     """
+    deep = _could_nest_deeply(text)
     try:
-        _check_depth(text, path)
+        if deep and not _COMPOSER_STOPS_ITSELF:
+            _check_depth(text, path)
         root = yaml.compose(text, Loader=_YamlLoader)
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
@@ -113,6 +180,8 @@ def compose(text: str, path: str, *, what: str = "this") -> yaml.Node | None:
         raise InputError(f"{what} is not valid YAML: {exc}", where=Where(path)) from None
     if root is not None:
         _check_size(root, path)
+        if deep:
+            _check_tree_depth(root, path)
     return root
 
 
@@ -150,47 +219,103 @@ def _yaml_hint(text: str, where: Where) -> str:
     return "check indentation, colons and brackets near this place"
 
 
-def _check_depth(text: str, path: str) -> None:
-    """Refuse absurd nesting before composing: libyaml's composer recurses in C and
-    would crash the interpreter (not raise) on tens of thousands of nested brackets.
+def _libyaml_stops_deep_nesting() -> bool:
+    """True when composing cannot crash however deep the text nests.
 
-    The event stream is flat, so counting depth on it is safe; it is only read
-    when the text has enough brackets or dashes to nest deeply at all.
+    libyaml's composer recurses in C, and before 0.2.5 it crashed the
+    interpreter (not raised) on tens of thousands of nested brackets; since
+    0.2.5 its scanner refuses more than 1,000 levels with a located error.
+    PyYAML's own (pure Python) composer would recurse past Python's limit.
     """
-    if text.count("[") + text.count("{") + text.count("- ") < 4 * MAX_DEPTH:
-        return
+    if not issubclass(_YamlLoader, getattr(yaml, "CSafeLoader", ())):
+        return False
+    try:
+        from yaml import _yaml  # type: ignore[attr-defined]
+
+        return tuple(_yaml.get_version()) >= (0, 2, 5)  # type: ignore[no-any-return]
+    except (ImportError, AttributeError):  # pragma: no cover - a libyaml binding without a version
+        return False
+
+
+_COMPOSER_STOPS_ITSELF = _libyaml_stops_deep_nesting()
+
+
+def _could_nest_deeply(text: str) -> bool:
+    """Whether the text has enough brackets or dashes to nest more than MAX_DEPTH at all."""
+    return text.count("[") + text.count("{") + text.count("- ") >= 4 * MAX_DEPTH
+
+
+def _nested_too_deep(path: str, mark: Any) -> InputError:
+    return InputError(
+        f"the file nests lists or mappings more than {MAX_DEPTH} deep",
+        where=Where(path, mark.line + 1, mark.column + 1) if mark else Where(path),
+        hint="a mechanism file nests three or four levels; look for runaway brackets",
+    )
+
+
+def _check_tree_depth(root: yaml.Node, path: str) -> None:
+    """Refuse nesting deeper than MAX_DEPTH, found on the composed nodes.
+
+    The nodes are walked in the order they are written, so the first list or
+    mapping too deep is the one named; an alias is counted where its anchor is
+    written (as on the event stream), not again where it is used.
+    """
+    scalar = yaml.ScalarNode
+    seen: set[yaml.Node] = set()
+    stack: list[tuple[yaml.Node, int]] = [(root, 1)]
+    while stack:
+        node, depth = stack.pop()
+        if node in seen:
+            continue
+        if depth > MAX_DEPTH:
+            raise _nested_too_deep(path, node.start_mark)
+        seen.add(node)
+        children = _children(node)
+        children.reverse()
+        stack.extend([(n, depth + 1) for n in children if n.__class__ is not scalar])
+
+
+def _children(node: yaml.Node) -> list[yaml.Node]:
+    """A collection's nodes in the order written (a mapping's keys and values alternating)."""
+    if isinstance(node, yaml.MappingNode):
+        return [n for kv in node.value for n in kv]
+    if isinstance(node, yaml.SequenceNode):
+        return list(node.value)
+    return []
+
+
+def _check_depth(text: str, path: str) -> None:
+    """Refuse absurd nesting before composing, on the event stream, which is flat
+    (so counting depth on it is safe).
+
+    Only where composing could crash (:func:`_libyaml_stops_deep_nesting`);
+    elsewhere the composed nodes are measured (:func:`_check_tree_depth`).
+    """
     depth = 0
     for event in yaml.parse(text, Loader=_YamlLoader):
         if isinstance(event, (yaml.SequenceStartEvent, yaml.MappingStartEvent)):
             depth += 1
             if depth > MAX_DEPTH:
-                mark = event.start_mark
-                raise InputError(
-                    f"the file nests lists or mappings more than {MAX_DEPTH} deep",
-                    where=Where(path, mark.line + 1, mark.column + 1) if mark else Where(path),
-                    hint="a mechanism file nests three or four levels; look for runaway brackets",
-                )
+                raise _nested_too_deep(path, event.start_mark)
         elif isinstance(event, (yaml.SequenceEndEvent, yaml.MappingEndEvent)):
             depth -= 1
 
 
 def _check_size(root: yaml.Node, path: str) -> None:
-    seen = 0
+    """Refuse a file that expands to more than MAX_NODES values (aliases counted each time used)."""
+    scalar = yaml.ScalarNode
+    seen = 1
     stack = [root]
     while stack:
-        node = stack.pop()
-        seen += 1
+        children = _children(stack.pop())
+        seen += len(children)
         if seen > MAX_NODES:
             raise InputError(
                 "the file expands to too many values (an alias bomb?)",
                 where=where_of(root, path),
                 hint="a mechanism file needs a few hundred values, not millions",
             )
-        if isinstance(node, yaml.MappingNode):
-            for k, v in node.value:
-                stack.extend((k, v))
-        elif isinstance(node, yaml.SequenceNode):
-            stack.extend(node.value)
+        stack.extend([n for n in children if n.__class__ is not scalar])
 
 
 def where_of(node: yaml.Node | None, path: str) -> Where:

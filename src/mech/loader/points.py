@@ -21,6 +21,8 @@ POINT_KEYS = ("link", "description", *PLACE_KEYS)
 
 def read_place(r: NodeReader, fields: dict[str, tuple[Any, Any]], what: str) -> Placement:
     """The placement keys of a joint's or a point's mapping, checked for a consistent way to place it."""
+    if not any(k in fields for k in PLACE_KEYS):
+        return Placement()  # placed by the lengths (most joints of a file)
     at = r.optional(fields, "at", lambda n: r.vec(n, f"`at` of {what}"))
     near = r.optional(fields, "near", lambda n: r.vec(n, f"`near` of {what}"))
     origin = r.optional(fields, "from", lambda n: _anchor(r, n, "from", what))
