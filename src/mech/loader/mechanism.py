@@ -13,7 +13,6 @@ from typing import Any
 
 import yaml
 
-from mech._text import visible
 from mech.answers import names_by_kind
 from mech.errors import InputError, Where
 from mech.loader.answers import DEFAULT_TOLERANCE, read_answers, read_asks
@@ -80,9 +79,10 @@ def read_mechanism(text: str, path: str) -> Mechanism:
 
 
 def _mechanism(r: NodeReader, root: yaml.MappingNode, top: Top) -> Mechanism:
-    # the title is free text shown atop every report: its control and direction
-    # characters are kept as visible escapes (names of links and joints refuse them)
-    name = r.optional(top, "name", lambda n: visible(r.text_value(n)))
+    # the title is free text, kept as written (JSON carries it whole); its control and
+    # direction characters are escaped where it is printed, by the consoles (mech.render.console)
+    # and the error messages — names of links and joints refuse them instead
+    name = r.optional(top, "name", r.text_value)
     r.optional(top, "description", r.text_value)
     r.optional(top, "source", r.text_value)
     r.optional(top, "units", lambda n: read_units(r, n))

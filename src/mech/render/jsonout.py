@@ -13,14 +13,26 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from typing import Any
 
+from mech._text import INVISIBLE
 from mech.errors import MechError
 
 
 def dumps(data: Any) -> str:
-    """Pretty JSON; NaN and infinity are written as null, never as invalid JSON."""
-    return json.dumps(_clean(data), indent=2, ensure_ascii=False)
+    """Pretty JSON; NaN and infinity are written as null, never as invalid JSON.
+
+    Text from users' files is carried whole (a title with a right-to-left override decodes to
+    that very character), but control and direction characters are written as JSON's own
+    ``\\uXXXX`` escapes, so that JSON shown on a terminal cannot drive or reorder it.  They can
+    only stand inside strings, where the escape means the same character.
+    """
+    return INVISIBLE.sub(_json_escape, json.dumps(_clean(data), indent=2, ensure_ascii=False))
+
+
+def _json_escape(match: re.Match[str]) -> str:
+    return f"\\u{ord(match.group()):04x}"
 
 
 def _clean(value: Any) -> Any:

@@ -20,6 +20,8 @@ import re
 import sys
 from typing import Any
 
+from mech._text import visible
+
 __all__ = ["SIMPLE", "PlainConsole", "Table", "Text"]
 
 # characters rich counts one cell wide and prints unchanged; anything else goes to rich
@@ -188,4 +190,6 @@ class PlainConsole:
         self.rich().print(*converted, soft_wrap=soft_wrap, **options)
 
     def _write(self, text: str) -> None:
-        sys.stdout.write(text + "\n")
+        # users' text (a title, a path) with its control and direction characters shown as
+        # escapes, as the rich console does for what is forwarded to it
+        sys.stdout.write(visible(text) + "\n")
