@@ -6,9 +6,10 @@ nothing from ``mech``: a test that compares mech against an oracle can fail.  Ea
 says what it derives and from what; ``tests/oracles/test_oracles.py`` checks the oracles
 themselves against textbook answers, so they are trusted for a reason.
 
-- :mod:`oracles.four_bar`: the four-bar chain (positions, ω, α by the vector loop; the
-  crank-rocker's limit positions and time ratio by the law of cosines; the rocker angle in
-  mpmath for derivatives to 30 digits).
+- :mod:`oracles.four_bar`: the four-bar chain (positions, ω, α by the vector loop, and the
+  same refused where it does not close or closes near a toggle; the crank-rocker's limit
+  positions and time ratio by the law of cosines; the rocker angle in mpmath for derivatives
+  to 30 digits).
 - :mod:`oracles.slider_crank`: the slider crank, in line or offset (loop equations
   differentiated; dead centres from the collinear crank-and-rod triangles; x_B in mpmath).
 - :mod:`oracles.velocity_field`: the velocity of every link of any planar chain from its
