@@ -11,7 +11,8 @@ themselves against textbook answers, so they are trusted for a reason.
   positions and time ratio by the law of cosines; the rocker angle in mpmath for derivatives
   to 30 digits).
 - :mod:`oracles.slider_crank`: the slider crank, in line or offset (loop equations
-  differentiated; dead centres from the collinear crank-and-rod triangles; x_B in mpmath).
+  differentiated; dead centres from the collinear crank-and-rod triangles; x_B in mpmath;
+  the crank's angle and ω when the slider drives, the closure differentiated in x).
 - :mod:`oracles.velocity_field`: the velocity of every link of any planar chain from its
   pin, slider and contact constraints (a linear solve), and I-centres read off that field.
 - :mod:`oracles.field_cases`: mechanisms written both as mech YAML and as those constraints.

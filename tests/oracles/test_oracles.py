@@ -27,7 +27,7 @@ from oracles.four_bar import (
     rocker_angle,
 )
 from oracles.lines import line_intersection, meet
-from oracles.slider_crank import slider_crank, slider_dead_centres, slider_x
+from oracles.slider_crank import slider_crank, slider_dead_centres, slider_driven_crank, slider_x
 from oracles.transmission import (
     crank_turns,
     diagonal_range,
@@ -167,6 +167,17 @@ def test_slider_dead_centres_are_where_the_slider_stops():
         assert xb == pytest.approx(x, rel=1e-12)
         assert v == pytest.approx(0.0, abs=1e-12)
     assert x_out - x_in > 2 * r  # an offset slider's stroke is longer than twice the crank
+
+
+def test_slider_driven_crank_runs_the_slider_crank_backwards():
+    """θ and ω from the slider's x and speed, put back into the crank-driven closed form (the rod's
+    angle differentiated): the slider stands at x and moves at the speed given."""
+    for r, rod, x, v in ((0.08, 0.25, 0.28, -2.0), (0.1, 0.4, 0.45, 1.0), (0.1, 0.4, 0.35, 3.0)):
+        th, w = slider_driven_crank(r, rod, x, v)
+        assert 0.0 < th < math.pi  # the crank pin above the axis
+        xb, _, vb, _, _ = slider_crank(r, rod, 0.0, th, w)
+        assert xb == pytest.approx(x, rel=1e-12)
+        assert vb == pytest.approx(v, rel=1e-9)
 
 
 def test_velocity_field_agrees_with_the_four_bar_loop_and_kennedy():
