@@ -17,7 +17,8 @@ themselves against textbook answers, so they are trusted for a reason.
   pin, slider and contact constraints (a linear solve), and I-centres read off that field.
 - :mod:`oracles.field_cases`: mechanisms written both as mech YAML and as those constraints.
 - :mod:`oracles.transmission`: the four-bar's transmission angle (the cosine rule, and its
-  half-angle form at a given diagonal BD) and whether its crank turns fully.
+  half-angle form at a given diagonal BD), whether its crank turns fully, and which of its
+  links turn fully by sampling the loop's closure at every angle of each.
 - :mod:`oracles.lines`: where two lines meet (Cramer's rule; the parametric form), for
   I-centres on Kennedy's lines.
 - :mod:`oracles.cam`: the textbook rise laws, a follower put on a profile taken as a bare

@@ -33,6 +33,7 @@ from oracles.transmission import (
     diagonal_range,
     transmission_angle,
     transmission_angle_at,
+    turning_by_sampling,
 )
 from oracles.velocity_field import icentre, velocity_field
 
@@ -319,3 +320,29 @@ def test_oscillating_pressure_angle_over_a_dwell_is_the_triangle_cam_centre_pivo
         at_c = math.degrees(math.acos((oc**2 + pc**2 - op**2) / (2 * oc * pc)))
         for deg in degrees:
             assert oscillating_pressure_angle(math.radians(deg)) == pytest.approx(90 - at_c, abs=1e-6)
+
+
+def test_turning_by_sampling_agrees_with_grashofs_inequality():
+    """Loop closure sampled at every angle against s + l < p + q: in a Grashof chain the shortest
+    link turns fully relative to the frame (all three moving links when the frame is shortest);
+    otherwise none does.  The crank's part also against :func:`crank_turns` (BD's range)."""
+    rng = np.random.default_rng(5)
+    seen = set()
+    names = ("frame", "crank", "coupler", "rocker")
+    for _ in range(60):
+        d, a, b, c = rng.uniform(10.0, 200.0, 4)
+        s, p, q, ll = sorted((d, a, b, c))
+        if abs(s + ll - p - q) <= 1e-2 * ll:  # as tests/properties/test_grashof.py: clear of the grid
+            continue
+        shortest = names[int(np.argmin((d, a, b, c)))]
+        if s + ll > p + q:
+            expected = set()
+        elif shortest == "frame":
+            expected = {"crank", "coupler", "rocker"}
+        else:
+            expected = {shortest}
+        turning = turning_by_sampling(d, a, b, c)
+        assert turning == expected, (d, a, b, c)
+        assert ("crank" in turning) == crank_turns(d, a, b, c)
+        seen.add(frozenset(turning))
+    assert len(seen) == 5  # every class met: none, each link alone, all three
