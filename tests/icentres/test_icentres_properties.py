@@ -9,6 +9,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from mech.icentres import Frame, Instant, Pin, from_instant
+from oracles.four_bar import four_bar_clear_of_toggle
 
 
 class Rigid:
@@ -22,26 +23,11 @@ class Rigid:
 
 
 def four_bar(a, b, c, theta, left):
-    """Ground AD = 1 on the x axis; crank a at theta; coupler b; rocker c; C by circle intersection."""
-    A, D = (0.0, 0.0), (1.0, 0.0)
-    B = (a * math.cos(theta), a * math.sin(theta))
-    dx, dy = D[0] - B[0], D[1] - B[1]
-    d = math.hypot(dx, dy)
-    assume(abs(b - c) + 0.05 < d < b + c - 0.05)  # assemblable, away from the toggle
-    along = (b * b - c * c + d * d) / (2 * d)
-    h = math.sqrt(b * b - along * along)
-    s = 1.0 if left else -1.0
-    C = (B[0] + (along * dx - s * h * dy) / d, B[1] + (along * dy + s * h * dx) / d)
-    # Velocities, crank at ω2 = 1: v_C = v_B + ω3 k×(C−B) = ω4 k×(C−D), solved by Cramer's rule.
-    vB = (-B[1], B[0])
-    r3, r4 = (C[0] - B[0], C[1] - B[1]), (C[0] - D[0], C[1] - D[1])
-    # ω3 (−r3y, r3x) − ω4 (−r4y, r4x) = −vB
-    m11, m12, m21, m22 = -r3[1], r4[1], r3[0], -r4[0]
-    det = m11 * m22 - m12 * m21
-    assume(abs(det) > 1e-3)
-    w3 = (-vB[0] * m22 + vB[1] * m12) / det
-    w4 = (m11 * -vB[1] + m21 * vB[0]) / det
-    return (A, B, C, D), (1.0, w3, w4)
+    """Ground AD = 1 on the x axis; crank a at theta, ω2 = 1; coupler b; rocker c; C left of B→D
+    if ``left``: oracles.four_bar's loop, taken only where it closes clear of the toggle."""
+    chain = four_bar_clear_of_toggle(a, b, c, 1.0, theta, 1.0, upper=left, margin=0.05, least_det=1e-3)
+    assume(chain is not None)  # assemblable, away from the toggle
+    return chain
 
 
 @settings(max_examples=150, deadline=None)

@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 from mech.kinematics import solve
 from mech.kinematics.blocks import block_form
 from mech.options import SolveOptions
+from oracles.four_bar import four_bar
 
 FRAME, COUPLER, ROCKER, CRANK = 0.15, 0.15, 0.08, 0.04
 
@@ -32,7 +33,7 @@ def dyad_chain(n_links: int, angle_deg: float = 60.0):
         joints[f"J{i}"] = {
             "type": "revolute",
             "links": [f"coupler{i}", f"rocker{i}"],
-            "near": _apex(math.radians(angle_deg), beta),  # the branch left of G→B
+            "near": stage(math.radians(angle_deg), beta)[0],  # the branch left of G→B
         }
         joints[f"G{i}"] = {
             "type": "revolute",
@@ -50,43 +51,16 @@ def dyad_chain(n_links: int, angle_deg: float = 60.0):
     )
 
 
-def _apex(theta: float, beta: float, sign: float = 1.0) -> list[float]:
-    """J of one stage: on circle (G, rocker) and circle (B, coupler), left of G→B for sign +1."""
-    bx, by = CRANK * math.cos(theta), CRANK * math.sin(theta)
-    gx, gy = FRAME * math.cos(beta), FRAME * math.sin(beta)
-    ex, ey = bx - gx, by - gy
-    e = math.hypot(ex, ey)
-    along = (ROCKER**2 - COUPLER**2 + e * e) / (2 * e)
-    h = sign * math.sqrt(ROCKER**2 - along * along)
-    return [gx + (along * ex - h * ey) / e, gy + (along * ey + h * ex) / e]
+def stage(theta: float, beta: float, omega: float = 0.0) -> tuple[list[float], tuple[float, float]]:
+    """J of one stage, left of G→B, and the (coupler, rocker) ω there, independent of mech.
 
-
-def crank_rocker_omega(theta: float, beta: float, omega: float) -> tuple[float, float]:
-    """Coupler and rocker ω of one stage by the loop-closure derivative (independent of mech).
-
-    The stage's frame is turned by ``beta``; J is where the circles (B, coupler) and
-    (G, rocker) meet, on either side of G→B: (left branch, right branch).
+    The stage is oracles.four_bar's chain with its frame A→G turned by ``beta``: worked at
+    crank angle θ − β and turned back (turning the whole chain leaves every ω as it is).
+    Left of G→B is right of B→G, the oracle's ``upper=False``.
     """
-    a, b, c, d = CRANK, COUPLER, ROCKER, FRAME
-    bx, by = a * math.cos(theta), a * math.sin(theta)
-    gx, gy = d * math.cos(beta), d * math.sin(beta)
-    ex, ey = bx - gx, by - gy
-    e = math.hypot(ex, ey)
-    # J on circle (G, c) and circle (B, b): two solutions; return ω for both
-    out = []
-    for sign in (1.0, -1.0):
-        along = (c * c - b * b + e * e) / (2 * e)
-        h = sign * math.sqrt(c * c - along * along)
-        jx = gx + (along * ex - h * ey) / e
-        jy = gy + (along * ey + h * ex) / e
-        # velocities: v_B + w3 × (J − B) = w4 × (J − G)
-        vbx, vby = -omega * by, omega * bx
-        r3x, r3y, r4x, r4y = jx - bx, jy - by, jx - gx, jy - gy
-        det = r3y * r4x - r4y * r3x  # solves [-r3y  r4y; r3x  -r4x] [w3 w4] = [-vbx -vby]
-        w3 = (-vbx * -r4x - r4y * -vby) / det
-        w4 = (-r3y * -vby - -vbx * r3x) / det
-        out.append((w3, w4))
-    return out[0], out[1]
+    C, w3, w4, _, _ = four_bar(CRANK, COUPLER, ROCKER, FRAME, theta - beta, omega, upper=False)
+    cos_b, sin_b = math.cos(beta), math.sin(beta)
+    return [cos_b * C[0] - sin_b * C[1], sin_b * C[0] + cos_b * C[1]], (w3, w4)
 
 
 @settings(max_examples=40, deadline=None)
@@ -136,7 +110,7 @@ def test_large_chain_newton_matches_each_stage_closed_form(n_links):
     for i in (1, stages // 2, stages):
         beta = 2 * math.pi * (i - 1) / stages
         got = (kin.links[f"coupler{i}"].omega, kin.links[f"rocker{i}"].omega)
-        drawn, _other = crank_rocker_omega(theta, beta, 10.0)  # each J drawn near the left branch
+        _, drawn = stage(theta, beta, 10.0)  # each J drawn near the left branch
         assert math.dist(got, drawn) < 1e-9 * 10.0
 
 

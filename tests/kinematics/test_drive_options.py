@@ -20,6 +20,7 @@ from mech.kinematics.mobility import kutzbach
 from mech.loader import load, loads
 from mech.options import SolveOptions
 from mechanism_texts import slider_crank as slider_crank_text
+from oracles.slider_crank import slider_driven_crank
 
 SLIDER_DRIVEN = """
 units: {length: mm, angle: deg}
@@ -35,15 +36,9 @@ drive: {joint: P, speed: -2 m/s}
 
 
 def crank_omega(v_b: float) -> float:
-    """ω of the crank driven by the piston at x_B = 0.28 m, by hand.
-
-    A = (r cos θ, r sin θ) with |A − B| = l; differentiating
-    (r cos θ − x)² + (r sin θ)² = l² gives ω = ẋ (r cos θ − x) / (r x sin θ).
-    """
-    r, rod, x = 0.08, 0.25, 0.28
-    cos_t = (r * r + x * x - rod * rod) / (2 * r * x)
-    th = math.acos(cos_t)  # A above the axis (near: [40, 69])
-    return v_b * (r * math.cos(th) - x) / (r * x * math.sin(th))
+    """ω of SLIDER_DRIVEN's crank (OA 0.08 m, AB 0.25 m) with the piston at x_B = 0.28 m moving at
+    ``v_b``, A above the axis (near: [40, 69]): worked in oracles.slider_crank."""
+    return slider_driven_crank(0.08, 0.25, 0.28, v_b)[1]
 
 
 def test_file_speed_gives_the_crank_omega():

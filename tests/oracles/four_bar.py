@@ -4,7 +4,9 @@ Crank AB about A = (0, 0), coupler BC, rocker CD about D = (d, 0).  Derived here
 geometry alone: C by intersecting the circles about B and D, the velocities and
 accelerations from the vector loop differentiated once and twice (Raven's method, e.g.
 Norton, *Design of Machinery*, § 6.7 and § 7.3), the rocker's limit positions from the law
-of cosines (crank and coupler in line).  Nothing of mech is used.
+of cosines (crank and coupler in line).  :func:`four_bar_clear_of_toggle` is the same loop
+refused (``None``) where the chain does not close, or closes too near a toggle for its
+velocities to be well conditioned.  Nothing of mech is used.
 """
 
 from __future__ import annotations
@@ -15,7 +17,15 @@ from typing import Any
 import mpmath
 import numpy as np
 
-__all__ = ["crank_rocker_limits", "crank_rocker_sweep", "four_bar", "rocker_angle"]
+__all__ = [
+    "crank_rocker_limits",
+    "crank_rocker_sweep",
+    "four_bar",
+    "four_bar_clear_of_toggle",
+    "rocker_angle",
+]
+
+Point = tuple[float, float]
 
 
 def _k(v: np.ndarray) -> np.ndarray:
@@ -48,6 +58,38 @@ def four_bar(
     rhs = -(aB - w3**2 * BC + w4**2 * DC)
     a3, a4 = np.linalg.solve(M, rhs)
     return C, float(w3), float(w4), float(a3), float(a4)
+
+
+def four_bar_clear_of_toggle(
+    a: float,
+    b: float,
+    c: float,
+    d: float,
+    theta: float,
+    w2: float,
+    *,
+    upper: bool = True,
+    margin: float = 0.0,
+    least_det: float = 0.0,
+) -> tuple[tuple[Point, Point, Point, Point], tuple[float, float, float]] | None:
+    """Pins A, B, C, D and (ω2, ω3, ω4) of :func:`four_bar`, or ``None`` near a toggle.
+
+    The chain closes at crank angle ``theta`` when the diagonal BD (triangle A, B, D) lies
+    within [|b − c|, b + c] (triangle B, C, D); ``None`` unless it lies more than ``margin``
+    inside.  The velocity loop's matrix [k×BC, −k×DC] has determinant −BC × DC = −bc sin μ
+    (μ the transmission angle), which vanishes at a toggle where ω3 and ω4 grow without
+    bound: ``None`` too when its size is ``least_det`` or less.  Otherwise the positions of
+    :func:`four_bar` as tuples, and its angular velocities with the crank's ω2 first.
+    """
+    B = (a * math.cos(theta), a * math.sin(theta))
+    bd = math.hypot(d - B[0], -B[1])
+    if not abs(b - c) + margin < bd < b + c - margin:
+        return None
+    C, w3, w4, _, _ = four_bar(a, b, c, d, theta, w2, upper=upper)
+    cross = (C[0] - B[0]) * (C[1] - 0.0) - (C[1] - B[1]) * (C[0] - d)
+    if abs(cross) <= least_det:
+        return None
+    return ((0.0, 0.0), B, (float(C[0]), float(C[1])), (d, 0.0)), (w2, w3, w4)
 
 
 def crank_rocker_sweep(

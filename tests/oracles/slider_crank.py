@@ -4,7 +4,9 @@ Crank OA of length r about O = (0, 0), rod AB of length l, the slider B on the l
 ahead of the crank (x > 0).  Derived from the loop r sinθ + l sinφ = e,
 x = r cosθ + l cosφ, differentiated once and twice; the dead centres from the collinear
 crank-and-rod triangles (the textbook analytical method for the piston, e.g. Khurmi &
-Gupta, *Theory of Machines*, here exact: no series in r/l).
+Gupta, *Theory of Machines*, here exact: no series in r/l).  :func:`slider_driven_crank`
+runs the chain the other way, the slider driving: the crank's angle from the slider's x by
+the law of cosines, its ω from the closure |A − B| = l differentiated with x as the input.
 Nothing of mech is used.
 """
 
@@ -15,7 +17,7 @@ from typing import Any
 
 import mpmath
 
-__all__ = ["slider_crank", "slider_dead_centres", "slider_x"]
+__all__ = ["slider_crank", "slider_dead_centres", "slider_driven_crank", "slider_x"]
 
 
 def slider_crank(
@@ -59,3 +61,15 @@ def slider_dead_centres(r: float, rod: float, e: float) -> tuple[float, float, f
 def slider_x(r: float, rod: float, e: float, th: Any) -> Any:
     """x_B = r cosθ + √(l² − (e − r sinθ)²) in mpmath (the slider ahead), for exact derivatives."""
     return r * mpmath.cos(th) + mpmath.sqrt(rod**2 - (e - r * mpmath.sin(th)) ** 2)
+
+
+def slider_driven_crank(r: float, rod: float, x: float, v: float) -> tuple[float, float]:
+    """Crank angle θ (rad) and ω of an in-line slider crank (e = 0) driven by its slider.
+
+    The slider B = (x, 0) moves at ẋ = ``v``; A = (r cos θ, r sin θ) above the axis with
+    |A − B| = l.  The law of cosines in O, A, B gives cos θ = (r² + x² − l²) / (2 r x);
+    differentiating (r cos θ − x)² + (r sin θ)² = l² gives ω = ẋ (r cos θ − x) / (r x sin θ).
+    """
+    cos_t = (r * r + x * x - rod * rod) / (2 * r * x)
+    th = math.acos(cos_t)  # A above the axis
+    return th, v * (r * math.cos(th) - x) / (r * x * math.sin(th))

@@ -19,10 +19,22 @@ from oracles.cam import (
     textbook_rise,
     three_point_radius,
 )
-from oracles.four_bar import crank_rocker_limits, crank_rocker_sweep, four_bar, rocker_angle
+from oracles.four_bar import (
+    crank_rocker_limits,
+    crank_rocker_sweep,
+    four_bar,
+    four_bar_clear_of_toggle,
+    rocker_angle,
+)
 from oracles.lines import line_intersection, meet
-from oracles.slider_crank import slider_crank, slider_dead_centres, slider_x
-from oracles.transmission import crank_turns, diagonal_range, transmission_angle, transmission_angle_at
+from oracles.slider_crank import slider_crank, slider_dead_centres, slider_driven_crank, slider_x
+from oracles.transmission import (
+    crank_turns,
+    diagonal_range,
+    transmission_angle,
+    transmission_angle_at,
+    turning_by_sampling,
+)
 from oracles.velocity_field import icentre, velocity_field
 
 # Khurmi & Gupta, *Theory of Machines*, Example 7.1: AD = 150 mm fixed, crank AB = 40 mm at
@@ -67,6 +79,61 @@ def test_four_bar_oracle_sweep_agrees_with_the_single_angle_loop():
         assert vc[i] == pytest.approx(abs(w4) * 2.5, rel=1e-12)
 
 
+def _coupler_and_rocker_directions(a, b, c, d, theta, upper) -> tuple[float, float]:
+    """Directions (rad) of B→C and D→C from the closed-form C of :func:`four_bar`."""
+    C = four_bar(a, b, c, d, theta, 1.0, upper=upper)[0]
+    B = (a * math.cos(theta), a * math.sin(theta))
+    return math.atan2(C[1] - B[1], C[0] - B[0]), math.atan2(C[1], C[0] - d)
+
+
+@pytest.mark.parametrize("upper", [True, False])
+def test_four_bar_omega_is_the_derivative_of_its_positions_on_either_branch(upper):
+    """ω3 and ω4 by the vector loop against central differences of the directions of BC and DC
+    taken from the closed-form C (the circle intersection): two routes to one answer."""
+    h = 1e-6
+    for a, b, c, d in ((0.04, 0.15, 0.08, 0.15), (1.0, 3.0, 2.5, 3.0), (0.3, 0.9, 0.7, 1.0)):
+        for th in np.radians(np.arange(5.0, 360.0, 25.0)):
+            p3, p4 = _coupler_and_rocker_directions(a, b, c, d, th + h, upper)
+            n3, n4 = _coupler_and_rocker_directions(a, b, c, d, th - h, upper)
+            _, w3, w4, _, _ = four_bar(a, b, c, d, th, 2.5, upper=upper)
+            turn = [math.remainder(p3 - n3, 2 * math.pi), math.remainder(p4 - n4, 2 * math.pi)]
+            assert 2.5 * np.array(turn) / (2 * h) == pytest.approx([w3, w4], rel=1e-6, abs=1e-8)
+
+
+def test_four_bar_clear_of_toggle_refuses_where_the_cosine_rule_says_and_agrees_with_the_field():
+    """None exactly where BD leaves the closure (less a margin) or where bc·|sin μ| (μ by the law of
+    cosines, :mod:`oracles.transmission`) is too small; elsewhere ω as the velocity field's solve."""
+    rng = np.random.default_rng(14)
+    refused = {"open": 0, "toggle": 0, "kept": 0}
+    for i in range(400):
+        # test_icentres_properties' margins, and a determinant large enough to refuse some
+        margin, least = (0.05, 1e-3) if i % 2 else (0.0, 0.1)
+        a, b, c = rng.uniform(0.1, 2.0, 3)
+        th, upper = rng.uniform(-math.pi, math.pi), bool(rng.integers(2))
+        got = four_bar_clear_of_toggle(a, b, c, 1.0, th, 1.0, upper=upper, margin=margin, least_det=least)
+        bd = math.hypot(a * math.cos(th) - 1.0, a * math.sin(th))
+        if not abs(b - c) + margin < bd < b + c - margin:
+            refused["open"] += 1
+            assert got is None
+        elif b * c * math.sin(transmission_angle(1.0, a, b, c, th)) <= least:
+            refused["toggle"] += 1
+            assert got is None
+        else:
+            refused["kept"] += 1
+            assert got is not None
+            (A, B, C, D), (w2, w3, w4) = got
+            assert (math.dist(B, C), math.dist(C, D)) == pytest.approx((b, c), rel=1e-12)
+            pins = [
+                ("pin", A, "frame", "crank"),
+                ("pin", B, "crank", "coupler"),
+                ("pin", C, "coupler", "rocker"),
+                ("pin", D, "rocker", "frame"),
+            ]
+            field = velocity_field(["frame", "crank", "coupler", "rocker"], "frame", pins, ("crank", w2))
+            assert (field["coupler"][1], field["rocker"][1]) == pytest.approx((w3, w4), rel=1e-9, abs=1e-9)
+    assert min(refused.values()) > 0, refused
+
+
 def test_crank_rocker_limits_give_khurmi_7_1_time_ratio_and_a_resting_rocker():
     # mechanisms/four_bar.yaml works the same chain by the cosine rule: crank angles between the
     # limit positions 187.61 / 172.39 deg, time ratio 1.0883.
@@ -101,6 +168,17 @@ def test_slider_dead_centres_are_where_the_slider_stops():
         assert xb == pytest.approx(x, rel=1e-12)
         assert v == pytest.approx(0.0, abs=1e-12)
     assert x_out - x_in > 2 * r  # an offset slider's stroke is longer than twice the crank
+
+
+def test_slider_driven_crank_runs_the_slider_crank_backwards():
+    """θ and ω from the slider's x and speed, put back into the crank-driven closed form (the rod's
+    angle differentiated): the slider stands at x and moves at the speed given."""
+    for r, rod, x, v in ((0.08, 0.25, 0.28, -2.0), (0.1, 0.4, 0.45, 1.0), (0.1, 0.4, 0.35, 3.0)):
+        th, w = slider_driven_crank(r, rod, x, v)
+        assert 0.0 < th < math.pi  # the crank pin above the axis
+        xb, _, vb, _, _ = slider_crank(r, rod, 0.0, th, w)
+        assert xb == pytest.approx(x, rel=1e-12)
+        assert vb == pytest.approx(v, rel=1e-9)
 
 
 def test_velocity_field_agrees_with_the_four_bar_loop_and_kennedy():
@@ -242,3 +320,29 @@ def test_oscillating_pressure_angle_over_a_dwell_is_the_triangle_cam_centre_pivo
         at_c = math.degrees(math.acos((oc**2 + pc**2 - op**2) / (2 * oc * pc)))
         for deg in degrees:
             assert oscillating_pressure_angle(math.radians(deg)) == pytest.approx(90 - at_c, abs=1e-6)
+
+
+def test_turning_by_sampling_agrees_with_grashofs_inequality():
+    """Loop closure sampled at every angle against s + l < p + q: in a Grashof chain the shortest
+    link turns fully relative to the frame (all three moving links when the frame is shortest);
+    otherwise none does.  The crank's part also against :func:`crank_turns` (BD's range)."""
+    rng = np.random.default_rng(5)
+    seen = set()
+    names = ("frame", "crank", "coupler", "rocker")
+    for _ in range(60):
+        d, a, b, c = rng.uniform(10.0, 200.0, 4)
+        s, p, q, ll = sorted((d, a, b, c))
+        if abs(s + ll - p - q) <= 1e-2 * ll:  # as tests/properties/test_grashof.py: clear of the grid
+            continue
+        shortest = names[int(np.argmin((d, a, b, c)))]
+        if s + ll > p + q:
+            expected = set()
+        elif shortest == "frame":
+            expected = {"crank", "coupler", "rocker"}
+        else:
+            expected = {shortest}
+        turning = turning_by_sampling(d, a, b, c)
+        assert turning == expected, (d, a, b, c)
+        assert ("crank" in turning) == crank_turns(d, a, b, c)
+        seen.add(frozenset(turning))
+    assert len(seen) == 5  # every class met: none, each link alone, all three

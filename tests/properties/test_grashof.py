@@ -2,17 +2,13 @@
 
 The reference for "which link turns fully" is not Grashof's rule but the loop
 itself: a moving link turns fully relative to the frame when the loop closes
-at every angle of it.  For the crank AB (a) of the frame AD (d) with coupler b
-and output c, the loop closes at crank angle θ when the diagonal BD lies in
-[|b − c|, b + c]; BD runs over [|d − a|, d + a] as θ turns.  The coupler's
-angle φ closes the loop when |b e(φ) − d e_x| lies in [|a − c|, a + c].  These
-are sampled on a fine grid of angles, independently of s + l against p + q.
+at every angle of it, sampled on a fine grid of angles independently of s + l
+against p + q (oracles.transmission.turning_by_sampling).
 """
 
 from __future__ import annotations
 
 import json
-import math
 
 import pytest
 from hypothesis import assume, given, settings
@@ -21,8 +17,7 @@ from hypothesis import strategies as st
 from mech.loader import loads
 from mech.properties.grashof import FourBarLoop, SliderCrankLoop, linkage_loops
 from mech.topology import classify
-
-SAMPLES = [2 * math.pi * k / 3600 for k in range(3600)]
+from oracles.transmission import turning_by_sampling
 
 
 def four_bar_text(d: float, a: float, b: float, c: float, *, unit: str = "mm") -> str:
@@ -37,22 +32,6 @@ joints:
 lengths: {{AB: {a!r}, BC: {b!r}, CD: {c!r}}}
 drive: {{link: crank, angle: 0, rpm: 60}}
 """
-
-
-def closes_for_every(dist, lo: float, hi: float) -> bool:
-    return all(lo <= dist(t) <= hi for t in SAMPLES)
-
-
-def turning_by_sampling(d: float, a: float, b: float, c: float) -> set[str]:
-    """Moving links that turn fully relative to the frame, from loop closure at every angle."""
-    out = set()
-    if closes_for_every(lambda t: math.hypot(a * math.cos(t) - d, a * math.sin(t)), abs(b - c), b + c):
-        out.add("crank")
-    if closes_for_every(lambda t: math.hypot(d + c * math.cos(t), c * math.sin(t)), abs(a - b), a + b):
-        out.add("rocker")
-    if closes_for_every(lambda t: math.hypot(b * math.cos(t) - d, b * math.sin(t)), abs(a - c), a + c):
-        out.add("coupler")
-    return out
 
 
 EXPECTED_CLASS = {

@@ -52,7 +52,7 @@ def stdout() -> Console:
 
         plain: ReportConsole = PlainConsole(int(os.environ.get("COLUMNS", 120)))
         # a PlainConsole is a ReportConsole, not a rich Console: this says Console for the
-        # renderers (check, topology) still typed against rich's class
+        # renderer (check) still typed against rich's class
         return plain  # type: ignore[return-value]
     console_class = rich_console_class()
 

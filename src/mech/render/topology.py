@@ -13,7 +13,7 @@ from mech.render.properties import loop_dict, loop_lines
 from mech.topology import Topology
 
 if TYPE_CHECKING:  # pragma: no cover
-    from rich.console import Console
+    from mech.render.console import ReportConsole
 
 
 def topology_dict(t: Topology) -> dict[str, Any]:
@@ -78,7 +78,7 @@ def _classes(classes: dict[str, tuple[str, ...]]) -> str:
     return "; ".join(f"{len(v)} {k} ({', '.join(v)})" for k, v in classes.items())
 
 
-def dof_table(results: Sequence[Topology], console: Console) -> None:
+def dof_table(results: Sequence[Topology], console: ReportConsole) -> None:
     """One table for one or many files: l, j, h, n worked, Grübler, verdict."""
     Table, Text, box = kit(console)
 
@@ -117,7 +117,7 @@ def dof_table(results: Sequence[Topology], console: Console) -> None:
         console.print(table)
 
 
-def classify_tables(t: Topology, console: Console) -> None:
+def classify_tables(t: Topology, console: ReportConsole) -> None:
     """``mech classify``: links by class, pairs three ways, then the count."""
     Table, Text, box = kit(console)
 
@@ -159,7 +159,7 @@ def classify_tables(t: Topology, console: Console) -> None:
     _print_loops(t, console, indent="")
 
 
-def _print_loops(t: Topology, console: Console, indent: str = "  ") -> None:
+def _print_loops(t: Topology, console: ReportConsole, indent: str = "  ") -> None:
     """Grashof's criterion for each four-bar loop, the inversion of each slider-crank loop."""
     _, Text, _ = kit(console)
 
