@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import importlib
 import itertools
 import json
 import math
@@ -94,6 +95,88 @@ def test_too_few_drives_are_refused_by_the_count_with_the_inputs_needed(run, wri
         result = run(command, str(path))
         assert result.exit_code == 2 and result.stdout == ""
         assert "ring.yaml:11:8: error:" in result.stderr and "it needs 4 inputs" in result.stderr, command
+
+
+# A five-bar: Kutzbach 3·4 − 2·5 = 2 freedoms, one drive (line 10). Undrawn: only the drive places B.
+FIVE_BAR_ONE_DRIVE = """\
+units: {length: mm}
+links: [frame, a, b, c, d]
+joints:
+  A: {type: revolute, links: [frame, a], at: [0, 0]}
+  B: {type: revolute, links: [a, b]}
+  C: {type: revolute, links: [b, c], near: [60, 80]}
+  D: {type: revolute, links: [c, d]}
+  E: {type: revolute, links: [d, frame], at: [120, 0]}
+lengths: {AB: 40, BC: 70, CD: 70, DE: 40}
+drive: {link: a, angle: 80, rpm: 60}
+"""
+
+
+@pytest.mark.parametrize(
+    "command",
+    [
+        ("sweep",),
+        ("properties",),
+        ("draw", "-o", "{tmp}/five.svg"),
+        ("draw", "--path", "C", "-o", "{tmp}/five.svg"),
+        ("position",),
+    ],
+    ids=["sweep", "properties", "draw", "draw --path", "position"],
+)
+def test_too_few_drives_are_refused_by_the_count_before_anything_is_assembled(
+    command, run, write, monkeypatch
+):
+    """Issue 11: sweep, properties and draw assembled the chain (and took its rank) before refusing
+    it (a 200-link chain: 82 s; 2,000 links: over 100 s). The pipeline now refuses from the count."""
+
+    def assemble(*args, **kwargs):
+        raise AssertionError("assembled before the count refused the file")
+
+    monkeypatch.setattr(importlib.import_module("mech.kinematics.solve"), "assemble", assemble)
+    path = write(FIVE_BAR_ONE_DRIVE, "five.yaml")
+    result = run(*(a.format(tmp=path.parent) for a in command), str(path))
+    assert result.exit_code == 2 and result.stdout == ""
+    assert "five.yaml:10:8: error:" in result.stderr and "but 1 drive: it needs 2 inputs" in result.stderr
+    assert not (path.parent / "five.svg").exists()
+
+
+# The same five-bar drawn (B, C, D with at; no lengths, the drive (line 9) without an angle): placed as drawn.
+FIVE_BAR_DRAWN = (
+    FIVE_BAR_ONE_DRIVE.replace("[a, b]}", "[a, b], at: [6.946, 39.392]}")
+    .replace("near: [60, 80]", "at: [60, 85]")
+    .replace("[c, d]}", "[c, d], at: [113.054, 39.392]}")
+    .replace("lengths: {AB: 40, BC: 70, CD: 70, DE: 40}\n", "")
+    .replace("angle: 80, ", "")
+)
+
+
+def test_a_drawn_five_bar_with_one_drive_is_drawn_but_not_swept(run, write, tmp_path):
+    """What needs no drive is given (the drawing, the properties' loops); what moves it is refused:
+    the sweep once marched the free chain by least squares and reported it (exit 0)."""
+    path = write(FIVE_BAR_DRAWN, "five.yaml")
+    swept = run("sweep", "--steps", "4", str(path))
+    assert swept.exit_code == 2 and "five.yaml:9:8: error:" in swept.stderr
+    assert "it needs 2 inputs" in swept.stderr
+    drawn = run("draw", "-o", str(tmp_path / "five.svg"), str(path))
+    assert drawn.exit_code == 0, drawn.stderr
+    assert (tmp_path / "five.svg").exists()
+    props = run("properties", str(path))
+    assert props.exit_code == 0, props.stderr
+    text = " ".join(props.stdout.split())
+    assert "over the cycle: not swept" in text and "it needs 2 inputs" in text
+
+
+def test_properties_that_need_no_drive_are_given_without_one(run, write):
+    """Khurmi's four-bar drawn (B and C to two decimals) with no drive: Grashof's criterion needs
+    only the lengths (40 + 150 < 80 + 150: crank-rocker), the cycle says why it is not swept."""
+    text = (ROOT / "mechanisms" / "four_bar.yaml").read_text()
+    text = text.replace("[crank, coupler]}", "[crank, coupler], at: [20.00, 34.64]}")
+    text = text.replace("near: [160, 80]", "at: [163.33, 78.88]")
+    text = "\n".join(line for line in text.splitlines() if not line.startswith("drive:"))
+    result = run("properties", str(write(text, "four_bar.yaml")))
+    assert result.exit_code == 0, result.stderr
+    out = " ".join(result.stdout.split())
+    assert "crank-rocker" in out and "over the cycle: not swept" in out
 
 
 def test_missing_file_exits_2(run, tmp_path):

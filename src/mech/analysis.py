@@ -52,6 +52,7 @@ __all__ = [
     "has_speed",
     "load_mechanism",
     "locate_icentres",
+    "needs_drives",
     "solve_at",
     "sweep_level",
     "trace_curves",
@@ -174,6 +175,37 @@ def drawing_level(
     if icentres and level == "position" and has_speed(mech, options):
         level = "velocity"
     return level
+
+
+def needs_drives(mech: Mechanism, request: Request) -> bool:
+    """True when what ``request`` asks cannot be had without one drive per degree of freedom.
+
+    A sweep, a traced path or centrode, velocities and accelerations, any solve at another
+    angle (``--angle``) move or differentiate the drives: they need them all.  Positions at
+    the file's instant (``position``, ``draw``, the properties' Grashof loops) need them only
+    where the drawing does not fix the configuration: a file that draws no moving joint or
+    point with ``at`` leaves every freedom no drive holds free, so it is refused at once
+    (:func:`mech.kinematics.solve.refuse_underdriven`, from Kutzbach's count, located at the
+    drive) instead of after an assembly and a rank that take minutes on a long chain.  A drawn
+    file is placed as drawn (its properties report what needs no drive, Grashof's loops, and
+    say why the rest cannot be had); a file with no drive at all is left to the solve, which
+    names the joints it leaves free.
+    """
+    if request.sweep is not None or request.paths or request.centrodes:
+        return True
+    if request.level is None and not request.properties:
+        return False
+    if request.level in ("velocity", "acceleration") or request.options.angle is not None:
+        return True
+    # without any drive, the solve's own message is better: it names (and locates) the joints left free
+    return bool(mech.drives) and not _draws_a_moving_location(mech)
+
+
+def _draws_a_moving_location(mech: Mechanism) -> bool:
+    """True when a joint or point off the ground link is drawn with ``at`` (it pins what it is on)."""
+    if any(j.place.at is not None and mech.ground not in j.links for j in mech.joints):
+        return True
+    return any(p.place.at is not None and p.link != mech.ground for p in mech.points)
 
 
 def solve_at(mech: Mechanism, level: str, options: SolveOptions) -> Kinematics:
@@ -302,6 +334,10 @@ def analyse(source: str | Mechanism, request: Request | None = None) -> Result:
     request = request or Request()
     mech = source if isinstance(source, Mechanism) else load_mechanism(source)
     options = request.options
+    if needs_drives(mech, request):
+        from mech.kinematics.solve import refuse_underdriven
+
+        refuse_underdriven(mech)  # one drive per freedom, from the count: before any assembly or sweep
     topology = _classify(mech) if request.topology else None
     mobility, mobility_error = _mobility(mech) if request.mobility else (None, None)
     kin = solve_at(mech, request.level, options) if request.level is not None else None

@@ -1,5 +1,8 @@
 """Whole commands on large chains, each timed in a fresh process (issue 11: refused only after minutes).
 
+Commands: velocity, acceleration, position, icentres, dof --mobility, check --timeout 60, and
+(issue 11, task 2) sweep --steps 4, properties, draw -o drawing.svg.
+
 Files, for N links:
 
 * ``open``: an open chain of revolute pins hanging from one ground pivot (N − 1 freedoms), one drive;
@@ -13,7 +16,8 @@ wall time printed, so that a refusal that takes minutes shows.  No assertion: a 
 ``mech check`` runs with ``--timeout 60`` on a copy that claims a velocity of 1 m/s (wrong for the
 ladder: exit 1 there means it was computed and judged).
 
-    python tests/benchmarks/bench_underdriven.py [--limit S] [N ...]
+    python tests/benchmarks/bench_underdriven.py [--limit S] [--only sweep,properties,draw]
+        [--kinds open,closed,drawn,ladder] [N ...]
 """
 
 from __future__ import annotations
@@ -37,6 +41,9 @@ COMMANDS = (
     ("icentres",),
     ("dof", "--mobility"),
     ("check", "--timeout", "60"),
+    ("sweep", "--steps", "4"),
+    ("properties",),
+    ("draw", "-o", "{tmp}/drawing.svg"),
 )
 
 
@@ -105,13 +112,13 @@ def timed(argv: list[str], limit: float) -> tuple[str, str]:
     return f"{time.perf_counter() - t:.2f}", str(done.returncode)
 
 
-def main(sizes: list[int], limit: float) -> None:
+def main(sizes: list[int], limit: float, only: tuple[str, ...] = (), kinds: tuple[str, ...] = ()) -> None:
     mech = str(Path(sys.executable).with_name("mech"))
     print("| file | links | command | wall (s) | exit |")
     print("| --- | ---: | --- | ---: | ---: |")
     with tempfile.TemporaryDirectory() as tmp:
         for n in sizes:
-            for kind in ("open", "closed", "drawn", "ladder"):
+            for kind in kinds or ("open", "closed", "drawn", "ladder"):
                 text = ladder(n) if kind == "ladder" else ring(n, kind)
                 path = Path(tmp) / f"{kind}{n}.yaml"
                 path.write_text(text, encoding="utf-8")
@@ -119,14 +126,21 @@ def main(sizes: list[int], limit: float) -> None:
                 first = "P0" if kind == "ladder" else "J1"
                 asked.write_text(text + f"answers:\n  velocity.{first}: 1 m/s\n", encoding="utf-8")
                 for command in COMMANDS:
+                    if only and command[0] not in only:
+                        continue
                     target = asked if command[0] == "check" else path
-                    wall, status = timed([mech, *command, str(target)], limit)
-                    print(f"| {kind} | {n:,} | mech {' '.join(command)} | {wall} | {status} |", flush=True)
+                    argv = [mech, *(a.format(tmp=tmp) for a in command), str(target)]
+                    wall, status = timed(argv, limit)
+                    shown = " ".join(a.replace("{tmp}/", "") for a in command)
+                    print(f"| {kind} | {n:,} | mech {shown} | {wall} | {status} |", flush=True)
 
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--limit", type=float, default=300.0, help="seconds before a command is stopped")
+    parser.add_argument("--only", default="", help="commands to run, comma-separated (default: all)")
+    parser.add_argument("--kinds", default="", help="files: open,closed,drawn,ladder (default: all)")
     parser.add_argument("sizes", type=int, nargs="*", default=[2_000])
     args = parser.parse_args()
-    main(args.sizes, args.limit)
+    split = lambda text: tuple(x for x in text.split(",") if x)  # noqa: E731
+    main(args.sizes, args.limit, split(args.only), split(args.kinds))

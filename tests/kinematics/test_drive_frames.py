@@ -149,3 +149,46 @@ def test_drive_relative_to_must_name_another_link(value, message, run, write):
     assert result.exit_code == 2
     assert message in result.stderr
     assert f"{path.name}:" in result.stderr
+
+
+# -- the drive as the file gave it (issue 11) ---------------------------------------------------
+# ``angle: 60`` is read as 60·(π/180) rad; dividing by π/180 again gives 59.99999999999999.
+
+
+def test_drive_json_gives_the_angle_as_the_file_wrote_it(run, write):
+    text = FILE.format(ta=TA, wa=WA, aa=AA, rel="", tb=60, wb=WB, ab=AB_)
+    assert math.radians(60) / (math.pi / 180) != 60.0  # the rounding this is about
+    for level in ("position", "velocity", "acceleration"):
+        drive = json.loads(run(level, str(write(text)), "--json").stdout)["drives"][1]
+        assert drive["angle"] == 60.0, level  # exactly, not approximately
+        assert drive["absolute"]["angle"] == 60.0, level
+
+
+def test_a_drive_angle_read_back_from_radians_is_the_decimal_written():
+    """Every angle to 0.01° in ±720°: read (× π/180) and reported, it is the number written."""
+    from mech.render.kinematics import _as_read
+
+    for hundredths in range(-72000, 72001, 7):
+        written = hundredths / 100
+        assert _as_read(written * (math.pi / 180), "deg") == written
+    assert _as_read(0.1, "rad") == 0.1 and _as_read(None, "deg") is None
+
+
+@pytest.mark.parametrize("level", ["position", "velocity"])
+def test_drive_json_frame_of_its_own_convention_repeats_its_values(level, run, write):
+    """α is an input (the file's, 0 by default): at velocity level the drive's α and its
+    absolute α were 0.0 and null; ω likewise at position level. The frame of the drive's own
+    convention is the drive itself; the other is derived from the solve (null where not solved)."""
+    absolute = FILE.format(ta=TA, wa=WA, aa=AA, rel="", tb=TB, wb=WB, ab=0)
+    drive = json.loads(run(level, str(write(absolute)), "--json").stdout)["drives"][1]
+    for key in ("angle", "omega", "alpha"):
+        assert drive["absolute"][key] == drive[key], key
+    assert drive["alpha"] == 0.0 and drive["omega"] == WB
+    if level == "velocity":  # ω_b − ω_a from the solve; α_a is not solved at velocity level
+        assert drive["relative"]["omega"] == pytest.approx(WB - WA, rel=1e-12)
+        assert drive["relative"]["alpha"] is None
+    relative = FILE.format(ta=TA, wa=WA, aa=AA, rel="relative_to: a, ", tb=TB - TA, wb=WB - WA, ab=0)
+    drive = json.loads(run(level, str(write(relative, "r.yaml")), "--json").stdout)["drives"][1]
+    for key in ("angle", "omega", "alpha"):
+        assert drive["relative"][key] == drive[key], key
+    assert drive["absolute"]["alpha"] is None  # α_b = α + α_a: needs the acceleration solve

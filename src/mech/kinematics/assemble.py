@@ -20,8 +20,11 @@ lengths divided by the mechanism's size), so tolerances are relative.
 
 Errors, all in the file's length unit:
 
-* a moving joint drawn with ``at`` and also given a length or a drive angle
-  that disagrees (relative tolerance 1e-6): :class:`InputError` saying by how much;
+* drawn data that disagree with a length or a drive angle also given:
+  :class:`InputError` saying by how much — between fixed locations (ground
+  pivots) beyond 1e-6 of the size, on a moving location drawn with ``at``
+  beyond drawing precision (1e-3 of the size: within it the point is moved to
+  where the exact data put it, with a note);
 * no assembly (a loop that cannot close): :class:`GeometryError` with the gap;
 * a location the data leaves free: :class:`GeometryError` naming it (from the
   SVD null vector) and what to add.
@@ -298,8 +301,6 @@ def assemble(
     if problems:
         raise InputError(problems=problems, source=mech.source)
     scaled_known = {n: (np.asarray(xy, dtype=float) - centre) / scale for n, xy in known.items()}
-    _check_drawn(mech, eqs, scaled_known, scale, fmt)
-    guess, notes, gaps = _construct(lay, eqs, scaled_known, near, centre, scale)
     # A moving location drawn with ``at`` is good to the drawing's precision, while the lengths
     # and angles a file gives are exact: solve for it too, held to its drawing by a weak spring,
     # so that where the drawing is rounded the exact numbers win (and any disagreement larger
@@ -308,6 +309,8 @@ def assemble(
         n: v for n, v in scaled_known.items() if lay.carriers.get(n) and mech.ground not in lay.carriers[n]
     }
     fixed = {n: v for n, v in scaled_known.items() if n not in soft}
+    _check_drawn(mech, eqs, scaled_known, set(soft), (scale, fmt))
+    guess, notes, gaps = _construct(lay, eqs, scaled_known, near, centre, scale)
     guess.update(soft)
     # Contact points of higher pairs are data of the instant (``at``), never unknowns.
     unknown = [n for n, c in lay.carriers.items() if c and n not in fixed]
@@ -480,17 +483,30 @@ def _check_drawn(
     mech: Mechanism,
     eqs: list[_Eq],
     scaled_known: dict[str, np.ndarray],
-    scale: float,
-    fmt: Callable[[float], str],
+    soft: set[str],
+    frame: tuple[float, Callable[[float], str]],
 ) -> None:
-    """Drawn data must agree with the lengths and drive angles given as well."""
+    """Drawn data must agree with the lengths and drive angles given as well.
+
+    Between fixed locations (ground pivots, path coordinates) the data are exact and must agree
+    to 1e-6 of the size.  An equation on a moving location drawn with ``at`` (in ``soft``) is
+    judged by drawing precision instead: it is refused here only when no movement of its drawn
+    points within :data:`_DRAWING` of the size could close it (to first order, the residual
+    exceeds ``_DRAWING`` times the sum of its gradients' norms over those points), so every
+    refusal here is one the solve would make, said at the length or angle that disagrees; the
+    rest is left to the solve, which moves the points and notes it.
+    """
+    scale, fmt = frame
     disagree: list[Problem] = []
     agree_hint = "make the drawing and the numbers agree, or give only one of them (`at` on a moving joint means drawn here)"
     for e in eqs:
         if all(n in scaled_known for n in e.names):
             p = [scaled_known[n] for n in e.names]
-            r, _ = e.value(p)
-            if float(np.max(np.abs(r))) > _AGREE or (isinstance(e, _Dir) and not e.forward(p)):
+            r, grads = e.value(p)
+            # how far the residual can go if each drawn moving point moves by drawing precision
+            slack = sum(float(np.linalg.norm(g, 2)) for n, g in zip(e.names, grads, strict=True) if n in soft)
+            opposite = isinstance(e, _Dir) and not e.forward(p)
+            if float(np.max(np.abs(r))) > _AGREE + _DRAWING * slack or opposite:
                 disagree.append(Problem(_disagreement(e, p, scale, fmt), e.where, agree_hint))
     if disagree:
         raise InputError(problems=disagree, source=mech.source)

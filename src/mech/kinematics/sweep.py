@@ -65,7 +65,7 @@ from mech.errors import InputError, UnsupportedError
 from mech.kinematics.dyads import ACCURATE_COND, DyadProgram, numpy_namespace, program
 from mech.kinematics.march import MAX_SPAN, Marcher
 from mech.kinematics.quantities import LEVELS, check_quantity, default_quantities, quantity_unit
-from mech.kinematics.solve import SINGULAR, Compiled, compiled, instant_pairs, solve
+from mech.kinematics.solve import SINGULAR, Compiled, compiled, instant_pairs, refuse_underdriven, solve
 from mech.kinematics.sweep_backends import Closed, Newton, law_series, newton_series
 from mech.kinematics.sweep_events import (
     circuits_note,
@@ -155,6 +155,7 @@ def sweep(
             f"{mech.label} has no drive: a sweep moves its drive",
             hint="add drive: {link: crank, angle: …, rpm: …}",
         )
+    refuse_underdriven(mech)  # a freedom no drive holds would be swept by least squares
     several = len(mech.drives) != 1 or mech.drives[0].link is None
     if several and drive is None:  # what ``angles`` holds must be said: a caller written for cranks refuses
         raise UnsupportedError(

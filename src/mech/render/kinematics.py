@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 from mech.errors import InputError
 from mech.kinematics import Kinematics
 from mech.options import OutputUnits
-from mech.units import format_unit, to_unit
+from mech.units import format_unit, to_unit, unit_factor
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.render.console import ReportConsole
@@ -178,15 +178,40 @@ def _num(x: float | None, unit: str) -> float | None:
     return None if x is None else to_unit(x, unit)
 
 
+def _as_read(value: float | None, unit: str) -> float | None:
+    """``value`` (SI) in ``unit`` as a file would write it: the shortest decimal that the loader's
+    conversion (× the unit's factor) turns back into exactly ``value``.
+
+    Dividing by the factor does not always undo the loader's product: ``angle: 60`` is read as
+    60·(π/180) = 1.0471975511965976 rad, which divided by π/180 is 59.99999999999999.  The number
+    returned here is the same angle to the last bit (read again, it gives ``value``), so a drive
+    reports the angle its file gave.
+
+    >>> _as_read(60 * (math.pi / 180), "deg"), to_unit(60 * (math.pi / 180), "deg")
+    (60.0, 59.99999999999999)
+    """
+    if value is None:
+        return None
+    plain = to_unit(value, unit)
+    factor = unit_factor(unit)[1]
+    for digits in range(1, 18):
+        shortest = float(f"{plain:.{digits}g}")
+        if shortest * factor == value:
+            return shortest
+    return plain
+
+
 def _drive_frames(kin: Kinematics, d: Any, units: OutputUnits) -> dict[str, Any]:
     """A turning drive both ways: ``absolute`` (from the ground) and ``relative`` (to a moving link).
 
     The drive's own values are in its convention (absolute unless it says
-    ``relative_to``, DESIGN § 1.1); the other convention is derived from the
-    solved links: θ_b = φ + θ_a, ω_b from the solve, ω_b − ω_a …  The
-    reference link is ``relative_to``, else the moving link the ``about``
-    pivot joins the driven link to (the pair a student measures at a joint),
-    else there is none (``relative`` is null).
+    ``relative_to``, DESIGN § 1.1), and the frame of that convention repeats them
+    as given (the inputs, known at every level: α is the file's, 0 by default,
+    where the solve stopped at velocities); the other convention is derived from
+    the solved links: θ_b = φ + θ_a, ω_b from the solve, ω_b − ω_a … (null at a
+    level not solved).  The reference link is ``relative_to``, else the moving link
+    the ``about`` pivot joins the driven link to (the pair a student measures at a
+    joint), else there is none (``relative`` is null).
     """
     W, AL, ANG = units.angular_velocity, units.angular_acceleration, units.angle
     ref = d.relative_to
@@ -199,24 +224,21 @@ def _drive_frames(kin: Kinematics, d: Any, units: OutputUnits) -> dict[str, Any]
     def diff(x: float | None, y: float | None) -> float | None:
         return None if x is None or y is None else x - y
 
+    def frame(angle: float | None, omega: float | None, alpha: float | None) -> dict[str, Any]:
+        return {"angle": _as_read(angle, ANG), "omega": _num(omega, W), "alpha": _num(alpha, AL)}
+
     theta_a = other.angle if other is not None else 0.0
-    if d.relative_to is not None:
+    own = frame(d.angle, d.omega, d.alpha)
+    relative: dict[str, Any] | None = None
+    if d.relative_to is not None:  # the drive gives θ_b − θ_a …: θ_b, ω_b, α_b are the solve's
         angle_abs = None if d.angle is None else math.remainder(d.angle + theta_a, 2 * math.pi)
-        angle_rel = d.angle
+        absolute = frame(angle_abs, mine.omega if mine else None, mine.alpha if mine else None)
+        relative = {"to": ref, **own}
     else:
-        angle_abs = d.angle
-        angle_rel = None if d.angle is None else math.remainder(d.angle - theta_a, 2 * math.pi)
-    w_abs = mine.omega if mine is not None else None
-    al_abs = mine.alpha if mine is not None else None
-    absolute = {"angle": _num(angle_abs, ANG), "omega": _num(w_abs, W), "alpha": _num(al_abs, AL)}
-    relative = None
-    if other is not None:
-        relative = {
-            "to": ref,
-            "angle": _num(angle_rel, ANG),
-            "omega": _num(diff(w_abs, other.omega), W),
-            "alpha": _num(diff(al_abs, other.alpha), AL),
-        }
+        absolute = own
+        if other is not None:
+            angle_rel = None if d.angle is None else math.remainder(d.angle - theta_a, 2 * math.pi)
+            relative = {"to": ref, **frame(angle_rel, diff(d.omega, other.omega), diff(d.alpha, other.alpha))}
     return {"absolute": absolute, "relative": relative}
 
 
@@ -297,7 +319,7 @@ def _drives_json(kin: Kinematics, units: OutputUnits) -> list[dict[str, Any]]:
     for d in kin.drives:
         entry: dict[str, Any] = {"link": d.link} if d.link is not None else {"joint": d.joint}
         entry.update(
-            angle=_num(d.angle, units.angle) if d.link is not None else None,
+            angle=_as_read(d.angle, units.angle) if d.link is not None else None,
             omega=_num(d.omega, units.angular_velocity),
             sense=_sense(d.omega),
             alpha=_num(d.alpha, units.angular_acceleration),
