@@ -433,7 +433,7 @@ def _closed_form(
     when a dyad cannot close, or near a toggle.  With ``method="closed"`` the
     first of these is an error instead.
     """
-    from mech.kinematics.dyads import ACCURATE_COND, SLACK, program, reachable
+    from mech.kinematics.dyads import ACCURATE_COND, SLACK, branches, passed, program, route
 
     prog = program(comp)
     if prog is None:
@@ -445,12 +445,17 @@ def _closed_form(
         return None
     d = drives[0]
     phi = d.angle if d.angle is not None else prog.drawn_angle
-    if not reachable(prog, phi):
+    turn = route(prog, phi)
+    if turn is None:
         return None
+    # past a change point a dyad continues on the branch with a continuous tangent (its sign flips)
+    reached = prog.drawn_angle + turn
+    branch = branches(prog, prog.drawn_angle, reached)
+    met = passed(prog, prog.drawn_angle, reached)
     w = d.omega or 0.0
     al = d.alpha or 0.0
     try:
-        out = prog.raw(phi, w, al, level=lvl)
+        out = prog.raw(phi, w, al, level=lvl, branch=branch)
     except ZeroDivisionError:  # no closure, or exactly in line: Newton explains
         return None
     parts = prog.split(out, lvl)
@@ -493,10 +498,16 @@ def _closed_form(
 
     def note() -> str:
         kinds = ", ".join(dict.fromkeys(k for k, _, _ in prog.dyads)) or "crank only"
-        return (
+        text = (
             f"moved from the drawn angle ({_deg(prog.drawn_angle)} → {_deg(phi)}) keeping its branch, "
             f"in closed form (dyads: {kinds})"
         )
+        for at, c in met:
+            text += (
+                f"; passed a change point at {math.degrees(at):.6f}° ({c.what}) and continued on the "
+                "branch with a continuous tangent"
+            )
+        return text
 
     return state, note
 

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from mech.kinematics.dyads import closing_edge
+from mech.kinematics.dyads import ACCURATE_COND, change_points, closing_edge
 from mech.kinematics.quantities import pick, quantity_unit
 from mech.kinematics.roots import brent, illinois, zoom
 from mech.kinematics.solve import Compiled
@@ -23,7 +23,15 @@ from mech.kinematics.sweep_backends import Closed, Walk
 from mech.kinematics.sweep_result import Event, Extreme, Gap, TimeRatio
 from mech.model import JointType
 
-__all__ = ["circuits_note", "find_dead_centres", "find_extremes", "find_gaps", "find_time_ratio", "runs"]
+__all__ = [
+    "circuits_note",
+    "find_change_points",
+    "find_dead_centres",
+    "find_extremes",
+    "find_gaps",
+    "find_time_ratio",
+    "runs",
+]
 
 _TWO_PI = 2.0 * math.pi
 
@@ -112,6 +120,33 @@ def find_gaps(
     return tuple(gaps), tuple(sorted(toggles, key=lambda t: t.angle))
 
 
+def find_change_points(backend: Any, phi: np.ndarray, ok: np.ndarray) -> tuple[Event, ...]:
+    """Change points inside the assembled runs of the sweep (closed form: :func:`~.dyads.change_points`).
+
+    Each is passed on the branch with a continuous tangent (the closed form
+    flips that dyad's sign there: :func:`~.dyads.branches`).
+    """
+    prog = getattr(backend, "prog", None)
+    if prog is None or phi.size < 2:
+        return ()
+    changes = change_points(prog)
+    if not changes:
+        return ()
+    lo, hi = float(np.min(phi)), float(np.max(phi))
+    order = np.argsort(phi, kind="stable")
+    sp, sok = phi[order], ok[order]
+    events = []
+    for c in changes:
+        a = prog.drawn_angle + c.offset
+        a += _TWO_PI * math.ceil((lo - a) / _TWO_PI)
+        while a <= hi:
+            j = int(np.searchsorted(sp, a))  # sp[j - 1] < a <= sp[j]
+            if 0 < j < sp.size and sok[j - 1] and sok[j]:
+                events.append(Event("change point", float(a), c.what))
+            a += _TWO_PI
+    return tuple(sorted(events, key=lambda e: e.angle if phi[-1] >= phi[0] else -e.angle))
+
+
 def _edge(backend: Closed, good: float, bad: float) -> float:
     """Bisect on the worst dyad discriminant to the last angle that still closes."""
     return closing_edge(backend.prog, float(good), float(bad))
@@ -137,12 +172,21 @@ def _outputs(
 
 
 def _refiner(
-    backend: Any, names: dict[str, tuple[str, ...]], keys: Sequence[str], refs: np.ndarray
+    backend: Any,
+    names: dict[str, tuple[str, ...]],
+    keys: Sequence[str],
+    refs: np.ndarray,
+    regular: bool = False,
 ) -> Callable[[np.ndarray], np.ndarray]:
     """fn(grid (K, m)) → values (K, m) of ``keys[k]`` on row k, one backend call for all rows.
 
     Angles of links are brought to the branch of ``refs[k]`` (the grid value
-    the row refines), since the closed form returns them in (−π, π].
+    the row refines), since the closed form returns them in (−π, π].  With
+    ``regular``, values where the configuration is singular (condition above
+    :data:`~.dyads.ACCURATE_COND`; a Newton step judged singular) are NaN: an
+    extreme refined toward a change point's singular Jacobian would otherwise
+    report rounding blown up by cond² (3e9 m/s for a speed of 1) as a value,
+    and positions there are good only to about 1e-16·cond.
     """
 
     groups: dict[str, list[int]] = {}
@@ -153,12 +197,15 @@ def _refiner(
     def fn(grid: np.ndarray) -> np.ndarray:
         data = backend.evaluate(grid)
         out = np.empty(grid.shape)
+        if regular:
+            with np.errstate(invalid="ignore"):
+                singular = ~(data["condition"] <= ACCURATE_COND)
         for key, rows in index.items():
             vals = pick(data, names, key)[rows]
             if key.startswith("angle."):
                 ref = refs[rows][:, None]
                 vals = np.where(np.isfinite(ref), vals + _TWO_PI * np.round((ref - vals) / _TWO_PI), vals)
-            out[rows] = vals
+            out[rows] = np.where(singular[rows], np.nan, vals) if regular else vals
         return out
 
     return fn
@@ -295,7 +342,7 @@ def find_extremes(
     ang, val = np.full(len(rows), np.nan), np.full(len(rows), np.nan)
     if rows and backend.vectorised:
         # minima are maxima of −v: one zoom refines every extreme of every quantity at once
-        inner = _refiner(backend, names, [r[0] for r in rows], np.array([r[5] for r in rows]))
+        inner = _refiner(backend, names, [r[0] for r in rows], np.array([r[5] for r in rows]), regular=True)
         ang, val = zoom(
             lambda g: sign[:, None] * inner(g),
             np.array([r[3] for r in rows]),
