@@ -17,12 +17,20 @@ Rules the results keep:
   :class:`Gap` with how far the loop is from closing.  The gap's edges are
   toggles (links in line), located by bisection to rounding.  A Newton
   sweep that meets a limit stops there and says so.
+* **Change points are passed on the branch with a continuous tangent.**
+  Where a dyad's discriminant touches zero with the loop closed on both
+  sides (:func:`~mech.kinematics.dyads.change_points`: the Peaucellier
+  inversor folding flat), the closed form flips that dyad's sign past it, as
+  continuation's predictor would follow the tangent, and the sweep reports
+  the change point (``Sweep.change_points``, a note).
 * **Singular steps are not reported as numbers.**  Where the dyad
   condition number exceeds :data:`~mech.kinematics.dyads.ACCURATE_COND`
   (1e5, within about 1e-10 rad of a toggle: rates there are good to less
   than 1e-6), velocities and accelerations are NaN and a note says how
   many; the largest condition met is reported.  Newton sweeps use the
-  solver's own :data:`~mech.kinematics.solve.SINGULAR`.
+  solver's own :data:`~mech.kinematics.solve.SINGULAR`.  Refining an
+  extreme leaves such configurations out too (a change point's rows are
+  singular where the two branches meet).
 * **Extremes and dead centres are refined**, not read off the grid: the
   closed form is evaluated on a fine sub-grid round each candidate, zooming
   in 16× per round until the bracket is at rounding, so an extreme value is
