@@ -127,8 +127,10 @@ def find_change_points(backend: Any, phi: np.ndarray, ok: np.ndarray) -> tuple[E
     flips that dyad's sign there: :func:`~.dyads.branches`).
     """
     prog = getattr(backend, "prog", None)
-    if prog is None or phi.size < 2:
+    if phi.size < 3:
         return ()
+    if prog is None:
+        return _newton_change_points(backend, phi, ok) if getattr(backend, "marcher", None) else ()
     changes = change_points(prog)
     if not changes:
         return ()
@@ -145,6 +147,63 @@ def find_change_points(backend: Any, phi: np.ndarray, ok: np.ndarray) -> tuple[E
                 events.append(Event("change point", float(a), c.what))
             a += _TWO_PI
     return tuple(sorted(events, key=lambda e: e.angle if phi[-1] >= phi[0] else -e.angle))
+
+
+#: A marched sweep's σ_min/σ_max below this at a refined dip: two branches meet there.  Newton
+#: is accurate to about √tol where Φ_q is singular (1e-6 of the size), so the dip of a change
+#: point bottoms out near 1e-6; a steep but regular passage stays far above.
+NEWTON_TOUCH = 1e-4
+
+
+def _newton_change_points(backend: Any, phi: np.ndarray, ok: np.ndarray) -> tuple[Event, ...]:
+    """Change points a marched Newton sweep passed: Φ_q singular with the loop closed on both sides.
+
+    Continuation's predictor follows the tangent, so it continues on the branch
+    with a continuous tangent by itself; here the places are found (dips of
+    σ_min/σ_max along the steps, refined by :func:`zoom`) and said.
+    """
+    marcher = backend.marcher
+    rc = marcher.inverse_condition(marcher.solved[1])
+    rows = []
+    for s, e in runs(ok & np.isfinite(rc)):
+        for k in range(s + 1, e - 1):
+            r = rc[k - 1 : k + 2]
+            if r[1] <= r[0] and r[1] <= r[2] and r[1] < min(r[0], r[2]) and r[1] < 0.05:
+                rows.append(k)
+    if not rows:
+        return ()
+    lo = np.array([phi[k - 1] for k in rows], float)
+    hi = np.array([phi[k + 1] for k in rows], float)
+
+    def fn(grid: np.ndarray) -> np.ndarray:
+        q, conv = marcher.corrected(grid.ravel())
+        val = marcher.inverse_condition(np.where(conv[:, None], q, np.nan))
+        return val.reshape(grid.shape)
+
+    at, val = zoom(fn, lo, hi, "min")
+    events = []
+    for k, a, v in zip(rows, at, val, strict=True):
+        if math.isfinite(float(v)) and v < NEWTON_TOUCH:
+            events.append(
+                Event("change point", float(a), _meeting(backend, float(a), phi[k - 1], phi[k + 1]))
+            )
+    return tuple(events)
+
+
+def _meeting(backend: Any, at: float, before: float, after: float) -> str:
+    """Which named points meet at a Newton sweep's change point (close there, apart either side)."""
+    pos = backend.evaluate(np.array([before, at, after]))["positions"]
+    names = backend.points
+    here = pos[1]
+    size = float(np.nanmax(np.hypot(*(here[:, None, :] - here[None, :, :]).transpose(2, 0, 1)))) or 1.0
+    met = []
+    for i in range(len(names)):
+        for j in range(i):
+            d = [float(np.hypot(*(p[i] - p[j]))) for p in pos]
+            if d[1] <= 1e-5 * size and d[0] > 1e-4 * size and d[2] > 1e-4 * size:
+                met.append(f"{names[i]} meets {names[j]}")
+    what = ", ".join(met) if met else "two assembly branches meet"
+    return f"{what} (the constraint Jacobian is singular there)"
 
 
 def _edge(backend: Closed, good: float, bad: float) -> float:
