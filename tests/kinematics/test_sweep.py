@@ -589,3 +589,14 @@ def test_a_crank_limited_by_a_real_toggle_reports_the_toggle_not_a_change_point(
     )
     assert len(s.gaps) == 1
     assert [math.degrees(c.angle) for c in s.change_points] == pytest.approx([math.degrees(FOLD)], abs=1e-6)
+
+
+def test_newton_sweep_of_the_double_parallelogram_says_where_its_jacobian_loses_rank():
+    # three equal cranks on collinear pivots: at 180° every link lies on the frame's line and Φ_q
+    # loses rank (each parallelogram at its change point; the third crank keeps the translation).
+    # The sweep passes it (assembled on both sides) and locates it by symmetry to 1e-6°.
+    s = sweep(mech.load(Path(__file__).resolve().parents[2] / "mechanisms" / "double_parallelogram.yaml"))
+    assert bool(np.all(s.assembled))
+    (c,) = s.change_points
+    assert math.degrees(c.angle) == pytest.approx(180.0, abs=1e-6)
+    assert "loses rank" in c.subject

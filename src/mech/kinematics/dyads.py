@@ -1052,15 +1052,12 @@ def change_points(prog: DyadProgram, samples: int = 2048) -> tuple[ChangePoint, 
             out = prog.raw(prog.drawn_angle + d, level=0, xp=numpy_namespace())
         discs = np.vstack(np.broadcast_arrays(*out[:nd]))
         ok = np.min(discs, axis=0) >= -SLACK
-        for k in range(nd):
-            v = discs[k]
-            for i in range(1, samples):
-                dip = v[i] <= v[i - 1] and v[i] <= v[i + 1] and (v[i] < v[i - 1] or v[i] < v[i + 1])
-                if dip and v[i] < 1e-3 and ok[i - 1] and ok[i + 1]:
-                    at = _touch(prog, k, prog.drawn_angle + d[i - 1], prog.drawn_angle + d[i + 1])
-                    if at is not None:
-                        off = at - prog.drawn_angle
-                        found.append(ChangePoint(k, float(off), _meets(prog, k, at)))
+        v, left, right = discs[:, 1:-1], discs[:, :-2], discs[:, 2:]
+        dips = (v <= left) & (v <= right) & ((v < left) | (v < right)) & (v < 1e-3) & ok[:-2] & ok[2:]
+        for k, i in zip(*np.nonzero(dips), strict=True):  # i + 1: the sample of the dip
+            at = _touch(prog, int(k), prog.drawn_angle + d[i], prog.drawn_angle + d[i + 2])
+            if at is not None:
+                found.append(ChangePoint(int(k), float(at - prog.drawn_angle), _meets(prog, int(k), at)))
     result = tuple(sorted(found, key=lambda c: c.offset))
     prog._memo["changes"] = result
     return result

@@ -181,6 +181,7 @@ def _newton_change_points(backend: Any, phi: np.ndarray, ok: np.ndarray) -> tupl
         return val.reshape(grid.shape)
 
     at, val = zoom(fn, lo, hi, "min")
+    at = _v_apex(fn, at)
     events = []
     for k, a, v in zip(rows, at, val, strict=True):
         if math.isfinite(float(v)) and v < NEWTON_TOUCH:
@@ -190,20 +191,47 @@ def _newton_change_points(backend: Any, phi: np.ndarray, ok: np.ndarray) -> tupl
     return tuple(events)
 
 
+def _v_apex(fn: Callable[[np.ndarray], np.ndarray], at: np.ndarray, step: float = 1e-4) -> np.ndarray:
+    """The apex of σ_min/σ_max's V round each dip, from lines through two points on either side.
+
+    Newton is good only to about √tol where Φ_q is singular, so the V has a
+    noisy floor there and its minimum wanders within it (1e-5 rad at the double
+    parallelogram's collinear position); the sides, ``step`` and 2·``step``
+    away, are clear of the floor, and their lines cross at the apex (exactly,
+    for a V symmetric about it).  Kept only where they cross within ``step``.
+    """
+    offsets = np.array([-2.0, -1.0, 1.0, 2.0]) * step
+    r = fn(at[:, None] + offsets[None, :])
+    r1, r2, r3, r4 = r.T
+    sl, sr = (r2 - r1) / step, (r4 - r3) / step
+    with np.errstate(all="ignore"):
+        u = (r3 - r2 - (sr + sl) * step) / (sl - sr)
+    good = np.isfinite(u) & (np.abs(u) < step) & (sl < 0) & (sr > 0)
+    return np.where(good, at + u, at)
+
+
 def _meeting(backend: Any, at: float, before: float, after: float) -> str:
     """Which named points meet at a Newton sweep's change point (close there, apart either side)."""
-    pos = backend.evaluate(np.array([before, at, after]))["positions"]
+    near = at + np.array([0.0, 1e-7, -1e-7, 1e-6, -1e-6])  # Newton may not converge on the point itself
+    probes = backend.evaluate(np.concatenate(([before, after], near)))["positions"]
+    finite = [k for k in range(2, probes.shape[0]) if np.all(np.isfinite(probes[k]))]
+    generic = (
+        "the constraint Jacobian loses rank with the loop closed on both sides "
+        "(branches of the assembly can meet there)"
+    )
+    if not finite or not np.all(np.isfinite(probes[:2])):
+        return generic
+    pos = np.stack([probes[0], probes[finite[0]], probes[1]])
     names = backend.points
     here = pos[1]
-    size = float(np.nanmax(np.hypot(*(here[:, None, :] - here[None, :, :]).transpose(2, 0, 1)))) or 1.0
+    size = float(np.max(np.hypot(*(here[:, None, :] - here[None, :, :]).transpose(2, 0, 1)))) or 1.0
     met = []
     for i in range(len(names)):
         for j in range(i):
             d = [float(np.hypot(*(p[i] - p[j]))) for p in pos]
             if d[1] <= 1e-5 * size and d[0] > 1e-4 * size and d[2] > 1e-4 * size:
                 met.append(f"{names[i]} meets {names[j]}")
-    what = ", ".join(met) if met else "two assembly branches meet"
-    return f"{what} (the constraint Jacobian is singular there)"
+    return f"{', '.join(met)} (the constraint Jacobian loses rank there)" if met else generic
 
 
 def _edge(backend: Closed, good: float, bad: float) -> float:
