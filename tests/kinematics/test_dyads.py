@@ -157,3 +157,10 @@ def test_shipped_examples_have_no_change_point(name):
 
     prog = closed_form(mech.load(ROOT / "mechanisms" / f"{name}.yaml"))
     assert change_points(prog) == ()
+
+
+def test_velocity_at_the_change_point_itself_is_refused_naming_it():
+    # at θ* both branches meet: P's velocity is undetermined by the loop (singular rows), so the
+    # solve refuses it, and says it is a change point rather than a limit
+    with pytest.raises(GeometryError, match="a change point, P meets C: two branches meet"):
+        solve(mech.loads(INVERSOR), "velocity", SolveOptions(angle=2 * math.acos(0.8)))

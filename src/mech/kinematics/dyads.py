@@ -1167,6 +1167,7 @@ def passed(prog: DyadProgram, ref: float, phi: float) -> list[tuple[float, Chang
         if phi < ref:
             a -= two_pi
         while (ref < a < phi) or (phi < a < ref):
-            out.append((a, c))
+            if abs(a - phi) > 1e-9:  # on it (to the angle's accuracy) is not past it
+                out.append((a, c))
             a += two_pi if phi > ref else -two_pi
     return sorted(out, key=lambda t: abs(t[0] - ref))

@@ -465,9 +465,10 @@ def _closed_form(
     if lvl >= 1 and sines and min(sines) * ACCURATE_COND < 1.0:
         k = sines.index(min(sines))
         cond = 1.0 / min(sines) if min(sines) > 0 else math.inf
+        what = _change_point_at(prog, k, phi) or "a toggle or dead-centre position"
         raise GeometryError(
             f"singular configuration of {comp.mech.label} ({d.link} at {_deg(phi)}): "
-            f"{prog.dyads[k][2]} — a toggle or dead-centre position (condition number {cond:.2g}; "
+            f"{prog.dyads[k][2]} — {what} (condition number {cond:.2g}; "
             f"velocities here would be good only to about {min(2e-16 * cond * cond, 1.0):.0e})",
             hint="analyse a slightly different angle: velocities here are undetermined",
         )
@@ -510,6 +511,16 @@ def _closed_form(
         return text
 
     return state, note
+
+
+def _change_point_at(prog: Any, k: int, phi: float) -> str | None:
+    """ "a change point (P meets C …)" when dyad ``k`` has one within 1e-6 rad of ``phi``, else None."""
+    from mech.kinematics.dyads import change_points
+
+    for c in change_points(prog):
+        if c.dyad == k and abs(wrap_angle(prog.drawn_angle + c.offset - phi)) < 1e-6:
+            return f"a change point, {c.what.split(' (')[0]}: two branches meet and either can follow"
+    return None
 
 
 def closed_form(mech: Mechanism) -> Any:
