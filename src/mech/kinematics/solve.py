@@ -463,15 +463,7 @@ def _closed_form(
         return None  # Newton reports the gap, in the file's unit
     sines = [abs(x) for x in parts["sin"]]
     if lvl >= 1 and sines and min(sines) * ACCURATE_COND < 1.0:
-        k = sines.index(min(sines))
-        cond = 1.0 / min(sines) if min(sines) > 0 else math.inf
-        what = _change_point_at(prog, k, phi) or "a toggle or dead-centre position"
-        raise GeometryError(
-            f"singular configuration of {comp.mech.label} ({d.link} at {_deg(phi)}): "
-            f"{prog.dyads[k][2]} — {what} (condition number {cond:.2g}; "
-            f"velocities here would be good only to about {min(2e-16 * cond * cond, 1.0):.0e})",
-            hint="analyse a slightly different angle: velocities here are undetermined",
-        )
+        _refuse_singular(comp, prog, d, phi, sines)
 
     def state() -> _State:
         sys_ = comp.system
@@ -511,6 +503,19 @@ def _closed_form(
         return text
 
     return state, note
+
+
+def _refuse_singular(comp: Compiled, prog: Any, d: Drive, phi: float, sines: list[float]) -> None:
+    """Refuse rates at a closed-form configuration next to a toggle or a change point (which, and how bad)."""
+    k = sines.index(min(sines))
+    cond = 1.0 / min(sines) if min(sines) > 0 else math.inf
+    what = _change_point_at(prog, k, phi) or "a toggle or dead-centre position"
+    raise GeometryError(
+        f"singular configuration of {comp.mech.label} ({d.link} at {_deg(phi)}): "
+        f"{prog.dyads[k][2]} — {what} (condition number {cond:.2g}; "
+        f"velocities here would be good only to about {min(2e-16 * cond * cond, 1.0):.0e})",
+        hint="analyse a slightly different angle: velocities here are undetermined",
+    )
 
 
 def _change_point_at(prog: Any, k: int, phi: float) -> str | None:
