@@ -164,3 +164,14 @@ def test_velocity_at_the_change_point_itself_is_refused_naming_it():
     # solve refuses it, and says it is a change point rather than a limit
     with pytest.raises(GeometryError, match="a change point, P meets C: two branches meet"):
         solve(mech.loads(INVERSOR), "velocity", SolveOptions(angle=2 * math.acos(0.8)))
+
+
+def test_newton_continuation_past_a_change_point_says_it_passed_one():
+    # Newton's predictor follows the tangent (P stays on x = 1.28); the sign of det Φ_q changes
+    # where the two branches meet, bisected to about √tol: θ* = 2 acos(0.8) within 1e-5°
+    kin = solve(mech.loads(INVERSOR), "position", SolveOptions(angle=math.radians(80.0), method="newton"))
+    assert kin.positions["P"] == pytest.approx(_inversor_p(80.0)[:2], abs=1e-9)
+    (note,) = [n for n in kin.notes if "change point" in n]
+    at = float(note.split("change point at ")[1].split("°")[0])
+    assert at == pytest.approx(math.degrees(2 * math.acos(0.8)), abs=1e-5)
+    assert "continuous tangent" in note
