@@ -484,3 +484,119 @@ def test_several_drives_need_every_speed_and_take_no_single_drive_override():
         sweep(m, options=SolveOptions(omega=3.0), drive="link_2")
     with pytest.raises(InputError, match="no drive of 'link_3'"):
         sweep(m, drive="link_3")
+
+
+# -- change points: the Peaucellier–Lipkin inversor folding flat ----------------------------------
+# By hand (nothing from mech): the crank QC = 1 about Q = (1, 0) puts C at Q + (cos θ, sin θ), so
+# |OC| = 2 cos(θ/2).  O, C, P are in line (OA = OB, CA = CB = AP = BP: C and P on the bisector of
+# AB) and OC·OP = OA² − CA² = 4 − 1.44 = 2.56, so P = 1.28 along +x: P runs along x = 1.28, with
+# OP = 1.28 / cos(θ/2), P.y = √(OP² − 1.28²) and v_P = (0, d(P.y)/dθ·ω).  The rhombus CAPB folds
+# flat where OC = OP (C = P, A–C–B in line): 2 cos(θ*/2) = 1.28 / cos(θ*/2), cos²(θ*/2) = 0.64,
+# θ* = 2 acos(0.8) = 73.7397952917°; past it the fixed-sign closed form would follow P = C.
+FOLDING_INVERSOR = """
+name: Peaucellier-Lipkin inversor
+units: {length: m, angle: deg}
+links: [frame, crank, l2, l3, l4, l5, l6, l7]
+joints:
+  O: {type: revolute, links: [frame, l2, l3], at: [0, 0]}
+  Q: {type: revolute, links: [frame, crank], at: [1, 0]}
+  C: {type: revolute, links: [crank, l4, l5]}
+  A: {type: revolute, links: [l2, l4, l6], near: [1.5, 1.3]}
+  B: {type: revolute, links: [l3, l5, l7], near: [1.5, -1.3]}
+  P: {type: revolute, links: [l6, l7], near: [1.28, 0.5]}
+lengths: {QC: 1, OA: 2, OB: 2, CA: 1.2, CB: 1.2, AP: 1.2, BP: 1.2}
+drive: {link: crank, angle: 60, omega: 1}
+"""
+FOLD = 2.0 * math.acos(0.8)
+
+
+def inversor_p(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(P.y, dP.y/dθ) on the inversor line x = 1.28 (derived above)."""
+    c, s = np.cos(theta / 2), np.sin(theta / 2)
+    op = 1.28 / c
+    dop = 1.28 * s / (2 * c * c)
+    y = np.sqrt(op * op - 1.28**2)
+    return y, op * dop / y
+
+
+@pytest.mark.parametrize("method", ["auto", "newton"])
+def test_sweep_through_a_change_point_stays_on_the_inversor_line(method):
+    mech_ = mech.loads(FOLDING_INVERSOR)
+    phi = np.radians(np.linspace(60.0, 90.0, 361))
+    s = sweep(mech_, phi, level="velocity", options=SolveOptions(method=method))
+    assert bool(np.all(s.assembled))
+    p = s.points.index("P")
+    y, dy = inversor_p(phi)
+    # both sides of θ*: P on x = 1.28 (the folded branch P = C has x = 1 + cos θ, 1.17 at 80°)
+    assert phi[0] < FOLD < phi[-1]
+    np.testing.assert_allclose(s.positions[:, p, 0], 1.28, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(s.positions[:, p, 1], y, rtol=0, atol=1e-9)
+    speed = s.series("velocity.P")
+    shown = np.isfinite(speed)
+    assert int(np.sum(~shown)) <= 2  # at most the steps within ~1e-5 rad of θ* (left out, not wrong)
+    np.testing.assert_allclose(speed[shown], np.abs(dy[shown]), rtol=1e-7)
+    # extremes: what the hand formula gives, never a blown-up value at θ*
+    ext = {e.quantity: e for e in s.extremes}
+    assert ext["velocity.P"].max_value == pytest.approx(
+        float(np.abs(inversor_p(np.radians(90.0))[1])), rel=1e-9
+    )
+    assert ext["velocity.P"].min_value == pytest.approx(
+        float(np.abs(inversor_p(np.radians(60.0))[1])), rel=1e-9
+    )
+    for e in s.extremes:
+        if e.unit in ("m/s", "rad/s"):
+            assert abs(e.max_value) < 10.0 and abs(e.min_value) < 10.0, e
+
+
+@pytest.mark.parametrize(("method", "within"), [("auto", 1e-6), ("newton", 1e-5)])
+def test_sweep_reports_the_change_point_where_the_rhombus_folds(method, within):
+    # the closed form: the root of the dyad's signed √disc; Newton: where σ_min of Φ_q dips to zero
+    # (Newton is good to about √tol there: 1e-6 of the size, some 1e-8 rad of crank)
+    s = sweep(
+        mech.loads(FOLDING_INVERSOR),
+        np.radians(np.linspace(60.0, 90.0, 361)),
+        level="velocity",
+        options=SolveOptions(method=method),
+    )
+    (c,) = s.change_points
+    assert c.kind == "change point"
+    assert math.degrees(c.angle) == pytest.approx(math.degrees(FOLD), abs=within)
+    assert c.subject.startswith("P meets C")
+    note = next(n for n in s.notes if n.startswith("change point at"))
+    assert f"change point at {math.degrees(c.angle):.6f}°" in note and "continuous tangent" in note
+    assert s.toggles == () and s.gaps == ()
+
+
+def test_sweep_descending_through_the_change_point_comes_back_on_the_same_line():
+    phi = np.radians(np.linspace(100.0, 50.0, 101))
+    s = sweep(mech.loads(FOLDING_INVERSOR), phi, level="position")
+    np.testing.assert_allclose(s.positions[:, s.points.index("P"), 0], 1.28, rtol=0, atol=1e-9)
+    assert [round(math.degrees(c.angle), 6) for c in s.change_points] == [round(math.degrees(FOLD), 6)]
+
+
+def test_sweep_without_a_change_point_reports_none():
+    s = sweep(four_bar(omega=10.0), FULL, level="velocity")
+    assert s.change_points == ()
+    assert not any("change point" in n for n in s.notes)
+
+
+def test_a_crank_limited_by_a_real_toggle_reports_the_toggle_not_a_change_point():
+    # the inversor's crank cannot bring C nearer O than OA − CA = 0.8: 2 cos(θ/2) = 0.8 at
+    # θ = 2 acos(0.4) = 132.84°, a toggle (O, C, A in line) at the edge of a gap
+    s = sweep(mech.loads(FOLDING_INVERSOR), np.radians(np.linspace(60.0, 180.0, 121)), level="position")
+    assert [math.degrees(t.angle) for t in s.toggles] == pytest.approx(
+        [math.degrees(2 * math.acos(0.4))], abs=1e-7
+    )
+    assert len(s.gaps) == 1
+    assert [math.degrees(c.angle) for c in s.change_points] == pytest.approx([math.degrees(FOLD)], abs=1e-6)
+
+
+def test_newton_sweep_of_the_double_parallelogram_says_where_its_jacobian_loses_rank():
+    # three equal cranks on collinear pivots: at 180° every link lies on the frame's line and Φ_q
+    # loses rank (each parallelogram at its change point; the third crank keeps the translation).
+    # The sweep passes it (assembled on both sides) and locates it by symmetry to 1e-6°.
+    s = sweep(mech.load(Path(__file__).resolve().parents[2] / "mechanisms" / "double_parallelogram.yaml"))
+    assert bool(np.all(s.assembled))
+    (c,) = s.change_points
+    assert math.degrees(c.angle) == pytest.approx(180.0, abs=1e-6)
+    assert "loses rank" in c.subject

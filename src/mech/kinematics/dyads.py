@@ -84,7 +84,18 @@ from mech.kinematics.constraints import System
 from mech.kinematics.layout import Layout
 from mech.model import JointType
 
-__all__ = ["DYADS", "DyadProgram", "FastState", "closing_edge", "program"]
+__all__ = [
+    "DYADS",
+    "ChangePoint",
+    "DyadProgram",
+    "FastState",
+    "branches",
+    "change_points",
+    "closing_edge",
+    "passed",
+    "program",
+    "route",
+]
 
 #: A relative discriminant above −this is a tangency within rounding (assembled).
 SLACK = 1e-12
@@ -175,13 +186,25 @@ class DyadProgram:
     _memo: dict[str, Any] = field(default_factory=dict, repr=False)  # lazily computed closure gaps
 
     # -- evaluation -------------------------------------------------------------------
-    def raw(self, phi: Any, omega: Any = 0.0, alpha: Any = 0.0, *, level: int = 2, xp: Any = None) -> tuple:
+    def raw(
+        self,
+        phi: Any,
+        omega: Any = 0.0,
+        alpha: Any = 0.0,
+        *,
+        level: int = 2,
+        xp: Any = None,
+        branch: tuple = (),
+    ) -> tuple:
         """The flat output tuple of the generated function (see :meth:`split`).
 
         ``xp`` is ``math`` for floats or :data:`NUMPY` for arrays of angles.
+        ``branch`` holds each dyad's branch multiplier (+1 the drawn one, −1 the
+        other; floats, or arrays shaped as ``phi``): :func:`branches` gives them
+        for angles reached past change points; empty, the drawn branch throughout.
         """
         xp = xp or MATH
-        return self._fns[level](phi, omega, alpha, xp.sqrt, xp.cos, xp.sin, xp.atan2, xp.clip)
+        return self._fns[level](phi, omega, alpha, xp.sqrt, xp.cos, xp.sin, xp.atan2, xp.clip, *branch)
 
     def split(self, out: tuple, level: int) -> dict[str, tuple]:
         """Named slices of a raw output.
@@ -722,8 +745,10 @@ class _Builder:
                 else:
                     lines.append(line)
             ret = outs + (vel if level >= 1 else []) + (acc if level >= 2 else [])
+            # b0, b1 …: each dyad's branch, flipped (−1) past a change point (see :func:`branches`)
+            branch = "".join(f", b{k}=1.0" for k in range(nd))
             source = (
-                "def run(phi, omega, alpha, sqrt, cos, sin, atan2, clip):\n"
+                f"def run(phi, omega, alpha, sqrt, cos, sin, atan2, clip{branch}):\n"
                 + "\n".join(lines)
                 + "\n    return ("
                 + ", ".join(ret)
@@ -755,7 +780,7 @@ def _rrr(k: int, j: str, p: str, q: str, lp: float, lq: float, sign: float, pv: 
         # base points that coincide leave the apex undetermined: no closure there (and no 1/0)
         f"    d{k} = f1 * f2 * {_fmt(1.0 / (s2 * s2))} - (dd == 0.0); dd = dd + (dd == 0.0)",
         f"    ms{k} = ({_fmt(abs(lp - lq) - (lp + lq))} + abs(2.0 * sqrt(dd) - {_fmt(abs(lp - lq) + lp + lq)})) * 0.5",
-        f"    a = ({_fmt(lp * lp - lq * lq)} + dd) / (2.0 * dd); h = {_fmt(sign)} * sqrt(clip(f1 * f2)) / (2.0 * dd)",
+        f"    a = ({_fmt(lp * lp - lq * lq)} + dd) / (2.0 * dd); h = {_fmt(sign)} * b{k} * sqrt(clip(f1 * f2)) / (2.0 * dd)",
         f"    {J['x']} = {P['x']} + a * dx - h * dy; {J['y']} = {P['y']} + a * dy + h * dx",
         f"    epx = {J['x']} - {P['x']}; epy = {J['y']} - {P['y']}; eqx = {J['x']} - {Q['x']}; eqy = {J['y']} - {Q['y']}",
         "    det = epx * eqy - epy * eqx",
@@ -800,7 +825,7 @@ def _rrp(
         f"    f = {_fmt(length * length)} - pn * pn",
         f"    d{k} = f * {_fmt(1.0 / (length * length))}",
         f"    ms{k} = abs(pn) - {_fmt(length)}",
-        f"    sb = -pu + {_fmt(sign)} * sqrt(clip(f))",
+        f"    sb = -pu + {_fmt(sign)} * b{k} * sqrt(clip(f))",
         f"    {B['x']} = tx + sb * gux; {B['y']} = ty + sb * guy",
         f"    ex = {B['x']} - {A['x']}; ey = {B['y']} - {A['y']}",
         "    det = -guy * ey - gux * ex",
@@ -829,7 +854,7 @@ def _rpr(k: int, g: int, o: str, p: str, e: float, ulx: float, uly: float, sign:
         # P on the pivot O: the guide's direction is undetermined, no closure there (and no 1/0)
         f"    d{k} = f / (dd + (dd == 0.0)) - (dd == 0.0); dd = dd + (dd == 0.0)",
         f"    ms{k} = {_fmt(abs(e))} - sqrt(dd)",
-        f"    cc = {_fmt(sign)} * sqrt(clip(f))",
+        f"    cc = {_fmt(sign)} * b{k} * sqrt(clip(f))",
         f"    gux = (cc * dx + {_fmt(e)} * dy) / dd; guy = (cc * dy - {_fmt(e)} * dx) / dd",
         f"    l{g}_t = atan2(guy * {_fmt(ulx)} - gux * {_fmt(uly)}, gux * {_fmt(ulx)} + guy * {_fmt(uly)})",
         f"    sn{k} = cc / sqrt(dd); cc = cc + (cc == 0.0)",
@@ -970,10 +995,179 @@ def closure_gaps(prog: DyadProgram, samples: int = 2048) -> tuple[tuple[float, f
 
 def reachable(prog: DyadProgram, target: float) -> bool:
     """True when the crank can turn from the drawn angle to ``target`` (either way) without a gap."""
+    return route(prog, target) is not None
+
+
+# -- change points: where a dyad's two positions meet and the loop still closes --------------
+#: Golden-section minima of a dyad's discriminant within this of zero touch it (a tangency).
+TOUCH = SLACK
+_CHANGE_STEP = 1e-6  # rad either side of a tangency: where the signed root is read (see change_points)
+
+
+@dataclass(frozen=True, slots=True)
+class ChangePoint:
+    """A change point (bifurcation) of one dyad: its two positions meet, the loop closes either side.
+
+    ``dyad`` is the dyad's index in :attr:`DyadProgram.dyads`; ``offset`` the drive
+    angle from the drawn one (rad, in (0, 2π)); ``what`` says what meets what
+    (``P meets C (l6 and l7 in line at P)``).
+    """
+
+    dyad: int
+    offset: float
+    what: str
+
+
+def _dyad_disc(prog: DyadProgram, k: int, phi: float) -> float:
+    return float(prog.raw(phi, level=0)[k])
+
+
+def change_points(prog: DyadProgram, samples: int = 2048) -> tuple[ChangePoint, ...]:
+    """Where a dyad's discriminant touches zero without the loop failing to close: change points.
+
+    At a toggle the discriminant crosses zero (the loop cannot close beyond: a
+    gap); at a change point it only touches it, ``disc ≈ c (φ − φ*)²``, so its
+    two roots meet and part again (the Peaucellier inversor folding flat: P
+    meets C).  Both continuations are smooth curves, but the drawn sign
+    ``+√disc`` follows the one whose tangent turns abruptly; the root that
+    continues with a continuous tangent is ``sign·g(φ)``, ``g`` the signed
+    square root of the discriminant, whose sign changes there — the
+    predictor–corrector continuation's choice.  Located by golden section on
+    the dyad's own discriminant round every sampled minimum below 1e-3 (the
+    neighbours assembled), kept when it is within :data:`TOUCH` of zero and
+    grows quadratically on both sides (``√disc`` doubles with the distance: a
+    simple root of ``g``); the angle is then the root of the signed ``g``
+    read at ±1e-6 rad (to about 1e-10 rad).  Remembered on the program.
+    """
+    hit = prog._memo.get("changes")
+    if hit is not None:
+        return hit  # type: ignore[no-any-return]
+    import numpy as np
+
+    found: list[ChangePoint] = []
+    nd = len(prog.dyads)
+    if nd:
+        d = np.linspace(0.0, 2.0 * math.pi, samples + 1)
+        with np.errstate(all="ignore"):
+            out = prog.raw(prog.drawn_angle + d, level=0, xp=numpy_namespace())
+        discs = np.vstack(np.broadcast_arrays(*out[:nd]))
+        ok = np.min(discs, axis=0) >= -SLACK
+        v, left, right = discs[:, 1:-1], discs[:, :-2], discs[:, 2:]
+        dips = (v <= left) & (v <= right) & ((v < left) | (v < right)) & (v < 1e-3) & ok[:-2] & ok[2:]
+        for k, i in zip(*np.nonzero(dips), strict=True):  # i + 1: the sample of the dip
+            at = _touch(prog, int(k), prog.drawn_angle + d[i], prog.drawn_angle + d[i + 2])
+            if at is not None:
+                found.append(ChangePoint(int(k), float(at - prog.drawn_angle), _meets(prog, int(k), at)))
+    result = tuple(sorted(found, key=lambda c: c.offset))
+    prog._memo["changes"] = result
+    return result
+
+
+def _touch(prog: DyadProgram, k: int, lo: float, hi: float) -> float | None:
+    """The angle where dyad k's discriminant touches zero between ``lo`` and ``hi``, or None."""
+    x, v = _golden_min(lambda t: _dyad_disc(prog, k, t), lo, hi)
+    if abs(v) > TOUCH:
+        return None  # a near miss (the roots pass close, never meet) or a dip below zero (a gap)
+    h = _CHANGE_STEP
+    try:
+        s = [math.sqrt(max(_dyad_disc(prog, k, x + t), 0.0)) for t in (-2 * h, -h, h, 2 * h)]
+    except ZeroDivisionError:
+        return None
+    if min(s) <= 0.0 or not all(1.5 < a / b < 2.5 for a, b in ((s[0], s[1]), (s[3], s[2]))):
+        return None  # not a simple root of the signed √disc: no sign to flip
+    return x - h + 2.0 * h * s[1] / (s[1] + s[2])
+
+
+def _meets(prog: DyadProgram, k: int, phi: float) -> str:
+    """What meets what at dyad k's change point: the placed point and any named point on it."""
+    kind, placed, line = prog.dyads[k]
+    out = prog.raw(phi, level=0)
+    parts = prog.split(out, 0)
+    names = prog.points
+    j = names.index(placed) if placed in names else -1
+    if j < 0:
+        return f"the {kind} dyad's two positions meet ({line})"
+    px, py = parts["px"], parts["py"]
+    size = max(
+        (math.hypot(px[a] - px[b], py[a] - py[b]) for a in range(len(names)) for b in range(a)), default=1.0
+    )
+    others = [
+        n
+        for i, n in enumerate(names)
+        if i != j
+        and not n.startswith("#")
+        and math.hypot(px[i] - px[j], py[i] - py[j]) <= 1e-6 * (size or 1.0)
+    ]
+    if others:
+        return f"{placed} meets {', '.join(others)} ({line})"
+    return f"{placed}'s two positions meet ({line})"
+
+
+def route(prog: DyadProgram, target: float) -> float | None:
+    """How far the crank turns from the drawn angle to reach ``target`` (rad, signed), or None.
+
+    The short way round first, then the other, as Newton continuation
+    (:func:`~mech.kinematics.solve.move_to`) tries them; a way with a gap in
+    it is not taken; None when both have one.
+    """
+    two_pi = 2.0 * math.pi
+    delta = (target - prog.drawn_angle + math.pi) % two_pi - math.pi
+    if delta == 0.0:
+        return 0.0
     gaps = closure_gaps(prog)
-    if not gaps:
-        return True
-    t = (target - prog.drawn_angle) % (2.0 * math.pi)
-    ccw = all(lo > t for lo, _ in gaps)
-    cw = all(hi < t for _, hi in gaps)
-    return ccw or cw
+    for way in (delta, delta - math.copysign(two_pi, delta)):
+        if way > 0 and all(lo > way for lo, _ in gaps):
+            return way
+        if way < 0 and all(hi < way + two_pi for _, hi in gaps):
+            return way
+    return None
+
+
+def crossed(prog: DyadProgram, ref: float, phi: Any) -> list[Any]:
+    """Per change point, how many times turning from ``ref`` to ``phi`` passes it (floats or arrays).
+
+    ``ref`` is the drawn angle or one a whole number of turns from it; a change
+    point at ``ref`` or at ``phi`` itself is not passed.
+    """
+    import numpy as np
+
+    two_pi = 2.0 * math.pi
+    lo, hi = np.minimum(ref, phi), np.maximum(ref, phi)
+    counts = []
+    for c in change_points(prog):
+        u = prog.drawn_angle + c.offset
+        n = np.maximum(np.ceil((hi - u) / two_pi) - np.floor((lo - u) / two_pi) - 1.0, 0.0)
+        counts.append(n if np.ndim(phi) else float(n))
+    return counts
+
+
+def branches(prog: DyadProgram, ref: float, phi: Any) -> tuple:
+    """Each dyad's branch multiplier at ``phi`` reached by turning from ``ref``: () when none flips.
+
+    Past each change point of a dyad its sign flips, so the configuration
+    continues with a continuous tangent (:func:`change_points`).
+    """
+    changes = change_points(prog)
+    if not changes:
+        return ()
+    import numpy as np
+
+    flips: list[Any] = [1.0] * len(prog.dyads)
+    for c, n in zip(changes, crossed(prog, ref, phi), strict=True):
+        flips[c.dyad] = flips[c.dyad] * np.where(np.remainder(n, 2.0) == 1.0, -1.0, 1.0)
+    return tuple(f if np.ndim(phi) else float(f) for f in flips)
+
+
+def passed(prog: DyadProgram, ref: float, phi: float) -> list[tuple[float, ChangePoint]]:
+    """The change points met turning from ``ref`` to ``phi`` (angles, rad, in the order met)."""
+    two_pi = 2.0 * math.pi
+    out = []
+    for c in change_points(prog):
+        a = ref + ((prog.drawn_angle + c.offset - ref) % two_pi)
+        if phi < ref:
+            a -= two_pi
+        while (ref < a < phi) or (phi < a < ref):
+            if abs(a - phi) > 1e-9:  # on it (to the angle's accuracy) is not past it
+                out.append((a, c))
+            a += two_pi if phi > ref else -two_pi
+    return sorted(out, key=lambda t: abs(t[0] - ref))

@@ -481,16 +481,32 @@ class Marcher:
         sweep costs a few stacked solves (as the closed form's grids do), not a
         continuation per probe.  Angles that do not converge are NaN.
         """
-        phi, q_s, qd_s, qdd_s, usable = self.solved
         shape = np.shape(angles)
         a = np.asarray(angles, float).ravel()
-        cand = np.flatnonzero(usable)
+        q_n, conv = self.corrected(a)
         n_out, n3 = a.size, 3 * self.sys.n
         q = np.full((n_out, n3), np.nan)
         qd = np.full((n_out, n3), np.nan)
         qdd = np.full((n_out, n3), np.nan)
         ok = np.zeros(n_out, bool)
         bad = np.zeros(n_out, bool)
+        if conv.any():
+            b, v, acc = self.rates(q_n[conv])
+            q[conv], qd[conv], qdd[conv], ok[conv], bad[conv] = q_n[conv], v, acc, True, b
+        out = _arrays(self.backend, self.comp, q, qd, qdd, ok, bad, self.omega_ref, self.lvl)
+        return {k: v.reshape(*shape, *v.shape[1:]) for k, v in out.items()}
+
+    def corrected(self, a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Configurations (K, 3n) at the parameters ``a`` (K,) and whether each converged.
+
+        Predicted from the nearest regular solved step of the last :meth:`series`
+        (on the sweep's branch, within :data:`MAX_SPAN`) and corrected in one stack.
+        """
+        phi, q_s, qd_s, qdd_s, usable = self.solved
+        cand = np.flatnonzero(usable)
+        n_out = a.size
+        q_n = np.full((n_out, 3 * self.sys.n), np.nan)
+        conv = np.zeros(n_out, bool)
         if cand.size and n_out:
             order = np.argsort(phi[cand])
             sp = phi[cand][order]
@@ -511,11 +527,19 @@ class Marcher:
                 self.rows, self.rates.keep, pred, c_line, c_ang, self.options.tol, self.options.max_iter
             )
             conv &= np.abs(h) <= self.law.span
-            if conv.any():
-                b, v, acc = self.rates(q_n[conv])
-                q[conv], qd[conv], qdd[conv], ok[conv], bad[conv] = q_n[conv], v, acc, True, b
-        out = _arrays(self.backend, self.comp, q, qd, qdd, ok, bad, self.omega_ref, self.lvl)
-        return {k: v.reshape(*shape, *v.shape[1:]) for k, v in out.items()}
+        return q_n, conv
+
+    def inverse_condition(self, q: np.ndarray) -> np.ndarray:
+        """σ_min / σ_max of Φ_q (its square rows) at each configuration (K,); NaN where ``q`` is.
+
+        Zero where two assembly branches meet (a change point) or at a limit.
+        """
+        out = np.full(q.shape[0], np.nan)
+        good = np.all(np.isfinite(q), axis=1)
+        if good.any():
+            s = np.linalg.svd(self.rows.jacobian(q[good])[:, self.rates.keep, :], compute_uv=False)
+            out[good] = s[:, -1] / s[:, 0]
+        return out
 
     def edge(self, k: int, bad: float) -> float:
         """The last parameter reached going from solved step ``k`` toward ``bad`` (a limit: a toggle).

@@ -71,6 +71,11 @@ def check_quantity(
     pool = {"angle": links, "omega": links, "alpha": links, "displacement": slides, "sliding": slides}.get(
         kind, sw_points
     )
+    if name not in pool and kind in ("displacement", "sliding"):
+        raise InputError(
+            _slide_message(key, kind, name, slides, sw_points),
+            hint=_slide_hint(kind, name, slides, sw_points),
+        )
     if name not in pool:
         raise InputError(
             f"{key}: no {'link' if kind in ('angle', 'omega', 'alpha') else 'joint' if kind in ('displacement', 'sliding') else 'point'} named {name}",
@@ -81,6 +86,28 @@ def check_quantity(
         raise InputError(
             f"{key}: a component is .x or .y" + (" (position needs one)" if kind == "position" else "")
         )
+
+
+def _slide_message(key: str, kind: str, name: str, slides: Sequence[str], points: Sequence[str]) -> str:
+    """Why a displacement or sliding key names nothing: it is a slider's, along its path."""
+    what = "travel along its path" if kind == "displacement" else "speed along its path"
+    where = f"{name} is not one" if name in points or not slides else f"there is no slider joint named {name}"
+    if not slides:
+        where = "the mechanism has no slider (prismatic or slot joint)"
+    return f"{key}: {kind} is a slider's {what} (a prismatic or slot joint); {where}"
+
+
+def _slide_hint(kind: str, name: str, slides: Sequence[str], points: Sequence[str]) -> str:
+    """What to ask instead: a slider joint, or the point's path, position or speed."""
+    instead = (
+        f"--path {name} (its x and y over the sweep), position.{name}.x|y"
+        if kind == "displacement"
+        else f"velocity.{name} (its speed), velocity.{name}.x|y"
+    )
+    if name not in points:
+        instead = "--path POINT, position.POINT.x|y" if kind == "displacement" else "velocity.POINT"
+    sliders = f"; sliders: {', '.join(slides)}" if slides else ""
+    return f"for a point use {instead}{sliders}"
 
 
 def pick(arrays: dict[str, Any], names: dict[str, tuple[str, ...]], key: str) -> np.ndarray:

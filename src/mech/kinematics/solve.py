@@ -258,22 +258,39 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
             told = (lambda: (*notes, note())) if moved else tuple(notes)
             return _lazy(comp, level, state, omega_ref, moved, told, drives)
     if moved:
-        if sys_.velocity_only:
-            raise UnsupportedError(
-                f"cannot move {mech.label} to another angle: {instant_pairs(sys_.velocity_only)} "
-                "only the instant drawn (no profile is given)",
-                hint="analyse the drawn angle, or draw the mechanism at the angle you need",
-            )
-        q = move_to(comp, drives, options)
-        shown = [
-            f"{_deg(a)} → {_deg(t)}"
-            for a, t in zip(drawn.drive_angles, targets, strict=False)
-            if a is not None
-        ]
-        notes.append(f"moved from the drawn angle by continuation ({', '.join(shown)}), keeping its branch")
+        q = _moved(comp, drives, options, targets, notes)
 
     qd, qdd = _rates(comp, q, drives, lvl, omega_ref)
     return _result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
+
+
+def _moved(
+    comp: Compiled,
+    drives: tuple[Drive, ...],
+    options: SolveOptions,
+    targets: list[float | None],
+    notes: list[str],
+) -> np.ndarray:
+    """q at the drives' targets by Newton continuation from the drawing; what it did goes to ``notes``."""
+    sys_, drawn = comp.system, comp.drawn
+    if sys_.velocity_only:
+        raise UnsupportedError(
+            f"cannot move {comp.mech.label} to another angle: {instant_pairs(sys_.velocity_only)} "
+            "only the instant drawn (no profile is given)",
+            hint="analyse the drawn angle, or draw the mechanism at the angle you need",
+        )
+    passed: list[float] = []
+    q = move_to(comp, drives, options, passed)
+    shown = [
+        f"{_deg(a)} → {_deg(t)}" for a, t in zip(drawn.drive_angles, targets, strict=False) if a is not None
+    ]
+    notes.append(f"moved from the drawn angle by continuation ({', '.join(shown)}), keeping its branch")
+    notes += [
+        f"passed a change point at {math.degrees(at):.6f}° (the constraint Jacobian loses rank with the loop "
+        "closed on both sides) and continued on the branch with a continuous tangent"
+        for at in passed
+    ]
+    return q
 
 
 def refuse_underdriven(mech: Mechanism) -> None:
@@ -433,7 +450,7 @@ def _closed_form(
     when a dyad cannot close, or near a toggle.  With ``method="closed"`` the
     first of these is an error instead.
     """
-    from mech.kinematics.dyads import ACCURATE_COND, SLACK, program, reachable
+    from mech.kinematics.dyads import ACCURATE_COND, SLACK, branches, passed, program, route
 
     prog = program(comp)
     if prog is None:
@@ -445,12 +462,17 @@ def _closed_form(
         return None
     d = drives[0]
     phi = d.angle if d.angle is not None else prog.drawn_angle
-    if not reachable(prog, phi):
+    turn = route(prog, phi)
+    if turn is None:
         return None
+    # past a change point a dyad continues on the branch with a continuous tangent (its sign flips)
+    reached = prog.drawn_angle + turn
+    branch = branches(prog, prog.drawn_angle, reached)
+    met = passed(prog, prog.drawn_angle, reached)
     w = d.omega or 0.0
     al = d.alpha or 0.0
     try:
-        out = prog.raw(phi, w, al, level=lvl)
+        out = prog.raw(phi, w, al, level=lvl, branch=branch)
     except ZeroDivisionError:  # no closure, or exactly in line: Newton explains
         return None
     parts = prog.split(out, lvl)
@@ -458,14 +480,7 @@ def _closed_form(
         return None  # Newton reports the gap, in the file's unit
     sines = [abs(x) for x in parts["sin"]]
     if lvl >= 1 and sines and min(sines) * ACCURATE_COND < 1.0:
-        k = sines.index(min(sines))
-        cond = 1.0 / min(sines) if min(sines) > 0 else math.inf
-        raise GeometryError(
-            f"singular configuration of {comp.mech.label} ({d.link} at {_deg(phi)}): "
-            f"{prog.dyads[k][2]} — a toggle or dead-centre position (condition number {cond:.2g}; "
-            f"velocities here would be good only to about {min(2e-16 * cond * cond, 1.0):.0e})",
-            hint="analyse a slightly different angle: velocities here are undetermined",
-        )
+        _refuse_singular(comp, prog, d, phi, sines)
 
     def state() -> _State:
         sys_ = comp.system
@@ -493,12 +508,41 @@ def _closed_form(
 
     def note() -> str:
         kinds = ", ".join(dict.fromkeys(k for k, _, _ in prog.dyads)) or "crank only"
-        return (
+        text = (
             f"moved from the drawn angle ({_deg(prog.drawn_angle)} → {_deg(phi)}) keeping its branch, "
             f"in closed form (dyads: {kinds})"
         )
+        for at, c in met:
+            text += (
+                f"; passed a change point at {math.degrees(at):.6f}° ({c.what}) and continued on the "
+                "branch with a continuous tangent"
+            )
+        return text
 
     return state, note
+
+
+def _refuse_singular(comp: Compiled, prog: Any, d: Drive, phi: float, sines: list[float]) -> None:
+    """Refuse rates at a closed-form configuration next to a toggle or a change point (which, and how bad)."""
+    k = sines.index(min(sines))
+    cond = 1.0 / min(sines) if min(sines) > 0 else math.inf
+    what = _change_point_at(prog, k, phi) or "a toggle or dead-centre position"
+    raise GeometryError(
+        f"singular configuration of {comp.mech.label} ({d.link} at {_deg(phi)}): "
+        f"{prog.dyads[k][2]} — {what} (condition number {cond:.2g}; "
+        f"velocities here would be good only to about {min(2e-16 * cond * cond, 1.0):.0e})",
+        hint="analyse a slightly different angle: velocities here are undetermined",
+    )
+
+
+def _change_point_at(prog: Any, k: int, phi: float) -> str | None:
+    """ "a change point (P meets C …)" when dyad ``k`` has one within 1e-6 rad of ``phi``, else None."""
+    from mech.kinematics.dyads import change_points
+
+    for c in change_points(prog):
+        if c.dyad == k and abs(wrap_angle(prog.drawn_angle + c.offset - phi)) < 1e-6:
+            return f"a change point, {c.what.split(' (')[0]}: two branches meet and either can follow"
+    return None
 
 
 def closed_form(mech: Mechanism) -> Any:
@@ -789,8 +833,14 @@ def _singular_message(comp: Compiled, v: np.ndarray, cond: float, drives: tuple[
 
 
 # -- position: continuation ----------------------------------------------------------------
-def move_to(comp: Compiled, drives: tuple[Drive, ...], options: SolveOptions) -> np.ndarray:
-    """Carry the drawn configuration to the drives' target angles, keeping its branch."""
+def move_to(
+    comp: Compiled, drives: tuple[Drive, ...], options: SolveOptions, passed: list[float] | None = None
+) -> np.ndarray:
+    """Carry the drawn configuration to the drives' target angles, keeping its branch.
+
+    With ``passed`` (a list), the angles (rad) of the first moving drive where
+    the continuation passed a change point are appended (see :func:`continue_along`).
+    """
     sys_, drawn = comp.system, comp.drawn
     c_line = sys_.ln_c.copy()
     base_ang = sys_.ang_c.copy()
@@ -809,8 +859,13 @@ def move_to(comp: Compiled, drives: tuple[Drive, ...], options: SolveOptions) ->
         tries.append(other)
     reached = []
     for total in tries:
-        q, fraction = continue_along(sys_, sys_.q0, base_ang, c_line, rows, total, options)
+        found: list[float] | None = [] if passed is not None and np.count_nonzero(total) == 1 else None
+        q, fraction = continue_along(sys_, sys_.q0, base_ang, c_line, rows, total, options, found)
         if q is not None:
+            if found:
+                k = int(np.flatnonzero(total)[0])
+                a = drawn.drive_angles[k]
+                passed.extend(float(a) + f * float(total[k]) for f in found if a is not None)  # type: ignore[union-attr]
             return q
         reached.append(fraction)
     c_ang = base_ang.copy()
@@ -861,10 +916,20 @@ def continue_along(
     rows: list[int],
     total: np.ndarray,
     options: SolveOptions,
+    crossings: list[float] | None = None,
 ) -> tuple[np.ndarray | None, float]:
-    """Step the drive angles from 0 to ``total`` (rad); returns (q, 1.0) or (None, fraction reached)."""
+    """Step the drive angles from 0 to ``total`` (rad); returns (q, 1.0) or (None, fraction reached).
+
+    With ``crossings`` (a list), the fractions of ``total`` where the path
+    passes a singular configuration with the loop closed on both sides (a
+    change point: det Φ_q changes sign between two steps) are appended,
+    located by bisection; watched only on square systems of at most
+    :data:`WATCH_MAX` unknowns (a determinant per step).
+    """
     done, step = 0.0, min(1.0, _MAX_STEP / max(float(np.max(np.abs(total))), 1e-300))
     rhs_rows = sys_.drive_rows
+    watch = crossings is not None and sys_.m == 3 * sys_.n <= WATCH_MAX
+    sign = _det_sign(sys_, q) if watch else 0.0
     while done < 1.0:
         h = min(step, 1.0 - done)
         # predictor: q̇ for a unit rate along the total change
@@ -883,10 +948,66 @@ def continue_along(
             if step * float(np.max(np.abs(total))) < 1e-7:
                 return None, done
             continue
+        if watch and crossings is not None:
+            now = _det_sign(sys_, q_new)
+            if now * sign < 0.0:  # passed a zero of det Φ_q: locate it between the two steps
+                crossings.append(
+                    _crossing(sys_, q, base_ang, c_line, rows, total, done, done + h, sign, options)
+                )
+            sign = now or sign
         q, done = q_new, done + h
         step = min(step * 2.0, 1.0)
         step = min(step, _MAX_STEP / max(float(np.max(np.abs(total))), 1e-300))
     return q, 1.0
+
+
+#: Largest square system (unknowns) whose det Φ_q a single solve's continuation watches for change points.
+WATCH_MAX = 120
+
+
+def _det_sign(sys_: System, q: np.ndarray) -> float:
+    """The sign of det Φ_q (0 where it is singular to rounding)."""
+    return float(np.linalg.slogdet(sys_.jacobian(q))[0])
+
+
+def _crossing(
+    sys_: System,
+    q: np.ndarray,
+    base_ang: np.ndarray,
+    c_line: np.ndarray,
+    rows: list[int],
+    total: np.ndarray,
+    lo: float,
+    hi: float,
+    sign: float,
+    options: SolveOptions,
+) -> float:
+    """The fraction of ``total`` in (lo, hi) where det Φ_q changes sign, bisected from ``q`` (at lo).
+
+    Each probe is one predicted Newton solve from ``q``; Newton is good to about
+    √tol next to the singular configuration, so the fraction is good to about that.
+    """
+    rhs = np.zeros(sys_.m)
+    rhs[sys_.drive_rows] = total
+    try:
+        rate = _square_solve(sys_, sys_.jacobian(q), rhs)
+    except np.linalg.LinAlgError:
+        return 0.5 * (lo + hi)
+    start = lo
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            break
+        c_ang = base_ang.copy()
+        c_ang[rows] += mid * total
+        q_mid = _newton(sys_, q + (mid - start) * rate, c_line, c_ang, options)
+        if q_mid is None:
+            break
+        if _det_sign(sys_, q_mid) * sign > 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
 
 
 def _newton(

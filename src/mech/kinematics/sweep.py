@@ -17,12 +17,20 @@ Rules the results keep:
   :class:`Gap` with how far the loop is from closing.  The gap's edges are
   toggles (links in line), located by bisection to rounding.  A Newton
   sweep that meets a limit stops there and says so.
+* **Change points are passed on the branch with a continuous tangent.**
+  Where a dyad's discriminant touches zero with the loop closed on both
+  sides (:func:`~mech.kinematics.dyads.change_points`: the Peaucellier
+  inversor folding flat), the closed form flips that dyad's sign past it, as
+  continuation's predictor would follow the tangent, and the sweep reports
+  the change point (``Sweep.change_points``, a note).
 * **Singular steps are not reported as numbers.**  Where the dyad
   condition number exceeds :data:`~mech.kinematics.dyads.ACCURATE_COND`
   (1e5, within about 1e-10 rad of a toggle: rates there are good to less
   than 1e-6), velocities and accelerations are NaN and a note says how
   many; the largest condition met is reported.  Newton sweeps use the
-  solver's own :data:`~mech.kinematics.solve.SINGULAR`.
+  solver's own :data:`~mech.kinematics.solve.SINGULAR`.  Refining an
+  extreme leaves such configurations out too (a change point's rows are
+  singular where the two branches meet).
 * **Extremes and dead centres are refined**, not read off the grid: the
   closed form is evaluated on a fine sub-grid round each candidate, zooming
   in 16× per round until the bracket is at rounding, so an extreme value is
@@ -69,6 +77,7 @@ from mech.kinematics.solve import SINGULAR, Compiled, compiled, instant_pairs, r
 from mech.kinematics.sweep_backends import Closed, Newton, law_series, newton_series
 from mech.kinematics.sweep_events import (
     circuits_note,
+    find_change_points,
     find_dead_centres,
     find_extremes,
     find_gaps,
@@ -214,6 +223,7 @@ class _Found:
     dead: tuple[Event, ...] = ()
     extremes: tuple[Extreme, ...] = ()
     ratio: TimeRatio | None = None
+    changes: tuple[Event, ...] = ()
 
 
 def _checked_level(level: str, options: SolveOptions) -> int:
@@ -286,12 +296,25 @@ def _evaluate(plan: _Plan, analyse: bool) -> tuple[Any, dict[str, np.ndarray], n
     w_int = plan.omega if plan.omega else 1.0  # velocities are needed for dead centres even at position level
     if prog is not None:
         backend: Any = Closed(comp, prog, w_int, plan.alpha, plan.lvl_int)
+        backend.ref = _branch_reference(fine, prog.drawn_angle)
         data = backend.evaluate(fine)
         notes.append("closed form: " + "; ".join(prog.steps))
     else:
         backend = Newton(plan.mech, comp, plan.options, w_int, plan.alpha, plan.lvl_int)
         data = newton_series(backend, fine, notes, comp.drawn.drive_angles[0])
     return backend, data, fine, pick
+
+
+def _branch_reference(phi: np.ndarray, drawn: float) -> float:
+    """The drawn angle moved by whole turns next to the sweep's step nearest the drawing.
+
+    The sweep is continued from there both ways (as a Newton sweep is), so a
+    change point is passed, and a dyad's branch flipped, between it and each step.
+    """
+    if not phi.size:
+        return drawn
+    k0 = int(np.argmin(np.abs(np.remainder(phi - drawn + math.pi, _TWO_PI) - math.pi)))
+    return drawn + _TWO_PI * round(float(phi[k0] - drawn) / _TWO_PI)
 
 
 def _masked(data: dict[str, np.ndarray], closed: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -332,18 +355,34 @@ def _find(
     """Gaps and toggles, dead centres, extremes and the time ratio on the analysis grid."""
     names = {"points": backend.points, "links": backend.links, "slides": backend.slides}
     gaps, toggles = find_gaps(backend, fine, data, ok)
+    changes = find_change_points(backend, fine, ok)
+    for e in changes:
+        plan.notes.append(
+            f"change point at {_at_text(plan, e.angle)}: {e.subject}; continued on the branch with a "
+            "continuous tangent"
+        )
     dead, outputs = find_dead_centres(backend, plan.comp, fine, data, ok, names)
     extremes = find_extremes(backend, fine, data, ok & ~singular, names, keys)
     ratio = find_time_ratio(fine, ok, dead, outputs) if plan.lead is None else None
-    return _Found(gaps, toggles, dead, extremes, ratio)
+    return _Found(gaps, toggles, dead, extremes, ratio, changes)
+
+
+def _at_text(plan: _Plan, value: float) -> str:
+    """A value of the sweep's parameter as the notes write it (degrees, or the file's length unit)."""
+    if plan.parameter == "angle":
+        return f"{math.degrees(value):.6f}°"
+    return f"{to_unit(value, plan.mech.length_unit):.6g} {plan.mech.length_unit}"
 
 
 def _closing_notes(plan: _Plan, ok: np.ndarray, singular: np.ndarray, ratio: TimeRatio | None) -> None:
     """Notes on the steps asked: rates left out next to a toggle, separate circuits, a quick return."""
     notes = plan.notes
     if np.any(singular):
+        where = (
+            "a toggle or change point" if any(n.startswith("change point at") for n in notes) else "a toggle"
+        )
         notes.append(
-            f"{int(np.sum(singular))} step(s) next to a toggle (condition number above "
+            f"{int(np.sum(singular))} step(s) next to {where} (condition number above "
             f"{ACCURATE_COND if plan.prog is not None else SINGULAR:.0e}): velocities and accelerations there "
             "would be good to less than 1e-6 and are not reported"
         )
@@ -391,6 +430,7 @@ def _result(
         dead_centres=found.dead,
         extremes=found.extremes,
         time_ratio=found.ratio,
+        change_points=found.changes,
         notes=tuple(plan.notes),
         parameter=plan.parameter,
         drives=plan.laws,

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from mech.errors import GeometryError
-from mech.kinematics.dyads import SLACK, DyadProgram, numpy_namespace
+from mech.kinematics.dyads import SLACK, DyadProgram, branches, numpy_namespace
 from mech.kinematics.march import Marcher
 from mech.kinematics.quantities import LEVELS
 from mech.kinematics.result import Kinematics
@@ -39,6 +39,9 @@ class Closed:
 
     def __init__(self, comp: Compiled, prog: DyadProgram, omega: float, alpha: float, lvl: int) -> None:
         self.comp, self.prog, self.omega, self.alpha, self.lvl = comp, prog, omega, alpha, lvl
+        # where the sweep's branch is the drawn one: the drawn angle, or whole turns from it (set by
+        # the sweep); past a change point a dyad's sign flips (mech.kinematics.dyads.branches)
+        self.ref = prog.drawn_angle
         sys_ = comp.system
         lay = comp.layout
         self.points = tuple(p for p in prog.points if not p.startswith("#"))
@@ -56,8 +59,10 @@ class Closed:
         """Every array a sweep needs at angles ``phi`` (any shape)."""
         prog, lvl = self.prog, self.lvl
         shape = np.shape(phi)
+        phi = np.asarray(phi, float)
         with np.errstate(all="ignore"):  # a dyad that cannot close or a toggle: masked below, never used
-            out = prog.raw(np.asarray(phi, float), self.omega, self.alpha, level=lvl, xp=numpy_namespace())
+            branch = branches(prog, self.ref, phi)
+            out = prog.raw(phi, self.omega, self.alpha, level=lvl, xp=numpy_namespace(), branch=branch)
         parts = prog.split(out, lvl)
 
         def stack(seq: tuple) -> np.ndarray:

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from mech.kinematics.dyads import closing_edge
+from mech.kinematics.dyads import ACCURATE_COND, change_points, closing_edge
 from mech.kinematics.quantities import pick, quantity_unit
 from mech.kinematics.roots import brent, illinois, zoom
 from mech.kinematics.solve import Compiled
@@ -23,7 +23,15 @@ from mech.kinematics.sweep_backends import Closed, Walk
 from mech.kinematics.sweep_result import Event, Extreme, Gap, TimeRatio
 from mech.model import JointType
 
-__all__ = ["circuits_note", "find_dead_centres", "find_extremes", "find_gaps", "find_time_ratio", "runs"]
+__all__ = [
+    "circuits_note",
+    "find_change_points",
+    "find_dead_centres",
+    "find_extremes",
+    "find_gaps",
+    "find_time_ratio",
+    "runs",
+]
 
 _TWO_PI = 2.0 * math.pi
 
@@ -112,6 +120,120 @@ def find_gaps(
     return tuple(gaps), tuple(sorted(toggles, key=lambda t: t.angle))
 
 
+def find_change_points(backend: Any, phi: np.ndarray, ok: np.ndarray) -> tuple[Event, ...]:
+    """Change points inside the assembled runs of the sweep (closed form: :func:`~.dyads.change_points`).
+
+    Each is passed on the branch with a continuous tangent (the closed form
+    flips that dyad's sign there: :func:`~.dyads.branches`).
+    """
+    prog = getattr(backend, "prog", None)
+    if phi.size < 3:
+        return ()
+    if prog is None:
+        return _newton_change_points(backend, phi, ok) if getattr(backend, "marcher", None) else ()
+    changes = change_points(prog)
+    if not changes:
+        return ()
+    lo, hi = float(np.min(phi)), float(np.max(phi))
+    order = np.argsort(phi, kind="stable")
+    sp, sok = phi[order], ok[order]
+    events = []
+    for c in changes:
+        a = prog.drawn_angle + c.offset
+        a += _TWO_PI * math.ceil((lo - a) / _TWO_PI)
+        while a <= hi:
+            j = int(np.searchsorted(sp, a))  # sp[j - 1] < a <= sp[j]
+            if 0 < j < sp.size and sok[j - 1] and sok[j]:
+                events.append(Event("change point", float(a), c.what))
+            a += _TWO_PI
+    return tuple(sorted(events, key=lambda e: e.angle if phi[-1] >= phi[0] else -e.angle))
+
+
+#: A marched sweep's σ_min/σ_max below this at a refined dip: two branches meet there.  Newton
+#: is accurate to about √tol where Φ_q is singular (1e-6 of the size), so the dip of a change
+#: point bottoms out near 1e-6; a steep but regular passage stays far above.
+NEWTON_TOUCH = 1e-4
+
+
+def _newton_change_points(backend: Any, phi: np.ndarray, ok: np.ndarray) -> tuple[Event, ...]:
+    """Change points a marched Newton sweep passed: Φ_q singular with the loop closed on both sides.
+
+    Continuation's predictor follows the tangent, so it continues on the branch
+    with a continuous tangent by itself; here the places are found (dips of
+    σ_min/σ_max along the steps, refined by :func:`zoom`) and said.
+    """
+    marcher = backend.marcher
+    rc = marcher.inverse_condition(marcher.solved[1])
+    rows = []
+    for s, e in runs(ok & np.isfinite(rc)):
+        for k in range(s + 1, e - 1):
+            r = rc[k - 1 : k + 2]
+            if r[1] <= r[0] and r[1] <= r[2] and r[1] < min(r[0], r[2]) and r[1] < 0.05:
+                rows.append(k)
+    if not rows:
+        return ()
+    lo = np.array([phi[k - 1] for k in rows], float)
+    hi = np.array([phi[k + 1] for k in rows], float)
+
+    def fn(grid: np.ndarray) -> np.ndarray:
+        q, conv = marcher.corrected(grid.ravel())
+        val = marcher.inverse_condition(np.where(conv[:, None], q, np.nan))
+        return val.reshape(grid.shape)
+
+    at, val = zoom(fn, lo, hi, "min")
+    at = _v_apex(fn, at)
+    events = []
+    for k, a, v in zip(rows, at, val, strict=True):
+        if math.isfinite(float(v)) and v < NEWTON_TOUCH:
+            events.append(
+                Event("change point", float(a), _meeting(backend, float(a), phi[k - 1], phi[k + 1]))
+            )
+    return tuple(events)
+
+
+def _v_apex(fn: Callable[[np.ndarray], np.ndarray], at: np.ndarray, step: float = 1e-4) -> np.ndarray:
+    """The apex of σ_min/σ_max's V round each dip, from lines through two points on either side.
+
+    Newton is good only to about √tol where Φ_q is singular, so the V has a
+    noisy floor there and its minimum wanders within it (1e-5 rad at the double
+    parallelogram's collinear position); the sides, ``step`` and 2·``step``
+    away, are clear of the floor, and their lines cross at the apex (exactly,
+    for a V symmetric about it).  Kept only where they cross within ``step``.
+    """
+    offsets = np.array([-2.0, -1.0, 1.0, 2.0]) * step
+    r = fn(at[:, None] + offsets[None, :])
+    r1, r2, r3, r4 = r.T
+    sl, sr = (r2 - r1) / step, (r4 - r3) / step
+    with np.errstate(all="ignore"):
+        u = (r3 - r2 - (sr + sl) * step) / (sl - sr)
+    good = np.isfinite(u) & (np.abs(u) < step) & (sl < 0) & (sr > 0)
+    return np.where(good, at + u, at)
+
+
+def _meeting(backend: Any, at: float, before: float, after: float) -> str:
+    """Which named points meet at a Newton sweep's change point (close there, apart either side)."""
+    near = at + np.array([0.0, 1e-7, -1e-7, 1e-6, -1e-6])  # Newton may not converge on the point itself
+    probes = backend.evaluate(np.concatenate(([before, after], near)))["positions"]
+    finite = [k for k in range(2, probes.shape[0]) if np.all(np.isfinite(probes[k]))]
+    generic = (
+        "the constraint Jacobian loses rank with the loop closed on both sides "
+        "(branches of the assembly can meet there)"
+    )
+    if not finite or not np.all(np.isfinite(probes[:2])):
+        return generic
+    pos = np.stack([probes[0], probes[finite[0]], probes[1]])
+    names = backend.points
+    here = pos[1]
+    size = float(np.max(np.hypot(*(here[:, None, :] - here[None, :, :]).transpose(2, 0, 1)))) or 1.0
+    met = []
+    for i in range(len(names)):
+        for j in range(i):
+            d = [float(np.hypot(*(p[i] - p[j]))) for p in pos]
+            if d[1] <= 1e-5 * size and d[0] > 1e-4 * size and d[2] > 1e-4 * size:
+                met.append(f"{names[i]} meets {names[j]}")
+    return f"{', '.join(met)} (the constraint Jacobian loses rank there)" if met else generic
+
+
 def _edge(backend: Closed, good: float, bad: float) -> float:
     """Bisect on the worst dyad discriminant to the last angle that still closes."""
     return closing_edge(backend.prog, float(good), float(bad))
@@ -137,12 +259,21 @@ def _outputs(
 
 
 def _refiner(
-    backend: Any, names: dict[str, tuple[str, ...]], keys: Sequence[str], refs: np.ndarray
+    backend: Any,
+    names: dict[str, tuple[str, ...]],
+    keys: Sequence[str],
+    refs: np.ndarray,
+    regular: bool = False,
 ) -> Callable[[np.ndarray], np.ndarray]:
     """fn(grid (K, m)) → values (K, m) of ``keys[k]`` on row k, one backend call for all rows.
 
     Angles of links are brought to the branch of ``refs[k]`` (the grid value
-    the row refines), since the closed form returns them in (−π, π].
+    the row refines), since the closed form returns them in (−π, π].  With
+    ``regular``, values where the configuration is singular (condition above
+    :data:`~.dyads.ACCURATE_COND`; a Newton step judged singular) are NaN: an
+    extreme refined toward a change point's singular Jacobian would otherwise
+    report rounding blown up by cond² (3e9 m/s for a speed of 1) as a value,
+    and positions there are good only to about 1e-16·cond.
     """
 
     groups: dict[str, list[int]] = {}
@@ -153,12 +284,15 @@ def _refiner(
     def fn(grid: np.ndarray) -> np.ndarray:
         data = backend.evaluate(grid)
         out = np.empty(grid.shape)
+        if regular:
+            with np.errstate(invalid="ignore"):
+                singular = ~(data["condition"] <= ACCURATE_COND)
         for key, rows in index.items():
             vals = pick(data, names, key)[rows]
             if key.startswith("angle."):
                 ref = refs[rows][:, None]
                 vals = np.where(np.isfinite(ref), vals + _TWO_PI * np.round((ref - vals) / _TWO_PI), vals)
-            out[rows] = vals
+            out[rows] = np.where(singular[rows], np.nan, vals) if regular else vals
         return out
 
     return fn
@@ -295,7 +429,7 @@ def find_extremes(
     ang, val = np.full(len(rows), np.nan), np.full(len(rows), np.nan)
     if rows and backend.vectorised:
         # minima are maxima of −v: one zoom refines every extreme of every quantity at once
-        inner = _refiner(backend, names, [r[0] for r in rows], np.array([r[5] for r in rows]))
+        inner = _refiner(backend, names, [r[0] for r in rows], np.array([r[5] for r in rows]), regular=True)
         ang, val = zoom(
             lambda g: sign[:, None] * inner(g),
             np.array([r[3] for r in rows]),

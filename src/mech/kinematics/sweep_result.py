@@ -28,7 +28,7 @@ class Gap:
 
 @dataclass(frozen=True, slots=True)
 class Event:
-    """A located event: a toggle (``kind="toggle"``) or a dead centre (``"dead centre"``).
+    """A located event: a toggle (``kind="toggle"``), a dead centre (``"dead centre"``) or a change point.
 
     ``angle`` is the drive angle (rad); ``subject`` the output or the links in
     line; ``value`` the output's position there (slider displacement, m, or
@@ -123,6 +123,10 @@ class Sweep:
         (N,) the largest dyad condition number at each step (Newton: of Φ_q).
     gaps, toggles, dead_centres, extremes, time_ratio, notes
         What the sweep found (see the classes).
+    change_points
+        Change points passed (``kind="change point"``): a dyad's two positions
+        meet and part again with the loop closed on both sides; the sweep
+        continues on the branch whose tangent is continuous (:func:`~mech.kinematics.dyads.change_points`).
     parameter
         What ``angles`` holds: ``"angle"`` (the drive's angle, rad: one crank,
         or the lead of several drives) or ``"position"`` (a slider drive's
@@ -157,6 +161,7 @@ class Sweep:
     dead_centres: tuple[Event, ...]
     extremes: tuple[Extreme, ...]
     time_ratio: TimeRatio | None
+    change_points: tuple[Event, ...]
     notes: tuple[str, ...]
     parameter: str = "angle"
     drives: tuple[DriveLaw, ...] = ()

@@ -113,6 +113,7 @@ def sweep_json(
          "units": {...},
          "gaps": [{"from", "to", "miss" [length], "what"}],
          "toggles": [{"angle", "what"}],
+         "change_points": [{"angle", "what", "continued"}],   # only when one is passed
          "dead_centres": [{"angle", "output", "position" [length or angle]}],
          "time_ratio": {"output", "slow", "fast", "ratio"} | null,
          "extremes": [{"quantity", "unit", "max", "max_angle", "min", "min_angle"}],
@@ -176,6 +177,11 @@ def sweep_json(
         "max_condition": sw.max_condition,
         "notes": list(sw.notes),
     }
+    if sw.change_points:  # only when one is passed: the JSON of every other sweep is unchanged
+        out["change_points"] = [
+            {"angle": at(e.angle), "what": e.subject, "continued": "the branch with a continuous tangent"}
+            for e in sw.change_points
+        ]
     if series:
         out["series"] = {sw.parameter: [at(a) for a in sw.angles.tolist()]}
         for key in series:
@@ -236,6 +242,11 @@ def sweep_table(sw: Sweep, console: Any, *, units: OutputUnits) -> None:
         console.print("  assembled at every step")
     for t in sw.toggles:
         console.print(f"  toggle at {_par_text(sw, units, t.angle, 9)}: {t.subject}")
+    for c in sw.change_points:
+        console.print(
+            f"  change point at {_par_text(sw, units, c.angle, 6)}: {c.subject}; "
+            "continued on the branch with a continuous tangent"
+        )
     for e in sw.dead_centres:
         si = "m" if e.subject in sw.slides else "rad"
         v = _conv(e.value, si, units)
