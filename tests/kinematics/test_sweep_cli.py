@@ -388,6 +388,27 @@ def test_slider_drive_sweeps_its_stroke_in_the_files_length_unit(run):
     assert rows[0][0] == "position [mm]" and float(rows[1][0]) == -150.0
 
 
+@pytest.mark.parametrize("far", ["1e308", "1e30"])
+def test_a_stroke_beyond_float_precision_is_refused_with_what_to_do(run, far):
+    # It ended in an internal error (exit 70): the analysis grid's part count overflowed int64.
+    # 1e30 mm is held only to spacing(1e30) = 1.4e14 mm, on a trammel 200 mm long.
+    result = run("sweep", TRAMMEL, "--from", "0", "--to", far)
+    assert result.exit_code == 2, result.output
+    assert "floating point" in result.stderr and "within the slider's reach" in result.stderr
+
+
+@pytest.mark.parametrize(("far", "steps"), [("1e6", "4"), ("1e9", "24")])
+def test_a_stroke_past_the_reach_is_swept_to_the_limit_it_cannot_pass(run, far, steps):
+    # B leaves its guide where A reaches the rod's length L = 200 mm (y_B = sqrt(L² − s²) = 0): the
+    # toggle.  In steps of 4.2e7 mm (too wide for the analysis grid's memory) the limit was put at
+    # 79 mm: one Newton solve failing across a wide step was read as the limit (bisection).
+    result = run("sweep", TRAMMEL, "--from", "0", "--to", far, "--steps", steps, "--json", "--units", "mm")
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.output)
+    assert [t["angle"] for t in data["toggles"]] == [pytest.approx(200, rel=1e-9)]
+    assert data["gaps"][0]["from"] == pytest.approx(200, rel=1e-9)
+
+
 def test_slider_drive_without_a_stroke_is_refused(run):
     result = run("sweep", TRAMMEL)
     assert result.exit_code == 2 and "needs its stroke" in result.stderr
@@ -407,3 +428,42 @@ def test_several_drives_sweep_each_in_proportion_and_name_the_lead(run):
     assert refused.exit_code == 2 and "set a single drive" in refused.stderr
     unknown = run("sweep", FIVE_BAR_TWO, "--drive", "link_3")
     assert unknown.exit_code == 2 and "no drive of 'link_3'" in unknown.stderr
+
+
+def test_no_range_ends_a_sweep_in_an_exception_or_a_warning():
+    """Property: whatever --from/--to/--steps (huge, tiny, negative, equal, reversed), a sweep of a
+    crank, a slider's stroke or several drives answers (0) or refuses (2) — never an exception that
+    would exit 70, never a RuntimeWarning on stderr."""
+    import warnings
+
+    from click.testing import CliRunner
+    from hypothesis import HealthCheck, given, settings
+    from hypothesis import strategies as st
+
+    from mech.cli import cli
+
+    runner = CliRunner()
+    ends = st.one_of(
+        st.sampled_from([0.0, -0.0, 1e-300, 5e-324, 1e308, -1e308, 1e30, 1e9, 360.0, -150.0, 199.999, 200.0]),
+        st.floats(-1e12, 1e12, allow_nan=False),
+    )
+
+    @settings(max_examples=40, deadline=None, suppress_health_check=list(HealthCheck), derandomize=True)
+    @given(
+        path=st.sampled_from([TRAMMEL, FIVE_BAR_TWO, FOUR_BAR]),
+        lo=ends,
+        hi=ends,
+        steps=st.sampled_from(["1", "3", "24"]),
+    )
+    def one(path: str, lo: float, hi: float, steps: str) -> None:
+        args = ["sweep", path, "--from", repr(lo), "--to", repr(hi), "--steps", steps, "--json"]
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            result = runner.invoke(cli, args, catch_exceptions=True)
+        if result.exception is not None and not isinstance(result.exception, SystemExit):
+            raise AssertionError(f"mech {' '.join(args)} raised {result.exception!r}")
+        assert result.exit_code in (0, 2), (args, result.exit_code, result.output[-800:])
+        runtime = [str(w.message) for w in caught if issubclass(w.category, RuntimeWarning)]
+        assert not runtime, (args, runtime)
+
+    one()

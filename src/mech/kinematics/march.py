@@ -45,6 +45,7 @@ MAX_SPAN = math.radians(15.0)
 #: Largest Newton correction (scaled: fractions of the mechanism's size) accepted for a step.
 JUMP = 0.05
 _FIRST = 8  # steps in the first stack; doubles while stacks converge whole
+_EDGE_PROBES = 8192  # Newton probes one limit may take (a wide stroke walked in half-steps, then halving)
 
 
 class Stacked:
@@ -544,34 +545,42 @@ class Marcher:
     def edge(self, k: int, bad: float) -> float:
         """The last parameter reached going from solved step ``k`` toward ``bad`` (a limit: a toggle).
 
-        Bisection on reachability: each probe is one predicted Newton solve from
-        the nearest configuration reached on this side, so it stays on the
-        sweep's branch; about 50 solves, to rounding of the parameter or where
-        Newton stops converging at the toggle.
+        Continuation toward ``bad`` with step halving: each probe is one predicted
+        Newton solve from the last configuration reached, so it stays on the
+        sweep's branch; a probe that fails halves the step, one that succeeds
+        doubles it again (never past half the continuation's own step,
+        ``law.span``, nor past half the room left), until the step is at rounding
+        of the parameter: there Newton stops converging, at the toggle.  A failed
+        probe never marks its parameter unreachable: one Newton solve that fails
+        across a wide step says nothing about what it jumped over (bisection that
+        did so put an elliptic trammel's limit, swept in steps of 40 km, at 79 mm
+        instead of its rod's 200 mm).
         """
         phi, q_s = self.solved[0], self.solved[1]
         good, q = float(phi[k]), q_s[k]
         bad = float(bad)
-        for _ in range(80):
-            mid = 0.5 * (good + bad)
-            if mid in (good, bad):
+        reach = 0.5 * self.law.span
+        step = reach
+        for _ in range(_EDGE_PROBES):
+            h = math.copysign(min(step, 0.5 * abs(bad - good)), bad - good)
+            probe = good + h
+            if probe in (good, bad) or abs(h) <= 4.0 * math.ulp(max(abs(good), self.law.span)):
                 break
             _, qd, _ = self.rates(q[None, :])
-            h = np.array([mid - good])
-            c_line, c_ang = self.law.targets(q, good, h)
-            q_mid, conv = _newton(
+            c_line, c_ang = self.law.targets(q, good, np.array([h]))
+            q_new, conv = _newton(
                 self.rows,
                 self.rates.keep,
-                q[None, :] + h[:, None] * qd / self.rate,
+                q[None, :] + h * qd / self.rate,
                 c_line,
                 c_ang,
                 self.options.tol,
                 self.options.max_iter,
             )
             if conv[0] and np.all(np.isfinite(qd)):
-                good, q = mid, q_mid[0]
+                good, q, step = probe, q_new[0], min(2.0 * abs(h), reach)
             else:
-                bad = mid
+                step = 0.5 * abs(h)
         return good
 
     def walker(self, start: float) -> Walker:

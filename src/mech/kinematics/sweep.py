@@ -63,7 +63,7 @@ grid it analyses (:data:`MEMORY_BUDGET`, :data:`RESOLVE`, :data:`ANGLE_PRECISION
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -492,6 +492,23 @@ def _check_precision(phi: np.ndarray) -> None:
         )
 
 
+#: The float spacing, relative to the mechanism's size, the farthest position of a slider's
+#: stroke may have: beyond it the slider's place is not known well enough to locate anything.
+POSITION_PRECISION = 1e-9
+
+
+def _check_position_precision(s: np.ndarray, size: float, fmt: Callable[[float], str]) -> None:
+    """Refuse slider positions so far out that their float spacing exceeds :data:`POSITION_PRECISION` of the size."""
+    big = float(np.max(np.abs(s)))
+    spacing = float(np.spacing(big))
+    if spacing > POSITION_PRECISION * size:
+        raise InputError(
+            f"slider positions as far out as {fmt(big)} are held only to {fmt(spacing)} in floating "
+            f"point, on a mechanism {fmt(size)} across: nothing on them can be located",
+            hint="sweep a stroke within the slider's reach (--from/--to in the file's length unit)",
+        )
+
+
 def _analysis_grid(
     phi: np.ndarray,
     comp: Compiled,
@@ -499,6 +516,7 @@ def _analysis_grid(
     lvl: int,
     notes: list[str],
     resolve: float = RESOLVE,
+    position: Callable[[float], str] | None = None,
 ) -> tuple[np.ndarray, np.ndarray | None]:
     """The angles to analyse: ``phi`` with each step cut into parts of at most :data:`RESOLVE`.
 
@@ -508,36 +526,57 @@ def _analysis_grid(
     it sees them all.  When the finer grid would exceed the memory budget the
     steps given are analysed: a step of more than half a turn is then refused
     (the motion between its ends is unknown), a smaller one gets a note that
-    events between steps may be missed.
+    events between steps may be missed.  A slider's stroke (``position`` formats its
+    lengths) is never refused for its steps: it gets the note.
     """
     if phi.size < 2:
         return phi, None
     widths = np.abs(np.diff(phi))
-    parts = np.maximum(1, np.ceil(widths / resolve * (1.0 - 1e-12))).astype(np.int64)
-    if int(parts.max()) == 1:
+    # counted in floats first: a step of 1e30 m (a slider's stroke) has more parts than int64 holds
+    parts_f = np.maximum(1.0, np.ceil(widths / resolve * (1.0 - 1e-12)))
+    if float(parts_f.max()) == 1.0:
         return phi, None
-    total = int(parts.sum()) + 1
+    total_f = float(parts_f.sum()) + 1.0
     per = _per_angle(comp, prog, lvl)
-    if total * per > MEMORY_BUDGET:
-        widest = math.degrees(float(widths.max()))
-        span = math.degrees(abs(float(phi[-1] - phi[0])))
-        fit = max(int(MEMORY_BUDGET // per) - 1, 1)
-        if widest > 180.0:
-            raise InputError(
-                f"steps of {widest:.4g}° are more than half a turn: the crank's motion between them "
-                f"is unknown, and resolving it ({total:,} angles at 1°) exceeds the memory a sweep may use",
-                hint=f"give at least --steps {math.ceil(span / 180.0)} (1° steps: --steps "
-                f"{math.ceil(span * (1 - 1e-12))}), at most {fit:,}; or sweep the range in parts",
-            )
-        notes.append(
-            f"steps of {widest:.4g}° analysed as given (a 1° grid would exceed the memory budget): "
-            "a dead centre or extreme between two steps may be missed; give more --steps to resolve it"
-        )
+    if total_f * per > MEMORY_BUDGET:
+        notes.append(_steps_as_given(phi, widths, total_f, per, position))
         return phi, None
+    parts = parts_f.astype(np.int64)
+    total = int(total_f)
     starts = np.concatenate(([0], np.cumsum(parts)))
     offset = np.arange(total - 1) - np.repeat(starts[:-1], parts)
     fine = np.repeat(phi[:-1], parts) + np.repeat(np.diff(phi) / parts, parts) * offset
     return np.append(fine, phi[-1]), starts
+
+
+def _steps_as_given(
+    phi: np.ndarray, widths: np.ndarray, total: float, per: int, position: Callable[[float], str] | None
+) -> str:
+    """The note for a sweep analysed at its own steps, or the refusal when a crank's step is too wide.
+
+    A crank's step of more than half a turn leaves its motion between the ends unknown, so it is
+    refused; a narrower one, or any step of a slider's stroke (``position`` formats it), is
+    analysed as given with a note.
+    """
+    widest = float(widths.max())
+    if position is not None:
+        return (
+            f"steps of {position(widest)} analysed as given (a finer grid would exceed the memory "
+            "budget): a dead centre or extreme between two steps may be missed; give more --steps"
+        )
+    span = math.degrees(abs(float(phi[-1] - phi[0])))
+    fit = max(int(MEMORY_BUDGET // per) - 1, 1)
+    if math.degrees(widest) > 180.0:
+        raise InputError(
+            f"steps of {math.degrees(widest):.4g}° are more than half a turn: the crank's motion between "
+            f"them is unknown, and resolving it ({total:,.0f} angles at 1°) exceeds the memory a sweep may use",
+            hint=f"give at least --steps {math.ceil(span / 180.0)} (1° steps: --steps "
+            f"{math.ceil(span * (1 - 1e-12))}), at most {fit:,}; or sweep the range in parts",
+        )
+    return (
+        f"steps of {math.degrees(widest):.4g}° analysed as given (a 1° grid would exceed the memory budget): "
+        "a dead centre or extreme between two steps may be missed; give more --steps to resolve it"
+    )
 
 
 def _expand(mask: np.ndarray, arr: np.ndarray) -> np.ndarray:
@@ -624,6 +663,9 @@ def _plan_laws(
         raise InputError("the sweep needs at least one finite value of its parameter")
     if parameter == "angle":
         _check_precision(phi)
+    else:
+        unit = mech.length_unit
+        _check_position_precision(phi, comp.drawn.scale, lambda x: f"{to_unit(x, unit):.4g} {unit}")
     _check_memory(comp, None, phi.size, max(lvl, 1))
     omega = laws[0].rate if parameter == "angle" else None
     alpha = (d.alpha or 0.0) if d.link is not None else (d.accel or 0.0)
@@ -706,12 +748,20 @@ def _evaluate_laws(
             hint="sweep one crank, the other drives held in the file",
         )
     resolve = RESOLVE * marcher.law.span / MAX_SPAN  # 1° of the fastest drive (or 1.7% of the size)
+    length = plan.mech.length_unit
     fine, pick = (
-        _analysis_grid(plan.phi, plan.comp, None, plan.lvl_int, plan.notes, resolve)
+        _analysis_grid(
+            plan.phi,
+            plan.comp,
+            None,
+            plan.lvl_int,
+            plan.notes,
+            resolve,
+            None if plan.parameter == "angle" else lambda x: f"{to_unit(x, length):.4g} {length}",
+        )
         if analyse
         else (plan.phi, None)
     )
-    length = plan.mech.length_unit
 
     def fmt(p: float) -> str:
         return (
