@@ -8,6 +8,8 @@ commands are recognised here and handed straight to their bodies in
 
 * ``mech dof [--json] [--mobility] FILE …``
 * ``mech classify [--json] [FILE]``
+* ``mech check PATH …`` with ``--junit``, ``--gradescope``, ``--csv``, ``--answers``,
+  ``--jobs`` (``-j``), ``--timeout``, ``--quiet`` (``-q``), ``--verbose`` (``-v``), ``--json``;
 * ``mech position|velocity|acceleration [FILE]`` with ``--rpm``, ``--omega``,
   ``--angle``, ``--speed``, ``--direction``, ``--tol``, ``--units``,
   ``--json`` (and ``--explain``; ``--alpha`` for acceleration).
@@ -27,7 +29,9 @@ from __future__ import annotations
 
 import contextlib
 import errno
+import math
 import os
+import stat
 import sys
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -37,6 +41,7 @@ __all__ = ["main"]
 _FLOATS = ("--rpm", "--omega", "--angle", "--speed", "--tol")
 _CHOICES = {"--direction": ("cw", "ccw"), "--units": ("si", "mm", "cm")}
 _KINEMATIC = ("position", "velocity", "acceleration")
+_PATHS = ("--junit", "--gradescope", "--csv", "--answers")
 
 
 def main(argv: Sequence[str] | None = None) -> None:
@@ -74,6 +79,8 @@ def _fast(args: list[str]) -> Callable[[], None] | None:
         return lambda: classify_files(
             file=files[0] if files else "mechanism.yaml", as_json="--json" in options
         )
+    if command == "check":
+        return _check(rest)
     if command in _KINEMATIC:
         flags = ("--json",) if command == "position" else ("--json", "--explain")
         values = (*_FLOATS, *_CHOICES, *(("--alpha",) if command == "acceleration" else ()))
@@ -86,9 +93,17 @@ def _fast(args: list[str]) -> Callable[[], None] | None:
 
 
 def _read(
-    args: list[str], *, flags: Sequence[str], values: Sequence[str]
+    args: list[str],
+    *,
+    flags: Sequence[str],
+    values: Sequence[str],
+    short: dict[str, str] | None = None,
 ) -> tuple[list[str], dict[str, Any]] | None:
-    """Positional arguments and converted options, or None for anything not plainly one of them."""
+    """Positional arguments and converted options, or None for anything not plainly one of them.
+
+    ``short``: one-letter spellings (``-j``) of long options, taken only alone (``-j 2``,
+    never ``-j2``, ``-j=2`` or ``-qv``).
+    """
     positional: list[str] = []
     options: dict[str, Any] = {}
     i = 0
@@ -99,6 +114,8 @@ def _read(
             positional.append(token)
             continue
         name, eq, given = token.partition("=")
+        if short and token in short:
+            name, eq, given = short[token], "", ""
         if name in flags and not eq:
             options[name] = True
         elif name in values:
@@ -120,6 +137,16 @@ def _convert(name: str, text: str) -> Any:
     """``text`` as click converts it for option ``name``; None where click would refuse it."""
     if name in _CHOICES:
         return text if text in _CHOICES[name] else None
+    if name in _PATHS:
+        return text
+    if name == "--jobs":  # click.IntRange(min=1); only plain digits are taken here
+        return int(text) if text.isascii() and text.isdigit() and int(text) >= 1 else None
+    if name == "--timeout":  # click.FloatRange(min=0, min_open=True); only finite values here
+        try:
+            value = float(text)
+        except ValueError:
+            return None
+        return value if 0 < value < math.inf else None
     try:
         return float(text)  # click.FLOAT converts with float() itself
     except ValueError:
@@ -129,6 +156,58 @@ def _convert(name: str, text: str) -> Any:
 def _files_ok(files: list[str]) -> bool:
     """click's ``Path(dir_okay=False)``: a folder is refused (by click, with its message)."""
     return not any(f != "-" and os.path.isdir(f) for f in files)
+
+
+def _path_ok(path: str, *, exists: bool, dir_okay: bool = True) -> bool:
+    """What click's ``Path(exists=…, dir_okay=…)`` accepts (it refuses the rest, with its message)."""
+    try:
+        st = os.stat(path)
+    except OSError:
+        return not exists
+    if not dir_okay and stat.S_ISDIR(st.st_mode):
+        return False
+    return os.access(path, os.R_OK)
+
+
+def _check(args: list[str]) -> Callable[[], None] | None:
+    """``mech check PATH … [--junit F] [--gradescope F] [--csv F] [--answers P] [-j N] [--timeout S]
+    [-q] [-v] [--json]``: the call click would make, or None."""
+    read = _read(
+        args,
+        flags=("--quiet", "--verbose", "--json"),
+        values=(*_PATHS, "--jobs", "--timeout"),
+        short={"-q": "--quiet", "-v": "--verbose", "-j": "--jobs"},
+    )
+    if read is None:
+        return None
+    paths, options = read
+    if not paths or not all(p != "-" and _path_ok(p, exists=True) for p in paths):
+        return None
+    answers = options.get("--answers")
+    if answers is not None and not _path_ok(answers, exists=True):
+        return None
+    reports = [options.get(o) for o in ("--junit", "--gradescope", "--csv")]
+    if not all(r is None or _path_ok(r, exists=False, dir_okay=False) for r in reports):
+        return None
+    from mech.batch import CheckOptions
+    from mech.commands import check_paths, check_targets, check_usage
+
+    targets = check_targets(*reports)
+    if check_usage(answers, targets) is not None:
+        return None  # click says it, as a usage error
+    check = CheckOptions(
+        paths=tuple(paths),
+        answers=answers,
+        jobs=options.get("--jobs"),
+        timeout=options.get("--timeout", 30.0),
+    )
+    return lambda: check_paths(
+        check,
+        targets,
+        quiet="--quiet" in options,
+        verbose="--verbose" in options,
+        as_json="--json" in options,
+    )
 
 
 def _kinematic(command: str, file: str, options: dict[str, Any]) -> Callable[[], None]:
