@@ -53,7 +53,10 @@ def main(argv: Sequence[str] | None = None) -> None:
 
         guarded(lambda: run_click(args))
         return
-    guarded(run)
+    # A batch's thousands of results need no tearing down: once its report is written and the
+    # streams flushed, the process leaves without the interpreter's finalization (~15 ms for
+    # 1,000 files, a fiftieth of the whole command).
+    guarded(run, finalize=args[0] != "check")
 
 
 def _fast(args: list[str]) -> Callable[[], None] | None:
@@ -243,7 +246,7 @@ PIPE_CLOSED = 141
 ISSUES_URL = "https://github.com/planar-mech/mech/issues"
 
 
-def guarded(run: Callable[[], None]) -> None:
+def guarded(run: Callable[[], None], *, finalize: bool = True) -> None:
     """Run a command and exit so that a script can tell every way out apart.
 
     The command's own status (0, 1 a failed check, 2 bad input) is kept; an
@@ -252,7 +255,9 @@ def guarded(run: Callable[[], None]) -> None:
     with one line saying so and how to report it (``MECH_DEBUG=1`` or ``--debug``
     before the command adds the traceback).  stdout is flushed here, before the
     interpreter's own last flush, so that a closed pipe is noticed while it can
-    still be answered.
+    still be answered.  ``finalize=False``: leave by :func:`os._exit` once stdout and
+    stderr are flushed, skipping the interpreter's finalization (atexit handlers, freeing
+    every object), for a command that has closed its files and waited for its workers.
     """
     status: Any = 0
     try:
@@ -280,7 +285,17 @@ def guarded(run: Callable[[], None]) -> None:
     elif not isinstance(status, int):  # sys.exit("message"): printed, as the interpreter would
         _say(str(status))
         status = 1
+    if not finalize:
+        _leave(status)
     sys.exit(status)
+
+
+def _leave(status: int) -> None:
+    """Exit with ``status`` at once, after flushing stdout and stderr (see :func:`guarded`)."""
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(OSError, ValueError, AttributeError):
+            stream.flush()  # stdout was flushed by guarded (a closed pipe answered there)
+    os._exit(status)
 
 
 def prepare(argv: Sequence[str]) -> list[str]:
