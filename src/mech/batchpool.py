@@ -151,7 +151,7 @@ def _worker(conn: Any, slot: int, board: Any, limited: _Limited[Any, Any], jobs:
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle: it kills us
     _one_blas_thread()
     gc.freeze()  # what the parent imported lives as long as we do: no collection walks it again
-    frozen = set(sys.modules)
+    frozen: set[str] | None = set(sys.modules)
     try:
         while True:
             indices = conn.recv()

@@ -198,14 +198,13 @@ def _check(args: list[str]) -> Callable[[], None] | None:
     targets = check_targets(*reports)
     if check_usage(answers, targets) is not None:
         return None  # click says it, as a usage error
-    check = CheckOptions(
-        paths=tuple(paths),
-        answers=answers,
-        jobs=options.get("--jobs"),
-        timeout=options.get("--timeout", 30.0),
-    )
     return lambda: check_paths(
-        check,
+        CheckOptions(  # inside the run: guarded answers whatever it could raise
+            paths=tuple(paths),
+            answers=answers,
+            jobs=options.get("--jobs"),
+            timeout=options.get("--timeout", 30.0),
+        ),
         targets,
         quiet="--quiet" in options,
         verbose="--verbose" in options,
