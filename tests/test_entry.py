@@ -1,7 +1,7 @@
 """The console script's fast forms (mech.entry) answer exactly as click does.
 
 mech.entry runs the plainest command lines of dof, classify, position,
-velocity and acceleration without importing click; every other command line
+velocity, acceleration and check without importing click; every other command line
 goes to click.  Each case is run both ways in a fresh interpreter and the exit
 status, stdout and stderr compared byte for byte, and the forms meant to be
 fast are checked to be taken without click.
@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -21,6 +22,7 @@ ROOT = Path(__file__).resolve().parents[1]
 FOUR_BAR = str(ROOT / "mechanisms" / "four_bar.yaml")
 SLIDER = str(ROOT / "mechanisms" / "slider_crank.yaml")
 MECHANISMS = str(ROOT / "mechanisms")
+REPORT = str(Path(tempfile.gettempdir()) / "mech-test-entry-report.xml")
 
 FAST = [
     ("dof", FOUR_BAR),
@@ -41,6 +43,10 @@ FAST = [
     ("position", FOUR_BAR, "--angle", "1e300", "--tol", "1e-10"),
     ("acceleration", SLIDER, "--rpm", "600", "--alpha", "5", "--json"),
     ("velocity", "no_such_file.yaml"),
+    ("check", MECHANISMS, "-q"),
+    ("check", FOUR_BAR, SLIDER, "--json", "-j", "1"),
+    ("check", MECHANISMS, "--jobs=2", "--timeout", "10", "-v"),
+    ("check", FOUR_BAR, "--junit", REPORT, "--quiet"),
 ]
 SLOW = [
     ("dof", "--help"),
@@ -56,6 +62,15 @@ SLOW = [
     ("position", FOUR_BAR, "--explain"),
     ("--version",),
     ("sweep", FOUR_BAR),
+    ("check",),
+    ("check", "no_such_folder"),
+    ("check", FOUR_BAR, "-j", "0"),
+    ("check", FOUR_BAR, "-j2"),
+    ("check", FOUR_BAR, "-qv"),
+    ("check", FOUR_BAR, "--timeout", "0"),
+    ("check", FOUR_BAR, "--junit", REPORT, "--csv", REPORT),
+    ("check", FOUR_BAR, "--junit", MECHANISMS),
+    ("check", FOUR_BAR, "--", SLIDER),
     (),
 ]
 

@@ -22,8 +22,10 @@ so a caller can stream a sorted report while later jobs still run.
 
 from __future__ import annotations
 
+import gc
 import os
 import signal
+import sys
 import threading
 import time
 from collections import deque
@@ -148,6 +150,8 @@ def _worker(conn: Any, slot: int, board: Any, limited: _Limited[Any, Any], jobs:
     """Run the chunks of job indices the parent sends; say on ``board`` which job runs since when."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle: it kills us
     _one_blas_thread()
+    gc.freeze()  # what the parent imported lives as long as we do: no collection walks it again
+    frozen: set[str] | None = set(sys.modules)
     try:
         while True:
             indices = conn.recv()
@@ -160,6 +164,9 @@ def _worker(conn: Any, slot: int, board: Any, limited: _Limited[Any, Any], jobs:
                 out.append((index, limited(jobs[index])))
             board[2 * slot] = -1.0
             conn.send(out)
+            if frozen is not None and len(sys.modules) > len(frozen):  # numpy, imported by a solve
+                gc.freeze()  # (and once only: a chunk's garbage frozen with it is a few objects)
+                frozen = None
     except (EOFError, BrokenPipeError, KeyboardInterrupt):
         return
 

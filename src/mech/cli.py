@@ -8,7 +8,6 @@ Exit status: 0 success, 1 a failed check, 2 bad input or usage, 70 a bug, 130 in
 
 from __future__ import annotations
 
-import contextlib
 import math
 import sys
 from collections.abc import Callable, Iterable, Sequence
@@ -563,141 +562,22 @@ def check_command(
     Exit status 0 when all pass, 1 when any fails or errors, 2 on a usage
     error, 130 when interrupted (no report file is left behind).
     """
-    import os
-
     from mech.batch import CheckOptions
+    from mech.commands import check_paths, check_targets, check_usage
 
-    if gradescope and answers and os.path.isdir(answers):
-        raise click.UsageError(
-            "--gradescope writes one submission's results.json; for a folder of sheets use --csv or --json"
-        )
-    targets = [
-        (o, p) for o, p in (("--junit", junit), ("--gradescope", gradescope), ("--csv", csv_path)) if p
-    ]
-    seen: dict[str, str] = {}
-    for option, path in targets:
-        key = os.path.normcase(os.path.realpath(path))
-        if key in seen:
-            raise click.UsageError(
-                f"{seen[key]} and {option} both write {path}: give each report its own file"
-            )
-        seen[key] = option
+    targets = check_targets(junit, gradescope, csv_path)
+    problem = check_usage(answers, targets)
+    if problem is not None:
+        raise click.UsageError(problem)
     options = CheckOptions(paths=tuple(paths), answers=answers, jobs=jobs, timeout=timeout)
-    try:
-        _check(options, targets, quiet=quiet, verbose=verbose, as_json=as_json)
-    except KeyboardInterrupt:
-        # a report that is old (from a previous run) or partial must not pass for this run's
-        for _, path in targets:
-            with contextlib.suppress(OSError):
-                os.unlink(path)
-        click.echo("mech check: interrupted; no report written", err=True)
-        sys.exit(130)
-
-
-#: The units of every computed value in ``mech check --json`` (claims are compared in SI).
-_CHECK_UNITS = {
-    "length": "m",
-    "velocity": "m/s",
-    "acceleration": "m/s^2",
-    "angle": "rad",
-    "angular_velocity": "rad/s",
-    "angular_acceleration": "rad/s^2",
-    "force": "N",
-    "torque": "N m",
-}
-
-
-def _check(
-    options: Any, targets: list[tuple[str, str]], *, quiet: bool, verbose: bool, as_json: bool
-) -> None:
-    """Run the batch, streaming a plain report when piped or large, then write the report files."""
-    import os
-
-    from mech.batch import run
-    from mech.render.check import LARGE_BATCH, Stream
-
-    stream: list[Stream] = []
-    bar: Any = None
-
-    def start(total: int) -> None:
-        nonlocal bar
-        if as_json:
-            return
-        if not sys.stdout.isatty() or os.environ.get("NO_COLOR") or total > LARGE_BATCH:
-            stream.append(Stream(sys.stdout, verbose=verbose, quiet=quiet))
-        if sys.stderr.isatty() and not os.environ.get("NO_COLOR"):
-            from mech.render.check import progress
-
-            bar = progress()
-            begin, advance = bar.__enter__()
-            begin(total)
-            bar.advance = advance
-
-    def landed(rows: Any) -> None:
-        if bar is not None:
-            bar.advance(rows)
-        if stream:
-            stream[0].file(rows)
-
-    try:
-        report = run(options, on_start=start, on_file=landed)
-    finally:
-        if bar is not None:
-            bar.__exit__(None, None, None)
-    from mech.render import check as render
-
-    outputs = {
-        "--junit": render.junit_chunks,
-        "--gradescope": lambda r: render.dumps(render.gradescope_dict(r)) + "\n",
-        "--csv": render.csv_text,
-    }
-    for option, path in targets:
-        _write(path, outputs[option](report))
-    if as_json:
-        from mech.render.jsonout import stamp
-
-        # the batch's report: each result names its file and mechanism; the top level has no one file
-        record = stamp(render.report_dict(report), command="check", file=None, name=None, units=_CHECK_UNITS)
-        click.echo(render.dumps(record))
-    elif stream:
-        stream[0].end(report)
-    else:
-        from mech.render.console import stdout
-
-        render.check_table(report, stdout(), quiet=quiet, verbose=verbose)
-    sys.exit(report.exit_status)
+    check_paths(options, targets, quiet=quiet, verbose=verbose, as_json=as_json)
 
 
 def _write(path: str, text: str | Iterable[str]) -> None:
-    """Write a report file atomically (a temporary file renamed into place); exit 2 if it cannot be.
+    """Write a report file atomically; exit 2 if it cannot be (:func:`mech.commands.write_report`)."""
+    from mech.commands import write_report
 
-    ``text`` may come in pieces (a large JUnit report), written as they come.
-    """
-    import os
-    import tempfile
-
-    from mech.errors import Where
-
-    folder = os.path.dirname(os.path.abspath(path))
-    tmp = None
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=".mech-", suffix=".tmp", dir=folder)
-        with os.fdopen(fd, "w", encoding="utf-8", newline="") as f:
-            if isinstance(text, str):
-                f.write(text)
-            else:
-                f.writelines(text)
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)  # mkstemp makes it private; a report is an ordinary file
-        os.replace(tmp, path)
-        tmp = None
-    except OSError as exc:
-        raise InputError(f"cannot write {path}: {exc.strerror}", where=Where(path)) from None
-    finally:
-        if tmp is not None:
-            with contextlib.suppress(OSError):
-                os.unlink(tmp)
+    write_report(path, text)
 
 
 # -- drawings -------------------------------------------------------------------------

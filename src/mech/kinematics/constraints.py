@@ -356,11 +356,11 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     sys_.joint_names = frozenset(j.name for j in mech.joints if j.type.kind.located != "none")
     # Slider drives: their constant is the drawn displacement along the path.
     n_pc, kl = len(b.coincide), len(b.online)
-    if b.online:
+    sliding = [r for r in sys_.drive_rows if 2 * n_pc <= r < 2 * n_pc + kl]
+    if sliding:  # Φ as drawn only when a slider is driven (a crank's rows need none of it)
         base_phi = sys_.phi(q0, sys_.ln_c, sys_.ang_c)
-        for r in sys_.drive_rows:
-            if 2 * n_pc <= r < 2 * n_pc + kl:
-                sys_.ln_c[r - 2 * n_pc] = base_phi[r]
+        for r in sliding:
+            sys_.ln_c[r - 2 * n_pc] = base_phi[r]
     return sys_
 
 

@@ -109,7 +109,7 @@ class Layout:
 
 
 def layout(mech: Mechanism) -> Layout:
-    """Read the located things of ``mech``.
+    """Read the located things of ``mech`` (remembered in its memo: the model is immutable).
 
     The steps: which links carry each location (:func:`_carriers`), each
     prismatic or slot joint's path and the point on it (:func:`_path_spec`),
@@ -131,6 +131,10 @@ def layout(mech: Mechanism) -> Layout:
                 f"{j.type.value} pair; mech dof still counts it",
                 where=j.where,
             )
+    return mech.memo.get("layout", lambda: _layout(mech))
+
+
+def _layout(mech: Mechanism) -> Layout:
     problems: list[Problem] = []
     carriers, alias = _carriers(mech)
     # Joints of each link in file order, then its points.

@@ -136,10 +136,10 @@ class Build:
         i = self.index[link]
         if i == self.n:
             return np.array(xy, float)
-        x, y, th = self.q0[3 * i : 3 * i + 3]
+        x, y, th = self.q0[3 * i : 3 * i + 3].tolist()  # Python floats: the same IEEE operations
         c, s = math.cos(th), math.sin(th)
-        d = np.asarray(xy, float) - (x, y)
-        return np.array([c * d[0] + s * d[1], -s * d[0] + c * d[1]])
+        dx, dy = float(xy[0]) - x, float(xy[1]) - y
+        return np.array([c * dx + s * dy, -s * dx + c * dy])
 
     def dir_local(self, link: str, angle: float) -> np.ndarray:
         """A global direction (rad) as drawn, in ``link``'s frame."""

@@ -69,9 +69,21 @@ class Compiled:
     drawn: Drawn
     system: System
     mobility: Mobility
-    singular: bool  # Φ_q with drive rows is singular at the drawn configuration (a toggle drawn)
+    #: Φ_q with the drive rows at the drawn configuration (read-only): the rates of a solve that
+    #: is not moved use it again.
+    jacobian: np.ndarray
+    #: Whether Φ_q is singular as drawn, judged block by block (a large chain); None: by
+    #: :func:`_is_singular` when first asked (:attr:`singular`).
+    judged: bool | None
     #: What is derived from it in turn (the drives of each options, the closed-form program).
     memo: Memo = field(default_factory=Memo, init=False, repr=False, compare=False, hash=False)
+
+    @property
+    def singular(self) -> bool:
+        """Φ_q with drive rows is singular at the drawn configuration (a toggle drawn)."""
+        if self.judged is not None:
+            return self.judged
+        return self.memo.get("singular", lambda: _is_singular(self.jacobian))
 
 
 def compiled(
@@ -89,11 +101,12 @@ def _compile(mech: Mechanism, angles: tuple[float | None, ...] | None, allow_fre
     lay = layout(mech)
     drawn = assemble(lay, drive_angles=angles, allow_free=allow_free)
     system = build_system(lay, drawn)
-    jac = system.jacobian(system.q0)  # once, for the rank and the drawn toggle alike
+    jac = system.jacobian(system.q0)  # once, for the rank, the drawn toggle and the drawn rates
+    jac.setflags(write=False)
     form = _blocks(system)
     if form is None:
         mob = numeric_mobility(mech, system, system.q0, jacobian=jac)
-        return Compiled(mech, lay, drawn, system, mob, _is_singular(jac))
+        return Compiled(mech, lay, drawn, system, mob, jac, None)  # the toggle: judged if asked
     # A large chain, square with its drives: judged block by block, as its velocities are solved
     # (two dense SVDs of a 6,000-column Φ_q took 380 s on a 2,000-link chain of dyads).
     cond, _ = form.condition(jac)
@@ -101,7 +114,7 @@ def _compile(mech: Mechanism, angles: tuple[float | None, ...] | None, allow_fre
     mob = numeric_mobility(
         mech, system, system.q0, jacobian=jac, nonsingular=None if singular else (form, cond)
     )
-    return Compiled(mech, lay, drawn, system, mob, singular)
+    return Compiled(mech, lay, drawn, system, mob, jac, singular)
 
 
 def mobility(mech: Mechanism) -> Mobility:
@@ -233,7 +246,7 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
     )
     # At a drawn toggle the rank drops and mobility looks one higher: that is the
     # singularity (reported by the velocity solve), not a missing drive.
-    toggle = comp.singular and n_drives == kutzbach(mech) and numeric is not None and numeric > n_drives
+    toggle = numeric is not None and numeric > n_drives and n_drives == kutzbach(mech) and comp.singular
     if (lvl > 0 or moved) and numeric is not None and n_drives != numeric and not toggle:
         more = n_drives > numeric
         raise InputError(
@@ -348,7 +361,7 @@ def _rates(
     sys_ = comp.system
     qd = qdd = None
     if lvl >= 1:
-        jac = sys_.jacobian(q)
+        jac = comp.jacobian if q is sys_.q0 else sys_.jacobian(q)  # not moved: Φ_q as compiled
         lin = _checked(comp, jac, drives)
         rhs = _rate_rhs(comp, drives, omega_ref)
         qd = lin(rhs)
