@@ -126,6 +126,23 @@ lengths: {AB: 1, BC: 3, CD: 2.5}
 drive: {link: crank, angle: 90, omega: 10, direction: ccw}
 """
 
+# The Peaucellier–Lipkin inversor, drawn at 60° (tests/oracles/inversor.py derives P by hand): its
+# rhombus folds flat at θ* = 2 acos(0.8), a change point of the dyad that places P.
+FOLDING_INVERSOR = """
+name: Peaucellier-Lipkin inversor
+units: {length: m, angle: deg}
+links: [frame, crank, l2, l3, l4, l5, l6, l7]
+joints:
+  O: {type: revolute, links: [frame, l2, l3], at: [0, 0]}
+  Q: {type: revolute, links: [frame, crank], at: [1, 0]}
+  C: {type: revolute, links: [crank, l4, l5]}
+  A: {type: revolute, links: [l2, l4, l6], near: [1.5, 1.3]}
+  B: {type: revolute, links: [l3, l5, l7], near: [1.5, -1.3]}
+  P: {type: revolute, links: [l6, l7], near: [1.28, 0.5]}
+lengths: {QC: 1, OA: 2, OB: 2, CA: 1.2, CB: 1.2, AP: 1.2, BP: 1.2}
+drive: {link: crank, angle: 60, omega: 1}
+"""
+
 KINEMATIC = ("position", "velocity", "acceleration", "icentres")
 
 

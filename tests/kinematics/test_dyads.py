@@ -12,6 +12,8 @@ import mech
 from mech.errors import GeometryError, UnsupportedError
 from mech.kinematics import closed_form, solve
 from mech.options import SolveOptions
+from mechanism_texts import FOLDING_INVERSOR
+from oracles.inversor import inversor_p
 
 ROOT = Path(__file__).resolve().parents[2]
 DECOMPOSE = [
@@ -94,55 +96,40 @@ def test_closed_form_keeps_the_branch_of_the_drawing():
 
 
 # -- change points in single solves --------------------------------------------------------------
-# The Peaucellier–Lipkin inversor of tests/kinematics/test_sweep.py (derivation there): P runs on
+# The Peaucellier–Lipkin inversor (derivation in tests/oracles/inversor.py): P runs on
 # x = 1.28 with OP = 1.28 / cos(θ/2); the rhombus folds flat (P = C) at θ* = 2 acos(0.8) = 73.74°.
-INVERSOR = """
-name: Peaucellier-Lipkin inversor
-units: {length: m, angle: deg}
-links: [frame, crank, l2, l3, l4, l5, l6, l7]
-joints:
-  O: {type: revolute, links: [frame, l2, l3], at: [0, 0]}
-  Q: {type: revolute, links: [frame, crank], at: [1, 0]}
-  C: {type: revolute, links: [crank, l4, l5]}
-  A: {type: revolute, links: [l2, l4, l6], near: [1.5, 1.3]}
-  B: {type: revolute, links: [l3, l5, l7], near: [1.5, -1.3]}
-  P: {type: revolute, links: [l6, l7], near: [1.28, 0.5]}
-lengths: {QC: 1, OA: 2, OB: 2, CA: 1.2, CB: 1.2, AP: 1.2, BP: 1.2}
-drive: {link: crank, angle: 60, omega: 1}
-"""
 
 
 def _inversor_p(deg: float) -> tuple[float, float, float]:
-    """P.x, P.y and v_P.y (ω = 1) by hand: P.y = √(OP² − 1.28²), OP = 1.28 / cos(θ/2)."""
-    t = math.radians(deg)
-    c, s = math.cos(t / 2), math.sin(t / 2)
-    op, dop = 1.28 / c, 1.28 * s / (2 * c * c)
-    y = math.sqrt(op * op - 1.28**2)
-    return 1.28, y, op * dop / y
+    """P.x, P.y and v_P.y (ω = 1) on the inversor line (tests/oracles/inversor.py)."""
+    y, dy = inversor_p(math.radians(deg))
+    return 1.28, float(y), float(dy)
 
 
 @pytest.mark.parametrize("method", ["auto", "newton"])
 @pytest.mark.parametrize("deg", [40.0, 60.0, 73.0, 75.0, 80.0, 120.0])
 def test_an_angle_past_a_change_point_is_reached_on_the_inversor_branch(deg, method):
-    kin = solve(mech.loads(INVERSOR), "velocity", SolveOptions(angle=math.radians(deg), method=method))
+    kin = solve(
+        mech.loads(FOLDING_INVERSOR), "velocity", SolveOptions(angle=math.radians(deg), method=method)
+    )
     x, y, vy = _inversor_p(deg)
     assert kin.positions["P"] == pytest.approx((x, y), abs=1e-9)  # not P = C (1.1736, 0.9848 at 80°)
     assert kin.velocity("P") == pytest.approx((0.0, vy), abs=1e-7)
 
 
 def test_a_solve_past_a_change_point_says_it_passed_one():
-    kin = solve(mech.loads(INVERSOR), "position", SolveOptions(angle=math.radians(80.0)))
+    kin = solve(mech.loads(FOLDING_INVERSOR), "position", SolveOptions(angle=math.radians(80.0)))
     note = next(n for n in kin.notes if "change point" in n)
     assert "passed a change point at 73.739795° (P meets C" in note
     assert "continuous tangent" in note
-    before = solve(mech.loads(INVERSOR), "position", SolveOptions(angle=math.radians(70.0)))
+    before = solve(mech.loads(FOLDING_INVERSOR), "position", SolveOptions(angle=math.radians(70.0)))
     assert not any("change point" in n for n in before.notes)
 
 
 def test_change_point_of_the_inversor_is_located_where_the_rhombus_folds():
     from mech.kinematics.dyads import change_points
 
-    prog = closed_form(mech.loads(INVERSOR))
+    prog = closed_form(mech.loads(FOLDING_INVERSOR))
     found = [(prog.dyads[c.dyad][1], math.degrees(prog.drawn_angle + c.offset)) for c in change_points(prog)]
     # θ* and its mirror 360° − θ* (C below the axis), where the arms fold the other way
     assert found == [
@@ -163,13 +150,15 @@ def test_velocity_at_the_change_point_itself_is_refused_naming_it():
     # at θ* both branches meet: P's velocity is undetermined by the loop (singular rows), so the
     # solve refuses it, and says it is a change point rather than a limit
     with pytest.raises(GeometryError, match="a change point, P meets C: two branches meet"):
-        solve(mech.loads(INVERSOR), "velocity", SolveOptions(angle=2 * math.acos(0.8)))
+        solve(mech.loads(FOLDING_INVERSOR), "velocity", SolveOptions(angle=2 * math.acos(0.8)))
 
 
 def test_newton_continuation_past_a_change_point_says_it_passed_one():
     # Newton's predictor follows the tangent (P stays on x = 1.28); the sign of det Φ_q changes
     # where the two branches meet, bisected to about √tol: θ* = 2 acos(0.8) within 1e-5°
-    kin = solve(mech.loads(INVERSOR), "position", SolveOptions(angle=math.radians(80.0), method="newton"))
+    kin = solve(
+        mech.loads(FOLDING_INVERSOR), "position", SolveOptions(angle=math.radians(80.0), method="newton")
+    )
     assert kin.positions["P"] == pytest.approx(_inversor_p(80.0)[:2], abs=1e-9)
     (note,) = [n for n in kin.notes if "change point" in n]
     at = float(note.split("change point at ")[1].split("°")[0])

@@ -23,7 +23,9 @@ import mech
 from mech.errors import InputError, UnsupportedError
 from mech.kinematics import sweep
 from mech.options import SolveOptions
+from mechanism_texts import FOLDING_INVERSOR
 from oracles.four_bar import rocker_angle
+from oracles.inversor import FOLD, inversor_p
 from oracles.slider_crank import slider_dead_centres, slider_x
 
 FAST = settings(max_examples=15, deadline=None)
@@ -487,36 +489,7 @@ def test_several_drives_need_every_speed_and_take_no_single_drive_override():
 
 
 # -- change points: the Peaucellier–Lipkin inversor folding flat ----------------------------------
-# By hand (nothing from mech): the crank QC = 1 about Q = (1, 0) puts C at Q + (cos θ, sin θ), so
-# |OC| = 2 cos(θ/2).  O, C, P are in line (OA = OB, CA = CB = AP = BP: C and P on the bisector of
-# AB) and OC·OP = OA² − CA² = 4 − 1.44 = 2.56, so P = 1.28 along +x: P runs along x = 1.28, with
-# OP = 1.28 / cos(θ/2), P.y = √(OP² − 1.28²) and v_P = (0, d(P.y)/dθ·ω).  The rhombus CAPB folds
-# flat where OC = OP (C = P, A–C–B in line): 2 cos(θ*/2) = 1.28 / cos(θ*/2), cos²(θ*/2) = 0.64,
-# θ* = 2 acos(0.8) = 73.7397952917°; past it the fixed-sign closed form would follow P = C.
-FOLDING_INVERSOR = """
-name: Peaucellier-Lipkin inversor
-units: {length: m, angle: deg}
-links: [frame, crank, l2, l3, l4, l5, l6, l7]
-joints:
-  O: {type: revolute, links: [frame, l2, l3], at: [0, 0]}
-  Q: {type: revolute, links: [frame, crank], at: [1, 0]}
-  C: {type: revolute, links: [crank, l4, l5]}
-  A: {type: revolute, links: [l2, l4, l6], near: [1.5, 1.3]}
-  B: {type: revolute, links: [l3, l5, l7], near: [1.5, -1.3]}
-  P: {type: revolute, links: [l6, l7], near: [1.28, 0.5]}
-lengths: {QC: 1, OA: 2, OB: 2, CA: 1.2, CB: 1.2, AP: 1.2, BP: 1.2}
-drive: {link: crank, angle: 60, omega: 1}
-"""
-FOLD = 2.0 * math.acos(0.8)
-
-
-def inversor_p(theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(P.y, dP.y/dθ) on the inversor line x = 1.28 (derived above)."""
-    c, s = np.cos(theta / 2), np.sin(theta / 2)
-    op = 1.28 / c
-    dop = 1.28 * s / (2 * c * c)
-    y = np.sqrt(op * op - 1.28**2)
-    return y, op * dop / y
+# The inversor's P by hand: tests/oracles/inversor.py (x = 1.28, P.y and its rate, the fold θ*).
 
 
 @pytest.mark.parametrize("method", ["auto", "newton"])

@@ -21,6 +21,8 @@ themselves against textbook answers, so they are trusted for a reason.
   links turn fully by sampling the loop's closure at every angle of each.
 - :mod:`oracles.lines`: where two lines meet (Cramer's rule; the parametric form), for
   I-centres on Kennedy's lines.
+- :mod:`oracles.inversor`: the Peaucellier–Lipkin inversor's P on its straight line (inversion)
+  and from the rhombus of its links, and the change point where the rhombus folds flat.
 - :mod:`oracles.cam`: the textbook rise laws, a follower put on a profile taken as a bare
   polygon, the three-point radius of curvature, the oscillating example's pressure angle.
 """

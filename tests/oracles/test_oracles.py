@@ -26,6 +26,7 @@ from oracles.four_bar import (
     four_bar_clear_of_toggle,
     rocker_angle,
 )
+from oracles.inversor import FOLD, inversor_by_circles, inversor_p
 from oracles.lines import line_intersection, meet
 from oracles.slider_crank import slider_crank, slider_dead_centres, slider_driven_crank, slider_x
 from oracles.transmission import (
@@ -346,3 +347,17 @@ def test_turning_by_sampling_agrees_with_grashofs_inequality():
         assert ("crank" in turning) == crank_turns(d, a, b, c)
         seen.add(frozenset(turning))
     assert len(seen) == 5  # every class met: none, each link alone, all three
+
+
+@pytest.mark.parametrize("deg", [30.0, 60.0, 73.0, 75.0, 90.0, 120.0])
+def test_the_inversors_p_by_its_line_agrees_with_the_rhombus_built_from_its_links(deg):
+    """P on x = 1.28 (inversion) against P = A + B − C from the circles, and its rate by differences."""
+    theta = math.radians(deg)
+    px, py = inversor_by_circles(theta)
+    y, dy = inversor_p(theta)
+    assert px == pytest.approx(1.28, abs=1e-12) and py == pytest.approx(float(y), rel=1e-12)
+    h = 1e-6
+    fd = (inversor_by_circles(theta + h)[1] - inversor_by_circles(theta - h)[1]) / (2 * h)
+    assert fd == pytest.approx(float(dy), rel=1e-7)
+    # the fold: OC = OP where C = P
+    assert 2 * math.cos(FOLD / 2) == pytest.approx(1.28 / math.cos(FOLD / 2), rel=1e-12)
