@@ -124,6 +124,11 @@ def layout(mech: Mechanism) -> Layout:
         For a prismatic joint whose slider point cannot be inferred, a drive
         on a link with no pivot, and similar gaps, all reported at once.
     """
+    return mech.memo.get("layout", lambda: _planar_layout(mech))
+
+
+def _planar_layout(mech: Mechanism) -> Layout:
+    """:func:`_layout` once every pair is known to be planar (checked once, with the layout)."""
     for j in mech.joints:
         if not j.type.is_planar:
             raise UnsupportedError(
@@ -131,7 +136,7 @@ def layout(mech: Mechanism) -> Layout:
                 f"{j.type.value} pair; mech dof still counts it",
                 where=j.where,
             )
-    return mech.memo.get("layout", lambda: _layout(mech))
+    return _layout(mech)
 
 
 def _layout(mech: Mechanism) -> Layout:

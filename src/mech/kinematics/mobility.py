@@ -29,7 +29,15 @@ _NOISE = 64 * float(np.finfo(float).eps)
 
 
 def kutzbach(mech: Mechanism) -> int:
-    """``3(l − 1) − 2j − h``: j counts a joint of k links as k − 1; slot, cam, gear, contact are h."""
+    """``3(l − 1) − 2j − h``: j counts a joint of k links as k − 1; slot, cam, gear, contact are h.
+
+    Counted once per mechanism (its memo): every solve asks it, to refuse an under-driven file
+    before assembling it.
+    """
+    return mech.memo.get(("kutzbach",), lambda: _kutzbach(mech))
+
+
+def _kutzbach(mech: Mechanism) -> int:
     j = sum(joint.equivalent_binary for joint in mech.joints if not joint.type.is_higher)
     h = sum(1 for joint in mech.joints if joint.type.is_higher)
     return 3 * (len(mech.links) - 1) - 2 * j - h
