@@ -30,6 +30,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from rich.console import Console
     from rich.text import Text
 
+    from mech.render.console import ReportConsole
+
 __all__ = [
     "LARGE_BATCH",
     "PROGRESS_THRESHOLD",
@@ -197,7 +199,9 @@ def _student_line(s: StudentScore) -> str:
 
 
 # -- the table (a terminal) ------------------------------------------------------------------
-def check_table(report: Report, console: Console, *, quiet: bool = False, verbose: bool = False) -> None:
+def check_table(
+    report: Report, console: ReportConsole, *, quiet: bool = False, verbose: bool = False
+) -> None:
     """The report as rich tables: files (or students) by default, every answer with ``verbose``.
 
     ``quiet`` lists only what did not pass.
@@ -216,13 +220,13 @@ def check_table(report: Report, console: Console, *, quiet: bool = False, verbos
     console.print(Text(summary_line(report), style="bold " + style))
 
 
-def _box(console: Console) -> Any:
+def _box(console: ReportConsole) -> Any:
     from mech.render.console import table_box
 
     return table_box(console)
 
 
-def _status(status: str, console: Console) -> Text:
+def _status(status: str, console: ReportConsole) -> Text:
     from rich.text import Text
 
     from mech.render.console import is_plain
@@ -233,7 +237,7 @@ def _status(status: str, console: Console) -> Text:
     return Text(text, style=style)
 
 
-def _teacher_table(report: Report, console: Console) -> None:
+def _teacher_table(report: Report, console: ReportConsole) -> None:
     from rich.table import Table
 
     table = Table(box=_box(console), title="excluded from every score (the problem file cannot be graded)")
@@ -244,7 +248,7 @@ def _teacher_table(report: Report, console: Console) -> None:
     console.print(table)
 
 
-def _files_table(report: Report, console: Console, *, quiet: bool) -> None:
+def _files_table(report: Report, console: ReportConsole, *, quiet: bool) -> None:
     from rich.table import Table
 
     table = Table(box=_box(console))
@@ -267,7 +271,7 @@ def _files_table(report: Report, console: Console, *, quiet: bool) -> None:
         console.print(table)
 
 
-def _answers_table(report: Report, console: Console, *, quiet: bool) -> None:
+def _answers_table(report: Report, console: ReportConsole, *, quiet: bool) -> None:
     """One row per answer under a row naming its file (a file column would squeeze the reasons)."""
     from rich.table import Table
     from rich.text import Text
@@ -299,7 +303,7 @@ def _answers_table(report: Report, console: Console, *, quiet: bool) -> None:
         console.print(table)
 
 
-def _class_table(report: Report, console: Console, *, quiet: bool) -> None:
+def _class_table(report: Report, console: ReportConsole, *, quiet: bool) -> None:
     from rich.table import Table
 
     table = Table(box=_box(console))

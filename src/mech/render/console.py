@@ -45,15 +45,12 @@ class ReportConsole(Protocol):
 
 
 @lru_cache(maxsize=1)
-def stdout() -> Console:
+def stdout() -> ReportConsole:
     """The console for reports.  Piped output is plain text, $COLUMNS (default 120) wide."""
     if not _isatty() and not _forced_terminal():
         from mech.render.plain import PlainConsole
 
-        plain: ReportConsole = PlainConsole(int(os.environ.get("COLUMNS", 120)))
-        # a PlainConsole is a ReportConsole, not a rich Console: this says Console for the
-        # renderer (check) still typed against rich's class
-        return plain  # type: ignore[return-value]
+        return PlainConsole(int(os.environ.get("COLUMNS", 120)))
     console_class = rich_console_class()
 
     # markup=False: names, claims and messages come from users' files, and "[/b]" in a

@@ -44,12 +44,11 @@ from typing import TYPE_CHECKING, Any
 from mech.errors import MechError
 
 if TYPE_CHECKING:  # pragma: no cover
-    from rich.console import Console
-
     from mech.analysis import Result
     from mech.explain import Construction
     from mech.icentres.order import TopologyCentres
     from mech.options import OutputUnits
+    from mech.render.console import ReportConsole
     from mech.topology import Topology
 
 __all__ = ["FORMATS", "Echo", "choose", "emit", "emitter", "formats", "register"]
@@ -112,7 +111,7 @@ def _print(text: str) -> None:
     print(text)
 
 
-def _console() -> Console:
+def _console() -> ReportConsole:
     from mech.render.console import stdout
 
     return stdout()

@@ -13,7 +13,7 @@ from __future__ import annotations
 import csv
 import io
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -21,6 +21,9 @@ from mech.kinematics.result import Kinematics
 from mech.kinematics.sweep import Sweep, default_quantities, quantity_unit
 from mech.model import Mechanism
 from mech.options import OutputUnits
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.render.console import ReportConsole
 from mech.units import format_unit, to_unit
 
 __all__ = ["sweep_animation_file", "sweep_csv", "sweep_json", "sweep_plot_file", "sweep_table"]
@@ -210,7 +213,7 @@ def sweep_csv(sw: Sweep, *, units: OutputUnits, quantities: tuple[str, ...] = ()
     return buf.getvalue()
 
 
-def sweep_table(sw: Sweep, console: Any, *, units: OutputUnits) -> None:
+def sweep_table(sw: Sweep, console: ReportConsole, *, units: OutputUnits) -> None:
     """The summary for people: gaps, toggles, dead centres, time ratio, extremes, notes."""
     from rich.table import Table
     from rich.text import Text
