@@ -15,11 +15,14 @@ __all__ = [
     "CRANK_ROCKER_LENGTHS",
     "DRAWN_FOUR_BAR",
     "EXAMPLES",
+    "FIVE_BAR_ONE_DRIVE",
+    "FOLDING_INVERSOR",
     "FOUR_BAR_NAME",
     "FOUR_BAR_PARALLELOGRAM",
     "GEARS",
     "TOGGLE_FOUR_BAR",
     "expected_refusal",
+    "ladder",
     "slider_crank",
     "strip_answers",
 ]
@@ -141,6 +144,40 @@ joints:
   P: {type: revolute, links: [l6, l7], near: [1.28, 0.5]}
 lengths: {QC: 1, OA: 2, OB: 2, CA: 1.2, CB: 1.2, AP: 1.2, BP: 1.2}
 drive: {link: crank, angle: 60, omega: 1}
+"""
+
+
+def ladder(dyads: int) -> str:
+    """A crank and a chain of dyads, each hung from the last dyad's pin and a ground pivot."""
+    joints = ["  O: {type: revolute, links: [frame, crank], at: [0, 0]}"]
+    joints.append("  P0: {type: revolute, links: [crank, u1], at: [0.2, 0.9]}")
+    for k in range(1, dyads + 1):
+        carried = [f"u{k}", f"v{k}"] + ([f"u{k + 1}"] if k < dyads else [])
+        joints.append(
+            f"  P{k}: {{type: revolute, links: [{', '.join(carried)}], at: [{k + 0.2}, {0.9 + 0.05 * (k % 2)}]}}"
+        )
+        joints.append(f"  G{k}: {{type: revolute, links: [v{k}, frame], at: [{k + 1}, 0]}}")
+    links = [
+        "frame",
+        "crank",
+        *(f"u{k}" for k in range(1, dyads + 1)),
+        *(f"v{k}" for k in range(1, dyads + 1)),
+    ]
+    return f"links: [{', '.join(links)}]\njoints:\n" + "\n".join(joints) + "\ndrive: {link: crank, rpm: 60}\n"
+
+
+# A five-bar: Kutzbach 3·4 − 2·5 = 2 freedoms, one drive (line 10). Undrawn: only the drive places B.
+FIVE_BAR_ONE_DRIVE = """\
+units: {length: mm}
+links: [frame, a, b, c, d]
+joints:
+  A: {type: revolute, links: [frame, a], at: [0, 0]}
+  B: {type: revolute, links: [a, b]}
+  C: {type: revolute, links: [b, c], near: [60, 80]}
+  D: {type: revolute, links: [c, d]}
+  E: {type: revolute, links: [d, frame], at: [120, 0]}
+lengths: {AB: 40, BC: 70, CD: 70, DE: 40}
+drive: {link: a, angle: 80, rpm: 60}
 """
 
 KINEMATIC = ("position", "velocity", "acceleration", "icentres")

@@ -15,6 +15,7 @@ import pytest
 
 from cli_runner import mech
 from mech import __version__
+from mechanism_texts import FIVE_BAR_ONE_DRIVE
 
 ROOT = Path(__file__).resolve().parent.parent
 FOUR_BAR = str(ROOT / "mechanisms" / "four_bar.yaml")
@@ -95,21 +96,6 @@ def test_too_few_drives_are_refused_by_the_count_with_the_inputs_needed(run, wri
         result = run(command, str(path))
         assert result.exit_code == 2 and result.stdout == ""
         assert "ring.yaml:11:8: error:" in result.stderr and "it needs 4 inputs" in result.stderr, command
-
-
-# A five-bar: Kutzbach 3·4 − 2·5 = 2 freedoms, one drive (line 10). Undrawn: only the drive places B.
-FIVE_BAR_ONE_DRIVE = """\
-units: {length: mm}
-links: [frame, a, b, c, d]
-joints:
-  A: {type: revolute, links: [frame, a], at: [0, 0]}
-  B: {type: revolute, links: [a, b]}
-  C: {type: revolute, links: [b, c], near: [60, 80]}
-  D: {type: revolute, links: [c, d]}
-  E: {type: revolute, links: [d, frame], at: [120, 0]}
-lengths: {AB: 40, BC: 70, CD: 70, DE: 40}
-drive: {link: a, angle: 80, rpm: 60}
-"""
 
 
 @pytest.mark.parametrize(

@@ -32,6 +32,9 @@ import tempfile
 import time
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/: the shared mechanism texts
+from mechanism_texts import ladder as dyad_ladder
+
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # a shared machine: threads only add noise
 
 COMMANDS = (
@@ -79,25 +82,7 @@ def ring(n: int, kind: str) -> str:
 def ladder(n: int) -> str:
     """A crank and (n − 2) / 2 dyads, each hung from the last dyad's pin and a ground pivot: one freedom."""
     dyads = (n - 2) // 2
-    joints = ["  O: {type: revolute, links: [frame, crank], at: [0, 0]}"]
-    joints.append("  P0: {type: revolute, links: [crank, u1], at: [0.2, 0.9]}")
-    for k in range(1, dyads + 1):
-        carried = [f"u{k}", f"v{k}"] + ([f"u{k + 1}"] if k < dyads else [])
-        joints.append(
-            f"  P{k}: {{type: revolute, links: [{', '.join(carried)}], at: [{k + 0.2}, {0.9 + 0.05 * (k % 2)}]}}"
-        )
-        joints.append(f"  G{k}: {{type: revolute, links: [v{k}, frame], at: [{k + 1}, 0]}}")
-    links = [
-        "frame",
-        "crank",
-        *(f"u{k}" for k in range(1, dyads + 1)),
-        *(f"v{k}" for k in range(1, dyads + 1)),
-    ]
-    return (
-        f"name: ladder of {len(links)}\nlinks: [{', '.join(links)}]\njoints:\n"
-        + "\n".join(joints)
-        + "\ndrive: {link: crank, rpm: 60}\n"
-    )
+    return f"name: ladder of {2 + 2 * dyads}\n" + dyad_ladder(dyads)
 
 
 def timed(argv: list[str], limit: float) -> tuple[str, str]:

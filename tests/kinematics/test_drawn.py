@@ -18,7 +18,7 @@ from cli_runner import assert_bad_input, mech
 from mech.errors import InputError
 from mech.kinematics import solve
 from mech.loader import load, loads
-from mechanism_texts import DRAWN_FOUR_BAR
+from mechanism_texts import DRAWN_FOUR_BAR, FIVE_BAR_ONE_DRIVE
 from oracles.four_bar import four_bar
 
 FILE = Path(__file__).resolve().parents[2] / "mechanisms" / "crank_slotted_lever.yaml"
@@ -52,18 +52,7 @@ def test_a_drawing_far_from_the_numbers_is_refused_with_the_point():
 
 def test_too_few_drives_says_how_many_are_needed():
     # a five-bar (Kutzbach: n = 3(5 − 1) − 2·5 = 2) with one drive
-    text = """
-units: {length: mm}
-links: [frame, a, b, c, d]
-joints:
-  A: {type: revolute, links: [frame, a], at: [0, 0]}
-  B: {type: revolute, links: [a, b]}
-  C: {type: revolute, links: [b, c], near: [60, 80]}
-  D: {type: revolute, links: [c, d]}
-  E: {type: revolute, links: [d, frame], at: [120, 0]}
-lengths: {AB: 40, BC: 70, CD: 70, DE: 40}
-drive: {link: a, angle: 80, rpm: 60}
-"""
+    text = FIVE_BAR_ONE_DRIVE
     from mech.errors import MechError
 
     with pytest.raises(MechError) as info:

@@ -12,7 +12,7 @@ from cli_runner import assert_bad_input, close, mech, strict_json
 from mech.errors import GeometryError, InputError, UnsupportedError
 from mech.kinematics import mobility, solve
 from mech.options import SolveOptions
-from mechanism_texts import GEARS
+from mechanism_texts import GEARS, ladder
 
 
 def five_bar(drives):
@@ -157,25 +157,6 @@ def test_links_moved_by_a_tiny_crank_are_free_not_locked():
     )
     mob = solve(m).mobility
     assert mob.free == ("crank", "coupler", "rocker") and mob.locked == ()
-
-
-def ladder(dyads: int) -> str:
-    """A crank and a chain of dyads, each hung from the last dyad's pin and a ground pivot."""
-    joints = ["  O: {type: revolute, links: [frame, crank], at: [0, 0]}"]
-    joints.append("  P0: {type: revolute, links: [crank, u1], at: [0.2, 0.9]}")
-    for k in range(1, dyads + 1):
-        carried = [f"u{k}", f"v{k}"] + ([f"u{k + 1}"] if k < dyads else [])
-        joints.append(
-            f"  P{k}: {{type: revolute, links: [{', '.join(carried)}], at: [{k + 0.2}, {0.9 + 0.05 * (k % 2)}]}}"
-        )
-        joints.append(f"  G{k}: {{type: revolute, links: [v{k}, frame], at: [{k + 1}, 0]}}")
-    links = [
-        "frame",
-        "crank",
-        *(f"u{k}" for k in range(1, dyads + 1)),
-        *(f"v{k}" for k in range(1, dyads + 1)),
-    ]
-    return f"links: [{', '.join(links)}]\njoints:\n" + "\n".join(joints) + "\ndrive: {link: crank, rpm: 60}\n"
 
 
 def test_a_large_chain_s_mobility_from_its_blocks_matches_the_whole_svd():
