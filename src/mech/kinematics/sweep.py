@@ -73,6 +73,7 @@ from mech.errors import InputError, UnsupportedError
 from mech.kinematics.dyads import ACCURATE_COND, DyadProgram, numpy_namespace, program
 from mech.kinematics.march import MAX_SPAN, Marcher
 from mech.kinematics.quantities import LEVELS, check_quantity, default_quantities, quantity_unit
+from mech.kinematics.result import Kinematics
 from mech.kinematics.solve import SINGULAR, Compiled, compiled, instant_pairs, refuse_underdriven, solve
 from mech.kinematics.sweep_backends import Closed, Newton, law_series, newton_series
 from mech.kinematics.sweep_events import (
@@ -236,6 +237,21 @@ def _checked_level(level: str, options: SolveOptions) -> int:
     return LEVELS.index(level)
 
 
+def _assembled(mech: Mechanism, options: SolveOptions) -> tuple[Kinematics, Compiled]:
+    """The drawn configuration solved (validating the file and the options) and compiled.
+
+    Refuses a mechanism whose higher pairs are known only at the drawn instant: a sweep moves it.
+    """
+    base = solve(mech, "position", options)
+    comp = compiled(mech, None)
+    if comp.system.velocity_only:
+        raise UnsupportedError(
+            f"cannot sweep {mech.label}: {instant_pairs(comp.system.velocity_only)} only the instant drawn "
+            "(no profile is given)",
+        )
+    return base, comp
+
+
 def _plan(
     mech: Mechanism,
     angles: Sequence[float] | np.ndarray | None,
@@ -245,15 +261,7 @@ def _plan(
 ) -> _Plan:
     """Check the request (level, drive, speed, angles, memory) and compile the mechanism: one crank."""
     lvl = _checked_level(level, options)
-    base = solve(
-        mech, "position", options.with_(omega=None, direction=None, alpha=None)
-    )  # validates, assembles
-    comp = compiled(mech, None)
-    if comp.system.velocity_only:
-        raise UnsupportedError(
-            f"cannot sweep {mech.label}: {instant_pairs(comp.system.velocity_only)} only the instant drawn "
-            "(no profile is given)",
-        )
+    base, comp = _assembled(mech, options.with_(omega=None, direction=None, alpha=None))
     drive = base.drives[0]
     omega = _drive_omega(mech, options)
     if lvl >= 1 and omega is None:
@@ -642,13 +650,7 @@ def _plan_laws(
             + (f"{len(names)} drives" if len(names) > 1 else "a slider drive"),
             hint="use method auto or newton",
         )
-    solve(mech, "position", options.with_(omega=None, direction=None, alpha=None, speed=None))  # validates
-    comp = compiled(mech, None)
-    if comp.system.velocity_only:
-        raise UnsupportedError(
-            f"cannot sweep {mech.label}: {instant_pairs(comp.system.velocity_only)} only the instant drawn "
-            "(no profile is given)",
-        )
+    _, comp = _assembled(mech, options.with_(omega=None, direction=None, alpha=None, speed=None))
     options, laws = _laws(mech, comp, options, lvl, k)
     d = mech.drives[k]
     parameter = "angle" if d.link is not None else "position"
