@@ -32,8 +32,9 @@ import tempfile
 import time
 from pathlib import Path
 
+FOUR_BAR = Path(__file__).resolve().parents[2] / "mechanisms" / "four_bar.yaml"
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # tests/: the shared mechanism texts
-from mechanism_texts import ladder as dyad_ladder
+from mechanism_texts import ladder as dyad_ladder  # noqa: E402
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # a shared machine: threads only add noise
 
@@ -99,9 +100,15 @@ def timed(argv: list[str], limit: float) -> tuple[str, str]:
 
 def main(sizes: list[int], limit: float, only: tuple[str, ...] = (), kinds: tuple[str, ...] = ()) -> None:
     mech = str(Path(sys.executable).with_name("mech"))
-    print("| file | links | command | wall (s) | exit |")
-    print("| --- | ---: | --- | ---: | ---: |")
+    print("| file | links | command | wall (s) | exit | × the same command on the 4-link four-bar |")
+    print("| --- | ---: | --- | ---: | ---: | ---: |")
     with tempfile.TemporaryDirectory() as tmp:
+        # the reference, in the same run: each command on the shipped four-bar (start-up and a solve)
+        reference = {
+            command: timed([mech, *(a.format(tmp=tmp) for a in command), str(FOUR_BAR)], limit)[0]
+            for command in COMMANDS
+            if not only or command[0] in only
+        }
         for n in sizes:
             for kind in kinds or ("open", "closed", "drawn", "ladder"):
                 text = ladder(n) if kind == "ladder" else ring(n, kind)
@@ -117,7 +124,12 @@ def main(sizes: list[int], limit: float, only: tuple[str, ...] = (), kinds: tupl
                     argv = [mech, *(a.format(tmp=tmp) for a in command), str(target)]
                     wall, status = timed(argv, limit)
                     shown = " ".join(a.replace("{tmp}/", "") for a in command)
-                    print(f"| {kind} | {n:,} | mech {shown} | {wall} | {status} |", flush=True)
+                    ref = reference[command]
+                    ratio = f"{float(wall) / float(ref):.1f}×" if not wall.startswith(">") else "—"
+                    print(
+                        f"| {kind} | {n:,} | mech {shown} | {wall} | {status} | {ratio} (four-bar {ref} s) |",
+                        flush=True,
+                    )
 
 
 if __name__ == "__main__":
