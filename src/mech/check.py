@@ -47,6 +47,7 @@ from mech.answers import LEVELS, AnswerKey, AtInfinity, Compare, Undefined, pars
 from mech.errors import MechError, Problem, Where
 from mech.model import Claim, Mechanism, Tolerance
 from mech.options import SolveOptions
+from mech.pairs import located_on
 from mech.units import Dimension, format_unit, parse_quantity, to_unit
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -664,7 +665,7 @@ def least_speed(mech: Mechanism, kin: Kinematics, link: str) -> float:
     """
     from mech.errors import InputError
 
-    names = [j.name for j in mech.joints if link in j.located_on and j.name in kin.positions]
+    names = [j.name for j in mech.joints if link in located_on(j) and j.name in kin.positions]
     if len(names) < 2:
         raise InputError(
             f"least_speed needs two joints on {link} to draw its line; it has {len(names)}"

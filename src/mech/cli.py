@@ -120,9 +120,9 @@ def schema(output: str | None) -> None:
     Point your editor's YAML plugin at it for validation and completion.
     """
     from mech.render.jsonout import dumps
-    from mech.schema import SCHEMA
+    from mech.schema import schema
 
-    text = dumps(SCHEMA)
+    text = dumps(schema())
     if output:
         _write(output, text + "\n")
     else:
@@ -678,8 +678,8 @@ def cam_command(
     scale, --diagram the s–v–a–j diagrams.
     """
     from mech.cam.analysis import analyse
-    from mech.cam.mechanism import cam_setup
     from mech.loader import load
+    from mech.pairs.cam.setup import cam_setup
 
     if rpm is not None and not (rpm > 0 and math.isfinite(rpm)):
         raise InputError(f"--rpm must be a positive number, not {rpm:g}")

@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING, Any
 
 from mech.errors import UnsupportedError
 from mech.model import Mechanism
+from mech.pairs import kind_of, located_on, points_of
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.kinematics.result import Kinematics
@@ -173,7 +174,7 @@ class _Builder:
             if p.name == name:
                 return (p.link,)
         try:
-            return self.mech.joint(name).located_on
+            return located_on(self.mech.joint(name))
         except KeyError:
             return ()
 
@@ -181,7 +182,7 @@ class _Builder:
         if name in self.fixed and link in (None, self.ground):
             return "o" + self.mark
         base = name.lower()
-        if link is not None and name not in self.mech.points_of(link):
+        if link is not None and name not in points_of(self.mech, link):
             base += str(self.numbers[link]).translate(_SUB)
         return base + self.mark
 
@@ -256,7 +257,7 @@ class _Builder:
         return "m/s²" if self.acc else "m/s"
 
     def crank(self, link: str, pivot: str) -> None:
-        others = [n for n in self.mech.points_of(link) if n != pivot and n in self.kin.positions]
+        others = [n for n in points_of(self.mech, link) if n != pivot and n in self.kin.positions]
         if not others:
             return
         a = others[0]
@@ -435,9 +436,7 @@ class _Builder:
         joint = next(
             j
             for j in self.mech.joints
-            if j.type.value in ("prismatic", "slot")
-            and guide in j.links
-            and self.kin.joints[j.name].point == p
+            if kind_of(j).role == "path" and guide in j.links and self.kin.joints[j.name].point == p
         )
         u = self.kin.joints[joint.name].direction
         assert u is not None, f"{joint.name} is a slot: its direction is solved"
@@ -494,7 +493,7 @@ class _Builder:
         """The image of the guide's point under ``name``, from two drawn points of the (known) guide."""
         known = [
             n
-            for n in self.mech.points_of(guide)
+            for n in points_of(self.mech, guide)
             if n in self.kin.positions and (n in self.done or n in self.fixed)
         ]
         base = next(
@@ -507,7 +506,7 @@ class _Builder:
 
     def guide_images(self, guide: str, o: str, p: str, lpg: str) -> None:
         lo = self.label(o)
-        for name in self.mech.points_of(guide):
+        for name in points_of(self.mech, guide):
             if name in self.done or name not in self.kin.positions or name == o:
                 continue
             self.image_step(guide, name, (o, lo), (p, lpg))
@@ -552,7 +551,7 @@ class _Builder:
     def images(self) -> None:
         """Every link with two drawn points: its other points by the image."""
         for link in self.mech.moving_links:
-            names = [n for n in self.mech.points_of(link.name) if n in self.kin.positions]
+            names = [n for n in points_of(self.mech, link.name) if n in self.kin.positions]
             known = [n for n in names if n in self.done or n in self.fixed]
             if len(known) < 2:
                 continue
@@ -612,7 +611,7 @@ def explain(mech: Mechanism, kin: Kinematics, *, kind: str = "velocity") -> Cons
         rate = st.alpha if acc else st.omega
         if link.name == drive or rate is None:
             continue
-        names = [n for n in mech.points_of(link.name) if n in kin.positions]
+        names = [n for n in points_of(mech, link.name) if n in kin.positions]
         if len(names) < 2:
             continue
         n0, n1 = names[0], names[1]

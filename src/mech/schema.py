@@ -21,6 +21,9 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from typing import Any
 
+from mech.fields import NAME as _NAME
+from mech.fields import NUMBER as _NUMBER
+from mech.fields import XY as _XY
 from mech.loader.answers import ANSWER_KEYS
 from mech.loader.drives import DIRECTIONS, DRIVE_KEYS
 from mech.loader.joints import CLOSURES, COMMON_JOINT_KEYS
@@ -29,10 +32,7 @@ from mech.loader.loads import LOAD_KEYS
 from mech.loader.mechanism import TOP_KEYS
 from mech.loader.points import PLACE_KEYS, POINT_KEYS
 from mech.loader.units import UNITS_KEYS
-from mech.pairs.base import NAME as _NAME
-from mech.pairs.base import NUMBER as _NUMBER
-from mech.pairs.base import XY as _XY
-from mech.pairs.registry import KINDS
+from mech.pairs import KINDS
 from mech.units import known_units
 
 
@@ -54,27 +54,42 @@ _PLACE = _only(PLACE_KEYS, _PLACE_FRAGMENTS)
 _JOINT_COMMON: dict[str, Any] = _only(
     COMMON_JOINT_KEYS,
     {
-        "type": {"enum": [t.value for t in KINDS]},
+        "type": {"type": "string"},  # an enum of the kinds registered when asked: _joints()
         "links": {"type": "array", "items": _NAME, "minItems": 2},
         "description": {"type": "string"},
         "closure": {"enum": list(CLOSURES)},
         **_PLACE,
     },
 )
-# Every kind's keys, generated from the pair-kind registry (a key two kinds share, such as
-# `path` or `profiles`, has one fragment) …
-_JOINT_KEYS: dict[str, Any] = {}
-for _kind in KINDS.values():
-    for _key, _frag in _kind.keys.items():
-        _JOINT_KEYS.setdefault(_key, {})  # any shape here: each type's `then` below checks it
-# … and, per type, only its own keys (draft-07 if/then), so a `radius` on a gear is flagged.
-_JOINT_KINDS: list[dict[str, Any]] = [
-    {
-        "if": {"properties": {"type": {"const": t.value}}, "required": ["type"]},
-        "then": {"propertyNames": {"enum": [*_JOINT_COMMON, *k.keys]}, "properties": dict(k.keys)},
+
+
+def _joints() -> dict[str, Any]:
+    """The ``joints`` section, from the pair-kind registry as it is now (plug-ins included).
+
+    A key two kinds share (``path``, ``profiles``) is listed once with any shape; per type,
+    only its own keys are allowed (draft-07 if/then), so a `radius` on a gear is flagged.
+    """
+    common = {**_JOINT_COMMON, "type": {"enum": list(KINDS)}}
+    keys: dict[str, Any] = {key: {} for kind in KINDS.values() for key in kind.keys}
+    per_kind = [
+        {
+            "if": {"properties": {"type": {"const": name}}, "required": ["type"]},
+            "then": {"propertyNames": {"enum": [*common, *k.keys]}, "properties": dict(k.keys)},
+        }
+        for name, k in KINDS.items()
+    ]
+    return {
+        "type": "object",
+        "minProperties": 1,
+        "additionalProperties": {
+            "type": "object",
+            "required": ["type", "links"],
+            "additionalProperties": False,
+            "properties": {**common, **keys},
+            "allOf": per_kind,
+        },
     }
-    for t, k in KINDS.items()
-]
+
 
 _DRIVE: dict[str, Any] = _only(
     DRIVE_KEYS,
@@ -131,17 +146,7 @@ _SECTIONS: dict[str, Any] = {
             },
         ]
     },
-    "joints": {
-        "type": "object",
-        "minProperties": 1,
-        "additionalProperties": {
-            "type": "object",
-            "required": ["type", "links"],
-            "additionalProperties": False,
-            "properties": {**_JOINT_COMMON, **_JOINT_KEYS},
-            "allOf": _JOINT_KINDS,
-        },
-    },
+    "joints": {},  # made by _joints() when the schema is asked for
     "lengths": {"type": "object", "additionalProperties": _NUMBER},
     "points": {
         "type": "object",
@@ -199,14 +204,21 @@ _SECTIONS: dict[str, Any] = {
     },
 }
 
-SCHEMA: dict[str, Any] = {
-    "$schema": "http://json-schema.org/draft-07/schema#",
-    "$id": "https://github.com/planar-mech/mech/schema/format-1.json",
-    "title": "mech mechanism file (format 1)",
-    "description": "A planar mechanism: links, joints, lengths, drive and claimed answers. See cli.md.",
-    "type": "object",
-    "additionalProperties": False,
-    "required": ["links", "joints"],
-    "properties": _only(TOP_KEYS, _SECTIONS),
-    "definitions": {"drive": {"type": "object", "additionalProperties": False, "properties": _DRIVE}},
-}
+
+def schema() -> dict[str, Any]:
+    """The JSON Schema of the file format, with every pair kind registered now."""
+    return {
+        "$schema": "http://json-schema.org/draft-07/schema#",
+        "$id": "https://github.com/planar-mech/mech/schema/format-1.json",
+        "title": "mech mechanism file (format 1)",
+        "description": "A planar mechanism: links, joints, lengths, drive and claimed answers. See cli.md.",
+        "type": "object",
+        "additionalProperties": False,
+        "required": ["links", "joints"],
+        "properties": _only(TOP_KEYS, {**_SECTIONS, "joints": _joints()}),
+        "definitions": {"drive": {"type": "object", "additionalProperties": False, "properties": _DRIVE}},
+    }
+
+
+#: The schema as built in (the built-in kinds); :func:`schema` includes kinds registered later.
+SCHEMA: dict[str, Any] = schema()

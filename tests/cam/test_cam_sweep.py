@@ -15,10 +15,10 @@ import numpy as np
 import pytest
 from tests.conftest import MECHANISMS
 
-from mech.cam.mechanism import cam_setup
 from mech.cam.program import follower_motion
 from mech.kinematics.sweep import sweep
 from mech.loader import load, loads
+from mech.pairs.cam.setup import cam_setup
 
 ANGLES = np.radians(np.arange(0.0, 360.0, 2.5))
 

@@ -11,7 +11,6 @@ from builders import four_bar, slider_crank
 
 import mech
 from mech.kinematics import solve, sweep
-from mech.kinematics.march import stacked
 from mech.kinematics.solve import compiled
 from mech.options import SolveOptions
 
@@ -98,11 +97,32 @@ def test_newton_sweep_stops_at_a_rockers_limit_as_the_closed_form_finds_it():
     assert any("cannot reach" in n for n in got.notes)
 
 
-@pytest.mark.parametrize("name", ["double_parallelogram", "gear_pair", "four_bar", "whitworth_quick_return"])
-def test_constraint_rows_stack(name):
-    # the stacked rows must reproduce the system's own, or sweeps fall back to one step at a time
-    m = mech.load(ROOT / "mechanisms" / f"{name}.yaml")
-    assert stacked(compiled(m, None).system) is not None
+@pytest.mark.parametrize(
+    "name",
+    [
+        "double_parallelogram",
+        "gear_pair",
+        "four_bar",
+        "whitworth_quick_return",
+        "eccentric_cam_roller",
+        "rolling_wheel",
+        "cam_oscillating_roller",
+        "cam_flat_follower",
+    ],
+)
+def test_constraint_rows_of_a_stack_are_each_configurations_own(name):
+    # one truth with a batch axis: Φ, Φ_q and γ of K configurations at once are, row for row, those
+    # of each configuration alone (a batch of one), for every row shape the examples use
+    sys_ = compiled(mech.load(ROOT / "mechanisms" / f"{name}.yaml"), None).system
+    rng = np.random.default_rng(7)
+    q = sys_.q0 + rng.uniform(-0.05, 0.05, (5, sys_.q0.size))
+    qd = rng.uniform(-1.0, 1.0, (5, sys_.q0.size))
+    many = (sys_.phi(q, sys_.ln_c, sys_.ang_c), sys_.jacobian(q), sys_.gamma(q, qd))
+    for k in range(5):
+        one = (sys_.phi(q[k], sys_.ln_c, sys_.ang_c), sys_.jacobian(q[k]), sys_.gamma(q[k], qd[k]))
+        for a, b in zip(many, one, strict=True):
+            assert a[k].shape == b.shape
+            assert np.allclose(a[k], b, rtol=1e-13, atol=1e-14)
 
 
 @pytest.mark.parametrize("steps", [12, 360])
@@ -129,16 +149,16 @@ def test_newton_sweep_refines_extremes_and_dead_centres_as_the_closed_form_does(
     "name", ["eccentric_cam_roller", "rolling_wheel", "cam_oscillating_roller", "cam_roller_program"]
 )
 def test_moving_higher_pairs_march_in_stacks_as_the_step_by_step_sweep_solves_them(name, monkeypatch):
-    # distance rows (a roller on an eccentric), rolling rows (the arc rolled) and profile rows
-    # (a cam's spline against a roller): the stacked rows reproduce the system's own (agrees()),
-    # and the marched sweep gives the step-by-step continuation's answer to 1e-9 of the size
+    # distance rows (a roller on an eccentric), rolling rows (the arc rolled) and programme rows
+    # (a follower moved by its law): the marched sweep gives the step-by-step continuation's
+    # answer to 1e-9 of the size
     import mech.kinematics.march as march
 
     m = mech.load(ROOT / "mechanisms" / f"{name}.yaml")
-    assert stacked(compiled(m, None).system) is not None
     phi = np.radians(np.linspace(0.0, 360.0, 181))
     got = sweep(m, phi, level="acceleration", analyse=False)
-    monkeypatch.setattr(march, "stacked", lambda sys_: None)
+    assert got.method == "newton"
+    monkeypatch.setattr(march.Marcher, "make", classmethod(lambda cls, backend: None))
     ref = sweep(m, phi, level="acceleration", analyse=False)
     assert got.assembled.all() and ref.assembled.all()
     size = solve(m, "position").size  # the mechanism's own scale (its largest joint distance)

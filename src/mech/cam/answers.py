@@ -20,8 +20,8 @@ def cam_value(an: Any, quantity: str, name: str) -> float:
     """
     from mech.answers import Undefined
     from mech.cam.analysis import analyse
-    from mech.cam.mechanism import cam_joints, cam_setup
     from mech.cam.profile import evaluate
+    from mech.pairs.cam.setup import cam_joints, cam_setup
 
     if name not in {j.name for j in cam_joints(an.mech)}:
         raise Undefined(f"cannot be computed: {name} is not a cam joint with a `program`")

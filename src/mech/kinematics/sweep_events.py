@@ -21,7 +21,7 @@ from mech.kinematics.roots import brent, illinois, zoom
 from mech.kinematics.solve import Compiled
 from mech.kinematics.sweep_backends import Closed, Walk
 from mech.kinematics.sweep_result import Event, Extreme, Gap, TimeRatio
-from mech.model import JointType
+from mech.pairs import kind_of
 
 __all__ = [
     "circuits_note",
@@ -250,7 +250,7 @@ def _outputs(
             out.append(("slide", ps.joint))
     pivoted = []
     for j in mech.joints:
-        if j.type is JointType.REVOLUTE and mech.ground in j.links:
+        if kind_of(j).role == "pin" and mech.ground in j.links:
             for lk in j.links:
                 if lk != mech.ground and lk not in driven and lk in names["links"] and lk not in pivoted:
                     pivoted.append(lk)

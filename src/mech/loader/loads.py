@@ -7,6 +7,7 @@ import yaml
 from mech.loader.nodes import did_you_mean
 from mech.loader.reader import NodeReader
 from mech.model import Joint, Load, Point
+from mech.pairs import located_on
 from mech.units import Dimension
 
 __all__ = ["LOAD_KEYS", "read_loads"]
@@ -19,7 +20,7 @@ def read_loads(
     r: NodeReader, node: yaml.Node, links: list[str], joints: list[Joint], points: list[Point]
 ) -> tuple[Load, ...]:
     """``loads: {P: {force: [0, -500]}, rocker: {torque: "20 N m"}}``."""
-    located = {j.name for j in joints if j.located_on} | {p.name for p in points}
+    located = {j.name for j in joints if located_on(j)} | {p.name for p in points}
     out = []
     for name, (knode, vnode) in r.mapping(node, "loads").items():
         fields = r.mapping(vnode, f"the load on {name}", allowed=LOAD_KEYS)

@@ -30,6 +30,7 @@ from typing import Any
 from mech.errors import InputError, UnsupportedError
 from mech.model import Mechanism
 from mech.options import SolveOptions
+from mech.pairs import located_on, points_of
 
 __all__ = ["Advantage", "InputEffort", "input_effort", "mechanical_advantage"]
 
@@ -109,7 +110,7 @@ def _carrier(mech: Mechanism, point: str) -> str:
         if p.name == point:
             return p.link
     joint = mech.joint(point)
-    moving = [lk for lk in joint.located_on if lk != mech.ground]
+    moving = [lk for lk in located_on(joint) if lk != mech.ground]
     if not moving:
         raise InputError(f"{point} is fixed to the ground: it has no mechanical advantage")
     return moving[0]
@@ -289,7 +290,7 @@ def mechanical_advantage(
             icentres = locate(mech, kin)
         point_name = output if output in kin.positions else None
         if out_kind == "point" and point_name is None:
-            point_name = next(n for n in mech.points_of(out_link) if n in kin.positions)
+            point_name = next(n for n in points_of(mech, out_link) if n in kin.positions)
         _r, by_ic, text = _by_icentres(mech, kin, icentres, driver, out_kind, out_link, point_name or output)
     else:
         text = "slider drive: the I-centre ratio is not formed (its I-centre with the ground is at infinity)"
@@ -300,7 +301,7 @@ def mechanical_advantage(
         if out_kind == "link":
             d = lks[out_link]
         else:
-            name = output if output in pts else next(n for n in mech.points_of(out_link) if n in pts)
+            name = output if output in pts else next(n for n in points_of(mech, out_link) if n in pts)
             d = math.hypot(*pts[name])
         by_vw = 1.0 / abs(d) if d else math.inf
     return Advantage(

@@ -24,8 +24,9 @@ from typing import TYPE_CHECKING
 
 from mech._records import dataclass
 from mech.errors import UnsupportedError
-from mech.model import JointType, Mechanism
+from mech.model import Mechanism
 from mech.options import SolveOptions
+from mech.pairs import kind_of
 from mech.properties.grashof import FourBarLoop, linkage_loops
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -190,9 +191,9 @@ def _stroke_subjects(mech: Mechanism) -> list[tuple[str, str, str]]:
     drive = next((d.link for d in mech.drives if d.link is not None), None)
     out = []
     for j in mech.joints:
-        if (j.type is JointType.PRISMATIC and mech.ground in j.links) or j.type is JointType.PRISMATIC:
+        if (kind_of(j).keeps_angle and mech.ground in j.links) or kind_of(j).keeps_angle:
             out.append((j.name, "displacement", j.name))
-        elif j.type is JointType.REVOLUTE and mech.ground in j.links and j.order == 2:
+        elif kind_of(j).role == "pin" and mech.ground in j.links and j.order == 2:
             other = next(lk for lk in j.links if lk != mech.ground)
             if other != drive:
                 out.append((j.name, "angle", other))

@@ -33,7 +33,8 @@ import math
 from collections.abc import Mapping
 
 from mech._records import dataclass
-from mech.model import Joint, JointType, Mechanism
+from mech.model import Joint, Mechanism
+from mech.pairs import kind_of
 
 __all__ = ["GRASHOF_CLASSES", "FourBarLoop", "SliderCrankLoop", "four_bar_loops", "linkage_loops"]
 
@@ -198,7 +199,7 @@ class _Lengths:
 def _pairs(mech: Mechanism) -> dict[frozenset[str], list[Joint]]:
     out: dict[frozenset[str], list[Joint]] = {}
     for j in mech.joints:
-        if j.order == 2 and j.type in (JointType.REVOLUTE, JointType.PRISMATIC):
+        if j.order == 2 and (kind_of(j).role == "pin" or kind_of(j).keeps_angle):
             out.setdefault(frozenset(j.links), []).append(j)
     return out
 
@@ -251,7 +252,7 @@ def linkage_loops(
     known = _Lengths(mech, positions)
     out: list[FourBarLoop | SliderCrankLoop] = []
     for links, joints in _rings(mech, pairs):
-        sliding = [k for k, j in enumerate(joints) if j.type is JointType.PRISMATIC]
+        sliding = [k for k, j in enumerate(joints) if kind_of(j).keeps_angle]
         ground = mech.ground if mech.ground in links else None
         if not sliding:
             lengths = []

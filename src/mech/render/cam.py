@@ -13,9 +13,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mech.cam.analysis import CamAnalysis, Extreme
-from mech.cam.mechanism import CamSetup
 from mech.cam.profile import evaluate
 from mech.cam.program import follower_motion
+from mech.pairs.cam.setup import CamSetup
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.render.console import ReportConsole

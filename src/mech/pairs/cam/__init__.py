@@ -1,0 +1,119 @@
+"""Cam pair (h = 1): a common normal at the instant, profiles that move, or the follower's programme.
+
+Without profiles, ``at`` (the contact point) and ``normal`` (the common
+normal's angle) describe the instant drawn.  With ``profiles`` (one curve per
+link, :mod:`mech.specs`) the pair moves; a cam may give its follower's
+``program`` instead (:mod:`mech.cam`), and then the follower moves by its law.
+"""
+
+from __future__ import annotations
+
+from types import MappingProxyType
+from typing import TYPE_CHECKING, Any
+
+from mech.cam.program import program_schema
+from mech.cam.read import read_program
+from mech.fields import NUMBER, PROFILES, Fields, Reader, read_profiles
+from mech.pairs.base import PairKind
+from mech.specs import ContactSpec
+from mech.units import Dimension
+
+if TYPE_CHECKING:
+    from mech.model import Joint, Mechanism
+    from mech.pairs.base import InstantView
+    from mech.pairs.rows import RowBuilder
+    from mech.specs import Profile
+
+Vec = tuple[float, float]
+
+__all__ = ["Cam", "read_contact", "see_contact"]
+
+PROGRAM: dict[str, Any] = {
+    "description": "The follower's programme, from which mech generates the cam profile (DESIGN § 1.1).",
+    **program_schema(NUMBER),
+}
+
+
+def read_contact(
+    r: Reader, fields: Fields, what: str, links: tuple[str, ...], *, program: bool = False
+) -> ContactSpec:
+    """``normal`` and ``profiles`` (and a cam's ``program``): what a cam or a contact pair reads."""
+    normal = r.optional(fields, "normal", lambda n: r.number(n, "the common normal", Dimension.ANGLE))
+    profiles = r.optional(fields, "profiles", lambda n: read_profiles(r, n, what, links)) or ()
+    prog = r.optional(fields, "program", lambda n: read_program(r, n, what)) if program else None
+    if program and "program" in fields and "profiles" in fields:
+        r.problem(
+            fields["program"][0],
+            f"{what} gives both `program` and `profiles`",
+            "the programme generates the cam's profile: give one",
+        )
+    return ContactSpec(normal=normal, profiles=profiles, program=prog)
+
+
+def see_contact(seen: InstantView, j: Joint, line_of_action: Vec | None = None) -> None:
+    """A cam, gear or point contact: its I-centre is somewhere on the common normal (Kennedy finishes it).
+
+    The normal is the solved common tangent turned a quarter, else the file's ``normal``,
+    else ``line_of_action`` (a gear's); with none, the contact is taken as rolling (a gear
+    whose pitch point is where its pitch circles roll).
+    """
+    import math
+
+    at = seen.at(j)
+    at = j.place.at if at is None else at
+    if at is None:
+        return
+    a, b = j.links[0], j.links[1]
+    tangent = seen.direction(j)
+    normal: Vec | None = line_of_action
+    if tangent is not None:
+        normal = (tangent[1], -tangent[0])  # the common tangent turned −90°
+    elif j.normal is not None:
+        normal = (math.cos(j.normal), math.sin(j.normal))
+    seen.contact(j.name, (a, b), at, normal)
+
+
+class Cam(PairKind):
+    """A cam and its follower, touching at a point (line contact), kept together by a force."""
+
+    name = "cam"
+    keys = MappingProxyType({"normal": NUMBER, "profiles": PROFILES, "program": PROGRAM})
+    spec = ContactSpec()
+    higher = True
+    motion = "cam (sliding and rolling)"
+    line_contact = True
+    closure = "force"
+    icentre = ("line", "cam {joint}: on the common normal at the contact")
+    glyph = "contact"
+
+    def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> ContactSpec:
+        return read_contact(r, fields, what, links, program=True)
+
+    def rows(self, b: RowBuilder, j: Joint) -> None:
+        """The follower moved by its programme, profiles that touch, or the common normal of the instant."""
+        from mech.pairs.profiles import instant_normal, moving_contact
+
+        profiles = None
+        if getattr(j.spec, "program", None) is not None:
+            from mech.pairs.cam.setup import program_profiles
+
+            profiles = program_profiles(b.mech, j)
+        if not moving_contact(b, j, profiles=profiles):
+            instant_normal(b, j, j.normal)
+
+    def inspect(self, seen: InstantView, j: Joint) -> None:
+        """On the common normal at the contact."""
+        see_contact(seen, j)
+
+    def drawn_profiles(self, mech: Mechanism, j: Joint, contact: Vec | None) -> list[tuple[str, Profile]]:
+        """The profiles, or those a programme generates (none when the programme cannot be placed:
+        the analysis reports why)."""
+        if getattr(j.spec, "program", None) is None:
+            return list(j.profiles)
+        from mech.errors import MechError
+        from mech.pairs.cam.setup import program_profiles
+
+        try:
+            return list(program_profiles(mech, j).items())
+        except MechError:
+            return []
