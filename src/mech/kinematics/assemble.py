@@ -360,12 +360,15 @@ def _placements(
         places[j.name] = j.place
     for pt in mech.points:
         places[pt.name] = pt.place
+    drawn = {j.name: at for j in mech.joints if j.place.at is None and (at := kind_of(j).drawn_at(mech, j))}
     for name in lay.carriers:
         pl = places.get(name)
         if pl is None:
             continue
         if pl.at is not None:
             known[name] = pl.at
+        elif name in drawn:  # drawn by the pair's own data (a follower's point, by its programme)
+            known[name] = drawn[name]
         elif pl.near is not None:
             near[name] = pl.near
     # Path references given as coordinates become synthetic known locations.

@@ -98,6 +98,9 @@ class System:
     # bookkeeping
     locators: dict[str, Locator] = field(default_factory=dict)  # moving contact point from q (scaled)
     normals: dict[str, Locator] = field(default_factory=dict)  # its common normal (unit) from q
+    contact_points: dict[str, Locator] = field(
+        default_factory=dict
+    )  # a pair's contact, its location elsewhere
     row_names: tuple[str, ...] = ()  # per row: the joint or drive it comes from
     holonomic: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))  # per row
     drive_rows: np.ndarray = field(default_factory=lambda: np.zeros(0, int))  # row per drive (file order)
@@ -381,6 +384,7 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     sys_.path_points = b.path_points
     sys_.locators = b.locators
     sys_.normals = b.normals
+    sys_.contact_points = b.contact_points
     sys_.loc_names = tuple(local)
     sys_.loc_i = np.array([local[k][0] for k in local], int)
     sys_.loc_s = np.array([local[k][1] for k in local], float).reshape(-1, 2)

@@ -166,16 +166,10 @@ def _carriers(mech: Mechanism) -> tuple[dict[str, tuple[str, ...]], dict[str, st
     alias: dict[str, str] = {}
     for j in mech.joints:
         kind = kind_of(j)
-        role = kind.role
-        if role == "pin":
-            carriers[j.name] = tuple(j.links)
-        elif role == "path" and kind.located == "first":  # a slot: the pin is a point
-            if j.point is not None:
-                alias[j.name] = j.point
-            else:
-                carriers[j.name] = (j.links[0],)
-        elif role == "contact":
-            carriers[j.name] = ()
+        if kind.role == "path" and kind.located == "first" and j.point is not None:
+            alias[j.name] = j.point  # a slot naming the pin's point: the joint stands for it
+        elif kind.role in ("pin", "contact") or (kind.role == "path" and kind.located == "first"):
+            carriers[j.name] = kind.fixed_in(j)  # a contact point is carried by none
     for p in mech.points:
         carriers[p.name] = (p.link,)
     return carriers, alias

@@ -57,6 +57,7 @@ class Build:
     path_points: dict[str, tuple[int, str]] = field(default_factory=dict)
     locators: dict[str, Locator] = field(default_factory=dict)  # moving contact point, from q
     normals: dict[str, Locator] = field(default_factory=dict)  # its common normal (unit), from q
+    contact_points: dict[str, Locator] = field(default_factory=dict)  # where a pair touches, from q
 
     @property
     def mech(self) -> Mechanism:

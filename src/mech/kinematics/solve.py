@@ -1240,6 +1240,9 @@ def _joint_geoms(
         elif kind_of(j).role == "contact" and j.normal is not None:
             direction = (-math.sin(j.normal), math.cos(j.normal))
         at = positions.get(point) or all_pos.get(point)  # type: ignore[arg-type]
+        if j.name in sys_.contact_points:  # the pair touches away from its location (a follower's point)
+            p = sys_.contact_points[j.name](q) * sys_.scale + sys_.centre
+            at = (float(p[0]), float(p[1]))
         if point is not None and (point.startswith("#") or point not in positions):
             point = None
         joints[j.name] = JointGeom(j.name, j.type, tuple(j.links), point, direction, j.radius, at)

@@ -168,6 +168,23 @@ class PairKind:
         """
         return self.spec
 
+    # -- where the joint is ---------------------------------------------------------------------
+    def fixed_in(self, j: Joint) -> tuple[str, ...]:
+        """The links the joint's point is fixed in (it moves with them), for the position solvers.
+
+        A pin is fixed in every link it joins; a pin in a slot in its pin link; a contact
+        point moves along both profiles (fixed in neither); a prismatic pair has no point.
+        """
+        if self.role == "pin":
+            return tuple(j.links)
+        if self.role == "path" and self.located == "first":
+            return j.links[:1]
+        return ()
+
+    def drawn_at(self, mech: Mechanism, j: Joint) -> Vec | None:
+        """Where the file's own data draw the joint when it has no ``at`` (None: it is solved for)."""
+        return None
+
     # -- the drawn configuration ----------------------------------------------------------------
     def contact_problem(self, j: Joint) -> Problem | None:
         """What a contact pair's drawing lacks for its rows (its contact point), or None.

@@ -123,7 +123,10 @@ class RowBuilder(Protocol):
 
     The drawn configuration is scaled (divided by :attr:`scale`) and relative to a
     ground pivot; ``index`` maps link names to q blocks (ground is ``n``); ``pos`` the
-    drawn positions in metres.  Implemented by :class:`mech.kinematics.rows.Build`.
+    drawn positions in metres.  ``locators`` give a location fixed in no link (a contact
+    point) from q; ``contact_points`` where a pair whose location is fixed in a link (a
+    follower's own point) touches; ``normals`` a contact's common normal.  Implemented by
+    :class:`mech.kinematics.rows.Build`.
     """
 
     @property
@@ -154,6 +157,8 @@ class RowBuilder(Protocol):
     def locators(self) -> dict[str, Locator]: ...
     @property
     def normals(self) -> dict[str, Locator]: ...
+    @property
+    def contact_points(self) -> dict[str, Locator]: ...
     @property
     def path_dirs(self) -> dict[str, tuple[int, np.ndarray]]: ...
     @property

@@ -73,6 +73,10 @@ def see_contact(seen: InstantView, j: Joint, line_of_action: Vec | None = None) 
     seen.contact(j.name, (a, b), at, normal)
 
 
+def _programme(j: Joint) -> bool:
+    return getattr(j.spec, "program", None) is not None
+
+
 class Cam(PairKind):
     """A cam and its follower, touching at a point (line contact), kept together by a force."""
 
@@ -89,16 +93,35 @@ class Cam(PairKind):
     def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> ContactSpec:
         return read_contact(r, fields, what, links, program=True)
 
+    def fixed_in(self, j: Joint) -> tuple[str, ...]:
+        """A programme's joint stands for the follower's own point (DESIGN § 1.2); a contact moves."""
+        return j.links[1:2] if _programme(j) else ()
+
+    def located_on(self, j: Joint) -> tuple[str, ...]:
+        """A programme's joint is a point of the follower (its arm's length may end there)."""
+        return j.links[1:2] if _programme(j) else super().located_on(j)
+
+    def drawn_at(self, mech: Mechanism, j: Joint) -> Vec | None:
+        """The follower's point where the programme puts it at the drive's angle."""
+        if not _programme(j):
+            return None
+        from mech.cam.profile import evaluate
+        from mech.pairs.cam.setup import cam_setup
+
+        setup = cam_setup(mech, j.name)
+        x, y = evaluate(setup.layout, [setup.angle]).point[0]
+        return (float(x) + setup.centre[0], float(y) + setup.centre[1])
+
     def rows(self, b: RowBuilder, j: Joint) -> None:
-        """The follower moved by its programme, profiles that touch, or the common normal of the instant."""
+        """The follower moved by its programme's law, profiles that touch, or the common normal of the instant."""
+        if _programme(j):
+            from mech.pairs.cam.law import programme_rows
+
+            programme_rows(b, j)
+            return
         from mech.pairs.profiles import instant_normal, moving_contact
 
-        profiles = None
-        if getattr(j.spec, "program", None) is not None:
-            from mech.pairs.cam.setup import program_profiles
-
-            profiles = program_profiles(b.mech, j)
-        if not moving_contact(b, j, profiles=profiles):
+        if not moving_contact(b, j):
             instant_normal(b, j, j.normal)
 
     def inspect(self, seen: InstantView, j: Joint) -> None:

@@ -33,7 +33,15 @@ from mech.pairs.registry import kind_of
 if TYPE_CHECKING:
     from mech.specs import Profile
 
-__all__ = ["CamSetup", "cam_joints", "cam_setup", "follower_motion_kind", "joint_program", "program_profiles"]
+__all__ = [
+    "CamSetup",
+    "cam_joints",
+    "cam_setup",
+    "follower_motion_kind",
+    "follower_slide",
+    "joint_program",
+    "program_profiles",
+]
 
 Vec = tuple[float, float]
 
@@ -206,13 +214,17 @@ def _drive_of(mechanism: Mechanism, cam: str) -> tuple[float, int, float | None]
     return angle, sense, omega
 
 
-def _translating(mechanism: Mechanism, cj: Joint, program: CamProgram, centre: Vec, sense: int) -> CamLayout:
-    """A translating follower on its prismatic joint's path: its axis and signed offset."""
+def follower_slide(mechanism: Mechanism, follower: str) -> Joint:
+    """The prismatic joint a translating follower slides on, on the ground (cam_setup checked it is one)."""
     ground = mechanism.ground
-    follower = cj.links[1]
-    slide = next(
+    return next(
         j for j in mechanism.joints if kind_of(j).keeps_angle and j.links[0] == follower and ground in j.links
     )
+
+
+def _translating(mechanism: Mechanism, cj: Joint, program: CamProgram, centre: Vec, sense: int) -> CamLayout:
+    """A translating follower on its prismatic joint's path: its axis and signed offset."""
+    slide = follower_slide(mechanism, cj.links[1])
     if slide.path is None:
         raise _fail(slide, f"the follower's prismatic joint {slide.name} needs a `path`: its line")
     through = _coords(mechanism, slide.path.through, slide)
