@@ -580,6 +580,43 @@ def _write(path: str, text: str | Iterable[str]) -> None:
     write_report(path, text)
 
 
+# -- the live page --------------------------------------------------------------------
+@cli.command(name="view")
+@click.option(
+    "-o", "--output", required=True, type=click.Path(dir_okay=False), help="The page to write (.html)."
+)
+@click.option(
+    "--steps",
+    type=click.IntRange(min=2, max=100_000),
+    default=360,
+    show_default=True,
+    help="Instants over the cycle (360: 1° steps of a crank).",
+)
+@click.option("--from", "start", type=float, help="A slider drive's first position (file's length unit).")
+@click.option("--to", "stop", type=float, help="A slider drive's last position (file's length unit).")
+@kinematic_command()
+def view_command(request: Request, output: str, steps: int, start: float | None, stop: float | None) -> None:
+    """Write one self-contained HTML page that plays the mechanism's cycle.
+
+    Slider, play/pause and speed; the configuration with the velocity and
+    acceleration polygons; I-centres, coupler paths, centrodes and the
+    transmission angle as layers; the numbers of the instant shown.  It
+    needs no network and no server: post it, or open it from disk.
+    """
+    import json
+
+    from mech.view import page, summary
+
+    html = page(request.file, options=request.options, steps=steps, start=start, stop=stop)
+    _write(output, html)
+    info = summary(html, file=request.file, output=output)
+    click.echo(
+        json.dumps(info)
+        if request.as_json
+        else f"wrote {output}: {info['steps']} instants, {info['bytes']:,} bytes"
+    )
+
+
 # -- drawings -------------------------------------------------------------------------
 @cli.command(name="draw")
 @click.option(
