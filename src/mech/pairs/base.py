@@ -20,7 +20,8 @@ of branching on the type's name.  What a kind says:
 * **its I-centre by inspection** — :attr:`PairKind.icentre` from the joints
   alone, :meth:`PairKind.inspect` at a solved instant;
 * **its glyph** — :meth:`PairKind.glyph`, the geometry a configuration diagram
-  draws at the joint.
+  draws at the joint: backend-neutral shapes (:mod:`mech.pairs.glyph`) from what a
+  :class:`~mech.pairs.glyph.GlyphView` lets it read.
 
 The hooks are given small protocols of what they may read (the drawn
 configuration, the solved instant, the page), never the layers' own classes,
@@ -29,7 +30,7 @@ so this package imports nothing above :mod:`mech.model`.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, ClassVar, Protocol
 
 from mech.errors import Problem, UnsupportedError
@@ -38,6 +39,7 @@ from mech.specs import BareSpec, JointSpec, Profile
 if TYPE_CHECKING:
     from mech.fields import Fields, Reader
     from mech.model import Joint, Mechanism
+    from mech.pairs.glyph import GlyphView, Shape
     from mech.pairs.rows import RowBuilder
 
 Vec = tuple[float, float]
@@ -127,12 +129,6 @@ class PairKind:
         How the closed-form dyads use it (``pin`` of an RRR or RRP dyad or a crank's
         pivot, ``path`` of an RRP or RPR dyad), or None: a mechanism with such a
         joint is solved by Newton.
-    glyph
-        How a configuration diagram draws it: ``pin`` (open circle; a triangle on a
-        hatched base at a ground pivot), ``slider`` (a block on its guide, line of stroke
-        dash-dotted), ``slot`` (two lines along the path round the pin), ``pitch`` (pitch
-        circles about each pivot, the contact point), ``contact`` (common normal and
-        tangent at the contact point), ``none`` (not drawn).
     icentre
         What inspection gives from the joints alone (:mod:`mech.icentres.order`):
         ``point`` (its I-centre), ``infinity`` (a point at infinity), ``line`` (only a
@@ -154,7 +150,6 @@ class PairKind:
     rolls: ClassVar[bool] = False
     dyad: ClassVar[str | None] = None
     icentre: ClassVar[tuple[str, str]] = ("none", "")
-    glyph: ClassVar[str] = "none"
 
     def __repr__(self) -> str:
         return f"<pair kind {self.name}>"
@@ -221,6 +216,16 @@ class PairKind:
         ``contact`` is the contact point at the instant drawn (None when unknown).
         """
         return list(j.profiles)
+
+    # -- the drawing --------------------------------------------------------------------------------
+    def glyph(self, view: GlyphView, j: Joint) -> Sequence[Shape]:
+        """The shapes a configuration diagram draws for the joint (:mod:`mech.pairs.glyph`).
+
+        In page mm from ``view.page``, or in world metres where a shape says ``world``
+        (which the drawing then holds in its view).  The default draws nothing: a pair
+        the planar solvers refuse has no place in a planar drawing.
+        """
+        return ()
 
     # -- kinematics -----------------------------------------------------------------------------
     def rows(self, b: RowBuilder, j: Joint) -> None:

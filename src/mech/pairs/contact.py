@@ -13,6 +13,7 @@ from mech.specs import ContactSpec
 if TYPE_CHECKING:
     from mech.model import Joint
     from mech.pairs.base import InstantView
+    from mech.pairs.glyph import GlyphView, Shape
     from mech.pairs.rows import RowBuilder
 
 
@@ -27,10 +28,15 @@ class Contact(PairKind):
     line_contact = True
     closure = "force"
     icentre = ("line", "contact {joint}: on the common normal at the contact")
-    glyph = "contact"
 
     def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> ContactSpec:
         return read_contact(r, fields, what, links)
+
+    def glyph(self, view: GlyphView, j: Joint) -> list[Shape]:
+        """The profiles as they are now (what the contact belongs to where no profile is drawn, a follower's stem on its guide), the common normal and tangent, the contact."""
+        from mech.pairs.glyph import contact
+
+        return contact(view, j, self.drawn_profiles(view.mech, j, view.positions.get(j.name)), pitch=False)
 
     def rows(self, b: RowBuilder, j: Joint) -> None:
         """Profiles that touch and slide, else the common normal of the instant."""

@@ -23,6 +23,7 @@ from mech.units import Dimension
 if TYPE_CHECKING:
     from mech.model import Joint, Mechanism
     from mech.pairs.base import InstantView
+    from mech.pairs.glyph import GlyphView, Shape
     from mech.pairs.rows import RowBuilder
 
 __all__ = ["Gear", "carrier_of", "gear_centre", "gear_normal", "gear_row"]
@@ -98,11 +99,16 @@ class Gear(PairKind):
     line_contact = True
     rolls = True
     icentre = ("line", "gears {joint}: on the common normal at the mesh (the line of action)")
-    glyph = "pitch"
     contact_hint = " or `radii` (or `teeth` with `module`)"
 
     def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> GearSpec:
         return _read(r, fields, what, links)
+
+    def glyph(self, view: GlyphView, j: Joint) -> list[Shape]:
+        """The profiles as they are now (pitch circles about the pivots where no profile is drawn), the common normal and tangent, the contact."""
+        from mech.pairs.glyph import contact
+
+        return contact(view, j, self.drawn_profiles(view.mech, j, view.positions.get(j.name)), pitch=True)
 
     def contact_problem(self, j: Joint) -> Problem | None:
         """Pitch radii (or teeth and module) put the pitch point between the centres: no ``at`` needed."""

@@ -20,6 +20,7 @@ if TYPE_CHECKING:
     from mech.errors import Problem
     from mech.model import Joint, Mechanism
     from mech.pairs.base import InstantView
+    from mech.pairs.glyph import GlyphView, Shape
     from mech.pairs.rows import RowBuilder
     from mech.specs import Profile
 
@@ -35,7 +36,6 @@ class Rolling(PairKind):
     closure = "force"
     rolls = True
     icentre = ("point", "rolling {joint}: the point of contact")
-    glyph = "pitch"
 
     def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> RollingSpec:
         radii = r.optional(fields, "radii", lambda n: read_radii(r, n, what, nulls=True))
@@ -47,6 +47,12 @@ class Rolling(PairKind):
                 "radii are shorthand for circle profiles: give one",
             )
         return RollingSpec(radii=radii, profiles=profiles)
+
+    def glyph(self, view: GlyphView, j: Joint) -> list[Shape]:
+        """The profiles as they are now (pitch circles about the pivots where no profile is drawn), the common normal and tangent, the contact."""
+        from mech.pairs.glyph import contact
+
+        return contact(view, j, self.drawn_profiles(view.mech, j, view.positions.get(j.name)), pitch=True)
 
     def contact_problem(self, j: Joint) -> Problem | None:
         """Radii put the contact between the circles: no ``at`` needed."""

@@ -21,6 +21,7 @@ from mech.units import Dimension
 if TYPE_CHECKING:
     from mech.model import Joint, Mechanism
     from mech.pairs.base import InstantView
+    from mech.pairs.glyph import GlyphView, Shape
     from mech.pairs.rows import RowBuilder
     from mech.specs import Profile
 
@@ -88,10 +89,15 @@ class Cam(PairKind):
     line_contact = True
     closure = "force"
     icentre = ("line", "cam {joint}: on the common normal at the contact")
-    glyph = "contact"
 
     def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> ContactSpec:
         return read_contact(r, fields, what, links, program=True)
+
+    def glyph(self, view: GlyphView, j: Joint) -> list[Shape]:
+        """The profiles as they are now (what the contact belongs to where no profile is drawn, a follower's stem on its guide), the common normal and tangent, the contact."""
+        from mech.pairs.glyph import contact
+
+        return contact(view, j, self.drawn_profiles(view.mech, j, view.positions.get(j.name)), pitch=False)
 
     def fixed_in(self, j: Joint) -> tuple[str, ...]:
         """A programme's joint stands for the follower's own point (DESIGN § 1.2); a contact moves."""
