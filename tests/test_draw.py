@@ -351,12 +351,15 @@ def test_draw_of_a_mechanism_at_rest_states_no_absurd_scale(tmp_path):
     assert p.returncode == 0
     ET.parse(out)
     scales = strict_json(p.stdout)["scales"]
-    exps = [int(x) for s in scales for x in re.findall(r"10\^(-?\d+)", s)]
+    exps = [int(x.translate(_FROM_SUPER)) for s in scales for x in re.findall(r"10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+)", s)]
     assert all(abs(e) < 30 for e in exps), scales
 
 
+_FROM_SUPER = str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789")
+
+
 @pytest.mark.parametrize(
-    "size, scale", [(1e-7, "1 cm = 1×10^-7 m"), (1.0, "1 cm = 1 m"), (1e9, "1 cm = 1×10^9 m")]
+    "size, scale", [(1e-7, "1 cm = 5×10⁻⁸ m"), (1.0, "1 cm = 0.5 m"), (1e9, "1 cm = 5×10⁸ m")]
 )
 def test_draw_of_tiny_and_huge_mechanisms_keeps_the_sheet_and_a_round_scale(tmp_path, size, scale):
     """Crank 0.1 um or 1e9 m: same sheet size, round stated scale, no nan/inf in any attribute."""
@@ -399,3 +402,56 @@ def test_draw_to_a_missing_folder_is_exit_2(tmp_path):
     p = mech("draw", str(f), "-o", str(tmp_path / "no" / "such" / "x.svg"))
     no_traceback(p)
     assert p.returncode == 2
+
+
+def test_exponents_are_typeset_as_superscripts():
+    from mech.draw.scene import fmt
+
+    assert fmt(5e-5) == "5×10⁻⁵"
+    assert fmt(1.25e12) == "1.25×10¹²"
+    assert "^" not in fmt(3e-300)
+
+
+def test_every_mesh_point_of_a_compound_gear_has_a_distinct_label():
+    """Both meshes of the middle shaft are points of link 3: m12₃ and m23₃, never m₃ twice."""
+    from mech.loader import loads
+    from mechanism_texts import COMPOUND_GEAR
+
+    m = loads(COMPOUND_GEAR, path="compound_gear.yaml")
+    kin = solve(m, "acceleration")
+    for data in (velocity_polygon(m, kin), acceleration_polygon(m, kin)):
+        labels = [im.label for im in data.images]
+        assert len(labels) == len(set(labels)), labels
+        assert {"m12₃", "m23₃"} <= {label.rstrip("′") for label in labels}
+    root = _parse(to_svg(draw(m, kin, velocity=True)))
+    shown = [t.text for t in root.iter(f"{SVG}text") if t.get("class") == "image-label"]
+    assert not any("m₃" in text for text in shown), shown
+
+
+def test_far_icentres_give_their_true_distance_from_the_frames_first_pivot():
+    """The shaper's far I-centres: arrows at the edge with distances from O₂ (its first pivot), alike in every drawing."""
+    from mech.icentres import locate
+
+    m, kin = _solve(MECHANISMS / "crank_slotted_lever_quick_return.yaml", "velocity")
+    centres = locate(m, kin).centres
+    texts = list(_parse(to_svg(draw(m, kin, icentres=list(centres)))).iter(f"{SVG}text"))
+    far = [t for t in texts if t.get("class") == "icentre-label" and "→" in (t.text or "")]
+    assert far
+    notes = [t.text for t in texts if t.get("class") == "icentre-note"]
+    assert len(notes) == 1 and notes[0].endswith("from O₂"), notes  # the named point
+    first = next(j for j in m.joints if m.ground in j.links and kind_of(j).role == "pin")
+    pivot = kin.positions[first.name]
+    measured = 0
+    for t in far:
+        for name, value in re.findall(r"(I\d+) → ([0-9.]+) mm", t.text):
+            c = next(c for c in centres if c.name == name)
+            assert float(value) == pytest.approx(math.dist(c.point, pivot) * 1000, rel=5e-4)
+            measured += 1
+    assert measured >= 2
+    # the same numbers with the velocity polygon beside it (the label does not depend on the sheet)
+    again = [
+        t.text
+        for t in _parse(to_svg(draw(m, kin, velocity=True, icentres=list(centres)))).iter(f"{SVG}text")
+        if t.get("class") == "icentre-label" and "→" in (t.text or "")
+    ]
+    assert sorted(again) == sorted(t.text for t in far)

@@ -33,6 +33,7 @@ from mech.draw.scene import (
     Transform,
     arrow,
     bbox,
+    leader,
     nice_scale,
     place_label,
     scale_bar,
@@ -196,6 +197,8 @@ def configuration(
     width, height = view.size
     page = Page(width, height)
     page.add(Text((MARGIN - 6, 5.5), title, 3.4, "start", bold=True, cls="title"))
+    factor = _unit_factor(mech.length_unit)  # the scale first: what is placed later keeps off it
+    page.extend(scale_bar((MARGIN - 6, height - 7), view.scale / factor, mech.length_unit))
 
     if curves:
         page.extend(_curves(curves, tr, view))
@@ -207,13 +210,11 @@ def configuration(
     page.extend(_labels(mech, members, pos, tr, list(page.items)))
     page.extend(_drive_arrows(mech, kin, pos, tr, [i for i in page.items if isinstance(i, Text)]))
     if icentres:
-        page.extend(
-            overlay(icentres, tr, (MARGIN, TITLE_H + MARGIN, width - MARGIN, height - MARGIN - FOOT_H))
-        )
+        box = (MARGIN, TITLE_H + MARGIN, width - MARGIN, height - MARGIN - FOOT_H)
+        unit = (mech.length_unit, _unit_factor(mech.length_unit))
+        page.extend(overlay(icentres, tr, box, drawn=page.items, origin=_first_pivot(mech, pos), unit=unit))
 
-    factor = _unit_factor(mech.length_unit)
-    page.extend(scale_bar((MARGIN - 6, height - 7), view.scale / factor, mech.length_unit))
-    return page.figure(title)
+    return page.figure(title, fit=not frame)
 
 
 def curves_figure(
@@ -437,6 +438,14 @@ def _carried(mech: Mechanism, kin: Kinematics, link: str) -> Any:
     return move
 
 
+def _first_pivot(mech: Mechanism, pos: Mapping[str, Vec]) -> tuple[str, Vec] | None:
+    """The frame's first pivot (in the file's order), from which far I-centres are measured."""
+    for j in mech.joints:
+        if mech.ground in j.links and kind_of(j).role == "pin" and j.name in pos:
+            return display_name(j.name), pos[j.name]
+    return None
+
+
 def _points(mech: Mechanism, pos: Mapping[str, Vec], tr: Transform, drawn: Sequence[Item]) -> list[Item]:
     """A dot for every named point that no glyph has drawn as a pin."""
     pins = {i.name for i in drawn if isinstance(i, Circle) and i.cls == "pin"}
@@ -507,9 +516,7 @@ def _labels(
         j.name for j in mech.joints if j.name in pos and not any(j.name in m for m in members.values())
     ]
     for name in contacts:
-        items.append(
-            place_label(tr(pos[name]), display_name(name), 3.0, (0.6, -0.8), drawn + items, cls="label")
-        )
+        _label_at(items, tr(pos[name]), display_name(name), 3.0, (0.6, -0.8), drawn)
         done.add(name)
     for names in members.values():
         for name in names:
@@ -530,6 +537,14 @@ def _labels(
                             dy += (here[1] - q[1]) / d
             n = math.hypot(dx, dy)
             prefer = (dx / n, dy / n) if n > 0.3 else (0.6, -0.8)
-            label = place_label(here, display_name(name), 3.4, prefer, drawn + items, cls="label")
-            items.append(label)
+            _label_at(items, here, display_name(name), 3.4, prefer, drawn)
     return items
+
+
+def _label_at(items: list[Item], here: Vec, text: str, size: float, prefer: Vec, drawn: list[Item]) -> None:
+    """Place a joint's label (and its leader line, if it stands off) into ``items``."""
+    label = place_label(here, text, size, prefer, drawn + items, cls="label")
+    line = leader(here, label)
+    if line is not None:
+        items.append(line)
+    items.append(label)

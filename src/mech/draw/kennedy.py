@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from mech.draw.scene import INK, Circle, Figure, Line, Page, Style, Text
+from mech.draw.scene import INK, Circle, Figure, Line, Page, Style, Text, best_spot
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.icentres.locate import ICentres
@@ -41,17 +41,15 @@ def circle_diagram(ics: ICentres, *, title: str = "Kennedy's circle diagram") ->
         key=lambda c: (c.step if c.step is not None else 99, c.numbers),
     )
     order = {c.numbers: k for k, c in enumerate(later, 1)}
+    steps: list[tuple[tuple[float, float], tuple[float, float], str]] = []
     for c in ics.centres:
         p, q = spot(c.numbers[0]), spot(c.numbers[1])
         if c.primary:
             page.add(Line(p, q, Style(INK, 0.45), "kennedy-primary", c.name))
         else:
             page.add(Line(p, q, Style("#1f77b4", 0.35, dash=(1.5, 1.0)), "kennedy-diagonal", c.name))
-            # a third of the way along from the lower number: diameters do not share their label spot
-            mx, my = p[0] + (q[0] - p[0]) / 3, p[1] + (q[1] - p[1]) / 3
-            page.add(
-                Text((mx + 1.0, my - 1.0), f"{order[c.numbers]}", 2.6, "start", "#1f77b4", cls="kennedy-step")
-            )
+            steps.append((p, q, f"{order[c.numbers]}"))
+    _step_numbers(page, steps)
     for k, link in enumerate(ics.links, 1):
         x, y = spot(k)
         page.add(Circle((x, y), 1.2, Style(INK, 0.3, fill="#ffffff"), "kennedy-node", link))
@@ -73,3 +71,25 @@ def circle_diagram(ics: ICentres, *, title: str = "Kennedy's circle diagram") ->
         )
     )
     return page.figure(title)
+
+
+def _step_numbers(page: Page, steps: list[tuple[tuple[float, float], tuple[float, float], str]]) -> None:
+    """Each diagonal's step number beside it, where it lies on no other number (chords cross)."""
+    for p, q, text in steps:
+        length = math.dist(p, q) or 1.0
+        n = (-(q[1] - p[1]) / length, (q[0] - p[0]) / length)
+        cands = []
+        for t, bonus in (
+            (1 / 3, 0.3),
+            (0.25, 0.2),
+            (0.42, 0.2),
+            (0.5, 0.1),
+            (0.58, 0.1),
+            (0.67, 0.0),
+            (0.75, 0.0),
+        ):
+            m = (p[0] + (q[0] - p[0]) * t, p[1] + (q[1] - p[1]) * t)
+            for side in (1.0, -1.0):
+                cands.append(((m[0] + 1.8 * side * n[0], m[1] + 1.8 * side * n[1]), bonus))
+        at = best_spot(cands, text, 2.6, page.items)
+        page.add(Text(at, text, 2.6, "middle", "#1f77b4", cls="kennedy-step"))
