@@ -79,6 +79,14 @@ def figure(name: str, way: str) -> Figure | None:
 CASES = [(name, way) for name in MECHS for way in WAYS if figure(name, way) is not None]
 
 
+@cache
+def measured_case(name: str, way: str) -> list[tuple[object, tuple[float, float, float, float]]]:
+    """:func:`measured` of one case, once for both tests."""
+    fig = figure(name, way)
+    assert fig is not None
+    return measured(fig)
+
+
 def measured(fig: Figure) -> list[tuple[object, tuple[float, float, float, float]]]:
     """Every item with its box (x0, y0, x1, y1) in page mm: texts as matplotlib paints them."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -121,8 +129,7 @@ def _overlap(a, b) -> float:
 @pytest.mark.slow
 @pytest.mark.parametrize(("name", "way"), CASES, ids=[f"{n}-{w}" for n, w in CASES])
 def test_no_two_texts_of_a_drawing_overlap(name, way):
-    fig = figure(name, way)
-    texts = [(item, box) for item, box in measured(fig) if isinstance(item, Text)]
+    texts = [(item, box) for item, box in measured_case(name, way) if isinstance(item, Text)]
     clashes = [
         f"{a.text!r} on {b.text!r} by {_overlap(ba, bb):.2f} mm"
         for (a, ba), (b, bb) in itertools.combinations(texts, 2)
@@ -138,7 +145,7 @@ def test_every_element_of_a_drawing_lies_in_its_view_box(name, way):
     outside = [
         f"{getattr(item, 'text', None) or type(item).__name__ + ' ' + getattr(item, 'cls', '')} at "
         f"({box[0]:.1f}, {box[1]:.1f})–({box[2]:.1f}, {box[3]:.1f})"
-        for item, box in measured(fig)
+        for item, box in measured_case(name, way)
         if box[0] < -SLACK or box[1] < -SLACK or box[2] > fig.width + SLACK or box[3] > fig.height + SLACK
     ]
     assert not outside, f"{name} {way} ({fig.width:.1f} × {fig.height:.1f} mm): " + "; ".join(outside)

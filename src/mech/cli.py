@@ -590,7 +590,7 @@ def _write(path: str, text: str | Iterable[str]) -> None:
     type=click.IntRange(min=2, max=100_000),
     default=360,
     show_default=True,
-    help="Instants over the cycle (360: 1° steps of a crank).",
+    help="Instants over a crank's turn (360: 1° apart); a slider's stroke: steps from --from to --to.",
 )
 @click.option("--from", "start", type=float, help="A slider drive's first position (file's length unit).")
 @click.option("--to", "stop", type=float, help="A slider drive's last position (file's length unit).")

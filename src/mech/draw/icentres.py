@@ -149,6 +149,7 @@ def _border_arrows(
                 break
         else:
             groups.append((u, [(name, what)]))
+    tails: list[tuple[Vec, Vec, str]] = []
     for u, members in groups:
         # where the ray from the centre leaves the box
         ts = []
@@ -161,7 +162,8 @@ def _border_arrows(
         tip = (cx + u[0] * (t + 10), cy + u[1] * (t + 10))  # in the margin, clear of the mechanism
         tail = (tip[0] - u[0] * 9, tip[1] - u[1] * 9)
         items.extend(arrow(tail, tip, COLOUR, 0.4, cls="icentre-arrow", name=members[0][0]))
-        text = ", ".join(f"{n} → {w}" for n, w in members)
+        tails.append((tail, u, ", ".join(f"{n} → {w}" for n, w in members)))
+    for tail, u, text in tails:  # every arrow first, then the labels, which keep clear of them all
         label = place_label(
             tail, text, 2.8, (-u[1], u[0]), [*drawn, *items], colour=COLOUR, cls="icentre-label"
         )

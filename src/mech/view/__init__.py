@@ -28,6 +28,7 @@ from mech.errors import InputError
 from mech.options import SolveOptions
 
 if TYPE_CHECKING:  # pragma: no cover
+    from mech.kinematics.result import Kinematics
     from mech.model import Mechanism
 
 __all__ = ["page", "summary"]
@@ -48,7 +49,8 @@ def page(
     options
         The drive's overrides (``angle``: the instant the page opens on; speed; sense).
     steps
-        Instants over the cycle (a crank's turn: 360 gives 1° steps).
+        A crank's turn in ``steps`` instants (360: 1° apart); a slider's stroke in ``steps``
+        steps from ``start`` to ``stop`` (``steps + 1`` instants, both ends included).
     start, stop
         A slider drive's stroke, in the file's length unit (required for one); a
         crank's range is its whole turn from the file's own angle.
@@ -82,14 +84,14 @@ def page(
                 f"{mech.label} is driven by the slider {lead.joint}: the page needs its stroke",
                 hint="give --from and --to, positions along its path in the file's length unit",
             )
-        spec = SweepSpec(start, stop, max(steps - 1, 1), level=level)
+        spec = SweepSpec(start, stop, steps, level=level)  # both ends of the stroke: steps + 1 instants
     result = analyse(mech, Request(level=None, options=options.with_(angle=None), sweep=spec))
     assert result.sweep is not None
     data = page_data(mech, drawn, result.sweep)
     return _html(data)
 
 
-def _drawn(mech: Mechanism, options: SolveOptions, level: str):  # type: ignore[no-untyped-def]
+def _drawn(mech: Mechanism, options: SolveOptions, level: str) -> Kinematics:
     """The solve at the page's own instant, at the highest level the file allows."""
     from mech.analysis import solve_at
     from mech.errors import MechError
