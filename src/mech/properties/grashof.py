@@ -30,12 +30,19 @@ the two links that carry two turning pairs of the loop.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 from mech._records import dataclass
 from mech.model import Joint, JointType, Mechanism
 
-__all__ = ["GRASHOF_CLASSES", "FourBarLoop", "SliderCrankLoop", "four_bar_loops", "linkage_loops"]
+__all__ = [
+    "GRASHOF_CLASSES",
+    "FourBarLoop",
+    "SliderCrankLoop",
+    "four_bar_loops",
+    "linkage_loops",
+    "main_loop",
+]
 
 #: The values of the ``grashof`` answer key (DESIGN § 1.1).
 GRASHOF_CLASSES = ("crank-rocker", "double-crank", "double-rocker", "change-point", "non-grashof")
@@ -370,3 +377,16 @@ def four_bar_loops(
 ) -> tuple[FourBarLoop, ...]:
     """The four-bar loops of :func:`linkage_loops` alone."""
     return tuple(loop for loop in linkage_loops(mech, positions) if isinstance(loop, FourBarLoop))
+
+
+def main_loop(loops: Sequence[object], drive: str | None) -> FourBarLoop | None:
+    """The four-bar loop of the driven crank (beside the frame), else the first with a frame.
+
+    What ``mech properties`` reports and the ``grashof`` answer key grades (one choice for both).
+    """
+    framed = [lp for lp in loops if isinstance(lp, FourBarLoop) and lp.frame is not None]
+    for lp in framed:
+        f = lp.links.index(lp.frame)  # type: ignore[arg-type]
+        if drive in (lp.links[(f + 1) % 4], lp.links[(f + 3) % 4]):
+            return lp
+    return framed[0] if framed else None

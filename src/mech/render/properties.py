@@ -117,8 +117,7 @@ def properties_dict(
     props: LinkageProperties, *, units: OutputUnits, file: str | None = None
 ) -> dict[str, Any]:
     """``mech properties --json``: keys named as the answer keys (angles in degrees, lengths in ``units``)."""
-    from mech.properties.grashof import FourBarLoop
-    from mech.properties.keys import main_loop
+    from mech.properties.grashof import FourBarLoop, main_loop
 
     length = units.length
     out: dict[str, Any] = {
