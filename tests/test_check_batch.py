@@ -192,37 +192,57 @@ def test_cli_reports_replace_an_old_report_whole(run, tmp_path: Path) -> None:
     assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".mech-")] == []
 
 
+#: ``mech`` as a user runs it, with one hook: loading a file named ``*blocks.yaml`` says so (a
+#: marker file) and waits for the interrupt, however long (a worker forked from this process
+#: inherits the hook, and is killed by the parent).  Under load a slow file could finish before
+#: the interrupt arrived; this one cannot.
+BLOCKING_MECH = """\
+import pathlib, sys, time
+import mech.loader
+marker = pathlib.Path(sys.argv.pop(1))
+real = mech.loader.load
+def load(path, *args, **kwargs):
+    if str(path).endswith("blocks.yaml"):
+        marker.write_text("loading")
+        while True:
+            time.sleep(3600)
+    return real(path, *args, **kwargs)
+mech.loader.load = load
+from mech.entry import main
+main()
+"""
+
+
 @pytest.mark.parametrize("jobs", ["1", "2"])
 def test_cli_interrupted_exits_130_and_leaves_no_report(tmp_path: Path, jobs: str) -> None:
     d = tmp_path / "hw"
     d.mkdir()
     (d / "a.yaml").write_text(GOOD)
-    (d / "b_long.yaml").write_text(long_chain())
+    (d / "b_blocks.yaml").write_text(GOOD)
+    marker = tmp_path / "loading"
     junit, grades = tmp_path / "junit.xml", tmp_path / "grades.csv"
     junit.write_text("<old/>")  # an older run's report: it must not pass for this run's
+    command = ["check", str(d), "-j", jobs, "--timeout", "600", "--junit", str(junit), "--csv", str(grades)]
     proc = subprocess.Popen(
-        [
-            sys.executable,
-            "-m",
-            "mech",
-            "check",
-            str(d),
-            "-j",
-            jobs,
-            "--junit",
-            str(junit),
-            "--csv",
-            str(grades),
-        ],
+        [sys.executable, "-c", BLOCKING_MECH, str(marker), *command],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
         start_new_session=True,
     )
-    first = proc.stdout.readline()  # the fast file's line is streamed before the slow one ends
-    assert "a.yaml" in first, first
-    os.killpg(proc.pid, signal.SIGINT)  # Ctrl-C reaches the whole foreground group
-    _, err = proc.communicate(timeout=60)
+    try:
+        first = proc.stdout.readline()  # the fast file's line is streamed while the other one loads
+        assert "a.yaml" in first, first
+        deadline = time.monotonic() + 120
+        while not marker.exists():  # the batch is running, and cannot end: the interrupt lands in it
+            assert proc.poll() is None and time.monotonic() < deadline, proc.stderr.read()
+            time.sleep(0.01)
+        os.killpg(proc.pid, signal.SIGINT)  # Ctrl-C reaches the whole foreground group
+        _, err = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
     assert proc.returncode == 130, err
     assert "interrupted" in err and "Traceback" not in err
     assert not junit.exists() and not grades.exists()
