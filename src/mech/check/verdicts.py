@@ -263,16 +263,20 @@ _VERDICT_FIELDS = Verdict.__match_args__
 
 
 # -- comparisons, one per Compare mode ----------------------------------------------------------
+_FLOAT_MAX = 2**1024  # the first whole number a float cannot hold
+
+
 def _cmp_count(
     claim: Claim, akey: AnswerKey, computed: Any, an: Analysis, tol: Tolerance, base: Verdict
 ) -> Verdict:
     key = akey.key
     ok = computed == claim.value
+    off = abs(computed - int(claim.value))  # type: ignore[arg-type]
     return _replace(
         base,
         status=PASS if ok else FAIL,
         computed=computed,
-        error=float(abs(computed - int(claim.value))),  # type: ignore[arg-type]
+        error=float(off) if off < _FLOAT_MAX else math.inf,  # a claim of 4,000 digits is off by "infinity"
         allowed=0.0,
         message=f"{key} = {computed}" if ok else f"{key} is {computed}, not {claim.value}",
     )
