@@ -278,7 +278,7 @@ def test_alias_bomb_is_refused_not_expanded():
     bomb = "a: &a [x, x, x, x, x, x, x, x, x, x]\n"
     for i in range(1, 7):
         bomb += f"{'abcdefg'[i]}: &{'abcdefg'[i]} [" + ", ".join([f"*{'abcdefg'[i - 1]}"] * 10) + "]\n"
-    with pytest.raises(InputError, match="too many values"):
+    with pytest.raises(InputError, match="through its aliases"):
         loads(
             "links: [frame, crank]\njoints: {}\nx:\n" + "".join("  " + ln + "\n" for ln in bomb.splitlines())
         )
@@ -697,3 +697,21 @@ def test_a_ten_thousand_joint_chain_is_read_with_every_joint_located():
     bad = joints.replace("links: [l4999, l5000]", "links: [l4999, l5000x]")
     line, column, message = one_problem(f"links: [{', '.join(links)}]\njoints:\n{bad}")
     assert (line, column) == (4999 + 3, 42) and "l5000x" in message  # J4999, its second link
+
+
+@pytest.mark.parametrize("key", ["masses", "gravity", "flywheel"])
+def test_a_key_of_the_format_this_version_does_not_read_is_said_so_not_a_near_miss(key):
+    # DESIGN § 1.4 (masses and forces) is being built: until then `masses` must not be offered
+    # "did you mean 'answers'?" (issue 25 item 13), it is a key of the format not read yet
+    with pytest.raises(InputError) as info:
+        loads(BASE + f"{key}: {{coupler: {{mass: 5}}}}\n", path="p.yaml")
+    (problem,) = info.value.problems
+    assert (problem.where.line, problem.where.column) == (5, 1)
+    assert f"`{key}`" in problem.message and "not read by this version of mech" in problem.message
+    assert "did you mean" not in (problem.hint or "")
+
+
+def test_an_unknown_key_near_a_known_one_still_gets_a_hint():
+    with pytest.raises(InputError) as info:
+        loads(BASE + "answer: {dof: 1}\n")
+    assert info.value.problems[0].hint == "did you mean 'answers'?"

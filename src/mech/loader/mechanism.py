@@ -46,6 +46,10 @@ TOP_KEYS = (
     "loads",
 )
 
+#: Keys of the file format (DESIGN § 1.4, masses and forces) that this version does not read yet:
+#: refused as such, never offered a near miss ("did you mean 'answers'?" for ``masses``).
+NOT_READ = ("masses", "gravity", "flywheel")
+
 Top = dict[str, tuple[Any, Any]]
 
 
@@ -74,7 +78,15 @@ def read_mechanism(text: str, path: str) -> Mechanism:
             hint="start with `links: [...]` and `joints: {...}`",
             source=text,
         )
-    top = r.mapping(root, "the file", allowed=TOP_KEYS)
+    top = r.mapping(root, "the file", allowed=TOP_KEYS + NOT_READ)
+    for key in NOT_READ:
+        if key in top:
+            knode, _ = top.pop(key)
+            r.problem(
+                knode,
+                f"`{key}` (masses and forces) is not read by this version of mech",
+                "remove it to check the rest of the file",
+            )
     return _mechanism(r, root, top)
 
 
