@@ -48,14 +48,17 @@ The trip runs one way: this module calls the pool, the pool calls
 
 from __future__ import annotations
 
+import contextlib
 import os
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import field, replace
 from typing import TYPE_CHECKING
 
 from mech._records import dataclass
+from mech.batchpool import Pool, cpu_count, run_jobs
 from mech.check.problem import (
     MAX_LISTED,
+    Done,
     Submission,
     Task,
     ambiguous,
@@ -90,6 +93,9 @@ SUFFIXES = (".yaml", ".yml")
 
 #: Seconds one problem file may take (load, solve, every student's claims) before it is an error row.
 DEFAULT_TIMEOUT = 30.0
+
+#: Students graded in one task: a class's problem is checked in parts of this many sheets.
+STUDENTS = 200
 
 
 @dataclass(frozen=True, slots=True)
@@ -127,8 +133,6 @@ class CheckOptions:
 
     @property
     def workers(self) -> int:
-        from mech.batchpool import cpu_count
-
         return self.jobs if self.jobs is not None else cpu_count()
 
 
@@ -467,31 +471,50 @@ def run(
         sheet folder with no sheets.
     """
     files = find_problem_files(options.paths)
-    sheets = read_sheets(options.answers) if options.answers else None
-    index = _Index.of(files, options.paths) if sheets is not None else _Index({}, {})  # keys name files
-    tasks, extra = _plan(files, sheets, options.solve, index)
-    if on_start is not None:
-        on_start(len(tasks))
-    from mech.batchpool import run_jobs
+    class_folder = options.answers is not None and os.path.isdir(options.answers)
+    pool: Pool[Task, Done] | None = None
+    if options.workers > 1 and (len(files) > 1 or class_folder):
+        from mech import topology  # noqa: F401  (what every file needs, imported once, before the fork)
 
-    if options.workers > 1 and len(tasks) > 1:
-        # what every problem file needs (not numpy: a folder of DOF exercises never imports it),
-        # imported once here rather than once in each worker process
-        from mech.diagnose import diagnose  # noqa: F401
-        from mech.loader import load  # noqa: F401
-        from mech.topology import classify  # noqa: F401
-
-    results = list(extra)
-    used: list[tuple[str, str, str]] = []
-    chunk = max(1, min(32, len(tasks) // (options.workers * 8)))
-    for done in run_jobs(
-        tasks, run_task, lost_task, workers=options.workers, timeout=options.timeout, chunk=chunk
-    ):
-        if on_file is not None:
-            on_file(done.results)
-        results += done.results
-        used += done.used
+        # the workers start now, from a parent that has read no sheet yet: none of them inherits
+        # (and counts again in its resident memory) a class's sheets; each task carries its own
+        pool = Pool(run_task, lost_task, workers=options.workers, timeout=options.timeout).start()
+    with pool or contextlib.nullcontext():
+        sheets = read_sheets(options.answers) if options.answers else None
+        index = _Index.of(files, options.paths) if sheets is not None else _Index({}, {})  # keys name files
+        tasks, extra = _plan(files, sheets, options.solve, index)
+        if sheets is not None:  # the tasks carry the texts and entries now, each let go once done;
+            # what is left to report is the entries naming no problem file by path
+            sheets = tuple(
+                replace(s, source="", entries=tuple(e for e in s.entries if e.key not in index.files))
+                for s in sheets
+            )
+        if on_start is not None:
+            on_start(len(files))
+        paths = [t.path for t in tasks]
+        if pool is not None and len(tasks) > 1:
+            # a class's part is heavy (hundreds of students): one at a time, so a worker holds one
+            chunk = 1 if sheets is not None else max(1, min(32, len(tasks) // (options.workers * 8)))
+            done_tasks = pool.map(tasks, chunk=chunk)
+        else:
+            done_tasks = run_jobs(tasks, run_task, lost_task, workers=1, timeout=options.timeout)
+        del tasks  # the pool keeps them while it needs them
+        results = list(extra)
+        used: list[tuple[str, str, str]] = []
+        lost: dict[str, str] = {}
+        landed: list[FileResult] = []
+        for i, done in enumerate(done_tasks):
+            results += done.results
+            used += done.used
+            landed += done.results
+            if done.lost is not None:
+                lost.setdefault(paths[i], done.lost)
+            if i + 1 == len(paths) or paths[i + 1] != paths[i]:  # a problem file's last part
+                if on_file is not None:
+                    on_file(tuple(landed))
+                landed = []
     if sheets is not None:
+        results = _exclude_lost(results, lost)
         results = _shared_names(results, sheets, index, used)
         results += _unmatched(sheets, index, {(student, key) for student, key, _ in used})
     report = Report.of(results, students=[s.student for s in sheets] if sheets is not None else ())
@@ -540,8 +563,32 @@ def _plan(
             )
             for s, one, several, loose in zip(sheets, alone, shared, unresolved, strict=True)
         )
-        tasks.append(Task(f, subs, solve))
+        # a class's problem in parts of STUDENTS students: a worker holds (and sends back) one part
+        # at a time, and each part loads and solves the problem again (milliseconds)
+        for start in range(0, len(subs), STUDENTS) or (0,):
+            tasks.append(Task(f, subs[start : start + STUDENTS], solve, first=start == 0))
     return tasks, extra
+
+
+def _exclude_lost(results: list[FileResult], lost: dict[str, str]) -> list[FileResult]:
+    """A class's problem of which any part was lost (the time limit, a crash) is left out of
+    every score, like a problem that cannot be read: the teacher's row once, and every student's
+    rows for it not scored, whichever part they were graded in (scores mean the same for all)."""
+    if not lost:
+        return results
+    out = []
+    teachers = {r.path for r in results if r.path in lost and r.student is None and not r.sheet}
+    for path, why in lost.items():
+        if path not in teachers:
+            row = FileResult(path, verdicts=(Verdict("file", ERROR, message=why, where=Where(path)),))
+            out.append(replace(row, excluded=True))
+    for r in results:
+        if r.path in lost and r.student is not None and not (r.excluded or r.sheet):
+            message = f"not scored: the problem file is excluded ({lost[r.path]})"
+            verdicts = tuple(Verdict(v.key, IGNORED, message=message, where=v.where) for v in r.verdicts)
+            r = replace(r, verdicts=verdicts, excluded=True)
+        out.append(r)
+    return out
 
 
 def _shared_names(

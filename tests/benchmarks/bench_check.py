@@ -11,6 +11,11 @@ peak resident memory of the largest process (the parent or a worker)::
 
     python tests/benchmarks/bench_check.py                 # 1,000 files ×5, then 10,000 files ×1
     python tests/benchmarks/bench_check.py -n 200 -r 3 --large 0
+    python tests/benchmarks/bench_check.py --mech BEFORE/bin/mech AFTER/bin/mech --large 0
+
+With ``--mech``, each run is made with every given ``mech`` in turn (two trees installed in
+two virtual environments, compared in one interleaved run, so that the load of a shared
+machine hits both alike); the table gives each one's median and its ratio to the first's.
 
 It also checks, from the JUnit file, that every file got exactly the verdicts it
 was built to get.  Targets (issue 10, 2 cores): ≥ 1,500 files/s on 1,000 files,
@@ -121,14 +126,14 @@ def generate(folder: Path, n: int) -> dict[str, dict[str, str]]:
     return expected
 
 
-def run_command(folder: Path, junit: Path, jobs: int | None) -> tuple[float, float]:
+def run_command(folder: Path, junit: Path, jobs: int | None, mech: str | None = None) -> tuple[float, float]:
     """One whole ``mech check`` in a fresh process: (seconds, peak RSS in MB of its largest process).
 
     The command runs under a small Python parent of its own, so that the peak
     (RUSAGE_CHILDREN: the largest process waited for, workers included) is this
     run's alone.
     """
-    mech = shutil.which("mech")
+    mech = mech or shutil.which("mech")
     if mech is None:
         sys.exit("the mech command is not installed in this environment (pip install .)")
     args = [mech, "check", str(folder), "--junit", str(junit)] + (["--jobs", str(jobs)] if jobs else [])
@@ -167,7 +172,13 @@ def main() -> None:
         "-j", "--jobs", type=int, nargs="+", default=[0], help="0: the default (one per core)"
     )
     parser.add_argument("--large", type=int, default=10000, help="files for the memory run (0: none)")
+    parser.add_argument(
+        "--mech", nargs="+", help="mech commands to compare, interleaved (the first is the reference)"
+    )
     args = parser.parse_args()
+    if args.mech:
+        compare(args)
+        return
 
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -200,6 +211,56 @@ def main() -> None:
         print(f"| {n:,} | {jobs} | {repeats} | {median:.2f} | {rate:,.0f} | {peak:.0f} |")
     print()
     print("verdicts: every file got exactly the verdicts it was built to get")
+
+
+def compare(args: argparse.Namespace) -> None:
+    """Each run made with every ``--mech`` in turn; medians, files/s and ratios to the first."""
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for n, repeats in ((args.files, args.repeats), (args.large, 1)):
+            if not n:
+                continue
+            folder = Path(tmp) / f"hw{n}"
+            folder.mkdir()
+            expected = generate(folder, n)
+            for jobs in args.jobs:
+                runs: dict[str, list[tuple[float, float]]] = {m: [] for m in args.mech}
+                for _ in range(repeats):
+                    for mech in args.mech:
+                        junit = Path(tmp) / f"out{n}.xml"
+                        runs[mech].append(run_command(folder, junit, jobs or None, mech))
+                        if verdicts_from_junit(junit) != expected:
+                            sys.exit(f"{mech}: wrong verdicts with {n} files")
+                reference = statistics.median(t for t, _ in runs[args.mech[0]])
+                for mech in args.mech:
+                    median = statistics.median(t for t, _ in runs[mech])
+                    peak = max(m for _, m in runs[mech])
+                    rows.append(
+                        (
+                            n,
+                            jobs or os.cpu_count(),
+                            repeats,
+                            mech,
+                            median,
+                            n / median,
+                            median / reference,
+                            peak,
+                        )
+                    )
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    print(
+        f"mech check DIR --junit out.xml, interleaved ({platform.python_implementation()} "
+        f"{platform.python_version()}, {os.cpu_count()} cores, load average {load:.1f} at the end)"
+    )
+    print()
+    print("| files | jobs | runs | mech | median (s) | files/s | ratio | peak RSS (MB) |")
+    print("| ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: |")
+    for n, jobs, repeats, mech, median, rate, ratio, peak in rows:
+        print(
+            f"| {n:,} | {jobs} | {repeats} | {mech} | {median:.2f} | {rate:,.0f} | {ratio:.3f} | {peak:.0f} |"
+        )
+    print()
+    print("verdicts: every file got exactly the verdicts it was built to get, with every mech")
 
 
 if __name__ == "__main__":

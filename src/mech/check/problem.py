@@ -140,19 +140,28 @@ class Submission:
 
 @dataclass(frozen=True, slots=True)
 class Task:
-    """One problem file to check: on its own answers (``submissions`` None), or every student's."""
+    """One problem file to check: on its own answers (``submissions`` None), or students' sheets.
+
+    A class's problem is checked in parts (:data:`mech.batch.STUDENTS` students each); the
+    ``first`` part also carries the teacher's row of a problem left out of every score.
+    """
 
     path: str
     submissions: tuple[Submission, ...] | None
     solve: SolveOptions
+    first: bool = True
 
 
 @dataclass(frozen=True, slots=True)
 class Done:
-    """A task's rows, and the sheet keys it matched by a problem's ``name`` ``(student, key, path)``."""
+    """A task's rows, and the sheet keys it matched by a problem's ``name`` ``(student, key, path)``.
+
+    ``lost`` says why the task did not finish (the time limit, a crash), None when it did.
+    """
 
     results: tuple[FileResult, ...]
     used: tuple[tuple[str, str, str], ...] = ()
+    lost: str | None = None
 
 
 def run_task(task: Task) -> Done:
@@ -175,15 +184,15 @@ def lost_task(task: Task, why: str) -> Done:
 def _lost(task: Task, message: str) -> Done:
     row = FileResult(task.path, verdicts=(Verdict("file", ERROR, message=message, where=Where(task.path)),))
     if task.submissions is None:
-        return Done((row,))
-    return Done(_exclude(task, row))
+        return Done((row,), lost=message)
+    return Done(_exclude(task, row), lost=message)
 
 
 def _exclude(task: Task, teacher: FileResult) -> tuple[FileResult, ...]:
     """A problem left out of every score: the teacher's row, and a not-scored row per student."""
     why = teacher.verdicts[0].message if teacher.verdicts else "the problem asks nothing"
     message = f"not scored: the problem file is excluded ({why})"
-    rows = [replace(teacher, excluded=True)]
+    rows = [replace(teacher, excluded=True)] if task.first else []
     for sub in task.submissions or ():
         keys = []
         for e in sub.entries:
