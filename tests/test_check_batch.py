@@ -167,6 +167,17 @@ def test_the_pool_reports_a_crashed_job_and_reruns_the_jobs_its_worker_held() ->
     assert got == ["done 1", "lost crash: crash", "done 2", "done 3", "done 4"]
 
 
+def test_a_pool_started_before_its_jobs_exist_runs_them_and_replaces_a_crashed_worker() -> None:
+    # mech check starts its workers before it reads a class's sheets: the jobs travel with
+    # their chunks, made after the workers were forked
+    from mech.batchpool import Pool
+
+    pool = Pool(_job, _lost, workers=2, timeout=None).start()
+    jobs = [("ok", 1.0), ("crash", 0.0), ("ok", 2.0), ("ok", 3.0)]
+    assert list(pool.map(jobs, chunk=1)) == ["done 1", "lost crash: crash", "done 2", "done 3"]
+    assert pool.slots == [None, None]  # closed at the end of its map
+
+
 def test_the_soft_limit_stops_a_slow_job_in_this_process() -> None:
     got = list(run_jobs([("slow", 60.0), ("ok", 1.0)], _job, _lost, workers=1, timeout=0.2))
     assert got == ["lost slow: timeout", "done 1"]

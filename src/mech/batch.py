@@ -471,9 +471,10 @@ def run(
         sheet folder with no sheets.
     """
     files = find_problem_files(options.paths)
-    class_folder = options.answers is not None and os.path.isdir(options.answers)
+    sheets_given = _yaml_files(options.answers) if options.answers and os.path.isdir(options.answers) else ()
+    parts = max(1, -(-len(sheets_given) // STUDENTS))  # a class's problem is graded in parts
     pool: Pool[Task, Done] | None = None
-    if options.workers > 1 and (len(files) > 1 or class_folder):
+    if options.workers > 1 and len(files) * parts > 1:
         from mech import topology  # noqa: F401  (what every file needs, imported once, before the fork)
 
         # the workers start now, from a parent that has read no sheet yet: none of them inherits

@@ -129,6 +129,20 @@ def generate(folder: Path, n: int) -> dict[str, dict[str, str]]:
 def run_command(folder: Path, junit: Path, jobs: int | None, mech: str | None = None) -> tuple[float, float]:
     """One whole ``mech check`` in a fresh process: (seconds, peak RSS in MB of its largest process).
 
+    :func:`run_cpu` gives its CPU too.
+    """
+    seconds, rss, _ = run_cpu(folder, junit, jobs, mech)
+    return seconds, rss
+
+
+def run_cpu(
+    folder: Path, junit: Path, jobs: int | None, mech: str | None = None
+) -> tuple[float, float, float]:
+    """One whole ``mech check``: (seconds, peak RSS in MB of its largest process, CPU seconds).
+
+    The CPU is every process's (the command and its workers, user + system): steadier than the
+    wall clock on a shared machine, where the other jobs take the cores.
+
     The command runs under a small Python parent of its own, so that the peak
     (RUSAGE_CHILDREN: the largest process waited for, workers included) is this
     run's alone.
@@ -142,11 +156,12 @@ def run_command(folder: Path, junit: Path, jobs: int | None, mech: str | None = 
         "t = time.perf_counter()\n"
         f"subprocess.run({args!r}, stdout=subprocess.DEVNULL)\n"
         "dt = time.perf_counter() - t\n"
-        "print(dt, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024)\n"
+        "u = resource.getrusage(resource.RUSAGE_CHILDREN)\n"
+        "print(dt, u.ru_maxrss / 1024, u.ru_utime + u.ru_stime)\n"
     )
     out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True).stdout
-    seconds, rss = out.split()
-    return float(seconds), float(rss)
+    seconds, rss, cpu = out.split()
+    return float(seconds), float(rss), float(cpu)
 
 
 def verdicts_from_junit(junit: Path) -> dict[str, dict[str, str]]:
