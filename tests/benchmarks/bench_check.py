@@ -229,7 +229,7 @@ def main() -> None:
 
 
 def compare(args: argparse.Namespace) -> None:
-    """Each run made with every ``--mech`` in turn; medians, files/s and ratios to the first."""
+    """Each run made with every ``--mech`` in turn; medians, files/s, CPU and ratios to the first."""
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for n, repeats in ((args.files, args.repeats), (args.large, 1)):
@@ -239,28 +239,21 @@ def compare(args: argparse.Namespace) -> None:
             folder.mkdir()
             expected = generate(folder, n)
             for jobs in args.jobs:
-                runs: dict[str, list[tuple[float, float]]] = {m: [] for m in args.mech}
+                runs: dict[str, list[tuple[float, float, float]]] = {m: [] for m in args.mech}
                 for _ in range(repeats):
                     for mech in args.mech:
                         junit = Path(tmp) / f"out{n}.xml"
-                        runs[mech].append(run_command(folder, junit, jobs or None, mech))
+                        runs[mech].append(run_cpu(folder, junit, jobs or None, mech))
                         if verdicts_from_junit(junit) != expected:
                             sys.exit(f"{mech}: wrong verdicts with {n} files")
-                reference = statistics.median(t for t, _ in runs[args.mech[0]])
+                wall0 = statistics.median(t for t, _, _ in runs[args.mech[0]])
+                cpu0 = statistics.median(c for _, _, c in runs[args.mech[0]])
                 for mech in args.mech:
-                    median = statistics.median(t for t, _ in runs[mech])
-                    peak = max(m for _, m in runs[mech])
+                    wall = statistics.median(t for t, _, _ in runs[mech])
+                    cpu = statistics.median(c for _, _, c in runs[mech])
+                    peak = max(m for _, m, _ in runs[mech])
                     rows.append(
-                        (
-                            n,
-                            jobs or os.cpu_count(),
-                            repeats,
-                            mech,
-                            median,
-                            n / median,
-                            median / reference,
-                            peak,
-                        )
+                        (n, jobs or os.cpu_count(), repeats, mech, wall, wall / wall0, cpu, cpu / cpu0, peak)
                     )
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     print(
@@ -268,11 +261,14 @@ def compare(args: argparse.Namespace) -> None:
         f"{platform.python_version()}, {os.cpu_count()} cores, load average {load:.1f} at the end)"
     )
     print()
-    print("| files | jobs | runs | mech | median (s) | files/s | ratio | peak RSS (MB) |")
-    print("| ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: |")
-    for n, jobs, repeats, mech, median, rate, ratio, peak in rows:
+    print(
+        "| files | jobs | runs | mech | median (s) | files/s | ratio | CPU ms/file | CPU ratio | peak RSS (MB) |"
+    )
+    print("| ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+    for n, jobs, repeats, mech, wall, ratio, cpu, cpu_ratio, peak in rows:
         print(
-            f"| {n:,} | {jobs} | {repeats} | {mech} | {median:.2f} | {rate:,.0f} | {ratio:.3f} | {peak:.0f} |"
+            f"| {n:,} | {jobs} | {repeats} | {mech} | {wall:.2f} | {n / wall:,.0f} | {ratio:.3f} "
+            f"| {cpu * 1e3 / n:.2f} | {cpu_ratio:.3f} | {peak:.0f} |"
         )
     print()
     print("verdicts: every file got exactly the verdicts it was built to get, with every mech")
