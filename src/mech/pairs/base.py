@@ -29,7 +29,7 @@ so this package imports nothing above :mod:`mech.model`.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, ClassVar, Protocol
 
 from mech.errors import Problem, UnsupportedError
@@ -37,8 +37,12 @@ from mech.specs import BareSpec, JointSpec, Profile
 
 if TYPE_CHECKING:
     from mech.fields import Fields, Reader
+    from mech.forces.result import PairForce
     from mech.model import Joint, Mechanism
     from mech.pairs.rows import RowBuilder
+
+#: A wrench on one link: force (N) and moment (N·m, ccw +) about the point it is given for.
+Wrench = tuple[float, float, float]
 
 Vec = tuple[float, float]
 
@@ -52,7 +56,7 @@ class Carriers(Protocol):
     def carriers(self) -> Mapping[str, tuple[str, ...]]: ...
 
 
-__all__ = ["Carriers", "InstantView", "PairKind"]
+__all__ = ["Carriers", "InstantView", "PairKind", "Wrench", "contact_forces"]
 
 
 class InstantView(Protocol):
@@ -234,6 +238,33 @@ class PairKind:
             f"joint {j.name} is a {j.type} pair: planar solvers cannot model it", where=j.where
         )
 
+    # -- forces -----------------------------------------------------------------------------------
+    def forces(
+        self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+    ) -> list[PairForce]:
+        """The force the pair carries, from what its rows put on each of its links.
+
+        ``wrenches[link]`` is the force on that link from this joint and its moment about
+        ``at`` (the pair's point at the instant; ``direction`` its path or common tangent).
+        The default, for a pin or any pair that acts at its point: the force on each link
+        after the first, from the first (a binary joint: on its second link, as DESIGN
+        § 1.4's ``force.<joint>.x`` reads it).
+        """
+        from mech.forces.result import PairForce
+
+        first = j.links[0]
+        return [
+            PairForce(j.name, link, first, (wrenches[link][0], wrenches[link][1]), at)
+            for link in j.links[1:]
+            if link in wrenches
+        ]
+
+    def reaction_rows(self, j: Joint, view: Any) -> Sequence[Sequence[float]] | None:
+        """Rows that carry this pair's force where its kinematic rows only say how it moves (a gear
+        pair on fixed centres keeps its speed ratio as an angle row, but pushes along its line of
+        action); None: its own rows carry it."""
+        return None
+
     # -- instantaneous centres -------------------------------------------------------------------
     def inspect(self, seen: InstantView, j: Joint) -> None:
         """Say what inspection sees of the joint at a solved instant (lecture notes 002, §6.4).
@@ -254,3 +285,20 @@ class PairKind:
     def contact(self) -> str:
         """Lower (surface contact) or higher (line or point contact)."""
         return "higher" if self.line_contact else "lower"
+
+
+def contact_forces(
+    j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+) -> list[PairForce]:
+    """A higher pair's force on its second link at the contact, with its component along the
+    common normal (the tangent ``direction`` turned −90°): a cam's or a gear's tooth load."""
+    from mech.forces.result import PairForce
+
+    on, by = j.links[1], j.links[0]
+    if on not in wrenches:
+        return []
+    fx, fy, _ = wrenches[on]
+    normal = None
+    if direction is not None:
+        normal = fx * direction[1] - fy * direction[0]
+    return [PairForce(j.name, on, by, (fx, fy), at, normal=normal)]

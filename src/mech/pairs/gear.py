@@ -16,13 +16,14 @@ from typing import TYPE_CHECKING, Any
 
 from mech.errors import Problem
 from mech.fields import NUMBER, PROFILES, Fields, Reader, read_profiles, read_radii
-from mech.pairs.base import Carriers, PairKind
+from mech.pairs.base import Carriers, PairKind, contact_forces
 from mech.specs import GearSpec
 from mech.units import Dimension
 
 if TYPE_CHECKING:
+    from mech.forces.result import PairForce
     from mech.model import Joint, Mechanism
-    from mech.pairs.base import InstantView
+    from mech.pairs.base import InstantView, Wrench
     from mech.pairs.rows import RowBuilder
 
 __all__ = ["Gear", "carrier_of", "gear_centre", "gear_normal", "gear_row"]
@@ -157,6 +158,35 @@ class Gear(PairKind):
         from mech.pairs.cam import see_contact
 
         see_contact(seen, j, line_of_action(seen.mech, j, seen.positions))
+
+    def reaction_rows(self, j: Joint, view: Any) -> list[list[float]] | None:
+        """Gears on one carrier keep their speed ratio by an angle row, but push each other along
+        the line of action at the pitch point: that force's row, [n, (P − R₁) × n] on the first
+        gear and its opposite on the second (the same constraint, given the pins)."""
+        kin = view.kin
+        if j.name not in kin.positions or not any(r == j.name for r in view.sys.row_names):
+            return None
+        n = line_of_action(view.mech, j, kin.positions)
+        if n is None or j.name in view.sys.path_dirs or j.name in view.sys.normals:
+            return None
+        p = kin.positions[j.name]
+        row = [0.0] * view.width
+        for link, sign in ((j.links[0], 1.0), (j.links[1], -1.0)):
+            col, (ox, oy) = view.column(link), view.origin(link)
+            row[col] += sign * n[0]
+            row[col + 1] += sign * n[1]
+            row[col + 2] += sign * ((p[0] - ox) * n[1] - (p[1] - oy) * n[0])
+        return [row]
+
+    def forces(
+        self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+    ) -> list[PairForce]:
+        """The tooth load on the second gear, along the line of action at the pitch point (teeth push:
+        its normal component is its magnitude where the line of action was not solved for)."""
+        from dataclasses import replace
+
+        out = contact_forces(j, wrenches, at, direction)
+        return [replace(f, normal=f.magnitude) if f.normal is None else f for f in out]
 
     def rows(self, b: RowBuilder, j: Joint) -> None:
         """Pitch circles on one carrier roll (holonomic); pitch curves given roll; else the instant."""

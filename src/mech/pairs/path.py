@@ -19,8 +19,9 @@ from mech.pairs.base import PairKind
 from mech.specs import Path, Ref, SlideSpec
 
 if TYPE_CHECKING:
+    from mech.forces.result import PairForce
     from mech.model import Joint
-    from mech.pairs.base import InstantView
+    from mech.pairs.base import InstantView, Wrench
     from mech.pairs.rows import RowBuilder
 
 __all__ = ["PathPair", "PathSpec", "path_angle", "path_direction"]
@@ -116,3 +117,24 @@ class PathPair(PairKind):
             u = path_direction(j.path, seen.positions)
         if u is not None:
             seen.slide(j.name, j.links[0], j.links[1], u, seen.at(j), turns=not self.keeps_angle)
+
+    def forces(
+        self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+    ) -> list[PairForce]:
+        """The normal force the guide (the second link) takes from the slider, and where it acts.
+
+        Without friction the force is square to the path, ``N = F·n`` (n = k × u); with the
+        pair's couple about the slider's point it acts ``offset = M/N`` along the path from
+        that point (a block's side thrust is off its centre when the block is held from turning).
+        """
+        from mech.forces.result import PairForce
+
+        guide = j.links[1]
+        if guide not in wrenches or at is None:
+            return super().forces(j, wrenches, at, direction)
+        fx, fy, m = wrenches[guide]
+        u = direction or (1.0, 0.0)
+        normal = float(-u[1] * fx + u[0] * fy)
+        offset = float(m / normal) if normal != 0.0 else 0.0
+        acts = (float(at[0] + offset * u[0]), float(at[1] + offset * u[1]))
+        return [PairForce(j.name, guide, j.links[0], (fx, fy), acts, normal=normal, offset=offset)]

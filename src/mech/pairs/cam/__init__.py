@@ -8,19 +8,21 @@ link, :mod:`mech.specs`) the pair moves; a cam may give its follower's
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 from mech.cam.program import program_schema
 from mech.cam.read import read_program
 from mech.fields import NUMBER, PROFILES, Fields, Reader, read_profiles
-from mech.pairs.base import PairKind
+from mech.pairs.base import PairKind, contact_forces
 from mech.specs import ContactSpec
 from mech.units import Dimension
 
 if TYPE_CHECKING:
+    from mech.forces.result import PairForce
     from mech.model import Joint, Mechanism
-    from mech.pairs.base import InstantView
+    from mech.pairs.base import InstantView, Wrench
     from mech.pairs.rows import RowBuilder
     from mech.specs import Profile
 
@@ -140,3 +142,9 @@ class Cam(PairKind):
             return list(program_profiles(mech, j).items())
         except MechError:
             return []
+
+    def forces(
+        self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+    ) -> list[PairForce]:
+        """The force on the second link at the contact, and its component along the common normal."""
+        return contact_forces(j, wrenches, at, direction)
