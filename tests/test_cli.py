@@ -706,3 +706,18 @@ def test_no_file_gives_a_traceback_or_an_undocumented_status(tmp_path_factory):
         assert not runtime, (args, runtime, text)
 
     one()
+
+
+@pytest.mark.parametrize("command", ["position", "velocity", "acceleration", "icentres", "properties"])
+def test_an_angle_beyond_float_precision_is_refused_as_a_sweep_refuses_it(run, command):
+    # 1e308° is held only to ~1e292° in floating point: no crank position is known there
+    result = run(command, FOUR_BAR, "--angle", "1e308")
+    assert result.exit_code == 2
+    assert "held only to" in result.stderr and "nearer 0" in result.stderr
+
+
+def test_a_large_angle_within_float_precision_is_its_turn_modulo_360(run):
+    # 1e8° = 277,777 turns + 280°, exactly representable: the crank is at 280°
+    result = run("position", FOUR_BAR, "--angle", "1e8", "--json")
+    assert result.exit_code == 0
+    assert json.loads(result.stdout)["links"]["crank"]["angle"] == pytest.approx(280.0)

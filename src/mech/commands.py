@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 from mech._records import dataclass
 from mech.errors import InputError, MechError
-from mech.options import OutputUnits, SolveOptions
+from mech.options import OutputUnits, SolveOptions, angle_spacing_problem
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.analysis import Result
@@ -221,6 +221,8 @@ def solve_options(
             turning = value * factor
     if angle is not None and not math.isfinite(angle):
         raise InputError("--angle must be a finite number of degrees")
+    if angle is not None and (problem := angle_spacing_problem(angle)) is not None:
+        raise InputError(problem, hint="give the same crank position nearer 0 (subtract whole turns of 360°)")
     try:
         return SolveOptions(
             # reduce in degrees, where it is exact, before converting (1e300° is 0°)
