@@ -18,6 +18,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from mech._files import write_with
 from mech._records import dataclass
 from mech.draw.raster import DPI, use_matplotlib
 
@@ -128,7 +129,9 @@ def sweep_plot(
     if title:
         fig.suptitle(title, fontsize=10, fontweight="bold")
     fig.tight_layout()
-    fig.savefig(str(path), format="png", dpi=DPI, facecolor="white", metadata={"Software": None})
+    write_with(
+        path, lambda f: fig.savefig(f, format="png", dpi=DPI, facecolor="white", metadata={"Software": None})
+    )
 
 
 def animate(
@@ -166,12 +169,16 @@ def animate(
             mech, kin, positions=frame, view=view, title=getattr(mech, "label", ""), curves=curves
         )
         images.append(Image.fromarray(render_rgb(fig, dpi=dpi)).convert("P", palette=Image.Palette.ADAPTIVE))
-    images[0].save(
-        str(path),
-        save_all=True,
-        append_images=images[1:],
-        duration=round(1000 / fps),
-        loop=0,
-        optimize=False,
-        disposal=2,
+    write_with(
+        path,
+        lambda f: images[0].save(
+            f,
+            format="GIF",
+            save_all=True,
+            append_images=images[1:],
+            duration=round(1000 / fps),
+            loop=0,
+            optimize=False,
+            disposal=2,
+        ),
     )
