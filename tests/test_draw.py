@@ -399,3 +399,21 @@ def test_draw_to_a_missing_folder_is_exit_2(tmp_path):
     p = mech("draw", str(f), "-o", str(tmp_path / "no" / "such" / "x.svg"))
     no_traceback(p)
     assert p.returncode == 2
+
+
+@pytest.mark.parametrize("option", [("--path", "C"), ("--centrodes", "link_3")])
+def test_tracing_a_two_drive_file_is_refused_with_a_command_line_hint(run, tmp_path, option):
+    """The hint names options of real commands, never a Python call (issue 25, item 13)."""
+    from mech.cli import cli
+
+    result = run("draw", str(MECHANISMS / "five_bar_two_cranks.yaml"), "-o", str(tmp_path / "x.svg"), *option)
+    assert result.exit_code == 2
+    err = result.stderr
+    assert "sweep(" not in err and "drive=" not in err
+    hinted = re.search(r"mech (\w+) \S+ (.*?) \(", err)
+    assert hinted is not None, err
+    command = cli.commands[hinted.group(1)]
+    known = {o for p in command.params for o in getattr(p, "opts", ())}
+    named = set(re.findall(r"--[a-z-]+", err.split("hint:", 1)[1]))
+    assert named and named <= known, named - known
+    assert not (tmp_path / "x.svg").exists()

@@ -218,6 +218,7 @@ def icentres(request: Request, explain: bool, circle_path: str | None) -> None:
     from mech.loader import load
     from mech.render.emit import choose, emit
 
+    _writable(circle_path)
     mechanism = load(request.file)
     if not mechanism.has_geometry and not explain and not circle_path:
         # nothing placed: the centres can still be counted, named and ordered (no coordinates)
@@ -309,6 +310,7 @@ def sweep_command(
             "--csv - writes the CSV to standard output, where --json would write too",
             hint="write the CSV to a file (--csv series.csv), or leave out --json",
         )
+    _writable(None if csv_path == "-" else csv_path, plot_path, gif_path, svg_path)
     quantities = tuple(quantities) + tuple(f"position.{p}.{c}" for p in paths for c in ("x", "y"))
     if plot_path or gif_path:
         from mech.draw.raster import use_matplotlib
@@ -437,6 +439,8 @@ def draw_command(
 
     check_output(output)
     mechanism = load_mechanism(request.file)
+    if paths or centrodes:
+        _one_turn(mechanism, "--path" if paths else "--centrodes", paths)
     level = drawing_level(
         mechanism, request.options, velocity=velocity, acceleration=acceleration, icentres=with_icentres
     )
@@ -446,6 +450,35 @@ def draw_command(
         result, output, file=request.file, velocity=velocity, acceleration=acceleration, units=request.units
     )
     emit("draw", choose(request.as_json), summary, echo=click.echo, name=mechanism.label)
+
+
+def _writable(*paths: str | None) -> None:
+    """Say now, before any solving, that an output file cannot be written (exit 2, naming it)."""
+    from mech._files import check_writable
+
+    for path in paths:
+        if path:
+            check_writable(path)
+
+
+def _one_turn(mechanism: Any, option: str, paths: tuple[str, ...]) -> None:
+    """Refuse ``mech draw --path/--centrodes`` on a file whose drive is not one crank, saying what can.
+
+    The traced curves come from a crank's whole turn; ``mech draw`` has no ``--drive``.
+    ``mech sweep --path P --svg`` sweeps the first drive (or the one ``--drive`` names).
+    """
+    drives = mechanism.drives
+    if len(drives) <= 1 and (not drives or drives[0].link is not None):
+        return  # one crank (or none: the analysis says so)
+    what = f"{len(drives)} drives" if len(drives) > 1 else f"a slider drive ({drives[0].joint})"
+    point = paths[0] if paths else "P"
+    hint = (
+        f"draw a path with mech sweep {mechanism.path or 'FILE'} --path {point} --svg paths.svg "
+        "(it sweeps the first drive, or the one --drive names)"
+    )
+    if not paths:
+        hint = "centrodes are drawn for a mechanism driven by one crank; " + hint
+    raise InputError(f"{mechanism.label} has {what}: mech draw {option} traces one crank's turn", hint=hint)
 
 
 # -- cams -----------------------------------------------------------------------------
@@ -475,6 +508,7 @@ def cam_command(
     from mech.loader import load
 
     validate(COMMANDS["cam"], {"rpm": rpm})
+    _writable(output, diagram)
     mechanism = load(file)
     sense = None if direction is None else (1 if direction == "ccw" else -1)
     omega = None if rpm is None else rpm * 2 * math.pi / 60

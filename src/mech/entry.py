@@ -30,7 +30,11 @@ __all__ = ["main"]
 
 def main(argv: Sequence[str] | None = None) -> None:
     """Entry point of the ``mech`` console script and ``python -m mech``."""
-    from mech.commands.exits import guarded
+    try:
+        from mech.commands.exits import guarded
+    except KeyboardInterrupt:  # Ctrl-C while the guard itself loads: the guard's answer, by hand
+        sys.stderr.write("mech: interrupted\n")
+        raise SystemExit(130) from None
 
     batch = [False]
 
