@@ -26,7 +26,6 @@ import stat
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
-from mech._records import dataclass
 from mech.errors import InputError
 
 __all__ = ["COMMANDS", "DEBUG", "FAST", "Param", "read", "validate"]
@@ -36,7 +35,6 @@ DEFAULT_FILE = "mechanism.yaml"
 Check = Callable[[Any], None]
 
 
-@dataclass(frozen=True, slots=True)
 class Param:
     """One option (``names`` start with ``-``) or argument (one name, no dash) of a command.
 
@@ -45,26 +43,67 @@ class Param:
     ``IntRange``; ``exists``, ``dir_okay``, ``allow_dash`` and ``writable`` are click's ``Path``'s.
     ``nargs=-1``: an argument that takes every positional word.  ``check``: what the value
     must also be, raising :class:`~mech.errors.InputError` (run by :func:`validate`).
+
+    A plain slotted class, not a dataclass: some sixty are made at every start-up of the fast
+    path, and a generated ``__init__`` costs more to make than all of them (1.2 ms).
     """
 
-    names: tuple[str, ...]
-    dest: str
-    kind: str = "text"
-    help: str = ""
-    default: Any = None
-    show_default: bool = False
-    required: bool = False
-    multiple: bool = False
-    choices: tuple[str, ...] = ()
-    low: float | None = None
-    high: float | None = None
-    low_open: bool = False
-    exists: bool = False
-    dir_okay: bool = True
-    allow_dash: bool = False
-    writable: bool = False
-    nargs: int = 1
-    check: Check | None = None
+    __slots__ = (
+        "allow_dash",
+        "check",
+        "choices",
+        "default",
+        "dest",
+        "dir_okay",
+        "exists",
+        "help",
+        "high",
+        "kind",
+        "low",
+        "low_open",
+        "multiple",
+        "names",
+        "nargs",
+        "required",
+        "show_default",
+        "writable",
+    )
+
+    def __init__(
+        self,
+        names: tuple[str, ...],
+        dest: str,
+        kind: str = "text",
+        help: str = "",
+        *,
+        default: Any = None,
+        show_default: bool = False,
+        required: bool = False,
+        multiple: bool = False,
+        choices: tuple[str, ...] = (),
+        low: float | None = None,
+        high: float | None = None,
+        low_open: bool = False,
+        exists: bool = False,
+        dir_okay: bool = True,
+        allow_dash: bool = False,
+        writable: bool = False,
+        nargs: int = 1,
+        check: Check | None = None,
+    ) -> None:
+        self.names, self.dest, self.kind, self.help = names, dest, kind, help
+        self.default, self.show_default, self.required, self.multiple = (
+            default,
+            show_default,
+            required,
+            multiple,
+        )
+        self.choices, self.low, self.high, self.low_open = choices, low, high, low_open
+        self.exists, self.dir_okay, self.allow_dash, self.writable = exists, dir_okay, allow_dash, writable
+        self.nargs, self.check = nargs, check
+
+    def __repr__(self) -> str:
+        return f"Param({'/'.join(self.names)} -> {self.dest}: {self.kind})"
 
     @property
     def is_option(self) -> bool:
