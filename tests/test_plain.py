@@ -140,3 +140,18 @@ def test_no_import_circle_in_the_cli_and_report_layers(package):
         for b in modules:
             if a < b and graph.chain_exists(a, b) and graph.chain_exists(b, a):
                 pytest.fail(f"{a} and {b} import each other (through {graph.find_shortest_chain(b, a)})")
+
+
+def test_joined_text_prints_on_a_terminal_as_riches_own_joined_text():
+    """``Text(name, style="bold") + Text(" — velocities")`` is bold throughout, as rich's own is
+    (the kinematics report's heading: a terminal's bytes unchanged by building it once)."""
+    from rich.text import Text as RichText
+
+    def coloured(obj: Any) -> str:
+        out = io.StringIO()
+        Console(file=out, force_terminal=True, color_system="truecolor", width=80).print(obj)
+        return out.getvalue()
+
+    ours = Text("Four-bar", style="bold") + Text(" — velocities") + " !"
+    rich = RichText("Four-bar", style="bold") + RichText(" — velocities") + " !"
+    assert coloured(ours) == coloured(rich)

@@ -58,9 +58,12 @@ class Text:
     def to_rich(self) -> Any:
         from rich.text import Text as RichText
 
-        out = RichText()
-        for text, style in self.parts:
-            out.append(RichText(text, style=style or ""))
+        # as rich's own ``Text(a, style) + Text(b)`` builds it: the first part's style is the base
+        # style of the whole text (so "name — velocities" is bold throughout), the rest appended
+        (first, style), *rest = self.parts
+        out = RichText(first, style=style or "")
+        for text, part_style in rest:
+            out.append(RichText(text, style=part_style or ""))
         return out
 
     __rich__ = to_rich  # rich's console prints it as its own
