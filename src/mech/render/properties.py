@@ -223,10 +223,8 @@ def _advantage_dict(props: LinkageProperties) -> dict[str, Any]:
 
 def properties_table(props: LinkageProperties, console: ReportConsole, *, units: OutputUnits) -> None:
     """``mech properties``: Grashof worked, transmission angle, limit positions, strokes, time ratio."""
-    from rich.table import Table
-    from rich.text import Text
-
     from mech.render.console import table_box
+    from mech.render.table import Table, Text
 
     d = properties_dict(props, units=units)
     console.print(Text(props.mechanism, style="bold"))
@@ -284,10 +282,8 @@ def properties_table(props: LinkageProperties, console: ReportConsole, *, units:
 
 def _advantage_tables(props: LinkageProperties, d: dict[str, Any], console: ReportConsole) -> None:
     """Mechanical advantage three ways, the I-centre ratio written out, and the input effort."""
-    from rich.table import Table
-    from rich.text import Text
-
     from mech.render.console import table_box
+    from mech.render.table import Table, Text
 
     if props.advantage_error:
         console.print(Text(f"  mechanical advantage: not computed ({props.advantage_error})"), soft_wrap=True)

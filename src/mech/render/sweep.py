@@ -215,10 +215,8 @@ def sweep_csv(sw: Sweep, *, units: OutputUnits, quantities: tuple[str, ...] = ()
 
 def sweep_table(sw: Sweep, console: ReportConsole, *, units: OutputUnits) -> None:
     """The summary for people: gaps, toggles, dead centres, time ratio, extremes, notes."""
-    from rich.table import Table
-    from rich.text import Text
-
     from mech.render.console import table_box
+    from mech.render.table import Table, Text
 
     console.print(Text(sw.mechanism, style="bold"))
     speed = "" if sw.omega is None else f", ω = {sw.omega:.6g} rad/s"
