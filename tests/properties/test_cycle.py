@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 
 from mech.loader import load, loads
 from mech.properties.cycle import cycle, transmission_angle
-from mech.properties.grashof import FourBarLoop
+from mech.topology.grashof import FourBarLoop
 from oracles.transmission import crank_turns
 from oracles.transmission import diagonal_range as bd_range
 from oracles.transmission import transmission_angle as mu_closed
@@ -192,3 +192,4 @@ def test_properties_of_a_mechanism_that_cannot_be_swept_says_why(run):
     result = run("properties", "mechanisms/cam_follower.yaml")
     assert result.exit_code == 0
     assert "not swept" in result.output
+

@@ -26,7 +26,7 @@ from mech._records import dataclass
 from mech.errors import UnsupportedError
 from mech.model import JointType, Mechanism
 from mech.options import SolveOptions
-from mech.properties.grashof import FourBarLoop, linkage_loops
+from mech.topology.grashof import FourBarLoop, linkage_loops
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.kinematics import Kinematics, Sweep

@@ -16,7 +16,7 @@ from mech.errors import MechError, UnsupportedError
 from mech.model import Mechanism
 from mech.options import SolveOptions
 from mech.properties.cycle import Cycle, Transmission, cycle, included_angle, transmission_loop
-from mech.properties.grashof import linkage_loops
+from mech.topology.grashof import linkage_loops
 
 __all__ = ["LinkageProperties", "linkage_properties"]
 
