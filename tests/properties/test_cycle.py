@@ -193,3 +193,21 @@ def test_properties_of_a_mechanism_that_cannot_be_swept_says_why(run):
     assert result.exit_code == 0
     assert "not swept" in result.output
 
+
+
+def test_every_prismatic_joint_has_a_stroke_on_the_frame_or_along_a_moving_guide():
+    # DESIGN § 1.1: stroke.<joint> is a prismatic joint's travel.  Khurmi's shaper: the ram slides
+    # on the frame (joint `stroke`), the block along the lever (joint `slot`), O1 pivots the lever.
+    from mech.properties.cycle import stroke_joints
+
+    assert sorted(stroke_joints(load("mechanisms/crank_slotted_lever_quick_return.yaml"))) == [
+        "O1",
+        "slot",
+        "stroke",
+    ]
+    # crank_slotted_lever.yaml: O1O2 = 500, O2A = 120 mm; the block's distance O1A runs between
+    # 500 − 120 and 500 + 120 mm as the crank turns (A on the lever's line at both ends), so it
+    # travels 2·O2A = 240 mm along the lever; the lever swings 2·asin(120/500) about O1.
+    result = cycle(load("mechanisms/crank_slotted_lever.yaml"))
+    assert result.strokes["slot"].value == pytest.approx(0.240, rel=1e-9)
+    assert result.strokes["O1"].value == pytest.approx(2 * math.asin(120 / 500), rel=1e-9)

@@ -186,11 +186,17 @@ class Cycle:
 
 
 def _stroke_subjects(mech: Mechanism) -> list[tuple[str, str, str]]:
-    """(joint, kind, subject): prismatic joints on the frame, and revolute joints on the frame."""
+    """(joint, kind, subject): every prismatic joint, and the revolute joints on the frame.
+
+    A prismatic joint's stroke is its travel along its path (DESIGN § 1.1, ``stroke.<joint>``):
+    a slider's on the frame, and equally a block's along a moving guide (the block in a
+    slotted lever travels 2·O₂A along the lever).  A revolute joint on the frame gives the
+    swing of the link it carries, the crank's own pivot excepted.
+    """
     drive = next((d.link for d in mech.drives if d.link is not None), None)
     out = []
     for j in mech.joints:
-        if (j.type is JointType.PRISMATIC and mech.ground in j.links) or j.type is JointType.PRISMATIC:
+        if j.type is JointType.PRISMATIC:
             out.append((j.name, "displacement", j.name))
         elif j.type is JointType.REVOLUTE and mech.ground in j.links and j.order == 2:
             other = next(lk for lk in j.links if lk != mech.ground)
