@@ -204,6 +204,8 @@ def _advantage_dict(props: LinkageProperties) -> dict[str, Any]:
                 "by_icentres": a.by_icentres,
                 "by_virtual_work": a.by_virtual_work,
                 "construction": a.construction,
+                "dead_centre": a.dead_centre,  # the output at rest: every value ∞, written null
+                "notes": list(a.notes),
             }
             for a in props.advantages
         },
@@ -299,13 +301,15 @@ def _advantage_tables(props: LinkageProperties, d: dict[str, Any], console: Repo
             table.add_column(col, justify="left" if col in ("output", "unit") else "right")
 
         def fmt(v: float | None) -> str:
-            return "—" if v is None else f"{v:.6g}"
+            return "—" if v is None else "∞ (dead centre)" if v == math.inf else f"{v:.6g}"
 
         for a in props.advantages:
             table.add_row(a.output, fmt(a.by_icentres), fmt(a.by_virtual_work), fmt(a.value), a.unit)
         console.print(table)
         for a in props.advantages:
             console.print(Text(f"  {a.output}: {a.construction}"), soft_wrap=True)
+            for note in a.notes:
+                console.print(Text(f"    {note}"), soft_wrap=True)
     e = props.effort
     if e is not None:
         unit = "N·m, ccw +" if e.kind == "torque" else "N, along the drive's path"
