@@ -370,7 +370,8 @@ def _find(
             "continuous tangent"
         )
     dead, outputs = find_dead_centres(backend, plan.comp, fine, data, ok, names)
-    extremes = find_extremes(backend, fine, data, ok & ~singular, names, keys)
+    # an extreme of a position may lie at a toggle or change point, where refinement cannot look
+    extremes = find_extremes(backend, fine, data, ok & ~singular, names, keys, toggles + changes, ok)
     ratio = find_time_ratio(fine, ok, dead, outputs) if plan.lead is None else None
     return _Found(gaps, toggles, dead, extremes, ratio, changes)
 

@@ -10,6 +10,7 @@ branch (:class:`~.sweep_backends.Walk`).
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Callable, Collection, Sequence
 from typing import Any
 
@@ -376,6 +377,32 @@ def find_dead_centres(
     return tuple(_dedupe(events, phi)), outputs
 
 
+#: Quantities of the position level: defined at a toggle or change point, where the rates are not.
+POSITION_KINDS = ("angle", "position", "displacement", "included")
+#: Positions where two branches meet or the loop stops closing are good to about √ε (1.5e-8 of the
+#: size; the discriminant's rounding under a square root): a value read at a toggle or change point
+#: counts as an extreme only when it passes the extreme found elsewhere by more than this (of the
+#: size for a length, in rad for an angle).
+AT_EVENT = 1e-6
+#: An included angle at a toggle or change point of the links in line at its vertex (the event
+#: says so) within this of 0 or π is that exactly: its three points are in line there.
+IN_LINE = 1e-4
+#: A link's unwrapped angle spanning a full turn less this (rad) turns right round: positions next
+#: to a change point are good to about √ε, far inside it, and no rocker swings 359.99994°.
+FULL_TURN = 1e-6
+
+
+def turns_fully(v: np.ndarray, valid: np.ndarray, phi: np.ndarray) -> bool:
+    """A link whose unwrapped angle ``v`` spans a full turn, or ends a whole turn on from where it
+    started over a full turn of the drive, turns right round: it has no swing (a parallelogram's
+    rocker).  A 2:1 wheel's half turn per turn of its pinion is a swing of 180°, not a turn."""
+    if not np.any(valid):
+        return False
+    span = float(np.max(v[valid]) - np.min(v[valid]))
+    turn = phi.size > 2 and abs(abs(phi[-1] - phi[0]) - _TWO_PI) < 1e-9 and bool(valid[0] and valid[-1])
+    return span >= _TWO_PI - FULL_TURN or (turn and abs(float(v[-1] - v[0])) >= _TWO_PI - FULL_TURN)
+
+
 def find_extremes(
     backend: Any,
     phi: np.ndarray,
@@ -383,6 +410,8 @@ def find_extremes(
     ok: np.ndarray,
     names: dict[str, tuple[str, ...]],
     keys: Sequence[str],
+    events: Sequence[Event] = (),
+    placed: np.ndarray | None = None,
 ) -> tuple[Extreme, ...]:
     """Grid extremes of every quantity, refined between the neighbouring steps.
 
@@ -394,8 +423,18 @@ def find_extremes(
     extrapolated beyond it.  A quantity that does not vary (a piston's angle)
     or a link that turns right round (its unwrapped angle only grows) has no
     extreme worth reporting and is left out.
+
+    ``ok`` marks the regular assembled steps, ``placed`` (default ``ok``) every assembled
+    one, those next to a toggle or change point too, where positions are still defined:
+    a link turns right round if its angle does over them.  ``events`` are the toggles
+    and change points, located to rounding: a position-level quantity may have its
+    extreme there, where refinement cannot look (the configuration is singular) and the
+    grid does not reach — a transmission angle is 0 or 180° where coupler and output
+    fold into line, at a gap's edge or as the branch passes a change point (:func:`_at_events`).
     """
+    placed = ok if placed is None else placed
     turn = phi.size > 2 and abs(abs(phi[-1] - phi[0]) - _TWO_PI) < 1e-9 and bool(np.all(ok))
+    seam_event = any(min(abs(e.angle - phi[0]), abs(e.angle - phi[-1])) < 1e-9 for e in events)
     rows: list[tuple[str, str, int, float, float, float]] = []  # key, mode, k, lo, hi, grid value
     wraps: dict[str, bool] = {}
     for key in keys:
@@ -407,10 +446,14 @@ def find_extremes(
         span = float(np.max(v[valid]) - np.min(v[valid]))
         if span <= 1e-12 * size:
             continue
-        if key.startswith("angle.") and span >= _TWO_PI - 1e-9:
+        if key.startswith("angle.") and turns_fully(v, placed & np.isfinite(v), phi):
             continue
-        # periodic over the range: back to its first value after the turn (to the solver's accuracy)
-        full = wraps[key] = turn and bool(valid[0] and valid[-1] and abs(v[-1] - v[0]) <= 1e-8 * size)
+        # periodic over the range: back to its first value after the turn (to the solver's accuracy),
+        # and not because the turn ends on a change point: the branch continued from the drawing
+        # either way meets there, but crosses the seam on the other side (no neighbours across it)
+        full = wraps[key] = (
+            turn and not seam_event and bool(valid[0] and valid[-1] and abs(v[-1] - v[0]) <= 1e-8 * size)
+        )
         for mode in ("max", "min"):
             vv = np.where(valid, v, -np.inf if mode == "max" else np.inf)
             k = int(np.argmax(vv) if mode == "max" else np.argmin(vv))
@@ -450,6 +493,7 @@ def find_extremes(
         results[(r[0], r[1])] = (
             (float(ang[i]), float(x)) if better and math.isfinite(x) else (float(phi[r[2]]), r[5])
         )
+    _at_events(backend, phi, data, ok, names, results, events)
     out = []
     for key in dict.fromkeys(r[0] for r in rows):
         (amax, vmax), (amin, vmin) = results[(key, "max")], results[(key, "min")]
@@ -457,6 +501,70 @@ def find_extremes(
             amax, amin = _into(amax, phi), _into(amin, phi)
         out.append(Extreme(key, quantity_unit(key), amax, vmax, amin, vmin))
     return tuple(out)
+
+
+def _at_events(
+    backend: Any,
+    phi: np.ndarray,
+    data: dict[str, np.ndarray],
+    ok: np.ndarray,
+    names: dict[str, tuple[str, ...]],
+    results: dict[tuple[str, str], tuple[float, float]],
+    events: Sequence[Event],
+) -> None:
+    """Each position-level extreme compared with the quantity at every toggle and change point.
+
+    There two branches of the assembly meet, or the loop stops closing: refinement sees a
+    singular configuration and leaves it out, so a quantity that turns there (a V, as the
+    transmission angle of a parallelogram at 0° and 180°) kept the nearest regular step's
+    value (1° off, and 0.1° at ten times the steps).  The quantity is read at the event
+    itself (its angle located to rounding; positions there good to about √ε), and counts
+    when it passes the extreme by more than :data:`AT_EVENT`.  An included angle P–Q–R at
+    an event of the links in line at Q, within :data:`IN_LINE` of 0 or π, is that exactly.
+    ``results`` ((key, "max"|"min") → (angle, value)) is updated in place.
+    """
+    keys = [k for k in dict.fromkeys(key for key, _mode in results) if k.split(".")[0] in POSITION_KINDS]
+    if not keys or not events:
+        return
+    rows = [(key, e) for key in keys for e in events]
+    refs = np.empty(len(rows))
+    for i, (key, e) in enumerate(rows):  # a link's angle on the turn of the step nearest the event
+        v = pick(data, names, key)
+        valid = np.flatnonzero(ok & np.isfinite(v))
+        refs[i] = v[valid[np.argmin(np.abs(phi[valid] - e.angle))]] if valid.size else math.nan
+    if backend.vectorised:
+        grid = np.array([e.angle for _key, e in rows])[:, None]
+        vals = _refiner(backend, names, [key for key, _e in rows], refs)(grid)[:, 0]
+    else:
+        walk = Walk(backend, phi[0])
+        vals = np.full(len(rows), np.nan)
+        for i in sorted(range(len(rows)), key=lambda i: abs(rows[i][1].angle - phi[0])):  # along the sweep
+            vals[i] = _probe(walk, names, rows[i][0], float(refs[i]))(rows[i][1].angle)
+    size = _extent(data, ok)
+    for (key, e), x in zip(rows, vals, strict=True):
+        if not math.isfinite(float(x)):
+            continue
+        x = float(x)
+        kind = key.split(".")[0]
+        if kind == "included" and re.search(rf"in line at {re.escape(key.split('.')[2])}(?!\w)", e.subject):
+            x = 0.0 if x <= IN_LINE else math.pi if x >= math.pi - IN_LINE else x
+        margin = AT_EVENT * (1.0 if kind in ("angle", "included") else size)
+        if x > results[(key, "max")][1] + margin:
+            results[(key, "max")] = (e.angle, x)
+        if x < results[(key, "min")][1] - margin:
+            results[(key, "min")] = (e.angle, x)
+
+
+def _extent(data: dict[str, np.ndarray], ok: np.ndarray) -> float:
+    """The largest distance of a point from the points' centre at the first assembled step (m)."""
+    k = np.flatnonzero(ok)
+    if not k.size:
+        return 1.0
+    pos = data["positions"][k[0]]
+    pos = pos[np.all(np.isfinite(pos), axis=-1)]
+    if not pos.size:
+        return 1.0
+    return float(np.max(np.hypot(*(pos - pos.mean(axis=0)).T))) or 1.0
 
 
 def _into(a: float, phi: np.ndarray) -> float:

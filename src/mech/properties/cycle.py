@@ -13,7 +13,10 @@ extreme of a sweep gets.
 Limit positions (dead centres of the output: where a rocker or a slider
 reverses) and the quick-return time ratio are the sweep's own; the stroke of
 a slider is the range of its displacement, the swing of a rocker the range of
-its angle.
+its angle; a link whose angle comes round a whole turn (a parallelogram's rocker) has
+none.  Where coupler and output fold into line — at a toggle, the edge of a gap, or at a
+change point the branch passes — the transmission angle is exactly 0 or 180°: the sweep
+reads it at those events, located to rounding, as it does every extreme of a position.
 """
 
 from __future__ import annotations
@@ -226,6 +229,7 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
     import numpy as np
 
     from mech.kinematics import solve, sweep
+    from mech.kinematics.sweep_events import turns_fully
 
     options = (options or SolveOptions()).with_(angle=None)
     base = solve(mech, "position", options.with_(omega=None, direction=None, alpha=None))
@@ -241,11 +245,9 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
     angles = np.linspace(0.0, 2.0 * math.pi, steps + 1)
     sw = sweep(mech, angles, level="position", options=options, quantities=quantities or None)
     ext = {e.quantity: e for e in sw.extremes}
-    mu = ext.get(trans.quantity) if trans else None
+    mu = ext.get(trans.quantity) if trans else None  # 0 or 180° where coupler and output fold in line
     mu_min = (mu.min_value, mu.min_angle) if mu else None
     mu_max = (mu.max_value, mu.max_angle) if mu else None
-    if trans is not None:
-        mu_min, mu_max = _toggle_extremes(sw, trans, mu_min, mu_max)
     strokes: dict[str, Stroke] = {}
     turning: list[str] = []
     for (joint, kind, subject), key in zip(subjects, slides_and_links, strict=True):
@@ -253,7 +255,7 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
         if e is None:
             series = sw.series(key)
             ok = np.isfinite(series)
-            if kind == "angle" and np.any(ok) and float(np.ptp(series[ok])) >= 2 * math.pi - 1e-9:
+            if kind == "angle" and turns_fully(series, ok, sw.angles):
                 turning.append(joint)
             elif np.any(ok):  # does not move at all over the cycle
                 v = float(series[ok][0])
@@ -293,39 +295,6 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
         time_ratio_output=sw.time_ratio.output if sw.time_ratio else None,
         gaps=tuple((g.start, g.end) for g in sw.gaps),
     )
-
-
-def _toggle_extremes(
-    sw: Sweep,
-    trans: Transmission,
-    mu_min: tuple[float, float] | None,
-    mu_max: tuple[float, float] | None,
-) -> tuple[tuple[float, float] | None, tuple[float, float] | None]:
-    """Where the crank cannot turn, μ reaches 0 or 180° at the toggles of coupler and output.
-
-    A sweep's extreme next to a gap is its last assembled step; but at the
-    gap's edge (located to rounding) the coupler and the output lie in one
-    line, so the transmission angle there is exactly 0 (folded) or π
-    (extended): the side is read from the nearest assembled step.
-    """
-    import numpy as np
-
-    series = sw.series(trans.quantity)
-    ok = np.isfinite(series)
-    if not np.any(ok):
-        return mu_min, mu_max
-    links = {trans.coupler, trans.output}
-    for event in sw.toggles:
-        words = event.subject.split(" in line at ")
-        if len(words) != 2 or words[1] != trans.joint or set(words[0].split(" and ")) != links:
-            continue
-        nearest = int(np.argmin(np.where(ok, np.abs(sw.angles - event.angle), np.inf)))
-        value = math.pi if series[nearest] > math.pi / 2 else 0.0
-        if value == 0.0 and (mu_min is None or value < mu_min[0]):
-            mu_min = (value, event.angle)
-        if value == math.pi and (mu_max is None or value > mu_max[0]):
-            mu_max = (value, event.angle)
-    return mu_min, mu_max
 
 
 def stroke_joints(mech: Mechanism) -> Sequence[str]:
