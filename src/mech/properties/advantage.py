@@ -420,7 +420,8 @@ def mechanical_advantage(
         at_rest = turning_rest
         ratio = 0.0 if at_rest else w_out / rate
     else:
-        v = kin.velocity(point_name) if point_name is not None else kin.links[out_link].velocity
+        # the output link's own point there (a cam follower's contact point is a point of both links)
+        v = kin.velocity(point_name, out_link) if point_name is not None else kin.links[out_link].velocity
         speed = math.hypot(v[0], v[1])
         at_rest = _point_at_rest(mech, kin, point_name, out_link, speed)
         ratio = 0.0 if at_rest else speed / abs(rate)
