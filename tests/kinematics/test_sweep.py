@@ -433,20 +433,26 @@ def test_two_crank_five_bar_sweep_is_one_dyad_at_each_step():
     regular = ok & np.isfinite(sw.velocities[:, k, 0])
     assert np.allclose(sw.velocities[regular, k, 0], vx[regular], rtol=1e-11, atol=1e-14)
     assert np.allclose(sw.velocities[regular, k, 1], vy[regular], rtol=1e-11, atol=1e-14)
-    # reached from the drawing (90°) until |BD| = BC + CD (the couplers in line), then a gap
-    reach = d <= 0.16
-    first_out = int(np.argmin(reach[45:])) + 45
-    assert ok[45:first_out].all() and not ok[first_out:].any()
-    # the toggle, located between the steps: where |BD| = BC + CD, found here by bisection on the closed form
-    lo, hi = float(phi[first_out - 1]), float(phi[first_out])
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        if _five_bar_closed_form(mid, math.radians(270) - 2 * mid, 10.0, -20.0)[4] <= 0.16:
-            lo = mid
-        else:
-            hi = mid
-    (toggle,) = sw.toggles
-    assert toggle.angle == pytest.approx(lo, abs=1e-8) and sw.gaps[-1].start == toggle.angle
+    # the loop closes while |BD| ≤ BC + CD = 160 mm: for φ in [0, 123.6°] and [169.5°, 360°] (issue 25,
+    # item 3).  Continued from the drawing (90°) both ways and round the turn (0° is 360°: link_5 turns
+    # −2 turns as link_2 turns one), the sweep reaches every such step, and no other
+    assert np.array_equal(ok, d <= 0.16)
+    # the limits, located between the steps: where |BD| = BC + CD, found here by bisection on the closed form
+    edges = []
+    for k in np.flatnonzero(np.diff(d <= 0.16)):
+        lo, hi = float(phi[k]), float(phi[k + 1])
+        inside_lo = bool(d[k] <= 0.16)
+        for _ in range(80):
+            mid = 0.5 * (lo + hi)
+            if (_five_bar_closed_form(mid, math.radians(270) - 2 * mid, 10.0, -20.0)[4] <= 0.16) == inside_lo:
+                lo = mid
+            else:
+                hi = mid
+        edges.append(lo)
+    assert [math.degrees(e) for e in edges] == pytest.approx([123.5957396, 169.5131634], abs=1e-6)
+    assert [t.angle for t in sw.toggles] == pytest.approx(edges, abs=1e-8)
+    (gap,) = sw.gaps  # not reached, never "cannot close": Newton cannot tell another circuit's absence
+    assert (gap.start, gap.end, gap.kind) == (sw.toggles[0].angle, sw.toggles[1].angle, "not reached")
 
 
 def test_five_bar_sweep_led_by_either_crank_or_with_a_relative_drive_is_the_same_motion():

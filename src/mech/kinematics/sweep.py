@@ -75,7 +75,7 @@ from mech.kinematics.march import MAX_SPAN, Marcher
 from mech.kinematics.quantities import LEVELS, check_quantity, default_quantities, quantity_unit
 from mech.kinematics.result import Kinematics
 from mech.kinematics.solve import SINGULAR, Compiled, compiled, instant_pairs, refuse_underdriven, solve
-from mech.kinematics.sweep_backends import Closed, Newton, law_series, newton_series
+from mech.kinematics.sweep_backends import Closed, Newton, law_series, newton_series, seam_shifts
 from mech.kinematics.sweep_events import (
     circuits_note,
     find_change_points,
@@ -179,7 +179,7 @@ def sweep(
         raise InputError(f"no drive of {drive!r} to sweep", hint=f"choose {mech.drives[0].link}")
     plan = (_plan_laws if several else _plan)(mech, angles, level, options, drive)
     backend, data, fine, pick = _evaluate(plan, analyse)
-    ok, cond, singular = _masked(data, plan.prog is not None)
+    ok, cond, singular = _masked(data, plan.prog is not None, fine if plan.parameter == "angle" else None)
     keys = _quantity_keys(backend, plan, quantities)
     found = _Found()
     if analyse:
@@ -190,7 +190,7 @@ def sweep(
             for k, v in data.items()
         }
         ok, cond, singular = ok[pick], cond[pick], singular[pick]
-    _closing_notes(plan, ok, singular, found.ratio)
+    _closing_notes(plan, ok, singular, found)
     return _result(plan, backend, data, ok, cond, found)
 
 
@@ -306,6 +306,11 @@ def _evaluate(plan: _Plan, analyse: bool) -> tuple[Any, dict[str, np.ndarray], n
         backend: Any = Closed(comp, prog, w_int, plan.alpha, plan.lvl_int)
         backend.ref = _branch_reference(fine, prog.drawn_angle)
         data = backend.evaluate(fine)
+        k0 = int(np.argmin(np.abs(fine - backend.ref)))
+        shift = seam_shifts(fine, data["assembled"], k0)
+        if np.any(shift):  # the drawing's stretch goes on through 0° ≡ 360°: count its branch that way
+            backend.steps, backend.shift = fine, shift
+            data = backend.evaluate(fine)
         notes.append("closed form: " + "; ".join(prog.steps))
     else:
         backend = Newton(plan.mech, comp, plan.options, w_int, plan.alpha, plan.lvl_int)
@@ -325,8 +330,13 @@ def _branch_reference(phi: np.ndarray, drawn: float) -> float:
     return drawn + _TWO_PI * round(float(phi[k0] - drawn) / _TWO_PI)
 
 
-def _masked(data: dict[str, np.ndarray], closed: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """NaN where not assembled (and rates where singular), link angles unwrapped; (ok, condition, singular)."""
+def _masked(
+    data: dict[str, np.ndarray], closed: bool, phi: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """NaN where not assembled (and rates where singular), link angles unwrapped; (ok, condition, singular).
+
+    ``phi``: the drive angles, when they are a crank's (a full turn joins its last run to its first).
+    """
     ok = data["assembled"]
     cond = np.where(ok, data["condition"], np.nan)
     singular = ok & (cond > (ACCURATE_COND if closed else SINGULAR))
@@ -335,7 +345,7 @@ def _masked(data: dict[str, np.ndarray], closed: bool) -> tuple[np.ndarray, np.n
     for key in ("velocities", "omegas", "sliding", "accelerations", "alphas"):
         if key in data:
             data[key] = np.where(_expand(ok & ~singular, data[key]), data[key], np.nan)
-    data["link_angles"] = _unwrap(data["link_angles"], ok)
+    data["link_angles"] = _unwrap(data["link_angles"], ok, phi)
     return ok, cond, singular
 
 
@@ -383,18 +393,11 @@ def _at_text(plan: _Plan, value: float) -> str:
     return f"{to_unit(value, plan.mech.length_unit):.6g} {plan.mech.length_unit}"
 
 
-def _closing_notes(plan: _Plan, ok: np.ndarray, singular: np.ndarray, ratio: TimeRatio | None) -> None:
-    """Notes on the steps asked: rates left out next to a toggle, separate circuits, a quick return."""
-    notes = plan.notes
+def _closing_notes(plan: _Plan, ok: np.ndarray, singular: np.ndarray, found: _Found) -> None:
+    """Notes on the steps asked: rates left out where singular, separate circuits, a quick return."""
+    notes, ratio = plan.notes, found.ratio
     if np.any(singular):
-        where = (
-            "a toggle or change point" if any(n.startswith("change point at") for n in notes) else "a toggle"
-        )
-        notes.append(
-            f"{int(np.sum(singular))} step(s) next to {where} (condition number above "
-            f"{ACCURATE_COND if plan.prog is not None else SINGULAR:.0e}): velocities and accelerations there "
-            "would be good to less than 1e-6 and are not reported"
-        )
+        _singular_note(plan, singular, found)
     circuits = (
         circuits_note(plan.phi, ok, plan.comp.drawn.drive_angles[plan.lead or 0])
         if plan.parameter == "angle"
@@ -405,6 +408,32 @@ def _closing_notes(plan: _Plan, ok: np.ndarray, singular: np.ndarray, ratio: Tim
     if ratio is not None and abs(ratio.ratio - 1.0) > 1e-9:
         notes.append(
             f"quick return: {ratio.output} strokes take {math.degrees(ratio.slow):.4f}° and {math.degrees(ratio.fast):.4f}° of crank (ratio {ratio.ratio:.6g})"
+        )
+
+
+def _singular_note(plan: _Plan, singular: np.ndarray, found: _Found) -> None:
+    """Say where rates are left out, and why: next to a toggle or change point, or — where no event
+    is near — because the equations are that badly scaled (a 1e12:1 gear train is ill-conditioned at
+    every angle; it is no toggle)."""
+    phi = plan.phi
+    events = np.array([e.angle for e in (*found.toggles, *found.changes)])
+    width = np.abs(np.gradient(phi)) * 1.5 if phi.size > 1 else np.ones(1)
+    near = np.zeros(phi.size, bool)
+    if events.size:
+        apart = phi[:, None] - events[None, :]
+        if plan.parameter == "angle":  # 0° and 360° are one crank position: an event at one is at both
+            apart = np.remainder(apart + math.pi, _TWO_PI) - math.pi
+        near = np.min(np.abs(apart), axis=1) <= width
+    bound = f"{ACCURATE_COND if plan.prog is not None else SINGULAR:.0e}"
+    lost = "velocities and accelerations there would be good to less than 1e-6 and are not reported"
+    by_event, elsewhere = int(np.sum(singular & near)), int(np.sum(singular & ~near))
+    if by_event:
+        where = "a toggle or change point" if found.changes else "a toggle"
+        plan.notes.append(f"{by_event} step(s) next to {where} (condition number above {bound}): {lost}")
+    if elsewhere:
+        plan.notes.append(
+            f"{elsewhere} step(s) where the constraint equations' condition number is above {bound} with no "
+            "toggle or change point near (links or gear ratios of very different scales): " + lost
         )
 
 
@@ -592,13 +621,24 @@ def _expand(mask: np.ndarray, arr: np.ndarray) -> np.ndarray:
     return mask.reshape(mask.shape + (1,) * (arr.ndim - mask.ndim))
 
 
-def _unwrap(a: np.ndarray, ok: np.ndarray) -> np.ndarray:
-    """Link angles continuous along each assembled run (no 2π jumps), first value in [0, 2π)."""
+def _unwrap(a: np.ndarray, ok: np.ndarray, phi: np.ndarray | None = None) -> np.ndarray:
+    """Link angles continuous along each assembled run (no 2π jumps), first value in [0, 2π).
+
+    Over a full turn of a crank (``phi``) whose first and last steps are assembled, the first
+    and last runs are one stretch of the motion, through 360° ≡ 0° (the two-crank five-bar:
+    169.5°–360° then 0°–123.6°): the first run continues the last, so that angles on either
+    side of a gap are on one turn.
+    """
     out = a.copy()
-    for start, end in runs(ok):
+    spans = runs(ok)
+    for start, end in spans:
         run = np.unwrap(out[start:end], axis=0)
         run -= np.floor(run[0] / _TWO_PI) * _TWO_PI
         out[start:end] = run
+    full = phi is not None and phi.size > 2 and abs(abs(float(phi[-1] - phi[0])) - _TWO_PI) < 1e-9
+    if full and len(spans) > 1 and spans[0][0] == 0 and spans[-1][1] == ok.size:
+        (s0, e0), last = spans[0], out[spans[-1][1] - 1]
+        out[s0:e0] += _TWO_PI * np.round((last - out[s0]) / _TWO_PI)
     return out
 
 

@@ -89,17 +89,30 @@ def circuits_note(phi: np.ndarray, ok: np.ndarray, drawn: float | None) -> str |
     return f"the assembled ranges {ranges} are separate circuits, and none holds the drawn angle"
 
 
+#: What a Newton sweep says of a limit it meets, and of the stretch beyond it.
+LIMIT = "a limit: the motion from the drawing goes no further (links in line)"
+UNREACHED = "the continuation from the drawing stops at a limit position (links in line)"
+
+
 def find_gaps(
     backend: Any, phi: np.ndarray, data: dict[str, np.ndarray], ok: np.ndarray
 ) -> tuple[tuple[Gap, ...], tuple[Event, ...]]:
-    """Unassembled runs, their edges located as toggles (closed form: bisection on the discriminant)."""
+    """Unassembled runs, their edges located as toggles.
+
+    Closed form: the loop cannot close there (a dyad's discriminant is negative), and each
+    edge is bisected on the discriminant.  Newton: the stretch was not reached — the
+    continuation from the drawing (round the parameter's period too, where it has one) stops
+    at a limit, located between the steps where the series was marched; the loop may still
+    close there on another circuit, so it is never called unable to (:attr:`Gap.cannot_close`).
+    """
     gaps: list[Gap] = []
     toggles: list[Event] = []
     prog = getattr(backend, "prog", None)
+    marched = getattr(backend, "marcher", None) is not None
     for s, e in runs(~ok):
         miss = data["miss"][s:e]
         worst = int(np.argmax(np.max(miss, axis=0))) if miss.size else 0
-        what = prog.dyads[worst][2] if prog is not None and prog.dyads else "the loop cannot close"
+        what = prog.dyads[worst][2] if prog is not None and prog.dyads else UNREACHED
         start, end = float(phi[s]), float(phi[e - 1])
         if prog is not None:
             if s > 0:
@@ -108,16 +121,14 @@ def find_gaps(
             if e < phi.size:
                 end = _edge(backend, phi[e], phi[e - 1])
                 toggles.append(Event("toggle", end, what))
-        elif getattr(backend, "lead", None) is not None and backend.marcher is not None:
-            # drives on linear laws: the limits the continuation reaches, bisected between the steps
-            what = "a limit: the loop cannot close beyond (links in line)"
+        elif marched:  # the limits the continuation reaches, located between the steps
             if s > 0:
-                start = backend.marcher.edge(s - 1, phi[s])
-                toggles.append(Event("toggle", start, what))
+                start = backend.edge(s - 1, phi[s])
+                toggles.append(Event("toggle", start, LIMIT))
             if e < phi.size:
-                end = backend.marcher.edge(e, phi[e - 1])
-                toggles.append(Event("toggle", end, what))
-        gaps.append(Gap(start, end, float(np.max(miss)) if miss.size else math.nan, what))
+                end = backend.edge(e, phi[e - 1])
+                toggles.append(Event("toggle", end, LIMIT))
+        gaps.append(Gap(start, end, float(np.max(miss)) if miss.size else math.nan, what, prog is not None))
     return tuple(gaps), tuple(sorted(toggles, key=lambda t: t.angle))
 
 
@@ -164,7 +175,7 @@ def _newton_change_points(backend: Any, phi: np.ndarray, ok: np.ndarray) -> tupl
     σ_min/σ_max along the steps, refined by :func:`zoom`) and said.
     """
     marcher = backend.marcher
-    rc = marcher.inverse_condition(marcher.solved[1])
+    rc = marcher.inverse_condition(backend.solved_q())
     rows = []
     for s, e in runs(ok & np.isfinite(rc)):
         for k in range(s + 1, e - 1):
@@ -177,7 +188,7 @@ def _newton_change_points(backend: Any, phi: np.ndarray, ok: np.ndarray) -> tupl
     hi = np.array([phi[k + 1] for k in rows], float)
 
     def fn(grid: np.ndarray) -> np.ndarray:
-        q, conv = marcher.corrected(grid.ravel())
+        q, conv = backend.corrected(grid.ravel())
         val = marcher.inverse_condition(np.where(conv[:, None], q, np.nan))
         return val.reshape(grid.shape)
 
@@ -399,7 +410,7 @@ def turns_fully(v: np.ndarray, valid: np.ndarray, phi: np.ndarray) -> bool:
     if not np.any(valid):
         return False
     span = float(np.max(v[valid]) - np.min(v[valid]))
-    turn = phi.size > 2 and abs(abs(phi[-1] - phi[0]) - _TWO_PI) < 1e-9 and bool(valid[0] and valid[-1])
+    turn = phi.size > 2 and abs(abs(phi[-1] - phi[0]) - _TWO_PI) < 1e-9 and bool(np.all(valid))
     return span >= _TWO_PI - FULL_TURN or (turn and abs(float(v[-1] - v[0])) >= _TWO_PI - FULL_TURN)
 
 
@@ -532,14 +543,22 @@ def _at_events(
         v = pick(data, names, key)
         valid = np.flatnonzero(ok & np.isfinite(v))
         refs[i] = v[valid[np.argmin(np.abs(phi[valid] - e.angle))]] if valid.size else math.nan
+    # Newton does not converge on a limit itself (its Jacobian is singular there): the nearest
+    # angles either side that it does, 1e-12 … 1e-8 rad away (a position there is √δ off)
+    nudges = np.array([0.0, -1e-12, 1e-12, -1e-10, 1e-10, -1e-8, 1e-8])
     if backend.vectorised:
-        grid = np.array([e.angle for _key, e in rows])[:, None]
-        vals = _refiner(backend, names, [key for key, _e in rows], refs)(grid)[:, 0]
+        at = np.array([e.angle for _key, e in rows])
+        grid = at[:, None] + nudges[None, :] * np.maximum(1.0, np.abs(at))[:, None]
+        tries = _refiner(backend, names, [key for key, _e in rows], refs)(grid)
+        vals = tries[np.arange(len(rows)), np.argmax(np.isfinite(tries), axis=1)]
     else:
         walk = Walk(backend, phi[0])
         vals = np.full(len(rows), np.nan)
         for i in sorted(range(len(rows)), key=lambda i: abs(rows[i][1].angle - phi[0])):  # along the sweep
-            vals[i] = _probe(walk, names, rows[i][0], float(refs[i]))(rows[i][1].angle)
+            for nudge in nudges * max(1.0, abs(rows[i][1].angle)):
+                vals[i] = _probe(walk, names, rows[i][0], float(refs[i]))(rows[i][1].angle + nudge)
+                if math.isfinite(float(vals[i])):
+                    break
     size = _extent(data, ok)
     for (key, e), x in zip(rows, vals, strict=True):
         if not math.isfinite(float(x)):

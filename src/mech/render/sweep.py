@@ -114,7 +114,7 @@ def sweep_json(
         {"file", "mechanism", "level", "method", "drive", "steps",
          "range": [from°, to°], "omega": rad/s | null, "alpha",
          "units": {...},
-         "gaps": [{"from", "to", "miss" [length], "what"}],
+         "gaps": [{"from", "to", "kind": "cannot close" | "not reached", "miss" [length], "what"}],
          "toggles": [{"angle", "what"}],
          "change_points": [{"angle", "what", "continued"}],   # only when one is passed
          "dead_centres": [{"angle", "output", "position" [length or angle]}],
@@ -146,7 +146,13 @@ def sweep_json(
             "angular_acceleration": units.angular_acceleration,
         },
         "gaps": [
-            {"from": at(g.start), "to": at(g.end), "miss": _conv(g.miss, "m", units), "what": g.what}
+            {
+                "from": at(g.start),
+                "to": at(g.end),
+                "kind": g.kind,
+                "miss": _conv(g.miss, "m", units),
+                "what": g.what,
+            }
             for g in sw.gaps
         ],
         "toggles": [{"angle": at(t.angle), "what": t.subject} for t in sw.toggles],
@@ -237,9 +243,9 @@ def sweep_table(sw: Sweep, console: ReportConsole, *, units: OutputUnits) -> Non
         for g in sw.gaps:
             miss = _conv(g.miss, "m", units)
             gap = f", misses by {miss:.4g} {format_unit(units.length)}" if miss is not None else ""
+            said = "cannot be assembled" if g.cannot_close else "not reached"
             console.print(
-                f"  cannot be assembled from {_par_text(sw, units, g.start, 6)} to "
-                f"{_par_text(sw, units, g.end, 6)}: {g.what}{gap}"
+                f"  {said} from {_par_text(sw, units, g.start, 6)} to {_par_text(sw, units, g.end, 6)}: {g.what}{gap}"
             )
     else:
         console.print("  assembled at every step")
