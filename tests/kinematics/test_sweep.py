@@ -340,10 +340,10 @@ def test_steps_over_half_a_turn_beyond_the_budget_are_refused():
 def test_steps_too_many_to_resolve_say_events_may_be_missed(monkeypatch):
     import importlib
 
-    sweep_module = importlib.import_module("mech.kinematics.sweep")
+    grid_module = importlib.import_module("mech.kinematics.sweep_grid")
 
     # A budget that holds the 5 angles asked but not the 721 of a 1° grid over 0..720°.
-    monkeypatch.setattr(sweep_module, "MEMORY_BUDGET", 5 * 2000)
+    monkeypatch.setattr(grid_module, "MEMORY_BUDGET", 5 * 2000)
     m = four_bar(0.04, 0.15, 0.08, 0.15, angle=math.radians(60), omega=-4 * math.pi)
     s = sweep(m, np.radians(np.linspace(0.0, 720.0, 5)))
     assert any("may be missed" in n for n in s.notes), s.notes

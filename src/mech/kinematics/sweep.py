@@ -43,7 +43,7 @@ Rules the results keep:
   a quantity that comes back to its first value is taken as periodic (a
   2:1 wheel is not); nothing is extrapolated beyond the range swept.
 * **Bounded memory.**  A sweep whose arrays would exceed
-  :data:`MEMORY_BUDGET` (1 GiB, estimated per angle from the chain) is
+  :data:`~.sweep_grid.MEMORY_BUDGET` (1 GiB, estimated per angle from the chain) is
   refused before solving, with the number of angles that fit.
 
 The quick-return time ratio is the crank angle of the slow stroke over that
@@ -57,20 +57,21 @@ The work is split by job: :mod:`.sweep_result` (what is returned),
 :mod:`.quantities` (keys and units), :mod:`.sweep_backends` (closed form,
 Newton), :mod:`.sweep_events` (what is found) and :mod:`.roots` (the
 refinements' root finders); this module is the driver and the limits of the
-grid it analyses (:data:`MEMORY_BUDGET`, :data:`RESOLVE`, :data:`ANGLE_PRECISION`).
+grid it analyses, whose limits (``MEMORY_BUDGET``, ``RESOLVE``, ``ANGLE_PRECISION``) are in
+:mod:`.sweep_grid`.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
 from mech._records import dataclass
 from mech.errors import InputError, UnsupportedError
-from mech.kinematics.dyads import ACCURATE_COND, DyadProgram, numpy_namespace, program
+from mech.kinematics.dyads import ACCURATE_COND, DyadProgram, program
 from mech.kinematics.march import MAX_SPAN, Marcher
 from mech.kinematics.quantities import LEVELS, check_quantity, default_quantities, quantity_unit
 from mech.kinematics.result import Kinematics
@@ -84,6 +85,13 @@ from mech.kinematics.sweep_events import (
     find_gaps,
     find_time_ratio,
     runs,
+)
+from mech.kinematics.sweep_grid import (
+    RESOLVE,
+    analysis_grid,
+    check_memory,
+    check_position_precision,
+    check_precision,
 )
 from mech.kinematics.sweep_result import DriveLaw, Event, Extreme, Gap, Sweep, TimeRatio, frozen
 from mech.model import Mechanism
@@ -277,8 +285,8 @@ def _plan(
         raise UnsupportedError(
             f"{mech.label} does not decompose into dyads driven by one crank", hint="use method auto"
         )
-    _check_precision(phi)
-    _check_memory(comp, prog, phi.size, max(lvl, 1))
+    check_precision(phi)
+    check_memory(comp, prog, phi.size, max(lvl, 1))
     return _Plan(
         mech,
         comp,
@@ -300,7 +308,7 @@ def _evaluate(plan: _Plan, analyse: bool) -> tuple[Any, dict[str, np.ndarray], n
     comp, prog, notes = plan.comp, plan.prog, plan.notes
     if plan.lead is not None:
         return _evaluate_laws(plan, analyse)
-    fine, pick = _analysis_grid(plan.phi, comp, prog, plan.lvl_int, notes) if analyse else (plan.phi, None)
+    fine, pick = analysis_grid(plan.phi, comp, prog, plan.lvl_int, notes) if analyse else (plan.phi, None)
     w_int = plan.omega if plan.omega else 1.0  # velocities are needed for dead centres even at position level
     if prog is not None:
         backend: Any = Closed(comp, prog, w_int, plan.alpha, plan.lvl_int)
@@ -475,148 +483,6 @@ def _result(
     )
 
 
-MEMORY_BUDGET = 1 << 30
-"""Bytes a sweep's arrays may take (1 GiB); more angles are refused before solving."""
-
-
-def _per_angle(comp: Compiled, prog: DyadProgram | None, lvl: int) -> int:
-    """Bytes a sweep keeps per angle (an estimate, on the safe side; see :func:`_check_memory`)."""
-    if prog is not None:
-        with np.errstate(all="ignore"):
-            outputs = len(prog.raw(np.zeros(1), 1.0, 0.0, level=lvl, xp=numpy_namespace()))
-        return 20 * outputs + 128
-    sys_ = comp.system
-    values = (lvl + 1) * (2 * len(sys_.loc_names) + len(sys_.links)) + 2 * len(comp.layout.paths)
-    return 1200 + 32 * values
-
-
-def _check_memory(comp: Compiled, prog: DyadProgram | None, n: int, lvl: int) -> None:
-    """Refuse a sweep whose arrays would exceed :data:`MEMORY_BUDGET` (an estimate, kept on the safe side).
-
-    Closed form: the generated program's outputs and what is derived from them,
-    about 20 bytes per output per angle (measured: 650 bytes per angle for a
-    four-bar at velocity level, 1,360 for a six-bar at acceleration level).
-    Newton: one small record per step, about 1,200 bytes plus 32 per value kept.
-    """
-    per = _per_angle(comp, prog, lvl)
-    if n * per <= MEMORY_BUDGET:
-        return
-    fit = MEMORY_BUDGET // per
-    raise InputError(
-        f"a sweep of {n:,} angles would need about {n * per / 2**30:.1f} GiB for its arrays "
-        f"({per:,} bytes per angle for {comp.mech.label}), more than the {MEMORY_BUDGET / 2**30:g} GiB "
-        f"a sweep may use",
-        hint=f"give at most {fit:,} angles (--steps {fit - 1}), or sweep the range in parts",
-    )
-
-
-#: The analysis grid's largest step (rad): events (dead centres, extremes, gaps) are looked
-#: for between angles at most this far apart, whatever steps the series is printed at.
-RESOLVE = math.radians(1.0)
-#: The float spacing (rad) the largest angle of a sweep may have: beyond it (angles past
-#: about 2.6e8°) an angle is not known well enough to locate anything on it.
-ANGLE_PRECISION = 1e-9
-
-
-def _check_precision(phi: np.ndarray) -> None:
-    """Refuse angles so large that their float spacing exceeds :data:`ANGLE_PRECISION`."""
-    big = float(np.max(np.abs(phi)))
-    spacing = float(np.spacing(big))
-    if spacing > ANGLE_PRECISION:
-        raise InputError(
-            f"crank angles as large as {math.degrees(big):.4g}° are held only to "
-            f"{math.degrees(spacing):.2g}° in floating point: nothing on them can be located",
-            hint="sweep the same crank positions nearer 0 (subtract whole turns of 360°)",
-        )
-
-
-#: The float spacing, relative to the mechanism's size, the farthest position of a slider's
-#: stroke may have: beyond it the slider's place is not known well enough to locate anything.
-POSITION_PRECISION = 1e-9
-
-
-def _check_position_precision(s: np.ndarray, size: float, fmt: Callable[[float], str]) -> None:
-    """Refuse slider positions so far out that their float spacing exceeds :data:`POSITION_PRECISION` of the size."""
-    big = float(np.max(np.abs(s)))
-    spacing = float(np.spacing(big))
-    if spacing > POSITION_PRECISION * size:
-        raise InputError(
-            f"slider positions as far out as {fmt(big)} are held only to {fmt(spacing)} in floating "
-            f"point, on a mechanism {fmt(size)} across: nothing on them can be located",
-            hint="sweep a stroke within the slider's reach (--from/--to in the file's length unit)",
-        )
-
-
-def _analysis_grid(
-    phi: np.ndarray,
-    comp: Compiled,
-    prog: DyadProgram | None,
-    lvl: int,
-    notes: list[str],
-    resolve: float = RESOLVE,
-    position: Callable[[float], str] | None = None,
-) -> tuple[np.ndarray, np.ndarray | None]:
-    """The angles to analyse: ``phi`` with each step cut into parts of at most :data:`RESOLVE`.
-
-    Returns the grid and the indices of ``phi``'s angles in it (None when no step
-    needed cutting).  Two dead centres between two steps leave no sign change to
-    refine, so a sweep of 3 steps over two turns saw 2 of its 4; on the finer grid
-    it sees them all.  When the finer grid would exceed the memory budget the
-    steps given are analysed: a step of more than half a turn is then refused
-    (the motion between its ends is unknown), a smaller one gets a note that
-    events between steps may be missed.  A slider's stroke (``position`` formats its
-    lengths) is never refused for its steps: it gets the note.
-    """
-    if phi.size < 2:
-        return phi, None
-    widths = np.abs(np.diff(phi))
-    # counted in floats first: a step of 1e30 m (a slider's stroke) has more parts than int64 holds
-    parts_f = np.maximum(1.0, np.ceil(widths / resolve * (1.0 - 1e-12)))
-    if float(parts_f.max()) == 1.0:
-        return phi, None
-    total_f = float(parts_f.sum()) + 1.0
-    per = _per_angle(comp, prog, lvl)
-    if total_f * per > MEMORY_BUDGET:
-        notes.append(_steps_as_given(phi, widths, total_f, per, position))
-        return phi, None
-    parts = parts_f.astype(np.int64)
-    total = int(total_f)
-    starts = np.concatenate(([0], np.cumsum(parts)))
-    offset = np.arange(total - 1) - np.repeat(starts[:-1], parts)
-    fine = np.repeat(phi[:-1], parts) + np.repeat(np.diff(phi) / parts, parts) * offset
-    return np.append(fine, phi[-1]), starts
-
-
-def _steps_as_given(
-    phi: np.ndarray, widths: np.ndarray, total: float, per: int, position: Callable[[float], str] | None
-) -> str:
-    """The note for a sweep analysed at its own steps, or the refusal when a crank's step is too wide.
-
-    A crank's step of more than half a turn leaves its motion between the ends unknown, so it is
-    refused; a narrower one, or any step of a slider's stroke (``position`` formats it), is
-    analysed as given with a note.
-    """
-    widest = float(widths.max())
-    if position is not None:
-        return (
-            f"steps of {position(widest)} analysed as given (a finer grid would exceed the memory "
-            "budget): a dead centre or extreme between two steps may be missed; give more --steps"
-        )
-    span = math.degrees(abs(float(phi[-1] - phi[0])))
-    fit = max(int(MEMORY_BUDGET // per) - 1, 1)
-    if math.degrees(widest) > 180.0:
-        raise InputError(
-            f"steps of {math.degrees(widest):.4g}° are more than half a turn: the crank's motion between "
-            f"them is unknown, and resolving it ({total:,.0f} angles at 1°) exceeds the memory a sweep may use",
-            hint=f"give at least --steps {math.ceil(span / 180.0)} (1° steps: --steps "
-            f"{math.ceil(span * (1 - 1e-12))}), at most {fit:,}; or sweep the range in parts",
-        )
-    return (
-        f"steps of {math.degrees(widest):.4g}° analysed as given (a 1° grid would exceed the memory budget): "
-        "a dead centre or extreme between two steps may be missed; give more --steps to resolve it"
-    )
-
-
 def _expand(mask: np.ndarray, arr: np.ndarray) -> np.ndarray:
     return mask.reshape(mask.shape + (1,) * (arr.ndim - mask.ndim))
 
@@ -705,11 +571,11 @@ def _plan_laws(
     if phi.size == 0 or not np.all(np.isfinite(phi)):
         raise InputError("the sweep needs at least one finite value of its parameter")
     if parameter == "angle":
-        _check_precision(phi)
+        check_precision(phi)
     else:
         unit = mech.length_unit
-        _check_position_precision(phi, comp.drawn.scale, lambda x: f"{to_unit(x, unit):.4g} {unit}")
-    _check_memory(comp, None, phi.size, max(lvl, 1))
+        check_position_precision(phi, comp.drawn.scale, lambda x: f"{to_unit(x, unit):.4g} {unit}")
+    check_memory(comp, None, phi.size, max(lvl, 1))
     omega = laws[0].rate if parameter == "angle" else None
     alpha = (d.alpha or 0.0) if d.link is not None else (d.accel or 0.0)
     return _Plan(
@@ -793,7 +659,7 @@ def _evaluate_laws(
     resolve = RESOLVE * marcher.law.span / MAX_SPAN  # 1° of the fastest drive (or 1.7% of the size)
     length = plan.mech.length_unit
     fine, pick = (
-        _analysis_grid(
+        analysis_grid(
             plan.phi,
             plan.comp,
             None,
