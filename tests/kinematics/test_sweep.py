@@ -579,3 +579,25 @@ def test_newton_sweep_of_the_double_parallelogram_says_where_its_jacobian_loses_
     (c,) = s.change_points
     assert math.degrees(c.angle) == pytest.approx(180.0, abs=1e-6)
     assert "loses rank" in c.subject
+
+
+def test_a_rate_that_grows_without_bound_toward_a_toggle_has_an_infinite_extreme(run):
+    # Khurmi's six-link slider: the loop stops closing where the rod stands at right angles to the
+    # slider's path (27.59° and 250.05°).  There the rod cannot drive the slider: with the crank at a
+    # steady speed, ω_rod = (v_B · u)/(l cos β) (u along the path, β the rod's angle from the path's
+    # normal) grows like Δθ^(−1/2) toward β = 0, and its extremes are ±∞ at the toggles, not the last
+    # regular step's 257 rad/s a degree away (issue 25, item 5).  The lever, behind the rod in the
+    # chain, keeps finite extremes.
+    m = mech.load(ROOT / "mechanisms" / "khurmi_six_link_slider.yaml")
+    sw = sweep(m, quantities=["omega.rod", "omega.lever", "angle.rod"])
+    toggles = sorted(t.angle for t in sw.toggles)
+    ext = {e.quantity: e for e in sw.extremes}
+    rod = ext["omega.rod"]
+    assert (rod.max_value, rod.min_value) == (math.inf, -math.inf)
+    assert sorted((rod.max_angle, rod.min_angle)) == pytest.approx(toggles, abs=1e-12)
+    assert all(math.isfinite(v) for v in (ext["omega.lever"].max_value, ext["omega.lever"].min_value))
+    # where the rod is at right angles to the path (the toggle), its angle is 270° exactly to √ε
+    assert math.degrees(ext["angle.rod"].min_value) == pytest.approx(270.0, abs=1e-5)
+    assert any("omega.rod grows without bound toward the toggle" in n for n in sw.notes)
+    table = run("sweep", str(ROOT / "mechanisms" / "khurmi_six_link_slider.yaml"), "--quantity", "omega.rod")
+    assert "∞ (toggle)" in table.output and "−∞ (toggle)" in table.output

@@ -85,6 +85,7 @@ from mech.kinematics.sweep_events import (
     find_gaps,
     find_time_ratio,
     runs,
+    unbounded_notes,
 )
 from mech.kinematics.sweep_grid import (
     RESOLVE,
@@ -390,6 +391,7 @@ def _find(
     dead, outputs = find_dead_centres(backend, plan.comp, fine, data, ok, names)
     # an extreme of a position may lie at a toggle or change point, where refinement cannot look
     extremes = find_extremes(backend, fine, data, ok & ~singular, names, keys, toggles + changes, ok)
+    plan.notes.extend(unbounded_notes(extremes, lambda a: _at_text(plan, a)))  # rates ∞ at a toggle
     ratio = find_time_ratio(fine, ok, dead, outputs) if plan.lead is None else None
     return _Found(gaps, toggles, dead, extremes, ratio, changes)
 

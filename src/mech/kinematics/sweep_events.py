@@ -32,6 +32,7 @@ __all__ = [
     "find_gaps",
     "find_time_ratio",
     "runs",
+    "unbounded_notes",
 ]
 
 _TWO_PI = 2.0 * math.pi
@@ -505,6 +506,7 @@ def find_extremes(
             (float(ang[i]), float(x)) if better and math.isfinite(x) else (float(phi[r[2]]), r[5])
         )
     _at_events(backend, phi, data, ok, names, results, events)
+    _unbounded(backend, names, results, [e for e in events if e.kind == "toggle"])
     out = []
     for key in dict.fromkeys(r[0] for r in rows):
         (amax, vmax), (amin, vmin) = results[(key, "max")], results[(key, "min")]
@@ -572,6 +574,63 @@ def _at_events(
             results[(key, "max")] = (e.angle, x)
         if x < results[(key, "min")][1] - margin:
             results[(key, "min")] = (e.angle, x)
+
+
+#: Rates: undefined at a toggle, and most grow without bound toward one.
+RATE_KINDS = ("omega", "alpha", "velocity", "acceleration", "sliding")
+#: How near a toggle (rad, or of the parameter's size) a rate is read to see whether it grows
+#: without bound: there the configuration is still regular (condition about 1e3 to 1e4).
+TOWARD = (1e-6, 1e-7)
+
+
+def _unbounded(
+    backend: Any,
+    names: dict[str, tuple[str, ...]],
+    results: dict[tuple[str, str], tuple[float, float]],
+    toggles: Sequence[Event],
+) -> None:
+    """A rate that grows without bound toward a toggle has an infinite extreme there.
+
+    At a toggle the links in line cannot pass the motion on: velocities there grow like
+    Δθ^(−1/2), accelerations like Δθ^(−3/2), and the largest value over the sweep is ∞,
+    not the last regular step's (the rod of Khurmi's six-link slider: 257 rad/s a degree
+    away).  Each rate is read 1e-6 and 1e-7 rad from each toggle, on the side that closes:
+    where it is larger than its extreme and grew more than twice as the distance shrank
+    tenfold (√10 for a velocity; a rate that stays finite barely moves), the extreme is
+    ±∞ at the toggle.  ``results`` is updated in place.
+    """
+    keys = [k for k in dict.fromkeys(key for key, _mode in results) if k.split(".")[0] in RATE_KINDS]
+    if not keys or not toggles or not backend.vectorised:
+        return
+    rows = [(key, t) for key in keys for t in toggles]
+    at = np.array([t.angle for _key, t in rows])
+    scale = np.maximum(1.0, np.abs(at))
+    steps = np.array([-TOWARD[0], -TOWARD[1], TOWARD[0], TOWARD[1]])
+    grid = at[:, None] + steps[None, :] * scale[:, None]
+    vals = _refiner(backend, names, [key for key, _t in rows], np.full(len(rows), np.nan), regular=True)(grid)
+    for (key, t), (far_l, near_l, far_r, near_r) in zip(rows, vals, strict=True):
+        for far, near in ((far_l, near_l), (far_r, near_r)):
+            if not (math.isfinite(far) and math.isfinite(near)) or abs(near) <= 2.0 * abs(far):
+                continue
+            mode = "max" if near > 0 else "min"
+            if abs(near) > abs(results[(key, mode)][1]):
+                results[(key, mode)] = (t.angle, math.copysign(math.inf, near))
+
+
+def unbounded_notes(extremes: Sequence[Extreme], at: Callable[[float], str]) -> list[str]:
+    """A note for each infinite extreme (:func:`_unbounded`), ``at`` writing the parameter."""
+    out = []
+    for ex in extremes:
+        for word, angle, value in (
+            ("largest", ex.max_angle, ex.max_value),
+            ("least", ex.min_angle, ex.min_value),
+        ):
+            if math.isinf(value):
+                sign = "" if value > 0 else "−"
+                out.append(
+                    f"{ex.quantity} grows without bound toward the toggle at {at(angle)}: its {word} value is {sign}∞"
+                )
+    return out
 
 
 def _extent(data: dict[str, np.ndarray], ok: np.ndarray) -> float:

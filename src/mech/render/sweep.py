@@ -50,6 +50,13 @@ def _deg(a: float) -> float:
     return math.degrees(a)
 
 
+def _cell(shown: float | None, value: float) -> str:
+    """An extreme in the table: its number, or ∞ where a rate grows without bound toward a toggle."""
+    if math.isinf(value):
+        return "∞ (toggle)" if value > 0 else "−∞ (toggle)"
+    return f"{shown:.6g}" if shown is not None else "–"
+
+
 def _par(sw: Sweep, units: OutputUnits) -> Any:
     """The sweep's parameter in output units: a crank's angle in degrees, a slider's position in --units."""
     if sw.parameter == "angle":
@@ -290,9 +297,9 @@ def sweep_table(sw: Sweep, console: ReportConsole, *, units: OutputUnits) -> Non
             mx, mn = _conv(ex.max_value, ex.unit, units), _conv(ex.min_value, ex.unit, units)
             table.add_row(
                 ex.quantity,
-                f"{mx:.6g}" if mx is not None else "–",
+                _cell(mx, ex.max_value),
                 _par_text(sw, units, ex.max_angle, 4),
-                f"{mn:.6g}" if mn is not None else "–",
+                _cell(mn, ex.min_value),
                 _par_text(sw, units, ex.min_angle, 4),
                 format_unit(unit),
             )
