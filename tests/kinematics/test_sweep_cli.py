@@ -502,5 +502,8 @@ drive: {link: pinion, rpm: 1200, direction: cw}
     result = run("sweep", str(write(text)), "--steps", "36")
     assert result.exit_code == 0, result.output
     said = " ".join(result.output.split())  # as printed, lines wrapped at the terminal's width
-    assert "toggle" not in said.replace("no toggle or change point near", "")
-    assert "no toggle or change point near (links or gear ratios of very different scales)" in said
+    assert "toggle" not in said.replace("no toggle or change point", "")
+    assert (
+        "at every angle, with no toggle or change point (links or gear ratios of very different scales)"
+        in said
+    )

@@ -407,7 +407,7 @@ def _closing_notes(plan: _Plan, ok: np.ndarray, singular: np.ndarray, found: _Fo
     """Notes on the steps asked: rates left out where singular, separate circuits, a quick return."""
     notes, ratio = plan.notes, found.ratio
     if np.any(singular):
-        _singular_note(plan, singular, found)
+        _singular_note(plan, ok, singular, found)
     circuits = (
         circuits_note(plan.phi, ok, plan.comp.drawn.drive_angles[plan.lead or 0])
         if plan.parameter == "angle"
@@ -421,30 +421,21 @@ def _closing_notes(plan: _Plan, ok: np.ndarray, singular: np.ndarray, found: _Fo
         )
 
 
-def _singular_note(plan: _Plan, singular: np.ndarray, found: _Found) -> None:
-    """Say where rates are left out, and why: next to a toggle or change point, or — where no event
-    is near — because the equations are that badly scaled (a 1e12:1 gear train is ill-conditioned at
-    every angle; it is no toggle)."""
-    phi = plan.phi
-    events = np.array([e.angle for e in (*found.toggles, *found.changes)])
-    width = np.abs(np.gradient(phi)) * 1.5 if phi.size > 1 else np.ones(1)
-    near = np.zeros(phi.size, bool)
-    if events.size:
-        apart = phi[:, None] - events[None, :]
-        if plan.parameter == "angle":  # 0° and 360° are one crank position: an event at one is at both
-            apart = np.remainder(apart + math.pi, _TWO_PI) - math.pi
-        near = np.min(np.abs(apart), axis=1) <= width
+def _singular_note(plan: _Plan, ok: np.ndarray, singular: np.ndarray, found: _Found) -> None:
+    """Say where rates are left out, and why: next to a toggle or change point, or — ill-conditioned
+    at every step with none found — because the equations are that badly scaled (a 1e12:1 gear
+    train's condition number is 2e12 at every angle; it is no toggle)."""
     bound = f"{ACCURATE_COND if plan.prog is not None else SINGULAR:.0e}"
     lost = "velocities and accelerations there would be good to less than 1e-6 and are not reported"
-    by_event, elsewhere = int(np.sum(singular & near)), int(np.sum(singular & ~near))
-    if by_event:
-        where = "a toggle or change point" if found.changes else "a toggle"
-        plan.notes.append(f"{by_event} step(s) next to {where} (condition number above {bound}): {lost}")
-    if elsewhere:
+    n = int(np.sum(singular))
+    if bool(np.all(singular[ok])) and not found.toggles and not found.changes:
         plan.notes.append(
-            f"{elsewhere} step(s) where the constraint equations' condition number is above {bound} with no "
-            "toggle or change point near (links or gear ratios of very different scales): " + lost
+            f"{n} step(s) where the constraint equations' condition number is above {bound} at every "
+            f"angle, with no toggle or change point (links or gear ratios of very different scales): {lost}"
         )
+        return
+    where = "a toggle or change point" if found.changes else "a toggle"
+    plan.notes.append(f"{n} step(s) next to {where} (condition number above {bound}): {lost}")
 
 
 def _result(
