@@ -28,8 +28,9 @@ How to add an answer key
      (``I13``); ``<out>`` a link or a point.  The loader checks every name.
    - ``compare``: how a claim is held against the value (:class:`Compare`):
      ``COUNT`` exact int, ``LABEL`` exact name after ``normalise``, ``POINT``
-     ``[x, y]`` within tolerance × size (``infinity=True`` also reads
-     ``infinity``; the value may then be an :class:`AtInfinity`),
+     ``[x, y]`` within tolerance × size (``infinity=True``, for any mode,
+     also reads ``infinity``; the value may then be an :class:`AtInfinity`,
+     or ``math.inf`` for a magnitude),
      ``MAGNITUDE`` |claimed| vs |value|, ``SENSE`` signed when the claim says
      cw/ccw else magnitudes, ``RATIO`` signed for a negative claim else
      magnitudes, ``SIGNED`` as is.
@@ -136,7 +137,7 @@ class AnswerKind:
     compute: Callable[[Any, tuple[str, ...]], Any]
     doc: str = ""
     distinct: bool = False  # the names must differ (icentre.a.b, omega_ratio.a.b)
-    infinity: bool = False  # a POINT key may be claimed `infinity`
+    infinity: bool = False  # the key may be claimed `infinity` (a point, or a magnitude such as MA)
     normalise: Callable[[str], str] | None = None  # LABEL: the name both sides are compared in
     also: tuple[Dimension, ...] = ()  # further dimensions a claim's unit may measure
 
@@ -566,8 +567,9 @@ KINDS: tuple[AnswerKind, ...] = (
         "velocity",
         _D.LENGTH,
         _distance,
-        "between points",
+        "between points (infinity to an I-centre at infinity)",
         distinct=True,
+        infinity=True,
     ),
     # linkage properties (mech.properties; DESIGN § 1.1 "Answer keys for linkage properties")
     AnswerKind(
@@ -621,7 +623,8 @@ KINDS: tuple[AnswerKind, ...] = (
         "velocity",
         _D.NUMBER,
         _property("mechanical_advantage"),
-        "output load over input effort (1/m for a point output of a crank)",
+        "output load over input effort (1/m for a point output of a crank); infinity at a dead centre",
+        infinity=True,
     ),
     AnswerKind(
         "input_torque",
