@@ -11,7 +11,7 @@ import pytest
 from cli_runner import assert_bad_input, mech, strict_json
 from mech.errors import InputError
 from mech.loader import load, loads
-from mech.model import JointType
+from mech.pairs import KINDS, kind_of
 from mechanism_texts import GEARS
 from mechanism_texts import slider_crank as slider_crank_text
 
@@ -304,15 +304,11 @@ def test_error_message_has_file_line_caret_and_hint():
 
 
 def test_joint_types_are_all_accepted():
-    for jtype in JointType:
-        extra = (
-            ", path: {through: [0, 0], angle: 0}" if jtype in (JointType.PRISMATIC, JointType.SLOT) else ""
-        )
-        text = f"links: [frame, a, b]\njoints:\n  J: {{type: {jtype.value}, links: [a, frame]{extra}}}\n  K: {{type: revolute, links: [a, b]}}\n  L: {{type: revolute, links: [b, frame]}}\n"
-        if jtype is JointType.PRISMATIC:
-            text = text.replace("K: {type: revolute", "K: {type: revolute")
+    for jtype in KINDS:
+        extra = ", path: {through: [0, 0], angle: 0}" if kind_of(jtype).role == "path" else ""
+        text = f"links: [frame, a, b]\njoints:\n  J: {{type: {jtype}, links: [a, frame]{extra}}}\n  K: {{type: revolute, links: [a, b]}}\n  L: {{type: revolute, links: [b, frame]}}\n"
         m = loads(text)
-        assert m.joint("J").type is jtype
+        assert m.joint("J").type == jtype
 
 
 def test_a_misspelt_link_is_one_error_not_a_cascade():
@@ -699,16 +695,23 @@ def test_a_ten_thousand_joint_chain_is_read_with_every_joint_located():
     assert (line, column) == (4999 + 3, 42) and "l5000x" in message  # J4999, its second link
 
 
-@pytest.mark.parametrize("key", ["masses", "gravity", "flywheel"])
-def test_a_key_of_the_format_this_version_does_not_read_is_said_so_not_a_near_miss(key):
-    # DESIGN § 1.4 (masses and forces) is being built: until then `masses` must not be offered
-    # "did you mean 'answers'?" (issue 25 item 13), it is a key of the format not read yet
-    with pytest.raises(InputError) as info:
-        loads(BASE + f"{key}: {{coupler: {{mass: 5}}}}\n", path="p.yaml")
-    (problem,) = info.value.problems
-    assert (problem.where.line, problem.where.column) == (5, 1)
-    assert f"`{key}`" in problem.message and "not read by this version of mech" in problem.message
-    assert "did you mean" not in (problem.hint or "")
+@pytest.mark.parametrize("value", ['"120 rad/s"', '"2 rev/s"', '"30 deg/s"'])
+def test_rpm_in_another_unit_is_refused_not_read_silently(value):
+    text = FOUR_BAR.replace(
+        "drive: {link: crank, angle: 60, rpm: 120, direction: cw}", f"drive: {{link: crank, rpm: {value}}}"
+    )
+    with pytest.raises(InputError) as err:
+        loads(text, path="d.yaml")
+    text = err.value.format()
+    assert "d.yaml:11:" in text and "rpm is in revolutions per minute" in text and "omega:" in text
+
+
+def test_rpm_with_its_own_unit_and_omega_in_any_unit_are_read():
+    base = FOUR_BAR.replace(
+        "drive: {link: crank, angle: 60, rpm: 120, direction: cw}", "drive: {link: crank, KEY}"
+    )
+    assert loads(base.replace("KEY", 'rpm: "120 rpm"')).drives[0].omega == pytest.approx(4 * math.pi)
+    assert loads(base.replace("KEY", 'omega: "120 rpm"')).drives[0].omega == pytest.approx(4 * math.pi)
 
 
 def test_an_unknown_key_near_a_known_one_still_gets_a_hint():

@@ -29,8 +29,9 @@ How to add an answer key
      (``I13``); ``<out>`` a link or a point.  The loader checks every name.
    - ``compare``: how a claim is held against the value (:class:`Compare`):
      ``COUNT`` exact int, ``LABEL`` exact name after ``normalise``, ``POINT``
-     ``[x, y]`` within tolerance × size (``infinity=True`` also reads
-     ``infinity``; the value may then be an :class:`AtInfinity`),
+     ``[x, y]`` within tolerance × size (``infinity=True``, for any mode,
+     also reads ``infinity``; the value may then be an :class:`AtInfinity`,
+     or ``math.inf`` for a magnitude),
      ``MAGNITUDE`` |claimed| vs |value|, ``SENSE`` signed when the claim says
      cw/ccw else magnitudes, ``RATIO`` signed for a negative claim else
      magnitudes, ``SIGNED`` as is.
@@ -141,7 +142,7 @@ class AnswerKind:
     dimension: Dimension | None
     doc: str = ""
     distinct: bool = False  # the names must differ (icentre.a.b, omega_ratio.a.b)
-    infinity: bool = False  # a POINT key may be claimed `infinity`
+    infinity: bool = False  # the key may be claimed `infinity` (a point, or a magnitude such as MA)
     normalise: Callable[[str], str] | None = None  # LABEL: the name both sides are compared in
     also: tuple[Dimension, ...] = ()  # further dimensions a claim's unit may measure
 
@@ -406,7 +407,15 @@ KINDS: tuple[AnswerKind, ...] = (
         distinct=True,
         infinity=True,
     ),
-    AnswerKind("distance.<p>.<q>", Compare.MAGNITUDE, "velocity", _D.LENGTH, "between points", distinct=True),
+    AnswerKind(
+        "distance.<p>.<q>",
+        Compare.MAGNITUDE,
+        "velocity",
+        _D.LENGTH,
+        "between points (infinity to an I-centre at infinity)",
+        distinct=True,
+        infinity=True,
+    ),
     # linkage properties (DESIGN § 1.1 "Answer keys for linkage properties")
     AnswerKind(
         "grashof",
@@ -451,7 +460,8 @@ KINDS: tuple[AnswerKind, ...] = (
         Compare.MAGNITUDE,
         "velocity",
         _D.NUMBER,
-        "output load over input effort (1/m for a point output of a crank)",
+        "output load over input effort (1/m for a point output of a crank); infinity at a dead centre",
+        infinity=True,
     ),
     AnswerKind(
         "input_torque",

@@ -39,6 +39,7 @@ from typing import TYPE_CHECKING, Any
 from mech import grading
 from mech.answers import AnswerKey, AtInfinity, Compare
 from mech.grading import Analysis
+from mech.pairs import kind_of
 from mech.units import Dimension
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -257,7 +258,7 @@ def _acceleration_parts(names: tuple[str, ...], an: Analysis) -> Iterator[tuple[
     ab = kin.acceleration(b)
     for j in mech.joints:  # a slider point on a turning guide: Coriolis left out
         geom = kin.joints.get(j.name)
-        if geom is None or geom.type not in ("prismatic", "slot") or geom.point != b:
+        if geom is None or kind_of(geom.type).role != "path" or geom.point != b:
             continue
         c = kin.coriolis(j.name)
         if math.hypot(*c) > 0.0:
@@ -326,17 +327,15 @@ def _resolved(an: Analysis, joint: Any, near: Vec) -> Analysis | None:
 
 def _mirrors(an: Analysis) -> Iterator[tuple[Any, Vec, str]]:
     """(joint, mirrored near hint, words) for each moving pin a dyad places."""
-    from mech.model import JointType
-
     mech, kin = an.mech, an.kin
     driven = {d.link for d in mech.drives if getattr(d, "link", None)}
     sliders = {}
     for j in mech.joints:
         geom = kin.joints.get(j.name)
-        if geom is not None and geom.type == "prismatic" and geom.point and geom.direction and geom.at:
+        if geom is not None and kind_of(geom.type).keeps_angle and geom.point and geom.direction and geom.at:
             sliders[geom.point] = (j, geom)
     for j in mech.joints:
-        if j.type is not JointType.REVOLUTE or j.place.at is not None or j.place.is_relative:
+        if kind_of(j).role != "pin" or j.place.at is not None or j.place.is_relative:
             continue
         if j.name not in kin.positions or driven & set(j.links) or mech.ground in j.links:
             continue

@@ -13,25 +13,21 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import field
-from enum import Enum
-from typing import TYPE_CHECKING
 
 from mech._memo import Memo
 from mech._records import dataclass
 from mech.errors import Where
-
-if TYPE_CHECKING:
-    from mech.pairs.base import PairKind
-    from mech.pairs.specs import JointSpec, Profile, Profiles
+from mech.specs import JointSpec, Path, Profile, Profiles, Ref, Vec
 
 __all__ = [
     "Claim",
     "Drive",
+    "Flywheel",
     "Joint",
-    "JointType",
     "Length",
     "Link",
     "Load",
+    "Mass",
     "Mechanism",
     "Path",
     "Placement",
@@ -40,77 +36,6 @@ __all__ = [
     "Tolerance",
     "Vec",
 ]
-
-Vec = tuple[float, float]
-
-_KINDS: dict[JointType, PairKind] = {}  # mech.pairs.registry.KINDS, once imported
-
-
-def _pair_kinds() -> dict[JointType, PairKind]:
-    """The pair-kind registry, imported on first need (it imports the pair modules)."""
-    from mech.pairs.registry import KINDS
-
-    _KINDS.update(KINDS)
-    return _KINDS
-
-
-class JointType(str, Enum):
-    """Kinds of joint in format 1.
-
-    What each kind reads, how it is counted and classified lives in its entry
-    of :data:`mech.pairs.registry.KINDS`; these properties read it from there.
-    """
-
-    REVOLUTE = "revolute"
-    PRISMATIC = "prismatic"
-    SLOT = "slot"
-    ROLLING = "rolling"
-    CAM = "cam"
-    GEAR = "gear"
-    CONTACT = "contact"
-    SCREW = "screw"
-    SPHERICAL = "spherical"
-
-    @property
-    def kind(self) -> PairKind:
-        """This type's entry in the pair-kind registry (imported on first use, then looked up)."""
-        return (_KINDS or _pair_kinds())[self]
-
-    @property
-    def is_higher(self) -> bool:
-        """True for the pairs Kutzbach counts in h (one freedom removed each)."""
-        return self.kind.higher
-
-    @property
-    def is_planar(self) -> bool:
-        """False for the pairs the planar solvers cannot model (screw, spherical)."""
-        return self.kind.planar
-
-    @property
-    def relative_motion(self) -> str:
-        """The lecture notes' classification by the relative motion of the elements."""
-        return self.kind.motion
-
-    @property
-    def contact(self) -> str:
-        """Lower (surface contact) or higher (line or point contact)."""
-        return "higher" if self.kind.line_contact else "lower"
-
-    @property
-    def default_closure(self) -> str:
-        """Self-closed (mechanically) or force-closed (kept in contact by a force)."""
-        return self.kind.closure
-
-
-@dataclass(frozen=True, slots=True)
-class Ref:
-    """A location named in a file: coordinates ``xy`` or the name of a joint or point."""
-
-    xy: Vec | None = None
-    name: str | None = None
-
-    def __str__(self) -> str:
-        return self.name if self.name is not None else f"({self.xy[0]:g}, {self.xy[1]:g})"  # type: ignore[index]
 
 
 @dataclass(frozen=True, slots=True)
@@ -137,19 +62,6 @@ class Placement:
 
 
 @dataclass(frozen=True, slots=True)
-class Path:
-    """A straight line fixed in a guide link: through a point, at an angle or toward a point.
-
-    On a moving guide, ``angle`` is the line's direction in the analysed
-    (drawn) configuration; ``toward`` keeps it fixed to the guide's points.
-    """
-
-    through: Ref
-    angle: float | None = None
-    toward: Ref | None = None
-
-
-@dataclass(frozen=True, slots=True)
 class Link:
     """A kinematic link.  ``index`` is its place in the file's order (ground = 0)."""
 
@@ -165,26 +77,24 @@ class Link:
 class Joint:
     """A kinematic pair between two or more links, as the file writes it.
 
+    ``type`` is the file's ``type:`` (``revolute``, ``cam`` …): the name of a pair kind
+    of :mod:`mech.pairs`, which says what the type means (``mech.pairs.kind_of(joint)``).
     A revolute joint listing k links is one joint of order k, i.e. k − 1
     equivalent binary joints.  What belongs to the joint's type (a pin's
     radius, a slider's path, a gear's radii, a cam's profiles …) is its
-    ``spec``, one of the typed specs of :mod:`mech.pairs.specs`; ``None``
+    ``spec``, one of the typed specs of :mod:`mech.specs`; ``None``
     stands for the type's empty spec.  The type-specific attributes below
     (``path``, ``normal``, ``radii`` …) read the spec and are ``None`` where
     the type has no such key.
     """
 
     name: str
-    type: JointType
+    type: str
     links: tuple[str, ...]
     place: Placement = Placement()
     spec: JointSpec | None = None
     closure: str | None = None
     where: Where | None = field(default=None, compare=False)
-
-    def __post_init__(self) -> None:
-        if self.spec is None:
-            object.__setattr__(self, "spec", self.type.kind.spec)
 
     # -- the spec's fields, for readers that do not care about the type --------------------
     @property
@@ -241,29 +151,6 @@ class Joint:
     def equivalent_binary(self) -> int:
         """Binary joints this joint is worth (a joint of k links is k − 1)."""
         return len(self.links) - 1
-
-    @property
-    def located_on(self) -> tuple[str, ...]:
-        """The links this joint is a *point* of (where a length may end).
-
-        A prismatic joint is a pair, not a point (its ``point`` is the
-        slider's).  A slot joint is the pin's centre, a point of the pin link
-        only: it moves along the slotted link.  Every other joint is a point of
-        each link it joins (a contact point at the drawn instant).
-        """
-        rule = self.type.kind.located
-        if rule == "none":
-            return ()
-        if rule == "first":
-            return self.links[:1]
-        return self.links
-
-    @property
-    def closure_kind(self) -> str:
-        """``self`` or ``force``: the file's ``closure`` (form → self) or the type's default."""
-        if self.closure is None:
-            return self.type.default_closure
-        return "self" if self.closure in ("form", "self") else "force"
 
 
 @dataclass(frozen=True, slots=True)
@@ -332,15 +219,53 @@ class Tolerance:
 
 @dataclass(frozen=True, slots=True)
 class Load:
-    """An external load for mechanical advantage and the input torque (no friction).
+    """An external load for mechanical advantage, the input torque and forces (no friction).
 
     ``target`` names a point or joint (a ``force`` (Fx, Fy) in N, in the
     file's frame) or a link (a ``torque`` in N·m, counter-clockwise positive).
+    A load that varies over the cycle gives ``table`` instead: rows of the
+    drive's angle (rad) and the force's two components or the torque, read
+    linearly between rows and repeated every ``period`` (the table's span: 4π
+    for a four-stroke engine).  ``on`` names the link a force at a pin shared
+    by two moving links acts on.
     """
 
     target: str
     force: Vec | None = None
     torque: float | None = None
+    where: Where | None = field(default=None, compare=False)
+    table: tuple[tuple[float, ...], ...] | None = None
+    on: str | None = None
+
+    @property
+    def is_force(self) -> bool:
+        """A force at a point (else a torque on a link)."""
+        return self.force is not None or (self.table is not None and len(self.table[0]) == 3)
+
+    @property
+    def period(self) -> float | None:
+        """The span of a table's angles, after which it repeats (None for a constant load)."""
+        return None if self.table is None else self.table[-1][0] - self.table[0][0]
+
+
+@dataclass(frozen=True, slots=True)
+class Mass:
+    """A link's mass (kg) at its centre ``centre`` (a point or joint of the link), and its moment
+    of inertia about that centre (kg·m²; 0 for a link that only translates or is given none)."""
+
+    link: str
+    mass: float
+    centre: str
+    inertia: float = 0.0
+    where: Where | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Flywheel:
+    """``flywheel: {fluctuation: 2%}``: the total coefficient of fluctuation of speed, a fraction
+    ((ω_max − ω_min)/ω_mean: "±1 %" is 0.02)."""
+
+    fluctuation: float
     where: Where | None = field(default=None, compare=False)
 
 
@@ -388,6 +313,9 @@ class Mechanism:
     angle_unit: str = "deg"
     asks: tuple[str, ...] = ()  # answer keys a student must answer (when `answers` carries no values)
     loads: tuple[Load, ...] = ()  # forces at points, torques on links (DESIGN § 1.1 "Loads")
+    masses: tuple[Mass, ...] = ()  # links with mass (DESIGN § 1.4); the others are massless
+    gravity: Vec | None = None  # m/s², in the file's frame; None: no gravity
+    flywheel: Flywheel | None = None
     source: str | None = field(default=None, repr=False, compare=False)
     #: What the analyses derive from this mechanism, kept with it (its compiled constraint system
     #: …): :class:`mech._memo.Memo`, never compared, hashed or pickled.
@@ -438,12 +366,6 @@ class Mechanism:
             for lk in dict.fromkeys(j.links):
                 index.setdefault(lk, []).append(j)
         return {lk: tuple(js) for lk, js in index.items()}
-
-    def points_of(self, link: str) -> tuple[str, ...]:
-        """Names of every located thing on a link: its joints (those with a point) and points."""
-        names = [j.name for j in self.joints if link in j.located_on]
-        names += [p.name for p in self.points if p.link == link]
-        return tuple(names)
 
     def iter_names(self) -> Iterator[str]:
         yield from (link.name for link in self.links)

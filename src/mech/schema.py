@@ -21,18 +21,19 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from typing import Any
 
+from mech.fields import NAME as _NAME
+from mech.fields import NUMBER as _NUMBER
+from mech.fields import XY as _XY
 from mech.loader.answers import ANSWER_KEYS
 from mech.loader.drives import DIRECTIONS, DRIVE_KEYS
 from mech.loader.joints import CLOSURES, COMMON_JOINT_KEYS
 from mech.loader.links import LINK_KEYS, LINK_KINDS
 from mech.loader.loads import LOAD_KEYS
+from mech.loader.masses import FLYWHEEL_KEYS, MASS_KEYS
 from mech.loader.mechanism import TOP_KEYS
 from mech.loader.points import PLACE_KEYS, POINT_KEYS
 from mech.loader.units import UNITS_KEYS
-from mech.pairs.base import NAME as _NAME
-from mech.pairs.base import NUMBER as _NUMBER
-from mech.pairs.base import XY as _XY
-from mech.pairs.registry import KINDS
+from mech.pairs import KINDS
 from mech.units import known_units
 
 
@@ -54,27 +55,42 @@ _PLACE = _only(PLACE_KEYS, _PLACE_FRAGMENTS)
 _JOINT_COMMON: dict[str, Any] = _only(
     COMMON_JOINT_KEYS,
     {
-        "type": {"enum": [t.value for t in KINDS]},
+        "type": {"type": "string"},  # an enum of the kinds registered when asked: _joints()
         "links": {"type": "array", "items": _NAME, "minItems": 2},
         "description": {"type": "string"},
         "closure": {"enum": list(CLOSURES)},
         **_PLACE,
     },
 )
-# Every kind's keys, generated from the pair-kind registry (a key two kinds share, such as
-# `path` or `profiles`, has one fragment) …
-_JOINT_KEYS: dict[str, Any] = {}
-for _kind in KINDS.values():
-    for _key, _frag in _kind.keys.items():
-        _JOINT_KEYS.setdefault(_key, {})  # any shape here: each type's `then` below checks it
-# … and, per type, only its own keys (draft-07 if/then), so a `radius` on a gear is flagged.
-_JOINT_KINDS: list[dict[str, Any]] = [
-    {
-        "if": {"properties": {"type": {"const": t.value}}, "required": ["type"]},
-        "then": {"propertyNames": {"enum": [*_JOINT_COMMON, *k.keys]}, "properties": dict(k.keys)},
+
+
+def _joints() -> dict[str, Any]:
+    """The ``joints`` section, from the pair-kind registry as it is now (plug-ins included).
+
+    A key two kinds share (``path``, ``profiles``) is listed once with any shape; per type,
+    only its own keys are allowed (draft-07 if/then), so a `radius` on a gear is flagged.
+    """
+    common = {**_JOINT_COMMON, "type": {"enum": list(KINDS)}}
+    keys: dict[str, Any] = {key: {} for kind in KINDS.values() for key in kind.keys}
+    per_kind = [
+        {
+            "if": {"properties": {"type": {"const": name}}, "required": ["type"]},
+            "then": {"propertyNames": {"enum": [*common, *k.keys]}, "properties": dict(k.keys)},
+        }
+        for name, k in KINDS.items()
+    ]
+    return {
+        "type": "object",
+        "minProperties": 1,
+        "additionalProperties": {
+            "type": "object",
+            "required": ["type", "links"],
+            "additionalProperties": False,
+            "properties": {**common, **keys},
+            "allOf": per_kind,
+        },
     }
-    for t, k in KINDS.items()
-]
+
 
 _DRIVE: dict[str, Any] = _only(
     DRIVE_KEYS,
@@ -97,6 +113,18 @@ _DRIVE: dict[str, Any] = _only(
         "acceleration": _NUMBER,
     },
 )
+
+
+def _table(columns: int) -> dict[str, Any]:
+    """``{table: [[angle, value…], …]}``: a load over the drive's angle."""
+    row = {"type": "array", "items": _NUMBER, "minItems": columns, "maxItems": columns}
+    return {
+        "type": "object",
+        "required": ["table"],
+        "additionalProperties": False,
+        "properties": {"table": {"type": "array", "items": row, "minItems": 2}},
+    }
+
 
 _SECTIONS: dict[str, Any] = {
     "name": {"type": "string"},
@@ -131,17 +159,7 @@ _SECTIONS: dict[str, Any] = {
             },
         ]
     },
-    "joints": {
-        "type": "object",
-        "minProperties": 1,
-        "additionalProperties": {
-            "type": "object",
-            "required": ["type", "links"],
-            "additionalProperties": False,
-            "properties": {**_JOINT_COMMON, **_JOINT_KEYS},
-            "allOf": _JOINT_KINDS,
-        },
-    },
+    "joints": {},  # made by _joints() when the schema is asked for
     "lengths": {"type": "object", "additionalProperties": _NUMBER},
     "points": {
         "type": "object",
@@ -160,19 +178,62 @@ _SECTIONS: dict[str, Any] = {
     },
     "loads": {
         "type": "object",
-        "description": "Loads for mechanical advantage and the input torque: {P: {force: [Fx, Fy]}} (N) "
-        "at a point, {link: {torque: T}} (N m, ccw +) on a link.",
+        "description": "Loads for mechanical advantage, the input torque and forces: {P: {force: [Fx, Fy]}} (N) "
+        "at a point, {link: {torque: T}} (N m, ccw +) on a link; either may be a table over the drive's angle "
+        "({table: [[angle, Fx, Fy], …]} or {table: [[angle, T], …]}); `on` names the link a force at a shared pin "
+        "acts on (DESIGN § 1.4).",
         "additionalProperties": {
             "type": "object",
             "additionalProperties": False,
             "properties": _only(
                 LOAD_KEYS,
                 {
-                    "force": {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
-                    "torque": _NUMBER,
+                    "force": {
+                        "oneOf": [
+                            {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
+                            _table(3),
+                        ]
+                    },
+                    "torque": {"oneOf": [_NUMBER, _table(2)]},
+                    "on": _NAME,
                 },
             ),
         },
+    },
+    "masses": {
+        "type": "object",
+        "description": "Links with mass (DESIGN § 1.4): {link: {mass: 5, centre: G, inertia: 0.08}} in kg and "
+        "kg m^2 (or radius_of_gyration, a length); the others are massless.",
+        "additionalProperties": {
+            "type": "object",
+            "required": ["mass", "centre"],
+            "additionalProperties": False,
+            "properties": _only(
+                MASS_KEYS,
+                {"mass": _NUMBER, "centre": _NAME, "inertia": _NUMBER, "radius_of_gyration": _NUMBER},
+            ),
+        },
+    },
+    "gravity": {
+        "type": "array",
+        "items": _NUMBER,
+        "minItems": 2,
+        "maxItems": 2,
+        "description": "[gx, gy] in m/s^2 (none by default).",
+    },
+    "flywheel": {
+        "type": "object",
+        "additionalProperties": False,
+        "required": ["fluctuation"],
+        "properties": _only(
+            FLYWHEEL_KEYS,
+            {
+                "fluctuation": {
+                    "type": ["string", "number"],
+                    "description": "e.g. 2% (total, (w_max - w_min)/w_mean)",
+                }
+            },
+        ),
     },
     "asks": {
         "type": "array",
@@ -199,14 +260,21 @@ _SECTIONS: dict[str, Any] = {
     },
 }
 
-SCHEMA: dict[str, Any] = {
-    "$schema": "http://json-schema.org/draft-07/schema#",
-    "$id": "https://github.com/planar-mech/mech/schema/format-1.json",
-    "title": "mech mechanism file (format 1)",
-    "description": "A planar mechanism: links, joints, lengths, drive and claimed answers. See cli.md.",
-    "type": "object",
-    "additionalProperties": False,
-    "required": ["links", "joints"],
-    "properties": _only(TOP_KEYS, _SECTIONS),
-    "definitions": {"drive": {"type": "object", "additionalProperties": False, "properties": _DRIVE}},
-}
+
+def schema() -> dict[str, Any]:
+    """The JSON Schema of the file format, with every pair kind registered now."""
+    return {
+        "$schema": "http://json-schema.org/draft-07/schema#",
+        "$id": "https://github.com/planar-mech/mech/schema/format-1.json",
+        "title": "mech mechanism file (format 1)",
+        "description": "A planar mechanism: links, joints, lengths, drive and claimed answers. See cli.md.",
+        "type": "object",
+        "additionalProperties": False,
+        "required": ["links", "joints"],
+        "properties": _only(TOP_KEYS, {**_SECTIONS, "joints": _joints()}),
+        "definitions": {"drive": {"type": "object", "additionalProperties": False, "properties": _DRIVE}},
+    }
+
+
+#: The schema as built in (the built-in kinds); :func:`schema` includes kinds registered later.
+SCHEMA: dict[str, Any] = schema()

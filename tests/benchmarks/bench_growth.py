@@ -24,7 +24,7 @@ import timeit
 import numpy as np
 
 from mech.kinematics import closed_form, solve, sweep
-from mech.model import Drive, Joint, JointType, Length, Link, Mechanism, Placement
+from mech.model import Drive, Joint, Length, Link, Mechanism, Placement
 from mech.options import SolveOptions
 
 FRAME, COUPLER, ROCKER, CRANK = 0.15, 0.15, 0.08, 0.04
@@ -40,18 +40,18 @@ def chain(n_links: int) -> Mechanism:
     """
     stages = (n_links - 2) // 2
     links = [Link("frame", 0, is_ground=True), Link("crank", 1)]
-    joints = [Joint("A", JointType.REVOLUTE, ("frame", "crank"), Placement(at=(0.0, 0.0)))]
+    joints = [Joint("A", "revolute", ("frame", "crank"), Placement(at=(0.0, 0.0)))]
     lengths = [Length("A", "B", CRANK)]
     on_b = ["crank"]
     for i in range(1, stages + 1):
         beta = 2 * math.pi * (i - 1) / stages
         links += [Link(f"coupler{i}", len(links)), Link(f"rocker{i}", len(links) + 1)]
         on_b.append(f"coupler{i}")
-        joints.append(Joint(f"J{i}", JointType.REVOLUTE, (f"coupler{i}", f"rocker{i}")))
+        joints.append(Joint(f"J{i}", "revolute", (f"coupler{i}", f"rocker{i}")))
         at = (FRAME * math.cos(beta), FRAME * math.sin(beta))
-        joints.append(Joint(f"G{i}", JointType.REVOLUTE, (f"rocker{i}", "frame"), Placement(at=at)))
+        joints.append(Joint(f"G{i}", "revolute", (f"rocker{i}", "frame"), Placement(at=at)))
         lengths += [Length("B", f"J{i}", COUPLER), Length(f"G{i}", f"J{i}", ROCKER)]
-    joints.insert(1, Joint("B", JointType.REVOLUTE, tuple(on_b)))
+    joints.insert(1, Joint("B", "revolute", tuple(on_b)))
     return Mechanism(
         name=f"{n_links}-link chain",
         path="<generated>",

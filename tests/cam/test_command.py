@@ -9,9 +9,9 @@ import re
 import pytest
 from tests.conftest import MECHANISMS
 
-from mech.cam.mechanism import cam_setup
 from mech.errors import InputError, UnsupportedError
 from mech.loader import loads
+from mech.pairs.cam.setup import cam_setup
 
 EXAMPLE = str(MECHANISMS / "cam_roller_program.yaml")
 

@@ -11,7 +11,7 @@ import pytest
 
 def test_cam_analysis_imports_neither_rich_nor_click():
     code = (
-        "import sys, mech.cam.analysis, mech.cam.mechanism, mech.cam.profile, mech.cam.read;"
+        "import sys, mech.cam.analysis, mech.cam.profile, mech.cam.read;"
         "bad = [m for m in ('rich', 'click') if m in sys.modules];"
         "print(bad); sys.exit(1 if bad else 0)"
     )

@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from mech.cam import program_profiles
 from mech.loader import loads
-from mech.pairs.specs import Circle, Curve, Knife, Line
+from mech.pairs.cam.setup import program_profiles
+from mech.specs import Circle, Curve, Knife, Line
 
 TEXT = """\
 units: {{length: mm, angle: deg}}

@@ -6,9 +6,9 @@ import math
 
 import pytest
 
-from mech.cam.mechanism import cam_setup, joint_program
 from mech.errors import InputError
 from mech.loader import loads
+from mech.pairs.cam.setup import cam_setup, joint_program
 
 HEAD = """\
 units: {length: mm, angle: deg}

@@ -10,7 +10,8 @@ import math
 from dataclasses import replace
 from typing import Any
 
-from mech.model import Drive, Joint, JointType, Length, Link, Mechanism, Path, Placement, Point, Ref
+from mech.model import Drive, Joint, Length, Link, Mechanism, Path, Placement, Point, Ref
+from mech.pairs import kind_of
 
 
 def _ref(v: Any) -> Ref:
@@ -50,12 +51,12 @@ def build(
                 angle=p.get("angle"),
                 toward=_ref(p["toward"]) if "toward" in p else None,
             )
-        jtype = JointType(spec.get("type", "revolute"))
+        jtype = spec.get("type", "revolute")
         own: dict[str, Any] = {"path": path, "point": spec.get("point")}
         own |= {k: spec[k] for k in ("radius", "normal", "pressure_angle", "internal") if k in spec}
         if "radii" in spec:
             own["radii"] = tuple(spec["radii"])
-        kind_spec = jtype.kind.spec
+        kind_spec = kind_of(jtype).spec
         fields = {k: v for k, v in own.items() if v is not None and hasattr(kind_spec, k)}
         jts.append(
             Joint(

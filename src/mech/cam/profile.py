@@ -43,7 +43,7 @@ from numpy.typing import ArrayLike, NDArray
 from mech._records import dataclass
 from mech.cam.program import CamProgram, follower_motion
 
-__all__ = ["CamLayout", "CamState", "evaluate", "layout_problem"]
+__all__ = ["CamLayout", "CamState", "evaluate", "layout_problem", "swing"]
 
 FloatArray = NDArray[np.float64]
 Vec = tuple[float, float]
@@ -97,7 +97,9 @@ class CamState:
     frame, (N, 2).  ``contact``: the point of contact in the fixed frame.
     ``pressure``: the signed pressure angle (rad).  ``rho``: the pitch curve's
     radius of curvature (the profile's, for a flat face); positive where it is
-    convex, negative where concave, ``inf`` where straight.
+    convex, negative where concave, ``inf`` where straight.  ``normal``: the unit
+    common normal at the contact in the fixed frame (out of the cam, toward the
+    follower).
     """
 
     theta: FloatArray
@@ -111,6 +113,7 @@ class CamState:
     contact: FloatArray
     pressure: FloatArray
     rho: FloatArray
+    normal: FloatArray
 
 
 def _perp(v: FloatArray) -> FloatArray:
@@ -173,6 +176,27 @@ def _start_point(layout: CamLayout) -> FloatArray:
     return p + a * along + layout.branch * b * _perp(along)  # type: ignore[no-any-return]
 
 
+def swing(layout: CamLayout) -> tuple[float, float]:
+    """An oscillating follower's angle at the programme's start and the sense a rise swings it (±1).
+
+    For a knife edge or a roller the angle is the arm's (pivot → point); for a flat
+    face, its normal's.  At lift ``s`` the angle is ``start + sense·s``: the follower
+    link turns by exactly ``sense·s`` (the law's own lift, in radians).
+    """
+    p = np.array(layout.pivot, dtype=float)
+    if layout.program.follower == "flat":
+        d = float(np.hypot(*p))
+        delta = math.atan2(p[1], p[0])
+        rb, face = layout.program.base_radius, float(layout.arm)  # type: ignore[arg-type]
+        # m·p − face = r_b at the start (the face touches the base circle, the cam on its far side)
+        g0 = delta + layout.branch * math.acos(max(-1.0, min(1.0, (rb + face) / d)))
+        # the face must move away from O as it rises: dh/dγ = m⊥·p
+        return g0, math.copysign(1.0, -math.sin(g0 - delta) * d)
+    c0 = _start_point(layout)
+    r0 = (c0 - p) / layout.arm
+    return math.atan2(r0[1], r0[0]), math.copysign(1.0, float(np.dot(c0, _perp(r0))))  # away from O
+
+
 def evaluate(layout: CamLayout, theta: ArrayLike) -> CamState:
     """The follower, the pitch curve and the profile at cam angles ``theta`` (rad).
 
@@ -200,10 +224,8 @@ def evaluate(layout: CamLayout, theta: ArrayLike) -> CamState:
         w = np.broadcast_to(u, c.shape)
     else:
         p = np.array(layout.pivot, dtype=float)
-        c0 = _start_point(layout)
-        r0 = (c0 - p) / layout.arm
-        sf = math.copysign(1.0, float(np.dot(c0, _perp(r0))))  # rising swings the point away from O
-        psi = math.atan2(r0[1], r0[0]) + sf * s
+        psi0, sf = swing(layout)
+        psi = psi0 + sf * s
         rhat = np.stack([np.cos(psi), np.sin(psi)], axis=-1)
         L = float(layout.arm)  # type: ignore[arg-type]
         c = p + L * rhat
@@ -224,7 +246,7 @@ def evaluate(layout: CamLayout, theta: ArrayLike) -> CamState:
     with np.errstate(divide="ignore"):
         rho = speed**3 / (orient * _cross(a_, b_))
     pressure = np.arctan2(_dot(a_, w), np.abs(_dot(a_, _perp(w))))
-    return CamState(th, s, s1, s2, m.d3s, c, pitch, profile, contact, pressure, rho)
+    return CamState(th, s, s1, s2, m.d3s, c, pitch, profile, contact, pressure, rho, n_out)
 
 
 def _flat(layout: CamLayout, th: FloatArray, m: object) -> CamState:
@@ -245,13 +267,8 @@ def _flat(layout: CamLayout, th: FloatArray, m: object) -> CamState:
         point = e_n * n + (rb + s)[:, None] * u
     else:
         p = np.array(layout.pivot, dtype=float)
-        d = float(np.hypot(*p))
-        delta = math.atan2(p[1], p[0])
         face = float(layout.arm)  # type: ignore[arg-type]  # the face's distance from the pivot
-        # m·p − face = r_b at the start (the face touches the base circle, the cam on its far side)
-        g0 = delta + layout.branch * math.acos(max(-1.0, min(1.0, (rb + face) / d)))
-        # the face must move away from O as it rises: dh/dγ = m⊥·p
-        sf = math.copysign(1.0, -math.sin(g0 - delta) * d)
+        g0, sf = swing(layout)
         gamma = g0 + sf * s
         mm = np.stack([np.cos(gamma), np.sin(gamma)], axis=-1)
         mp = _dot(mm, np.broadcast_to(p, mm.shape))
@@ -276,4 +293,4 @@ def _flat(layout: CamLayout, th: FloatArray, m: object) -> CamState:
     else:
         w = np.broadcast_to(np.array([math.cos(layout.axis), math.sin(layout.axis)]), contact.shape)
     pressure = np.arctan2(_dot(w, _perp(mm)), _dot(w, mm))
-    return CamState(th, s, s1, s2, m.d3s, point, profile, profile, contact, pressure, rho)
+    return CamState(th, s, s1, s2, m.d3s, point, profile, profile, contact, pressure, rho, mm)

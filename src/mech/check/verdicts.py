@@ -436,16 +436,25 @@ def _cmp_sense(
 def _cmp_magnitude(
     claim: Claim, akey: AnswerKey, value: Any, an: Analysis, tol: Tolerance, base: Verdict
 ) -> Verdict:
-    """Vectors and speeds by magnitude; a value at infinity (a distance to it) fails as infinite."""
-    if isinstance(value, AtInfinity):
-        return _replace(
-            base,
-            status=FAIL,
-            computed=math.inf,
-            unit=(akey.dimension or Dimension.NUMBER).value,
-            message=f"{value.label} is at infinity{_direction(value)}: the {akey.family} is infinite",
+    """Vectors and speeds by magnitude.  An infinite value (a distance to a point at infinity, a
+    mechanical advantage at a dead centre) passes a claim of ``infinity`` and fails any number;
+    a claim of ``infinity`` fails any finite value."""
+    unit = (akey.dimension or Dimension.NUMBER).value
+    infinite = isinstance(value, AtInfinity) or (isinstance(value, float) and math.isinf(value))
+    if infinite:
+        what = (
+            f"{value.label} is at infinity{_direction(value)}: the {akey.family} is infinite"
+            if isinstance(value, AtInfinity)
+            else f"∞ (dead centre): the {akey.family} is infinite"
         )
+        ok = claim.value == "infinity"
+        return _replace(base, status=PASS if ok else FAIL, computed="infinity", unit=unit, message=what)
     magnitude = _mag(value) if isinstance(value, tuple) else abs(value)
+    if claim.value == "infinity":
+        shown = _show(magnitude, claim, akey.dimension or Dimension.NUMBER, sense=False)
+        return _replace(
+            base, status=FAIL, computed=magnitude, unit=unit, message=f"{shown}, finite: not infinity"
+        )
     return _compare(
         claim,
         base,

@@ -18,7 +18,6 @@ from collections.abc import Sequence
 import numpy as np
 
 from mech.cam.analysis import CamAnalysis
-from mech.cam.mechanism import CamSetup
 from mech.cam.profile import evaluate
 from mech.draw.scene import (
     INK,
@@ -35,6 +34,7 @@ from mech.draw.scene import (
     nice_scale,
     scale_bar,
 )
+from mech.pairs.cam.setup import CamSetup
 
 __all__ = ["diagram_figure", "profile_figure", "profile_points"]
 

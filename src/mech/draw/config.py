@@ -37,13 +37,14 @@ from mech.draw.scene import (
     place_label,
     scale_bar,
 )
-from mech.model import Joint, JointType, Mechanism
+from mech.model import Joint, Mechanism
+from mech.pairs import kind_of
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.icentres.locate import ICentre
     from mech.kinematics.result import Kinematics
 
-__all__ = ["GLYPHS", "View", "configuration", "display_name", "link_colours", "link_members"]
+__all__ = ["View", "configuration", "display_name", "link_colours", "link_members"]
 
 Vec = tuple[float, float]
 
@@ -52,22 +53,6 @@ PIN_R = 1.3
 BLOCK = (9.0, 5.5)  # slider block, mm along × across the path
 TITLE_H = 9.0
 FOOT_H = 11.0
-#: Joint type → the glyph it is drawn with: ``pin`` (open circle; a triangle on a hatched base
-#: at a ground pivot), ``slider`` (a block on its guide, line of stroke dash-dotted), ``slot``
-#: (two lines along the path round the pin), ``pitch`` (pitch circles about each pivot, the
-#: contact point), ``contact`` (common normal and tangent at the contact point), ``none`` (not
-#: drawn: the planar solvers refuse the kind).  A pair with profiles draws them on its links.
-GLYPHS: dict[JointType, str] = {
-    JointType.REVOLUTE: "pin",
-    JointType.PRISMATIC: "slider",
-    JointType.SLOT: "slot",
-    JointType.ROLLING: "pitch",
-    JointType.GEAR: "pitch",
-    JointType.CAM: "contact",
-    JointType.CONTACT: "contact",
-    JointType.SCREW: "none",
-    JointType.SPHERICAL: "none",
-}
 _SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 
 
@@ -106,7 +91,7 @@ def link_members(
     for j in mech.joints:
         geom = kin.joints.get(j.name)
         if (
-            GLYPHS[j.type] in ("slider", "slot")
+            kind_of(j).glyph in ("slider", "slot")
             and geom is not None
             and geom.point is not None
             and geom.point in pos
@@ -329,7 +314,7 @@ def _directions(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec]) -> dic
     out: dict[str, Vec] = {}
     for j in mech.joints:
         geom = kin.joints.get(j.name)
-        if geom is None or geom.direction is None or GLYPHS[j.type] not in ("slider", "slot"):
+        if geom is None or geom.direction is None or kind_of(j).glyph not in ("slider", "slot"):
             continue
         u = geom.direction
         guide = j.links[1]
@@ -368,7 +353,7 @@ def _guides(
     items: list[Item] = []
     centre = _centre(pos)
     for j in mech.joints:
-        if GLYPHS[j.type] != "slider" or j.links[1] != mech.ground or j.name not in directions:
+        if kind_of(j).glyph != "slider" or j.links[1] != mech.ground or j.name not in directions:
             continue
         point = kin.joints[j.name].point
         if point is None or point not in pos:
@@ -462,7 +447,7 @@ def _ground_pivots(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec], tr:
     """A small triangle under each ground pivot, standing on a hatched base."""
     items: list[Item] = []
     for j in mech.joints:
-        if GLYPHS[j.type] == "pin" and mech.ground in j.links and j.name in pos:
+        if kind_of(j).glyph == "pin" and mech.ground in j.links and j.name in pos:
             x, y = tr(pos[j.name])
             tri = ((x, y), (x - 3.2, y + 5.0), (x + 3.2, y + 5.0))
             items.append(Poly(tri, True, Style(INK, 0.35, fill="#ffffff"), "ground-pivot", j.name))
@@ -489,7 +474,7 @@ def _blocks(
         c = tr(pos[point])
         du = _page_dir(directions[j.name])
         nv = (-du[1], du[0])
-        if GLYPHS[j.type] == "slider":
+        if kind_of(j).glyph == "slider":
             a, b = BLOCK[0] / 2, BLOCK[1] / 2
             corners = tuple(
                 (c[0] + du[0] * sa * a + nv[0] * sb * b, c[1] + du[1] * sa * a + nv[1] * sb * b)
@@ -516,13 +501,13 @@ def _contacts(
     """Higher pairs at the drawn instant: pitch circles of gears, the common normal of cams."""
     items: list[Item] = []
     for j in mech.joints:
-        if GLYPHS[j.type] not in ("contact", "pitch"):
+        if kind_of(j).glyph not in ("contact", "pitch"):
             continue
         if j.name not in pos:
             continue
         c = tr(pos[j.name])
         items.extend(_profiles(mech, kin, j, pos, tr, frame=frame))
-        if GLYPHS[j.type] == "pitch" and not _profile_list(mech, kin, j, pos[j.name]):
+        if kind_of(j).glyph == "pitch" and not _profile_list(mech, kin, j, pos[j.name]):
             for link in j.links:
                 centre = _pivot_of(mech, link, pos)
                 if centre is not None:
@@ -563,7 +548,7 @@ def _contacts(
             )
         colours = link_colours(mech)
         for link in j.links:
-            if GLYPHS[j.type] == "pitch" or _profile_list(mech, kin, j, pos[j.name]):
+            if kind_of(j).glyph == "pitch" or _profile_list(mech, kin, j, pos[j.name]):
                 continue
             body = [n for n, links in kin.carriers.items() if link in links and n in pos]
             for n in body:  # the profile is unknown: show which points the contact belongs to
@@ -586,9 +571,9 @@ def _profiles(
     carried by their link's motion from the drawing; in an animation frame (``frame``) only
     those placed by named points are drawn.
     """
-    from mech.pairs.specs import Circle as CircleProfile
-    from mech.pairs.specs import Curve as CurveProfile
-    from mech.pairs.specs import Line as LineProfile
+    from mech.specs import Circle as CircleProfile
+    from mech.specs import Curve as CurveProfile
+    from mech.specs import Line as LineProfile
 
     items: list[Item] = []
     colours = link_colours(mech)
@@ -653,28 +638,8 @@ def _carried(mech: Mechanism, kin: Kinematics, link: str) -> Any:
 
 
 def _profile_list(mech: Mechanism, kin: Kinematics, j: Joint, contact: Vec | None) -> list[tuple[str, Any]]:
-    """The profiles to draw: given, a cam programme's, or a rolling pair's ``radii`` (circles about each pin)."""
-    from mech.model import Ref
-    from mech.pairs.specs import Circle as CircleProfile
-    from mech.pairs.specs import Line as LineProfile
-
-    if getattr(j.spec, "program", None) is not None:
-        try:
-            from mech.cam import program_profiles
-
-            return list(program_profiles(mech, j).items())
-        except Exception:  # the programme's own error is reported by the analysis
-            return []
-    if j.profiles or j.type is not JointType.ROLLING or j.radii is None:
-        return list(j.profiles)
-    out: list[tuple[str, Any]] = []
-    for link, r in zip(j.links, j.radii, strict=True):
-        pins = [k.name for k in mech.joints_of(link) if GLYPHS[k.type] == "pin"]
-        if r is not None and len(pins) == 1:
-            out.append((link, CircleProfile(Ref(name=pins[0]), r)))
-        elif r is None and contact is not None:
-            out.append((link, LineProfile(Ref(xy=contact), 0.0)))
-    return out
+    """The profiles to draw: what the pair's kind draws on its links (given, generated, or radii)."""
+    return kind_of(j).drawn_profiles(mech, j, contact)
 
 
 def _follower_rods(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec]) -> list[tuple[str, Vec, Vec]]:
@@ -688,7 +653,7 @@ def _follower_rods(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec]) -> 
     x0, y0, x1, y1 = bbox(pts) if pts else (0.0, 0.0, 0.0, 0.0)
     length = 0.6 * max(x1 - x0, y1 - y0, 1e-9)
     for j in mech.joints:
-        if GLYPHS[j.type] != "contact" or j.profiles or j.name not in pos:
+        if kind_of(j).glyph != "contact" or j.profiles or j.name not in pos:
             continue
         for link in j.links:
             if link == mech.ground or any(link in links and n in pos for n, links in kin.carriers.items()):
@@ -697,7 +662,7 @@ def _follower_rods(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec]) -> 
                 (
                     g
                     for g in mech.joints
-                    if GLYPHS[g.type] == "slider"
+                    if kind_of(g).glyph == "slider"
                     and g.links[0] == link
                     and g.name in kin.joints
                     and kin.joints[g.name].direction
@@ -742,7 +707,7 @@ def _contact_partners(mech: Mechanism, link: str) -> list[str]:
     return [
         lk
         for j in mech.joints
-        if GLYPHS[j.type] == "contact" and link in j.links
+        if kind_of(j).glyph == "contact" and link in j.links
         for lk in j.links
         if lk != link
     ]
@@ -767,7 +732,7 @@ def _circle_extents(
                         (c[0] - prof.radius, c[1] - prof.radius),
                         (c[0] + prof.radius, c[1] + prof.radius),
                     ]
-        if GLYPHS[j.type] == "pitch" and j.name in pos:
+        if kind_of(j).glyph == "pitch" and j.name in pos:
             for link in j.links:
                 c = _pivot_of(mech, link, pos)
                 if c is not None:
@@ -778,7 +743,7 @@ def _circle_extents(
 
 def _pivot_of(mech: Mechanism, link: str, pos: Mapping[str, Vec]) -> Vec | None:
     for j in mech.joints:
-        if GLYPHS[j.type] == "pin" and link in j.links and mech.ground in j.links and j.name in pos:
+        if kind_of(j).glyph == "pin" and link in j.links and mech.ground in j.links and j.name in pos:
             return pos[j.name]
     return None
 
@@ -834,9 +799,9 @@ def _pins_and_points(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec], t
     items: list[Item] = []
     pins: dict[str, None] = {}  # in the file's order: a set's order changes with the hash seed
     for j in mech.joints:
-        if GLYPHS[j.type] == "pin" and j.name in pos:
+        if kind_of(j).glyph == "pin" and j.name in pos:
             pins[j.name] = None
-        elif GLYPHS[j.type] == "slot":
+        elif kind_of(j).glyph == "slot":
             point = kin.joints[j.name].point if j.name in kin.joints else None
             if point is not None and point in pos:
                 pins[point] = None

@@ -55,6 +55,7 @@ from mech.draw.scene import (
 )
 from mech.model import Joint, Mechanism
 from mech.options import OutputUnits
+from mech.pairs import kind_of
 from mech.units import unit_factor
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -190,7 +191,7 @@ class _Builder:
         self.order: list[str] = []
         self.link_keys: dict[str, list[str]] = {link.name: [] for link in mech.links}
         self.guided = _guided(mech, kin)
-        self.contacts = [j for j in mech.joints if j.type.kind.role == "contact" and j.name in self.pos]
+        self.contacts = [j for j in mech.joints if kind_of(j).role == "contact" and j.name in self.pos]
         self.vectors: list[Vector] = []
         self.construction: dict[str, Vec] = {}
 
@@ -354,7 +355,7 @@ def _guided(mech: Mechanism, kin: Kinematics) -> dict[tuple[str, str], Joint]:
     for j in mech.joints:
         geom = kin.joints.get(j.name)
         if (
-            j.type.kind.role == "path"
+            kind_of(j).role == "path"
             and geom is not None
             and geom.point is not None
             and j.links[1] != mech.ground

@@ -34,8 +34,8 @@ def cam_value(an: Analysis, quantity: str, name: str) -> float:
     A name that is not a cam joint with a programme is :class:`mech.answers.Undefined`.
     """
     from mech.cam.analysis import analyse
-    from mech.cam.mechanism import cam_joints, cam_setup
     from mech.cam.profile import evaluate
+    from mech.pairs.cam.setup import cam_joints, cam_setup
 
     if name not in {j.name for j in cam_joints(an.mech)}:
         raise Undefined(f"cannot be computed: {name} is not a cam joint with a `program`")

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING
 from mech.answers import AtInfinity, Undefined, parse_icentre_name
 from mech.errors import InputError
 from mech.grading.lazy import NOISE
+from mech.pairs import located_on
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.grading.lazy import Analysis
@@ -163,7 +164,7 @@ def least_speed(mech: Mechanism, kin: Kinematics, link: str) -> float:
         When the link has fewer than two joints with a point, or its joints are
         not on one line.
     """
-    names = [j.name for j in mech.joints if link in j.located_on and j.name in kin.positions]
+    names = [j.name for j in mech.joints if link in located_on(j) and j.name in kin.positions]
     if len(names) < 2:
         raise InputError(
             f"least_speed needs two joints on {link} to draw its line; it has {len(names)}"

@@ -11,7 +11,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from mech.answers import Undefined
-from mech.properties.grashof import linkage_loops, main_loop
+from mech.topology.grashof import linkage_loops, main_loop
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.grading.lazy import Analysis

@@ -8,7 +8,7 @@ built by hand; :func:`instant_of` reads it from a mechanism and its solved
 positions.
 
 The inspection rules (lecture notes 002, §6.4; Khurmi & Gupta, *Theory of
-Machines*, §6.6):
+Machines*, §6.6), each said by its pair kind (:meth:`mech.pairs.base.PairKind.inspect`):
 
 * a pin is the I-centre of the links it joins — a ternary pin gives three;
 * a slider on a straight path: the I-centre lies at infinity perpendicular to
@@ -22,18 +22,19 @@ Machines*, §6.6):
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import field
 from typing import TYPE_CHECKING, Any, Literal
 
 from mech._records import dataclass
 from mech.icentres.homogeneous import Frame, Hom, ideal, line_along, unit
-from mech.model import Joint, JointType, Mechanism
+from mech.model import Joint, Mechanism
+from mech.pairs import kind_of
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.kinematics import Kinematics
 
-__all__ = ["RULES", "Contact", "Fact", "Instant", "Pin", "Slide", "facts", "instant_of"]
+__all__ = ["Contact", "Fact", "Instant", "Pin", "Slide", "facts", "instant_of"]
 
 Vec = tuple[float, float]
 
@@ -228,13 +229,13 @@ def instant_of(mech: Mechanism, kin: Kinematics) -> Instant:
     frame = Frame(_centre(located), kin.size if kin.size > 0 else 1.0)
     seen = _Seen(mech, positions, joints)
     for j in mech.joints:
-        RULES[j.type](seen, j)
+        kind_of(j).inspect(seen, j)
     return Instant(links, frame, tuple(seen.pins), tuple(seen.slides), tuple(seen.contacts))
 
 
 @dataclass
 class _Seen:
-    """What the inspection rules read (the solved instant) and what they find."""
+    """What the inspection rules read (the solved instant) and what they find (:class:`InstantView`)."""
 
     mech: Mechanism
     positions: Mapping[str, Vec]
@@ -247,116 +248,15 @@ class _Seen:
         geom = self.joints.get(j.name)
         return self.positions.get(geom.point if geom is not None and geom.point else j.name)
 
+    def direction(self, j: Joint) -> Vec | None:
+        geom = self.joints.get(j.name)
+        return geom.direction if geom is not None else None
 
-def _pin(seen: _Seen, j: Joint) -> None:
-    """A pin is the I-centre of the links it joins (a ternary pin: of each pair)."""
-    at = seen.at(j)
-    if at is not None:
-        seen.pins.append(Pin(j.name, tuple(j.links), at))
+    def pin(self, joint: str, links: tuple[str, ...], at: Vec) -> None:
+        self.pins.append(Pin(joint, links, at))
 
+    def slide(self, joint: str, slider: str, guide: str, direction: Vec, at: Vec | None, turns: bool) -> None:
+        self.slides.append(Slide(joint, slider, guide, direction, at, slot=turns))
 
-def _slide(seen: _Seen, j: Joint) -> None:
-    """A straight path: the I-centre at infinity perpendicular to it (a slot: on the normal through the pin)."""
-    geom = seen.joints.get(j.name)
-    u = geom.direction if geom is not None and geom.direction is not None else None
-    if u is None and j.path is not None:
-        u = _path_direction(j.path, seen.positions)
-    if u is None:
-        return
-    seen.slides.append(Slide(j.name, j.links[0], j.links[1], u, seen.at(j), slot=j.type is JointType.SLOT))
-
-
-def _contact_at(seen: _Seen, j: Joint) -> Vec | None:
-    at = seen.at(j)
-    return j.place.at if at is None else at
-
-
-def _rolling(seen: _Seen, j: Joint) -> None:
-    """Pure rolling: the point of contact."""
-    at = _contact_at(seen, j)
-    if at is not None:
-        seen.contacts.append(Contact(j.name, j.type.value, (j.links[0], j.links[1]), at))
-
-
-def _normal_contact(seen: _Seen, j: Joint) -> None:
-    """A cam, gear or point contact: somewhere on the common normal (Kennedy finishes it)."""
-    at = _contact_at(seen, j)
-    if at is None:
-        return
-    a, b = j.links[0], j.links[1]
-    geom = seen.joints.get(j.name)
-    normal: Vec | None = None
-    if geom is not None and geom.direction is not None:
-        tx, ty = geom.direction  # the common tangent: the normal turned +90°
-        normal = (ty, -tx)
-    elif j.normal is not None:
-        normal = _angle(j.normal)
-    elif j.type is JointType.GEAR:
-        normal = _line_of_action(
-            mech=seen.mech, links=j.links, pressure_angle=j.pressure_angle or 0.0, positions=seen.positions
-        )
-    if normal is None:
-        # A gear with no line of action: its pitch point is where the pitch circles roll.
-        seen.contacts.append(Contact(j.name, j.type.value, (a, b), at))
-    else:
-        seen.contacts.append(Contact(j.name, j.type.value, (a, b), at, normal))
-
-
-def _none(seen: _Seen, j: Joint) -> None:
-    """Screw and spherical pairs: no planar I-centre (the planar solvers refuse them first)."""
-
-
-#: Joint type → the inspection rule that reads its I-centre (or line) from the instant.
-RULES: dict[JointType, Callable[[_Seen, Joint], None]] = {
-    JointType.REVOLUTE: _pin,
-    JointType.PRISMATIC: _slide,
-    JointType.SLOT: _slide,
-    JointType.ROLLING: _rolling,
-    JointType.CAM: _normal_contact,
-    JointType.CONTACT: _normal_contact,
-    JointType.GEAR: _normal_contact,
-    JointType.SCREW: _none,
-    JointType.SPHERICAL: _none,
-}
-
-
-def _line_of_action(
-    mech: Mechanism, links: Sequence[str], pressure_angle: float, positions: Mapping[str, Vec]
-) -> Vec | None:
-    """A gear pair's common normal: the common tangent of the pitch circles turned by the pressure angle.
-
-    Each gear's centre is its only pin; without both centres there is no line
-    of action to draw (the pitch point is then taken as a rolling contact).
-    """
-    centres = []
-    for lk in links:
-        pins = [j.name for j in mech.joints_of(lk) if j.type is JointType.REVOLUTE and j.name in positions]
-        if len(pins) != 1:
-            return None
-        centres.append(positions[pins[0]])
-    (x1, y1), (x2, y2) = centres
-    if (x1, y1) == (x2, y2):
-        return None
-    return _angle(math.atan2(y2 - y1, x2 - x1) + math.pi / 2.0 - pressure_angle)
-
-
-def _path_direction(path: object, positions: Mapping[str, Vec]) -> Vec | None:
-    """A path's direction from the file (``toward`` a point, or its ``angle``) as drawn."""
-    through = getattr(path, "through", None)
-    toward = getattr(path, "toward", None)
-    angle = getattr(path, "angle", None)
-
-    def where(ref: object) -> Vec | None:
-        if ref is None:
-            return None
-        if getattr(ref, "xy", None) is not None:
-            return ref.xy  # type: ignore[attr-defined,no-any-return]
-        return positions.get(getattr(ref, "name", None) or "")
-
-    if toward is not None:
-        p, q = where(through), where(toward)
-        if p is not None and q is not None:
-            return _unit2((q[0] - p[0], q[1] - p[1]))
-    if angle is not None:
-        return _angle(angle)
-    return None
+    def contact(self, joint: str, links: tuple[str, str], at: Vec, normal: Vec | None = None) -> None:
+        self.contacts.append(Contact(joint, self.mech.joint(joint).type, links, at, normal))

@@ -7,7 +7,8 @@ through I_ik and I_jk for every third link k, so two such lines fix it.  None of
 that needs a coordinate, so :func:`kennedy_order` works on the joints alone (it
 imports no numpy) and ``mech icentres`` uses it for a file that places nothing.
 
-The inspection rules (lecture notes 002, §6.4; Khurmi & Gupta §6.6), by joint type:
+The inspection rules (lecture notes 002, §6.4; Khurmi & Gupta §6.6), each pair kind's
+:attr:`~mech.pairs.base.PairKind.icentre`:
 
 * a pin (``revolute``) is the I-centre of every pair of links it joins;
 * a sliding pair (``prismatic``): at infinity, perpendicular to the path;
@@ -27,23 +28,10 @@ from __future__ import annotations
 from itertools import combinations
 
 from mech._records import dataclass
-from mech.model import Joint, JointType, Mechanism
+from mech.model import Joint, Mechanism
+from mech.pairs import kind_of
 
 __all__ = ["OrderedCentre", "TopologyCentres", "kennedy_order"]
-
-# what inspection gives for each joint type: a point ("point"), a point at infinity
-# ("infinity") or only a line through the centre ("line"), and how it is said
-_INSPECTION: dict[JointType, tuple[str, str]] = {
-    JointType.REVOLUTE: ("point", "pin {joint}"),
-    JointType.SPHERICAL: ("point", "ball joint {joint} (its centre, in the plane)"),
-    JointType.PRISMATIC: ("infinity", "slider {joint}: at infinity, perpendicular to the path"),
-    JointType.SCREW: ("infinity", "screw {joint}: at infinity, perpendicular to its axis"),
-    JointType.ROLLING: ("point", "rolling {joint}: the point of contact"),
-    JointType.GEAR: ("line", "gears {joint}: on the common normal at the mesh (the line of action)"),
-    JointType.CAM: ("line", "cam {joint}: on the common normal at the contact"),
-    JointType.CONTACT: ("line", "contact {joint}: on the common normal at the contact"),
-    JointType.SLOT: ("line", "pin in slot {joint}: on the normal to the slot through the pin"),
-}
 
 
 @dataclass(frozen=True, slots=True)
@@ -130,7 +118,7 @@ def _inspect(
     known: dict[tuple[int, int], OrderedCentre],
     given_lines: dict[tuple[int, int], list[str]],
 ) -> None:
-    kind, words = _INSPECTION.get(joint.type, ("", ""))
+    kind, words = kind_of(joint).icentre  # point, infinity, line or none, and how the notes say it
     links = [name for name in joint.links if name in number]
     for a, b in combinations(links, 2):
         i, j = sorted((number[a], number[b]))

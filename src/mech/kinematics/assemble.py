@@ -41,11 +41,12 @@ from mech._records import dataclass
 from mech.errors import GeometryError, InputError, Problem, Where
 from mech.kinematics.geometry import circle_circle, circle_line
 from mech.kinematics.layout import Layout
-from mech.model import Joint, JointType, Mechanism, Placement, Point, Ref
+from mech.model import Joint, Mechanism, Placement, Point, Ref
+from mech.pairs import kind_of
 from mech.topology import dof
 from mech.units import to_unit
 
-__all__ = ["Drawn", "assemble", "gear_centre", "gear_pitch_points"]
+__all__ = ["Drawn", "assemble", "complete"]
 
 _AGREE = 1e-6  # exact data (lengths, angles) that must close together: relative to size
 #: Drawing precision: a moving point drawn with ``at`` may lie this far (relative to the
@@ -338,9 +339,9 @@ def assemble(
                     where=e.where,
                     hint="give near: on the driven link's other joint, on the side the crank points to",
                 )
-    _check_gears(lay, positions, fmt)
+    _check_drawing(lay, positions, fmt)
     _drawn_drive_angles(lay, positions, resolved_angles)
-    gear_pitch_points(lay, positions)
+    complete(lay, positions)
     cx, cy = float(centre[0]), float(centre[1])
     for n, xy in positions.items():
         relative.setdefault(n, (xy[0] - cx, xy[1] - cy))
@@ -359,12 +360,15 @@ def _placements(
         places[j.name] = j.place
     for pt in mech.points:
         places[pt.name] = pt.place
+    drawn = {j.name: at for j in mech.joints if j.place.at is None and (at := kind_of(j).drawn_at(mech, j))}
     for name in lay.carriers:
         pl = places.get(name)
         if pl is None:
             continue
         if pl.at is not None:
             known[name] = pl.at
+        elif name in drawn:  # drawn by the pair's own data (a follower's point, by its programme)
+            known[name] = drawn[name]
         elif pl.near is not None:
             near[name] = pl.near
     # Path references given as coordinates become synthetic known locations.
@@ -464,7 +468,7 @@ def _path_equations(lay: Layout) -> list[_Eq]:
     for ps in lay.paths:
         path_where = lay.mech.joint(ps.joint).where
         t = ref_name(ps.joint, "through", ps.path.through)
-        text = f"{ps.point} on the path of {ps.type.value} joint {ps.joint}"
+        text = f"{ps.point} on the path of {ps.type} joint {ps.joint}"
         if ps.point.startswith("#"):
             eqs.append(_Same(ps.point, t, f"the point of {ps.slider} on the path of {ps.joint}"))
             eqs[-1].where = path_where
@@ -927,66 +931,21 @@ def _no_assembly(
 
 
 def _check_contacts(lay: Layout) -> None:
-    """Higher pairs describe the drawn instant: they need their contact point.
-
-    A gear may instead give pitch radii (or teeth and module): its pitch point
-    then follows from the centres.
-    """
-    problems = []
-    for j in lay.contacts:
-        if j.place.at is not None or (j.type is JointType.GEAR and _pitch_radii(j) is not None):
-            continue
-        if j.profiles or getattr(j.spec, "program", None) is not None:
-            continue  # profiles that touch: the contact point follows from them
-        if j.type is JointType.ROLLING and j.radii is not None:
-            continue
-        extra = " or `radii` (or `teeth` with `module`)" if j.type is JointType.GEAR else ""
-        problems.append(
-            Problem(
-                f"{j.type.value} joint {j.name} has no contact point: positions and velocities need it",
-                j.where,
-                f"give `at: [x, y]`, the contact point in the drawn configuration{extra}, "
-                "and `normal`, the common normal's angle",
-            )
-        )
+    """Higher pairs describe the drawn instant: each needs what its kind says (its contact point)."""
+    problems = [p for j in lay.contacts if (p := kind_of(j).contact_problem(j)) is not None]
     if problems:
         raise InputError(problems=problems, source=lay.mech.source)
 
 
-def _check_gears(lay: Layout, positions: dict[str, tuple[float, float]], fmt: Callable[[float], str]) -> None:
-    """Gears whose pitch radii are given must have their centres that far apart.
-
-    External gears: centre distance r1 + r2; internal (a ring): |r1 − r2|.  A file
-    that says otherwise describes gears that cannot mesh, and every velocity
-    computed from it would be wrong.
-    """
-    problems = []
-    for j in lay.contacts:
-        radii = _pitch_radii(j)
-        if j.type is not JointType.GEAR or radii is None:
-            continue
-        c1, c2 = (gear_centre(lay, lk, positions) for lk in j.links)
-        if c1 is None or c2 is None:
-            continue
-        d = math.hypot(c2[0] - c1[0], c2[1] - c1[1])
-        want = abs(radii[0] - radii[1]) if j.internal else radii[0] + radii[1]
-        if abs(d - want) > _AGREE * max(want, d):
-            kind = "internal (|r1 − r2|)" if j.internal else "external (r1 + r2)"
-            problems.append(
-                Problem(
-                    f"gear {j.name}: pitch radii {fmt(radii[0])} and {fmt(radii[1])} need centres "
-                    f"{fmt(want)} apart ({kind}), but they are {fmt(d)} apart",
-                    j.where,
-                    "correct the radii, the teeth and module, or the positions of the gear centres",
-                )
-            )
+def _check_drawing(
+    lay: Layout, positions: dict[str, tuple[float, float]], fmt: Callable[[float], str]
+) -> None:
+    """Each pair as drawn must be possible (gears' centres as far apart as their pitch radii say)."""
+    problems = [
+        p for j in lay.mech.joints if (p := kind_of(j).drawing_problem(lay, j, positions, fmt)) is not None
+    ]
     if problems:
         raise InputError(problems=problems, source=lay.mech.source)
-
-
-def _pitch_radii(j: Joint) -> tuple[float, float] | None:
-    """A gear's pitch radii: given, or teeth·module/2 (:attr:`mech.pairs.specs.GearSpec.pitch_radii`)."""
-    return getattr(j.spec, "pitch_radii", None)
 
 
 def _where_of(mech: Mechanism, name: str) -> Where | None:
@@ -995,29 +954,7 @@ def _where_of(mech: Mechanism, name: str) -> Where | None:
     return next((x.where for x in located if x.name == name), None)
 
 
-def gear_pitch_points(lay: Layout, positions: dict[str, tuple[float, float]]) -> None:
-    """A gear joint without ``at``: its pitch point from the centres and radii (or teeth·module/2)."""
-    for j in lay.contacts:
-        if j.type is not JointType.GEAR or j.name in positions:
-            continue
-        radii = _pitch_radii(j)
-        centres = [gear_centre(lay, lk, positions) for lk in j.links]
-        if radii is None or None in centres:
-            continue
-        c1, c2 = centres
-        d = math.hypot(c2[0] - c1[0], c2[1] - c1[1]) or 1.0  # type: ignore[index]
-        e = ((c2[0] - c1[0]) / d, (c2[1] - c1[1]) / d)  # type: ignore[index]
-        if j.internal and radii[0] > radii[1]:  # the ring is the first gear: pitch point beyond the second
-            positions[j.name] = (c1[0] + radii[0] * e[0], c1[1] + radii[0] * e[1])  # type: ignore[index]
-        elif j.internal:
-            positions[j.name] = (c2[0] - radii[1] * e[0], c2[1] - radii[1] * e[1])  # type: ignore[index]
-        else:
-            positions[j.name] = (c1[0] + radii[0] * e[0], c1[1] + radii[0] * e[1])  # type: ignore[index]
-
-
-def gear_centre(
-    lay: Layout, link: str, positions: dict[str, tuple[float, float]]
-) -> tuple[float, float] | None:
-    """A gear link's centre: its only revolute joint (None when it has none or several)."""
-    pins = [n for n in lay.on_link.get(link, ()) if n in positions and len(lay.carriers.get(n, ())) >= 2]
-    return positions[pins[0]] if len(pins) == 1 else None
+def complete(lay: Layout, positions: dict[str, tuple[float, float]]) -> None:
+    """Positions each pair's kind derives in a configuration (a gear's pitch point from its centres)."""
+    for j in lay.mech.joints:
+        kind_of(j).complete(lay, j, positions)

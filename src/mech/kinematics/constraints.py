@@ -41,11 +41,13 @@ import numpy as np
 from mech._memo import Memo
 from mech._records import dataclass
 from mech.errors import collect
-from mech.kinematics.assemble import Drawn, gear_centre
-from mech.kinematics.curves import CurveRow, curve_row
-from mech.kinematics.layout import Layout, PathSpec
-from mech.kinematics.rows import ROWS, Angle, Build, Distance, Locator, OnLine
-from mech.model import Joint
+from mech.kinematics.assemble import Drawn
+from mech.kinematics.layout import Layout
+from mech.kinematics.rows import Build
+from mech.pairs import kind_of
+from mech.pairs.curves import CurveRow, curve_rows
+from mech.pairs.path import PathSpec, path_angle
+from mech.pairs.rows import Angle, Distance, Law, Locator, OnLine
 
 __all__ = ["System", "build_system"]
 
@@ -81,6 +83,7 @@ class System:
     ln_n: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     ln_c: np.ndarray = field(default_factory=lambda: np.zeros(0))
     ln_k: np.ndarray | None = None  # per row: coefficient of θ_slider − θ_guide (rolling); None: all 0
+    ln_law: tuple[tuple[int, Law], ...] = ()  # (line row, law): a follower moved by its cam's programme
     # linear angle rows: a (k, n+1) on θ of all links (ground last), constant c
     ang_a: np.ndarray = field(default_factory=lambda: np.zeros((0, 1)))
     ang_c: np.ndarray = field(default_factory=lambda: np.zeros(0))
@@ -95,6 +98,9 @@ class System:
     # bookkeeping
     locators: dict[str, Locator] = field(default_factory=dict)  # moving contact point from q (scaled)
     normals: dict[str, Locator] = field(default_factory=dict)  # its common normal (unit) from q
+    contact_points: dict[str, Locator] = field(
+        default_factory=dict
+    )  # a pair's contact, its location elsewhere
     row_names: tuple[str, ...] = ()  # per row: the joint or drive it comes from
     holonomic: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))  # per row
     drive_rows: np.ndarray = field(default_factory=lambda: np.zeros(0, int))  # row per drive (file order)
@@ -120,163 +126,189 @@ class System:
     def m(self) -> int:
         return 2 * self.pc_i.size + self.ln_s.size + self.ang_c.size + self.ds_d.size + len(self.cv)
 
-    # -- kinematic functions (scaled) ------------------------------------------------
+    # -- kinematic functions (scaled), written once with a batch axis -------------------------
+    # Every function takes q as (3n,) for one configuration or (K, 3n) for K at once (a sweep's
+    # stack); one configuration is a batch of one, and the answer drops the batch axis again.
     def _full(self, q: np.ndarray) -> np.ndarray:
-        qf = np.zeros(q.size + 3)
-        qf[:-3] = q
+        """q (K, 3n) with ground's three zeros appended: (K, 3n + 3)."""
+        qf = np.zeros((q.shape[0], q.shape[1] + 3))
+        qf[:, :-3] = q
         return qf
 
     @staticmethod
-    def _rot(qf: np.ndarray, idx: np.ndarray, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        th = qf[3 * idx + 2]
-        c, sn = np.cos(th), np.sin(th)
+    def _trig(qf: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """cos and sin of every link's angle (K, n + 1), taken once per configuration."""
+        th = qf[:, 2::3]
+        return np.cos(th), np.sin(th)
+
+    @staticmethod
+    def _rot(
+        trig: tuple[np.ndarray, np.ndarray], idx: np.ndarray, s: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """A(θ) s for the links ``idx`` (K, len(idx))."""
+        c, sn = trig[0][:, idx], trig[1][:, idx]
         return c * s[:, 0] - sn * s[:, 1], sn * s[:, 0] + c * s[:, 1]
 
-    def phi(self, q: np.ndarray, c_line: np.ndarray, c_ang: np.ndarray) -> np.ndarray:
-        """Φ(q) (m,) for the given line and angle constants (drive targets inside)."""
-        qf = self._full(q)
-        k = self.pc_i.size
-        out = np.empty(self.m)
-        ax, ay = self._rot(qf, self.pc_i, self.pc_si)
-        bx, by = self._rot(qf, self.pc_j, self.pc_sj)
-        out[0 : 2 * k : 2] = qf[3 * self.pc_i] + ax - qf[3 * self.pc_j] - bx
-        out[1 : 2 * k : 2] = qf[3 * self.pc_i + 1] + ay - qf[3 * self.pc_j + 1] - by
-        r = 2 * k
-        kl = self.ln_s.size
-        if kl:
-            sx, sy = self._rot(qf, self.ln_s, self.ln_sp)
-            tx, ty = self._rot(qf, self.ln_g, self.ln_t)
-            nx, ny = self._rot(qf, self.ln_g, self.ln_n)
-            dx = qf[3 * self.ln_s] + sx - qf[3 * self.ln_g] - tx
-            dy = qf[3 * self.ln_s + 1] + sy - qf[3 * self.ln_g + 1] - ty
-            out[r : r + kl] = nx * dx + ny * dy - c_line
-            if self.ln_k is not None:
-                out[r : r + kl] += self.ln_k * (qf[3 * self.ln_s + 2] - qf[3 * self.ln_g + 2])
-        r += kl
-        ka = self.ang_c.size
-        out[r : r + ka] = self.ang_a @ qf[2::3] - c_ang
-        r += ka
-        kd = self.ds_d.size
-        if kd:
-            dx, dy, _, _, _, _ = self._distance(qf)
-            out[r : r + kd] = 0.5 * (dx * dx + dy * dy - self.ds_d**2)
-        for k, row in enumerate(self.cv):
-            out[r + kd + k] = curve_row(row, qf)[0]
-        return out
+    def _line(self, trig: tuple[np.ndarray, np.ndarray], qf: np.ndarray) -> tuple[np.ndarray, ...]:
+        """Of the point-on-line rows: A_S s, A_G t, A_G n and d = r_S(P) − r_G(T) (each (K, rows))."""
+        sx, sy = self._rot(trig, self.ln_s, self.ln_sp)
+        tx, ty = self._rot(trig, self.ln_g, self.ln_t)
+        nx, ny = self._rot(trig, self.ln_g, self.ln_n)
+        dx = qf[:, 3 * self.ln_s] + sx - qf[:, 3 * self.ln_g] - tx
+        dy = qf[:, 3 * self.ln_s + 1] + sy - qf[:, 3 * self.ln_g + 1] - ty
+        return sx, sy, tx, ty, nx, ny, dx, dy
 
-    def _distance(self, qf: np.ndarray) -> tuple[np.ndarray, ...]:
-        """d = r_i(P) − r_j(Q) of the distance rows, with A_i s_i and A_j s_j."""
-        ax, ay = self._rot(qf, self.ds_i, self.ds_si)
-        bx, by = self._rot(qf, self.ds_j, self.ds_sj)
+    def _distance(self, trig: tuple[np.ndarray, np.ndarray], qf: np.ndarray) -> tuple[np.ndarray, ...]:
+        """d = r_i(P) − r_j(Q) of the distance rows (K, rows), with A_i s_i and A_j s_j."""
+        ax, ay = self._rot(trig, self.ds_i, self.ds_si)
+        bx, by = self._rot(trig, self.ds_j, self.ds_sj)
         i3, j3 = 3 * self.ds_i, 3 * self.ds_j
-        dx = qf[i3] + ax - qf[j3] - bx
-        dy = qf[i3 + 1] + ay - qf[j3 + 1] - by
+        dx = qf[:, i3] + ax - qf[:, j3] - bx
+        dy = qf[:, i3 + 1] + ay - qf[:, j3 + 1] - by
         return dx, dy, ax, ay, bx, by
 
-    def jacobian(self, q: np.ndarray) -> np.ndarray:
-        """Φ_q (m, 3n)."""
-        qf = self._full(q)
-        n3 = qf.size
-        k = self.pc_i.size
-        jac = np.zeros((self.m, n3))
+    def _laws(self, qf: np.ndarray) -> list[tuple[int, Law, tuple[np.ndarray, np.ndarray, np.ndarray]]]:
+        """Each programme row's place among the line rows, its law and h, h′, h″ at the cam's turn (K,)."""
+        out = []
+        for r, law in self.ln_law:
+            phi = law.phi0 + law.sense * (qf[:, 3 * law.cam + 2] - qf[:, 3 * int(self.ln_g[r]) + 2])
+            out.append((r, law, law.lift(phi)))
+        return out
+
+    def phi(self, q: np.ndarray, c_line: np.ndarray, c_ang: np.ndarray) -> np.ndarray:
+        """Φ (m,) or (K, m) for the given line and angle constants (drive targets inside; (rows,) or (K, rows))."""
+        one = q.ndim == 1
+        qf = self._full(np.atleast_2d(q))
+        trig = self._trig(qf)
+        out = np.empty((qf.shape[0], self.m))
+        k, kl, ka, kd = self.pc_i.size, self.ln_s.size, self.ang_c.size, self.ds_d.size
+        ax, ay = self._rot(trig, self.pc_i, self.pc_si)
+        bx, by = self._rot(trig, self.pc_j, self.pc_sj)
+        out[:, 0 : 2 * k : 2] = qf[:, 3 * self.pc_i] + ax - qf[:, 3 * self.pc_j] - bx
+        out[:, 1 : 2 * k : 2] = qf[:, 3 * self.pc_i + 1] + ay - qf[:, 3 * self.pc_j + 1] - by
+        r = 2 * k
+        if kl:
+            _, _, _, _, nx, ny, dx, dy = self._line(trig, qf)
+            out[:, r : r + kl] = nx * dx + ny * dy - c_line
+            if self.ln_k is not None:  # rolling: the arc rolled, k (θ_slider − θ_guide)
+                out[:, r : r + kl] += self.ln_k * (qf[:, 3 * self.ln_s + 2] - qf[:, 3 * self.ln_g + 2])
+            for row, law, (h, _, _) in self._laws(qf):
+                out[:, r + row] -= law.w * h
+        r += kl
+        out[:, r : r + ka] = qf[:, 2::3] @ self.ang_a.T - c_ang
+        r += ka
+        if kd:
+            dx, dy, _, _, _, _ = self._distance(trig, qf)
+            out[:, r : r + kd] = 0.5 * (dx * dx + dy * dy - self.ds_d**2)
+        for k_cv, cv in enumerate(self.cv):  # a profile's rows: nearest points found for all K at once
+            out[:, r + kd + k_cv] = curve_rows(cv, qf)[0]
+        return out[0] if one else out
+
+    def jacobian(self, q: np.ndarray, *, ground: bool = False) -> np.ndarray:
+        """Φ_q (m, 3n) or (K, m, 3n); with ``ground``, the ground's three columns too (3n + 3): a
+        force analysis reads from them what the pairs put on the frame."""
+        one = q.ndim == 1
+        qf = self._full(np.atleast_2d(q))
+        trig = self._trig(qf)
+        jac = np.zeros((qf.shape[0], self.m, qf.shape[1]))
+        k, kl, ka, kd = self.pc_i.size, self.ln_s.size, self.ang_c.size, self.ds_d.size
         if k:
-            ax, ay = self._rot(qf, self.pc_i, self.pc_si)
-            bx, by = self._rot(qf, self.pc_j, self.pc_sj)
+            ax, ay = self._rot(trig, self.pc_i, self.pc_si)
+            bx, by = self._rot(trig, self.pc_j, self.pc_sj)
             rx = np.arange(0, 2 * k, 2)
             ry = rx + 1
             i3, j3 = 3 * self.pc_i, 3 * self.pc_j
-            jac[rx, i3] = 1.0
-            jac[ry, i3 + 1] = 1.0
-            jac[rx, i3 + 2] = -ay
-            jac[ry, i3 + 2] = ax
-            jac[rx, j3] = -1.0
-            jac[ry, j3 + 1] = -1.0
-            jac[rx, j3 + 2] = by
-            jac[ry, j3 + 2] = -bx
+            jac[:, rx, i3] = 1.0
+            jac[:, ry, i3 + 1] = 1.0
+            jac[:, rx, i3 + 2] = -ay
+            jac[:, ry, i3 + 2] = ax
+            jac[:, rx, j3] = -1.0
+            jac[:, ry, j3 + 1] = -1.0
+            jac[:, rx, j3 + 2] = by
+            jac[:, ry, j3 + 2] = -bx
         r0 = 2 * k
-        kl = self.ln_s.size
         if kl:
             rows = np.arange(r0, r0 + kl)
-            sx, sy = self._rot(qf, self.ln_s, self.ln_sp)
-            tx, ty = self._rot(qf, self.ln_g, self.ln_t)
-            nx, ny = self._rot(qf, self.ln_g, self.ln_n)
-            dx = qf[3 * self.ln_s] + sx - qf[3 * self.ln_g] - tx
-            dy = qf[3 * self.ln_s + 1] + sy - qf[3 * self.ln_g + 1] - ty
+            sx, sy, tx, ty, nx, ny, dx, dy = self._line(trig, qf)
             s3, g3 = 3 * self.ln_s, 3 * self.ln_g
-            jac[rows, s3] = nx
-            jac[rows, s3 + 1] = ny
-            jac[rows, s3 + 2] = -nx * sy + ny * sx
-            jac[rows, g3] = -nx
-            jac[rows, g3 + 1] = -ny
-            jac[rows, g3 + 2] = (-ny * dx + nx * dy) - (-nx * ty + ny * tx)
+            jac[:, rows, s3] = nx
+            jac[:, rows, s3 + 1] = ny
+            jac[:, rows, s3 + 2] = -nx * sy + ny * sx
+            jac[:, rows, g3] = -nx
+            jac[:, rows, g3 + 1] = -ny
+            jac[:, rows, g3 + 2] = (-ny * dx + nx * dy) - (-nx * ty + ny * tx)
             if self.ln_k is not None:
-                np.add.at(jac, (rows, s3 + 2), self.ln_k)
-                np.add.at(jac, (rows, g3 + 2), -self.ln_k)
+                _add_at(jac, rows, s3 + 2, np.broadcast_to(self.ln_k, (qf.shape[0], kl)))
+                _add_at(jac, rows, g3 + 2, np.broadcast_to(-self.ln_k, (qf.shape[0], kl)))
+            for row, law, (_, h1, _) in self._laws(qf):
+                g = 3 * int(self.ln_g[row]) + 2
+                jac[:, r0 + row, 3 * law.cam + 2] -= law.w * law.sense * h1
+                jac[:, r0 + row, g] += law.w * law.sense * h1
         r0 += kl
-        ka = self.ang_c.size
         if ka:
-            jac[r0 : r0 + ka, 2::3] = self.ang_a
+            jac[:, r0 : r0 + ka, 2::3] = self.ang_a
         r0 += ka
-        if self.ds_d.size:
-            rows = np.arange(r0, r0 + self.ds_d.size)
-            dx, dy, ax, ay, bx, by = self._distance(qf)
+        if kd:
+            rows = np.arange(r0, r0 + kd)
+            dx, dy, ax, ay, bx, by = self._distance(trig, qf)
             i3, j3 = 3 * self.ds_i, 3 * self.ds_j
-            np.add.at(jac, (rows, i3), dx)
-            np.add.at(jac, (rows, i3 + 1), dy)
-            np.add.at(jac, (rows, i3 + 2), -dx * ay + dy * ax)
-            np.add.at(jac, (rows, j3), -dx)
-            np.add.at(jac, (rows, j3 + 1), -dy)
-            np.add.at(jac, (rows, j3 + 2), dx * by - dy * bx)
-        r0 += self.ds_d.size
-        for k, row in enumerate(self.cv):
-            for col, v in curve_row(row, qf)[1].items():
-                jac[r0 + k, col] += v
-        return jac[:, :-3]
+            _add_at(jac, rows, i3, dx)
+            _add_at(jac, rows, i3 + 1, dy)
+            _add_at(jac, rows, i3 + 2, -dx * ay + dy * ax)
+            _add_at(jac, rows, j3, -dx)
+            _add_at(jac, rows, j3 + 1, -dy)
+            _add_at(jac, rows, j3 + 2, dx * by - dy * bx)
+        r0 += kd
+        for k_cv, cv in enumerate(self.cv):
+            for col, v in curve_rows(cv, qf)[1].items():
+                jac[:, r0 + k_cv, col] += v
+        if not ground:
+            jac = jac[:, :, :-3]
+        return jac[0] if one else jac
 
     def gamma(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
-        """γ (m,) without drive accelerations: Φ_q q̈ = γ + (drive α rows)."""
-        qf, vf = self._full(q), self._full(qd)
-        k = self.pc_i.size
-        out = np.zeros(self.m)
+        """γ (m,) or (K, m) without drive accelerations: Φ_q q̈ = γ + (drive α rows)."""
+        one = q.ndim == 1
+        qf, vf = self._full(np.atleast_2d(q)), self._full(np.atleast_2d(qd))
+        trig = self._trig(qf)
+        out = np.zeros((qf.shape[0], self.m))
+        k, kl, kd, kc = self.pc_i.size, self.ln_s.size, self.ds_d.size, len(self.cv)
         if k:
-            ax, ay = self._rot(qf, self.pc_i, self.pc_si)
-            bx, by = self._rot(qf, self.pc_j, self.pc_sj)
-            wi2 = vf[3 * self.pc_i + 2] ** 2
-            wj2 = vf[3 * self.pc_j + 2] ** 2
-            out[0 : 2 * k : 2] = wi2 * ax - wj2 * bx
-            out[1 : 2 * k : 2] = wi2 * ay - wj2 * by
-        kl = self.ln_s.size
+            ax, ay = self._rot(trig, self.pc_i, self.pc_si)
+            bx, by = self._rot(trig, self.pc_j, self.pc_sj)
+            wi2 = vf[:, 3 * self.pc_i + 2] ** 2
+            wj2 = vf[:, 3 * self.pc_j + 2] ** 2
+            out[:, 0 : 2 * k : 2] = wi2 * ax - wj2 * bx
+            out[:, 1 : 2 * k : 2] = wi2 * ay - wj2 * by
         if kl:
             r0 = 2 * k
-            sx, sy = self._rot(qf, self.ln_s, self.ln_sp)
-            tx, ty = self._rot(qf, self.ln_g, self.ln_t)
-            nx, ny = self._rot(qf, self.ln_g, self.ln_n)
+            sx, sy, tx, ty, nx, ny, dx, dy = self._line(trig, qf)
             s3, g3 = 3 * self.ln_s, 3 * self.ln_g
-            dx = qf[s3] + sx - qf[g3] - tx
-            dy = qf[s3 + 1] + sy - qf[g3 + 1] - ty
-            ws, wg = vf[s3 + 2], vf[g3 + 2]
-            ddx = vf[s3] - ws * sy - vf[g3] + wg * ty
-            ddy = vf[s3 + 1] + ws * sx - vf[g3 + 1] - wg * tx
-            out[r0 : r0 + kl] = (
+            ws, wg = vf[:, s3 + 2], vf[:, g3 + 2]
+            ddx = vf[:, s3] - ws * sy - vf[:, g3] + wg * ty
+            ddy = vf[:, s3 + 1] + ws * sx - vf[:, g3 + 1] - wg * tx
+            out[:, r0 : r0 + kl] = (
                 wg**2 * (nx * dx + ny * dy)
                 - 2.0 * wg * (-ny * ddx + nx * ddy)
                 + ws**2 * (nx * sx + ny * sy)
                 - wg**2 * (nx * tx + ny * ty)
             )
-        if self.ds_d.size:
+            for row, law, (_, _, h2) in self._laws(qf):
+                rate = vf[:, 3 * law.cam + 2] - vf[:, 3 * int(self.ln_g[row]) + 2]
+                out[:, r0 + row] += law.w * h2 * (law.sense * rate) ** 2
+        if kd:
             # ½|d|² = const: d·d̈ = −|ḋ|², and d̈ holds −ω_i² A_i s_i + ω_j² A_j s_j besides q̈
-            dx, dy, ax, ay, bx, by = self._distance(qf)
+            dx, dy, ax, ay, bx, by = self._distance(trig, qf)
             i3, j3 = 3 * self.ds_i, 3 * self.ds_j
-            wi, wj = vf[i3 + 2], vf[j3 + 2]
-            ddx = vf[i3] - wi * ay - vf[j3] + wj * by
-            ddy = vf[i3 + 1] + wi * ax - vf[j3 + 1] - wj * bx
-            end = self.m - len(self.cv)
-            out[end - self.ds_d.size : end] = (
+            wi, wj = vf[:, i3 + 2], vf[:, j3 + 2]
+            ddx = vf[:, i3] - wi * ay - vf[:, j3] + wj * by
+            ddy = vf[:, i3 + 1] + wi * ax - vf[:, j3 + 1] - wj * bx
+            out[:, self.m - kc - kd : self.m - kc] = (
                 -(ddx * ddx + ddy * ddy) + dx * (wi**2 * ax - wj**2 * bx) + dy * (wi**2 * ay - wj**2 * by)
             )
-        for k, row in enumerate(self.cv):
-            out[self.m - len(self.cv) + k] = curve_row(row, qf, vf)[2]
-        return out
+        for k_cv, cv in enumerate(self.cv):
+            out[:, self.m - kc + k_cv] = curve_rows(cv, qf, vf)[2]
+        return out[0] if one else out
 
     def point(self, q: np.ndarray, name: str) -> np.ndarray:
         """Scaled global position (2,) of a location in configuration ``q``."""
@@ -292,10 +324,15 @@ class System:
         return np.array([x + c * s[0] - sn * s[1], y + sn * s[0] + c * s[1]])
 
 
+def _add_at(jac: np.ndarray, rows: np.ndarray, cols: np.ndarray, values: np.ndarray) -> None:
+    """``jac[:, rows, cols] += values`` (K, len(rows)), repeated (row, column) pairs adding up."""
+    np.add.at(jac.transpose(1, 2, 0), (rows, cols), np.asarray(values).T)
+
+
 def build_system(lay: Layout, drawn: Drawn) -> System:
     """Compile the constraint rows of ``lay`` about its drawn configuration.
 
-    Each joint's rows come from its kind's entry in :data:`mech.kinematics.rows.ROWS`.
+    Each joint's rows come from its kind (:meth:`mech.pairs.base.PairKind.rows`).
     The steps: the scaled frame (:func:`_scaling`), each link's drawn frame
     (:func:`_link_frames`), every location in its carrier's frame, the joints'
     rows, the drives' rows (:func:`_drive_rows`), then the rows stacked into
@@ -328,7 +365,7 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     contact_xy = {j.name: scn(j.name) for j in lay.contacts if j.name in pos}
 
     for j in mech.joints:
-        ROWS[j.type](b, j)
+        kind_of(j).rows(b, j)
     collect(b.problems, source=mech.source)
     drive_rows = _drive_rows(lay, b, index)
 
@@ -349,11 +386,12 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     sys_.path_points = b.path_points
     sys_.locators = b.locators
     sys_.normals = b.normals
+    sys_.contact_points = b.contact_points
     sys_.loc_names = tuple(local)
     sys_.loc_i = np.array([local[k][0] for k in local], int)
     sys_.loc_s = np.array([local[k][1] for k in local], float).reshape(-1, 2)
     sys_.link_index = {name: i for i, name in enumerate(links)}
-    sys_.joint_names = frozenset(j.name for j in mech.joints if j.type.kind.located != "none")
+    sys_.joint_names = frozenset(j.name for j in mech.joints if kind_of(j).located != "none")
     # Slider drives: their constant is the drawn displacement along the path.
     n_pc, kl = len(b.coincide), len(b.online)
     sliding = [r for r in sys_.drive_rows if 2 * n_pc <= r < 2 * n_pc + kl]
@@ -434,7 +472,7 @@ def _link_frames(
             if name in drive_link_angle and drive_link_angle[name] is not None:
                 theta = drive_link_angle[name]
             elif name in slider_dir:
-                theta = path_angle(lay, slider_dir[name], pos)
+                theta = path_angle(slider_dir[name].path, pos, lay.resolve)
             else:
                 theta = 0.0
         frames[name] = names[0] if names else ""
@@ -483,6 +521,7 @@ def _stack_rows(sys_: System, b: Build, n: int) -> None:
         sys_.ln_c = np.array([x.c for x in ln], float)
         if any(x.k for x in ln):
             sys_.ln_k = np.array([x.k for x in ln], float)
+        sys_.ln_law = tuple((r, x.law) for r, x in enumerate(ln) if x.law is not None)
     a = np.zeros((len(ang), n + 1))
     for row, rec in enumerate(ang):
         for col, v in rec.coef.items():
@@ -512,82 +551,3 @@ def _label_rows(sys_: System, b: Build) -> None:
     sys_.row_names = tuple(row_joints)
     sys_.holonomic = np.array(holo_rows, bool)
     sys_.velocity_only = tuple(dict.fromkeys(n for n, h in zip(row_joints, holo_rows, strict=True) if not h))
-
-
-def path_angle(lay: Layout, ps: PathSpec, pos: dict[str, tuple[float, float]]) -> float:
-    """Global direction (rad) of a path in the drawn configuration."""
-    if ps.path.toward is not None:
-        t = ps.path.through
-        t_xy = lay.ref_xy(t, pos)
-        q_xy = lay.ref_xy(ps.path.toward, pos)
-        return math.atan2(q_xy[1] - t_xy[1], q_xy[0] - t_xy[0])
-    return float(ps.path.angle or 0.0)
-
-
-def _carrier_of(lay: Layout, link: str, pos: dict[str, tuple[float, float]]) -> dict[str, str]:
-    """Revolute joints of ``link`` with their other link: ``{other_link: joint}``."""
-    out: dict[str, str] = {}
-    for name in lay.on_link.get(link, ()):
-        carriers = lay.carriers.get(name, ())
-        if len(carriers) >= 2 and name in pos:
-            for c in carriers:
-                if c != link:
-                    out.setdefault(c, name)
-    return out
-
-
-def gear_row(
-    lay: Layout,
-    j: Joint,
-    pos: dict[str, tuple[float, float]],
-    index: dict[str, int],
-    q0: np.ndarray,
-    n: int,
-) -> tuple[dict[int, float], float] | None:
-    """A gear pair with both centres pinned to one carrier: ``r₁(θ₁−θc) ± r₂(θ₂−θc) = const``.
-
-    The pitch circles roll on each other relative to the carrier (ground for a
-    fixed-axis pair, the arm of an epicyclic train), which is holonomic: the
-    pair then moves, and accelerates, like any lower pair.  External pairs
-    turn opposite ways (+), internal pairs the same way (−).  Returns None
-    when there is no common carrier or no radii.
-    """
-    g1, g2 = j.links
-    c1, c2 = _carrier_of(lay, g1, pos), _carrier_of(lay, g2, pos)
-    common = [c for c in c1 if c in c2 and c not in (g1, g2)]
-    if not common:
-        return None
-    carrier = common[0]
-    o1, o2 = pos[c1[carrier]], pos[c2[carrier]]
-    given = (
-        getattr(j.spec, "pitch_radii", None) or j.radii
-    )  # a gear's (teeth × module / 2), or rolling circles
-    internal = j.internal
-    radii: tuple[float, float]
-    if given is not None and given[0] is not None and given[1] is not None:
-        radii = (given[0], given[1])
-    else:
-        if j.name not in pos:
-            return None
-        p = pos[j.name]
-        r1 = math.hypot(p[0] - o1[0], p[1] - o1[1])
-        r2 = math.hypot(p[0] - o2[0], p[1] - o2[1])
-        d = math.hypot(o2[0] - o1[0], o2[1] - o1[1])
-        internal = internal or abs(abs(r1 - r2) - d) < abs(r1 + r2 - d)
-        radii = (r1, r2)
-    sign = -1.0 if internal else 1.0
-    i1, i2, ic = index[g1], index[g2], index[carrier]
-    coef: dict[int, float] = {}
-    for col, v in ((i1, radii[0]), (i2, sign * radii[1]), (ic, -radii[0] - sign * radii[1])):
-        coef[col] = coef.get(col, 0.0) + v / (max(radii) or 1.0)  # O(1) coefficients
-    theta = {i: (0.0 if i == n else q0[3 * i + 2]) for i in coef}
-    return coef, sum(v * theta[i] for i, v in coef.items())
-
-
-def gear_normal(lay: Layout, j: Joint, pos: dict[str, tuple[float, float]]) -> float | None:
-    """Line of action of a gear pair: the common tangent turned by the pressure angle."""
-    centres = [gear_centre(lay, lk, pos) for lk in j.links]
-    if None in centres:
-        return None
-    (x1, y1), (x2, y2) = centres  # type: ignore[misc]
-    return math.atan2(y2 - y1, x2 - x1) + math.pi / 2.0 - (j.pressure_angle or 0.0)

@@ -82,10 +82,9 @@ from typing import Any
 from mech._records import dataclass
 from mech.kinematics.constraints import System
 from mech.kinematics.layout import Layout
-from mech.model import JointType
+from mech.pairs import kind_of
 
 __all__ = [
-    "DYADS",
     "ChangePoint",
     "DyadProgram",
     "FastState",
@@ -365,22 +364,6 @@ def _checked_program(comp: Any) -> DyadProgram | None:
     return prog
 
 
-#: Joint type → the closed-form dyads that can close it (the pair-kind registry of this layer),
-#: or None: a mechanism with such a joint is solved by Newton.  A higher pair's contact rows
-#: (profiles, gears) have equivalent linkages, but they are left to Newton here.
-DYADS: dict[JointType, str | None] = {
-    JointType.REVOLUTE: "pin of an rrr or rrp dyad, or a crank's pivot",
-    JointType.PRISMATIC: "path of an rrp or rpr dyad; the slider's angle by pose_angle",
-    JointType.SLOT: "path of an rrp or rpr dyad",
-    JointType.ROLLING: None,
-    JointType.CAM: None,
-    JointType.CONTACT: None,
-    JointType.GEAR: None,
-    JointType.SCREW: None,
-    JointType.SPHERICAL: None,
-}
-
-
 class _NoDecomposition(Exception):
     pass
 
@@ -397,7 +380,7 @@ def _build(lay: Layout, sys_: System, drive_angles: tuple[float | None, ...]) ->
     rigidly from known points, an RRR apex, an RRP slider, an RPR guide) until
     every link is known, and the three functions compiled (one per level).
     """
-    if len(lay.drives) != 1 or sys_.velocity_only or any(DYADS[j.type] is None for j in lay.mech.joints):
+    if len(lay.drives) != 1 or sys_.velocity_only or any(kind_of(j).dyad is None for j in lay.mech.joints):
         raise _NoDecomposition
     spec = lay.drives[0]
     if spec.link is None or spec.reference != lay.mech.ground or drive_angles[0] is None:
@@ -459,7 +442,7 @@ class _Builder:
         self.steps: list[str] = []
         self.dyads: list[tuple[str, str, str]] = []
         self.emitted: set[str] = set()
-        self.prismatic = [ps for ps in lay.paths if ps.type is JointType.PRISMATIC]
+        self.prismatic = [ps for ps in lay.paths if kind_of(ps.type).keeps_angle]
         self._names = list(self.pos)
 
     def _drawn_frames(self) -> tuple[dict[str, tuple[float, float]], dict[int, tuple[float, float, float]]]:

@@ -24,24 +24,11 @@ from dataclasses import replace
 
 from mech._records import dataclass
 from mech.errors import Problem, UnsupportedError, collect
-from mech.model import Drive, Joint, JointType, Mechanism, Path, Ref, Vec
+from mech.model import Drive, Joint, Mechanism, Ref, Vec
+from mech.pairs import kind_of
+from mech.pairs.path import PathSpec
 
 __all__ = ["DriveSpec", "Layout", "PathSpec", "layout"]
-
-#: Joint types whose location is a contact point of the instant, not fixed in a link.
-CONTACT_TYPES = frozenset(t for t in JointType if t.kind.role == "contact")
-
-
-@dataclass(frozen=True, slots=True)
-class PathSpec:
-    """A prismatic or slot joint: ``point`` of ``slider`` runs on a line fixed in ``guide``."""
-
-    joint: str
-    type: JointType
-    slider: str
-    guide: str
-    point: str
-    path: Path
 
 
 @dataclass(frozen=True, slots=True)
@@ -130,10 +117,10 @@ def layout(mech: Mechanism) -> Layout:
 def _planar_layout(mech: Mechanism) -> Layout:
     """:func:`_layout` once every pair is known to be planar (checked once, with the layout)."""
     for j in mech.joints:
-        if not j.type.is_planar:
+        if not kind_of(j).planar:
             raise UnsupportedError(
-                f"joint {j.name} is a {j.type.value} pair: planar solvers cannot model a "
-                f"{j.type.value} pair; mech dof still counts it",
+                f"joint {j.name} is a {j.type} pair: planar solvers cannot model a "
+                f"{j.type} pair; mech dof still counts it",
                 where=j.where,
             )
     return _layout(mech)
@@ -152,15 +139,15 @@ def _layout(mech: Mechanism) -> Layout:
 
     paths: list[PathSpec] = []
     for j in mech.joints:
-        if j.type.kind.role == "path":
+        if kind_of(j).role == "path":
             spec = _path_spec(j, carriers, joint_locs, point_locs, problems)
             if spec is not None:
                 paths.append(spec)
 
-    contacts = tuple(j for j in mech.joints if j.type in CONTACT_TYPES)
+    contacts = tuple(j for j in mech.joints if kind_of(j).role == "contact")
     for j in contacts:
         if len(j.links) != 2:
-            problems.append(Problem(f"{j.type.value} joint {j.name} must join exactly two links", j.where))
+            problems.append(Problem(f"{j.type} joint {j.name} must join exactly two links", j.where))
 
     drives: list[DriveSpec] = []
     for d in mech.drives:
@@ -178,16 +165,11 @@ def _carriers(mech: Mechanism) -> tuple[dict[str, tuple[str, ...]], dict[str, st
     carriers: dict[str, tuple[str, ...]] = {}
     alias: dict[str, str] = {}
     for j in mech.joints:
-        role = j.type.kind.role
-        if role == "pin":
-            carriers[j.name] = tuple(j.links)
-        elif role == "path" and j.type.kind.located == "first":  # a slot: the pin is a point
-            if j.point is not None:
-                alias[j.name] = j.point
-            else:
-                carriers[j.name] = (j.links[0],)
-        elif role == "contact":
-            carriers[j.name] = ()
+        kind = kind_of(j)
+        if kind.role == "path" and kind.located == "first" and j.point is not None:
+            alias[j.name] = j.point  # a slot naming the pin's point: the joint stands for it
+        elif kind.role in ("pin", "contact") or (kind.role == "path" and kind.located == "first"):
+            carriers[j.name] = kind.fixed_in(j)  # a contact point is carried by none
     for p in mech.points:
         carriers[p.name] = (p.link,)
     return carriers, alias
@@ -202,19 +184,19 @@ def _path_spec(
 ) -> PathSpec | None:
     """A prismatic or slot joint's path and the slider's point that runs on it (None: a problem)."""
     if len(j.links) != 2:
-        problems.append(Problem(f"{j.type.value} joint {j.name} must join exactly two links", j.where))
+        problems.append(Problem(f"{j.type} joint {j.name} must join exactly two links", j.where))
         return None
     slider, guide = j.links
     if j.path is None:
         problems.append(
             Problem(
-                f"{j.type.value} joint {j.name} has no path",
+                f"{j.type} joint {j.name} has no path",
                 j.where,
                 hint="add path: {through: P, angle: a} or path: {through: P, toward: Q}",
             )
         )
         return None
-    if j.type.kind.located == "first":  # a slot: its own pin, unless it names one
+    if kind_of(j).located == "first":  # a slot: its own pin, unless it names one
         point = j.point if j.point is not None else j.name
     elif j.point is not None:
         point = j.point
@@ -239,9 +221,7 @@ def _path_spec(
             return None
         point = others[0]
     if point not in carriers:
-        problems.append(
-            Problem(f"{j.type.value} joint {j.name}: point {point} is not a located point", j.where)
-        )
+        problems.append(Problem(f"{j.type} joint {j.name}: point {point} is not a located point", j.where))
         return None
     return PathSpec(j.name, j.type, slider, guide, point, j.path)
 
@@ -304,10 +284,10 @@ def _drive_spec(
         except KeyError:
             problems.append(Problem(f"drive: no joint named {d.joint}", d.where))
             return None
-        if j.type.kind.role != "path":
+        if kind_of(j).role != "path":
             problems.append(
                 Problem(
-                    f"drive: joint {d.joint} is a {j.type.value} joint; a slider drive needs a "
+                    f"drive: joint {d.joint} is a {j.type} joint; a slider drive needs a "
                     "prismatic or slot joint",
                     d.where,
                 )

@@ -18,11 +18,9 @@ kept as continuation keeps them: every step is corrected from a prediction
 off its own branch, and a correction larger than :data:`JUMP` (scaled) is
 refused as a jump.
 
-The stacked residual, Jacobian and γ restate the constraint rows of
-:class:`~mech.kinematics.constraints.System` with a leading axis.  They are
-checked against the system's own at two configurations when first built; a
-system whose rows they do not reproduce (a row kind added later) is swept
-step by step, as before.
+The stacked residual, Jacobian and γ are the constraint system's own
+(:class:`~mech.kinematics.constraints.System`), which are written once with a
+leading batch axis: K configurations at once, one being a batch of one.
 """
 
 from __future__ import annotations
@@ -35,10 +33,9 @@ import numpy as np
 
 from mech.errors import GeometryError
 from mech.kinematics.constraints import System
-from mech.kinematics.curves import curve_rows
 from mech.kinematics.solve import snap_to_error
 
-__all__ = ["MAX_SPAN", "LinearLaw", "Marcher", "Stacked", "Walker", "march", "stacked"]
+__all__ = ["MAX_SPAN", "LinearLaw", "Marcher", "Walker", "march"]
 
 #: Largest crank angle one stack may span (rad); continuation's own step limit.
 MAX_SPAN = math.radians(15.0)
@@ -46,216 +43,6 @@ MAX_SPAN = math.radians(15.0)
 JUMP = 0.05
 _FIRST = 8  # steps in the first stack; doubles while stacks converge whole
 _EDGE_PROBES = 8192  # Newton probes one limit may take (a wide stroke walked in half-steps, then halving)
-
-
-class Stacked:
-    """Residual, Jacobian and γ of a :class:`System` for K configurations at once (K, …)."""
-
-    def __init__(self, sys_: System) -> None:
-        self.sys = sys_
-        self.n3 = 3 * sys_.n
-        self.m = sys_.m
-        self.k = sys_.pc_i.size
-        self.kl = sys_.ln_s.size
-
-    def _full(self, q: np.ndarray) -> np.ndarray:
-        qf = np.zeros((q.shape[0], self.n3 + 3))
-        qf[:, :-3] = q
-        return qf
-
-    @staticmethod
-    def _trig(qf: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """cos and sin of every link's angle (K, n + 1), taken once per configuration."""
-        th = qf[:, 2::3]
-        return np.cos(th), np.sin(th)
-
-    @staticmethod
-    def _rot(
-        trig: tuple[np.ndarray, np.ndarray], idx: np.ndarray, s: np.ndarray
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """A(θ) s for the links ``idx`` (K, len(idx))."""
-        c, sn = trig[0][:, idx], trig[1][:, idx]
-        return c * s[:, 0] - sn * s[:, 1], sn * s[:, 0] + c * s[:, 1]
-
-    def phi(self, q: np.ndarray, c_line: np.ndarray, c_ang: np.ndarray) -> np.ndarray:
-        """Φ (K, m); ``c_ang`` (K, angle rows) holds each step's drive target."""
-        s, qf, k, kl = self.sys, self._full(q), self.k, self.kl
-        trig = self._trig(qf)
-        out = np.empty((q.shape[0], self.m))
-        ax, ay = self._rot(trig, s.pc_i, s.pc_si)
-        bx, by = self._rot(trig, s.pc_j, s.pc_sj)
-        out[:, 0 : 2 * k : 2] = qf[:, 3 * s.pc_i] + ax - qf[:, 3 * s.pc_j] - bx
-        out[:, 1 : 2 * k : 2] = qf[:, 3 * s.pc_i + 1] + ay - qf[:, 3 * s.pc_j + 1] - by
-        r = 2 * k
-        if kl:
-            sx, sy = self._rot(trig, s.ln_s, s.ln_sp)
-            tx, ty = self._rot(trig, s.ln_g, s.ln_t)
-            nx, ny = self._rot(trig, s.ln_g, s.ln_n)
-            dx = qf[:, 3 * s.ln_s] + sx - qf[:, 3 * s.ln_g] - tx
-            dy = qf[:, 3 * s.ln_s + 1] + sy - qf[:, 3 * s.ln_g + 1] - ty
-            out[:, r : r + kl] = nx * dx + ny * dy - c_line
-            if s.ln_k is not None:  # rolling: the arc rolled, k (θ_slider − θ_guide)
-                out[:, r : r + kl] += s.ln_k * (qf[:, 3 * s.ln_s + 2] - qf[:, 3 * s.ln_g + 2])
-        r += kl
-        ka = s.ang_c.size
-        out[:, r : r + ka] = qf[:, 2::3] @ s.ang_a.T - c_ang
-        r += ka
-        kd = s.ds_d.size
-        if kd:
-            dx, dy, _, _, _, _ = self._distance(trig, qf)
-            out[:, r : r + kd] = 0.5 * (dx * dx + dy * dy - s.ds_d**2)
-        for c, row in enumerate(s.cv):  # a profile's rows: nearest points found for all K at once
-            out[:, r + kd + c] = curve_rows(row, qf)[0]
-        return out
-
-    def _distance(self, trig: tuple[np.ndarray, np.ndarray], qf: np.ndarray) -> tuple[np.ndarray, ...]:
-        """d = r_i(P) − r_j(Q) of the distance rows (K, rows), with A_i s_i and A_j s_j."""
-        s = self.sys
-        ax, ay = self._rot(trig, s.ds_i, s.ds_si)
-        bx, by = self._rot(trig, s.ds_j, s.ds_sj)
-        i3, j3 = 3 * s.ds_i, 3 * s.ds_j
-        dx = qf[:, i3] + ax - qf[:, j3] - bx
-        dy = qf[:, i3 + 1] + ay - qf[:, j3 + 1] - by
-        return dx, dy, ax, ay, bx, by
-
-    def jacobian(self, q: np.ndarray) -> np.ndarray:
-        """Φ_q (K, m, 3n)."""
-        s, qf, k, kl = self.sys, self._full(q), self.k, self.kl
-        trig = self._trig(qf)
-        jac = np.zeros((q.shape[0], self.m, self.n3 + 3))
-        if k:
-            ax, ay = self._rot(trig, s.pc_i, s.pc_si)
-            bx, by = self._rot(trig, s.pc_j, s.pc_sj)
-            rx = np.arange(0, 2 * k, 2)
-            ry = rx + 1
-            i3, j3 = 3 * s.pc_i, 3 * s.pc_j
-            jac[:, rx, i3] = 1.0
-            jac[:, ry, i3 + 1] = 1.0
-            jac[:, rx, i3 + 2] = -ay
-            jac[:, ry, i3 + 2] = ax
-            jac[:, rx, j3] = -1.0
-            jac[:, ry, j3 + 1] = -1.0
-            jac[:, rx, j3 + 2] = by
-            jac[:, ry, j3 + 2] = -bx
-        r0 = 2 * k
-        if kl:
-            rows = np.arange(r0, r0 + kl)
-            sx, sy = self._rot(trig, s.ln_s, s.ln_sp)
-            tx, ty = self._rot(trig, s.ln_g, s.ln_t)
-            nx, ny = self._rot(trig, s.ln_g, s.ln_n)
-            dx = qf[:, 3 * s.ln_s] + sx - qf[:, 3 * s.ln_g] - tx
-            dy = qf[:, 3 * s.ln_s + 1] + sy - qf[:, 3 * s.ln_g + 1] - ty
-            s3, g3 = 3 * s.ln_s, 3 * s.ln_g
-            jac[:, rows, s3] = nx
-            jac[:, rows, s3 + 1] = ny
-            jac[:, rows, s3 + 2] = -nx * sy + ny * sx
-            jac[:, rows, g3] = -nx
-            jac[:, rows, g3 + 1] = -ny
-            jac[:, rows, g3 + 2] = (-ny * dx + nx * dy) - (-nx * ty + ny * tx)
-            if s.ln_k is not None:
-                _add_at(jac, rows, s3 + 2, np.broadcast_to(s.ln_k, (q.shape[0], kl)))
-                _add_at(jac, rows, g3 + 2, np.broadcast_to(-s.ln_k, (q.shape[0], kl)))
-        r0 += kl
-        ka = s.ang_c.size
-        if ka:
-            jac[:, r0 : r0 + ka, 2::3] = s.ang_a
-        r0 += ka
-        kd = s.ds_d.size
-        if kd:
-            rows = np.arange(r0, r0 + kd)
-            dx, dy, ax, ay, bx, by = self._distance(trig, qf)
-            i3, j3 = 3 * s.ds_i, 3 * s.ds_j
-            _add_at(jac, rows, i3, dx)
-            _add_at(jac, rows, i3 + 1, dy)
-            _add_at(jac, rows, i3 + 2, -dx * ay + dy * ax)
-            _add_at(jac, rows, j3, -dx)
-            _add_at(jac, rows, j3 + 1, -dy)
-            _add_at(jac, rows, j3 + 2, dx * by - dy * bx)
-        r0 += kd
-        for c, row in enumerate(s.cv):
-            for col, v in curve_rows(row, qf)[1].items():
-                jac[:, r0 + c, col] += v
-        return jac[:, :, :-3]
-
-    def gamma(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
-        """γ (K, m) without drive accelerations."""
-        s, k, kl = self.sys, self.k, self.kl
-        qf, vf = self._full(q), self._full(qd)
-        trig = self._trig(qf)
-        out = np.zeros((q.shape[0], self.m))
-        if k:
-            ax, ay = self._rot(trig, s.pc_i, s.pc_si)
-            bx, by = self._rot(trig, s.pc_j, s.pc_sj)
-            wi2 = vf[:, 3 * s.pc_i + 2] ** 2
-            wj2 = vf[:, 3 * s.pc_j + 2] ** 2
-            out[:, 0 : 2 * k : 2] = wi2 * ax - wj2 * bx
-            out[:, 1 : 2 * k : 2] = wi2 * ay - wj2 * by
-        if kl:
-            r0 = 2 * k
-            sx, sy = self._rot(trig, s.ln_s, s.ln_sp)
-            tx, ty = self._rot(trig, s.ln_g, s.ln_t)
-            nx, ny = self._rot(trig, s.ln_g, s.ln_n)
-            s3, g3 = 3 * s.ln_s, 3 * s.ln_g
-            dx = qf[:, s3] + sx - qf[:, g3] - tx
-            dy = qf[:, s3 + 1] + sy - qf[:, g3 + 1] - ty
-            ws, wg = vf[:, s3 + 2], vf[:, g3 + 2]
-            ddx = vf[:, s3] - ws * sy - vf[:, g3] + wg * ty
-            ddy = vf[:, s3 + 1] + ws * sx - vf[:, g3 + 1] - wg * tx
-            out[:, r0 : r0 + kl] = (
-                wg**2 * (nx * dx + ny * dy)
-                - 2.0 * wg * (-ny * ddx + nx * ddy)
-                + ws**2 * (nx * sx + ny * sy)
-                - wg**2 * (nx * tx + ny * ty)
-            )
-        kd, kc = s.ds_d.size, len(s.cv)
-        if kd:
-            # ½|d|² = const: d·d̈ = −|ḋ|², and d̈ holds −ω_i² A_i s_i + ω_j² A_j s_j besides q̈
-            dx, dy, ax, ay, bx, by = self._distance(trig, qf)
-            i3, j3 = 3 * s.ds_i, 3 * s.ds_j
-            wi, wj = vf[:, i3 + 2], vf[:, j3 + 2]
-            ddx = vf[:, i3] - wi * ay - vf[:, j3] + wj * by
-            ddy = vf[:, i3 + 1] + wi * ax - vf[:, j3 + 1] - wj * bx
-            out[:, self.m - kc - kd : self.m - kc] = (
-                -(ddx * ddx + ddy * ddy) + dx * (wi**2 * ax - wj**2 * bx) + dy * (wi**2 * ay - wj**2 * by)
-            )
-        for c, row in enumerate(s.cv):
-            out[:, self.m - kc + c] = curve_rows(row, qf, vf)[2]
-        return out
-
-    def agrees(self) -> bool:
-        """True when these rows reproduce the system's own at two configurations (to rounding)."""
-        s = self.sys
-        rng = np.random.default_rng(1)
-        q = s.q0 + rng.uniform(-0.2, 0.2, (2, self.n3))
-        qd = rng.uniform(-1.0, 1.0, (2, self.n3))
-        c_ang = np.tile(s.ang_c, (2, 1))
-        mine = (self.phi(q, s.ln_c, c_ang), self.jacobian(q), self.gamma(q, qd))
-        for t in range(2):
-            theirs = (s.phi(q[t], s.ln_c, s.ang_c), s.jacobian(q[t]), s.gamma(q[t], qd[t]))
-            for a, b in zip(mine, theirs, strict=True):
-                if a[t].shape != b.shape or not np.allclose(a[t], b, rtol=1e-12, atol=1e-13):
-                    return False
-        return True
-
-
-def _add_at(jac: np.ndarray, rows: np.ndarray, cols: np.ndarray, values: np.ndarray) -> None:
-    """``jac[:, rows, cols] += values`` (K, len(rows)), repeated (row, column) pairs adding up."""
-    np.add.at(jac.transpose(1, 2, 0), (rows, cols), np.asarray(values).T)
-
-
-def stacked(sys_: System) -> Stacked | None:
-    """The stacked rows of ``sys_`` (kept in its memo), or None when they do not reproduce its own."""
-    return sys_.memo.get("stacked", lambda: _stacked(sys_))
-
-
-def _stacked(sys_: System) -> Stacked | None:
-    form: Stacked | None = Stacked(sys_)
-    try:
-        if not form.agrees():  # type: ignore[union-attr]
-            form = None
-    except (AttributeError, ValueError, IndexError):  # rows laid out otherwise than these expect
-        form = None
-    return form
 
 
 def square_rows(sys_: System) -> np.ndarray | None:
@@ -303,7 +90,7 @@ class _Rates:
 
     def __init__(
         self,
-        rows: Stacked,
+        rows: System,
         keep: np.ndarray,
         drive_row: np.ndarray,
         rate: np.ndarray,
@@ -378,7 +165,8 @@ def march(backend: Any, phi: np.ndarray, k0: int) -> dict[str, np.ndarray] | Non
     ``backend`` is the sweep's Newton backend (mechanism, compiled data,
     options, level, point/link/slide names).  Returns the stacked arrays the
     sweep reads (as step-by-step continuation would give them), or None when
-    this system's rows cannot be stacked: the caller sweeps step by step.
+    the mechanism cannot be marched (rows of the instant only, no square subset of
+    rows, not one crank): the caller sweeps step by step.
     """
     marcher = Marcher.make(backend)
     return None if marcher is None else marcher.series(phi, k0)
@@ -387,7 +175,7 @@ def march(backend: Any, phi: np.ndarray, k0: int) -> dict[str, np.ndarray] | Non
 class Marcher:
     """What a marched series or walk of one sweep shares: stacked rows, the drive, the rate solver."""
 
-    def __init__(self, backend: Any, rows: Stacked, keep: np.ndarray) -> None:
+    def __init__(self, backend: Any, rows: System, keep: np.ndarray) -> None:
         from mech.kinematics.solve import SINGULAR, drives_as_used, omega_ref_of
 
         comp = backend.comp
@@ -409,22 +197,21 @@ class Marcher:
 
     @classmethod
     def make(cls, backend: Any) -> Marcher | None:
-        """A marcher for ``backend``'s mechanism, or None: rows that do not stack, not one crank.
+        """A marcher for ``backend``'s mechanism, or None: velocity-only rows, no square subset, not one crank.
 
         A backend with a ``lead`` (a slider drive, or several drives following
         linear laws in the sweep's parameter, :class:`LinearLaw`) is marched
         whatever its drives; otherwise the mechanism has one turning drive.
         """
         sys_ = backend.comp.system
-        rows = stacked(sys_)
-        keep = square_rows(sys_) if rows is not None else None
-        if rows is None or keep is None or sys_.velocity_only:
+        keep = square_rows(sys_)
+        if keep is None or sys_.velocity_only:
             return None
         if getattr(backend, "lead", None) is None and (
             len(sys_.drive_rows) != 1 or len(backend.mech.drives) != 1 or backend.mech.drives[0].link is None
         ):
             return None
-        return cls(backend, rows, keep)
+        return cls(backend, sys_, keep)
 
     def start(self, angle: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, bool] | None:
         """(q, q̇, q̈, singular) at ``angle``, reached from the drawing as one solve does; None if not."""
@@ -624,7 +411,7 @@ class Walker:
 
 
 def _walk(
-    rows: Stacked,
+    rows: System,
     rates: _Rates,
     law: _CrankLaw | LinearLaw,
     options: Any,
@@ -825,7 +612,7 @@ class LinearLaw:
 
 
 def _newton(
-    rows: Stacked,
+    rows: System,
     keep: np.ndarray,
     q: np.ndarray,
     c_line: np.ndarray,

@@ -19,6 +19,7 @@ from mech.kinematics.blocks import BlockForm
 from mech.kinematics.constraints import System
 from mech.kinematics.result import Mobility
 from mech.model import Mechanism
+from mech.pairs import kind_of
 
 __all__ = ["kutzbach", "numeric_mobility"]
 
@@ -38,8 +39,8 @@ def kutzbach(mech: Mechanism) -> int:
 
 
 def _kutzbach(mech: Mechanism) -> int:
-    j = sum(joint.equivalent_binary for joint in mech.joints if not joint.type.is_higher)
-    h = sum(1 for joint in mech.joints if joint.type.is_higher)
+    j = sum(joint.equivalent_binary for joint in mech.joints if not kind_of(joint).higher)
+    h = sum(1 for joint in mech.joints if kind_of(joint).higher)
     return 3 * (len(mech.links) - 1) - 2 * j - h
 
 

@@ -424,11 +424,15 @@ class Kinematics:
         aa, ab = self.acceleration(a, link_a), self.acceleration(b, link_b)
         return (aa[0] - ab[0], aa[1] - ab[1])
 
-    def _joint(self, name: str, types: tuple[str, ...], what: str) -> JointGeom:
+    def _joint(self, name: str, roles: tuple[str, ...], what: str) -> JointGeom:
+        """The joint ``name``, whose kind must play one of ``roles`` (pin, path, contact) for ``what``."""
+        from mech.pairs import KINDS, kind_of
+
         j = self.joints.get(name)
         if j is None:
             raise InputError(f"no joint named {name}", hint=f"joints: {', '.join(self.joints)}")
-        if j.type not in types:
+        if kind_of(j.type).role not in roles:
+            types = [t for t, k in KINDS.items() if k.role in roles]
             raise InputError(f"{what} needs a {' or '.join(types)} joint; {name} is {j.type}")
         return j
 
@@ -441,7 +445,7 @@ class Kinematics:
         link relative to the second.
         """
         self._need("velocity")
-        j = self._joint(joint, ("prismatic", "slot", "cam", "contact", "gear", "rolling"), "sliding")
+        j = self._joint(joint, ("path", "contact"), "sliding")
         if j.at is None:
             raise InputError(f"joint {joint} has no contact point in this configuration")
         p = j.at
@@ -458,7 +462,7 @@ class Kinematics:
         (the pin rubs fastest in the bearing that turns fastest relative to it).
         """
         self._need("velocity")
-        j = self._joint(joint, ("revolute",), "rubbing")
+        j = self._joint(joint, ("pin",), "rubbing")
         if j.radius is None:
             raise InputError(f"joint {joint} has no radius", hint="add radius: (pin radius) to the joint")
         omegas = [self._state(lk).omega or 0.0 for lk in j.links]
@@ -472,7 +476,7 @@ class Kinematics:
         (the path is straight, so nothing is left across it).
         """
         self._need("acceleration")
-        j = self._joint(joint, ("prismatic", "slot"), "sliding acceleration")
+        j = self._joint(joint, ("path",), "sliding acceleration")
         if j.at is None:
             raise InputError(f"joint {joint} has no point on its path in this configuration")
         slider, guide = j.links
@@ -490,7 +494,7 @@ class Kinematics:
         along the path: ``a_P = a_P' + a_slide·u + 2 ω × v_slide``.
         """
         self._need("velocity")
-        j = self._joint(joint, ("prismatic", "slot"), "coriolis")
+        j = self._joint(joint, ("path",), "coriolis")
         w = self._state(j.links[1]).omega or 0.0
         s = self.sliding(joint)
         u = j.direction or (1.0, 0.0)

@@ -35,15 +35,16 @@ import numpy as np
 from mech._memo import Memo
 from mech._records import dataclass
 from mech.errors import GeometryError, InputError, UnsupportedError, Where
-from mech.kinematics.assemble import Drawn, assemble, gear_pitch_points
+from mech.kinematics.assemble import Drawn, assemble, complete
 from mech.kinematics.blocks import BlockForm, block_form
 from mech.kinematics.constraints import System, build_system
 from mech.kinematics.geometry import wrap_angle
-from mech.kinematics.layout import CONTACT_TYPES, Layout, layout
+from mech.kinematics.layout import Layout, layout
 from mech.kinematics.mobility import kutzbach, numeric_mobility
 from mech.kinematics.result import Fields, JointGeom, Kinematics, LinkState, Mobility
 from mech.model import Drive, Mechanism
 from mech.options import SolveOptions
+from mech.pairs import kind_of
 
 __all__ = ["Compiled", "closed_form", "compiled", "continuation", "mobility", "refuse_underdriven", "solve"]
 
@@ -153,10 +154,10 @@ def mobility(mech: Mechanism) -> Mobility:
             j
             for j in mech.joints
             if mech.ground in j.links
-            and j.type.kind.located != "none"
+            and kind_of(j).located != "none"
             and j.place.at is None
             and not j.place.is_relative
-            and not j.type.is_higher
+            and not kind_of(j).higher
         ]
         if not unplaced:
             raise
@@ -1157,7 +1158,7 @@ def _positions(
         p = locate(q)
         positions[n] = (float(p[0] * scale + cx), float(p[1] * scale + cy))
     if lay.contacts:
-        gear_pitch_points(lay, positions)  # a moved gear pair: pitch point from its centres
+        complete(lay, positions)  # a moved gear pair: pitch point from its centres
     for alias, target in lay.alias.items():
         if target in positions:
             positions[alias] = positions[target]
@@ -1236,10 +1237,13 @@ def _joint_geoms(
         elif j.name in sys_.normals:  # profiles in contact: the common tangent now
             nx, ny = sys_.normals[j.name](q)
             direction = (-float(ny), float(nx))
-        elif j.type in CONTACT_TYPES and j.normal is not None:
+        elif kind_of(j).role == "contact" and j.normal is not None:
             direction = (-math.sin(j.normal), math.cos(j.normal))
         at = positions.get(point) or all_pos.get(point)  # type: ignore[arg-type]
+        if j.name in sys_.contact_points:  # the pair touches away from its location (a follower's point)
+            p = sys_.contact_points[j.name](q) * sys_.scale + sys_.centre
+            at = (float(p[0]), float(p[1]))
         if point is not None and (point.startswith("#") or point not in positions):
             point = None
-        joints[j.name] = JointGeom(j.name, j.type.value, tuple(j.links), point, direction, j.radius, at)
+        joints[j.name] = JointGeom(j.name, j.type, tuple(j.links), point, direction, j.radius, at)
     return joints

@@ -121,13 +121,14 @@ def read_claim(r: NodeReader, key: str, knode: yaml.Node, vnode: yaml.Node, kind
                 "a count of links, joints or freedoms is a small whole number",
             )
         return Claim(key, int(raw), Dimension.NUMBER.value, None, tolerance, text, where)
+    if (
+        akey.kind.infinity
+        and isinstance(value_node, yaml.ScalarNode)
+        and value_node.value.strip().lower() in ("infinity", "inf", "at infinity", "∞")
+    ):
+        unit = (akey.dimension or Dimension.LENGTH).value
+        return Claim(key, "infinity", unit, None, tolerance, text, where)
     if akey.compare is Compare.POINT:
-        if (
-            akey.kind.infinity
-            and isinstance(value_node, yaml.ScalarNode)
-            and value_node.value.strip().lower() in ("infinity", "inf", "at infinity")
-        ):
-            return Claim(key, "infinity", Dimension.LENGTH.value, None, tolerance, text, where)
         pt = _claim_point(r, value_node, key)
         return Claim(key, pt, Dimension.LENGTH.value, None, tolerance, text, where)
     value, sense = _claim_quantity(r, key, akey, value_node)

@@ -13,7 +13,8 @@ import yaml
 
 from mech.loader.nodes import article, did_you_mean
 from mech.loader.reader import NodeReader, Skip
-from mech.model import Drive, Joint, JointType
+from mech.model import Drive, Joint
+from mech.pairs import kind_of
 from mech.units import Dimension, parse_quantity
 
 __all__ = ["CRANK_KEYS", "DIRECTIONS", "DRIVE_KEYS", "SLIDER_KEYS", "read_drives"]
@@ -111,10 +112,10 @@ def _check_slider(r: NodeReader, f: Fields, joint: str, joints: list[Joint]) -> 
     known = {j.name: j for j in joints}
     if joint not in known:
         raise r.problem(f["joint"][1], f"the drive moves unknown joint {joint!r}", did_you_mean(joint, known))
-    if known[joint].type not in (JointType.PRISMATIC, JointType.SLOT):
+    if kind_of(known[joint]).role != "path":
         raise r.problem(
             f["joint"][1],
-            f"a joint drive moves a slider; {joint} is {known[joint].type.value}",
+            f"a joint drive moves a slider; {joint} is {known[joint].type}",
             "drive a prismatic joint, or use `link:` for a crank",
         )
     for key in CRANK_KEYS:
@@ -167,6 +168,13 @@ def _angular(r: NodeReader, node: yaml.Node, key: str, bare_factor: float) -> tu
         raise r.problem(node, f'{key} must be a speed such as 600 or "62.8 rad/s", not {raw!r}') from None
     if q.dimension is None:
         value = q.value * bare_factor
+    elif q.dimension is Dimension.ANGULAR_VELOCITY and key == "rpm" and q.unit != "rpm":
+        # `rpm` names its unit: another one would be read silently as something the key does not say
+        raise r.problem(
+            node,
+            f"rpm is in revolutions per minute, but {raw!r} is in {q.unit}",
+            f"write `omega: {raw}` for a speed in {q.unit}, or give rpm in rev/min",
+        )
     elif q.dimension is Dimension.ANGULAR_VELOCITY:
         value = q.value
     else:
@@ -201,7 +209,4 @@ def _signed(r: NodeReader, node: yaml.Node, key: str, dimension: Dimension) -> f
 
 def _turns_a_programme(link: str, joints: list[Joint]) -> bool:
     """True when ``link`` is the cam of a cam joint that gives its follower's programme."""
-    return any(
-        j.type is JointType.CAM and j.links[:1] == (link,) and getattr(j.spec, "program", None) is not None
-        for j in joints
-    )
+    return any(j.links[:1] == (link,) and getattr(j.spec, "program", None) is not None for j in joints)

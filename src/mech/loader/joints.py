@@ -15,9 +15,8 @@ import yaml
 from mech.loader.nodes import did_you_mean
 from mech.loader.points import PLACE_KEYS, read_place
 from mech.loader.reader import NodeReader, Skip
-from mech.model import Joint, JointType
-from mech.pairs.base import PairKind
-from mech.pairs.registry import KINDS
+from mech.model import Joint
+from mech.pairs import KINDS, PairKind
 
 __all__ = ["CLOSURES", "COMMON_JOINT_KEYS", "read_joints"]
 
@@ -73,45 +72,40 @@ def _joint(r: NodeReader, knode: yaml.Node, vnode: yaml.Node, links: set[str]) -
     )
 
 
-def _joint_type(r: NodeReader, vnode: yaml.Node, fields: Fields, what: str) -> JointType:
+def _joint_type(r: NodeReader, vnode: yaml.Node, fields: Fields, what: str) -> str:
+    """The joint's ``type``: the name of a registered pair kind."""
     if "type" not in fields:
-        raise r.problem(
-            vnode,
-            f"{what} has no `type`",
-            "e.g. `type: revolute` (" + ", ".join(t.value for t in JointType) + ")",
-        )
+        raise r.problem(vnode, f"{what} has no `type`", "e.g. `type: revolute` (" + ", ".join(KINDS) + ")")
     type_node = fields["type"][1]
     type_text = r.scalar(type_node, "the joint type")
-    try:
-        return JointType(type_text)
-    except ValueError:
+    if type_text not in KINDS:
         raise r.problem(
             type_node,
             f"unknown joint type {type_text!r}",
-            did_you_mean(type_text, [t.value for t in JointType])
-            or "types: " + ", ".join(t.value for t in JointType),
-        ) from None
+            did_you_mean(type_text, list(KINDS)) or "types: " + ", ".join(KINDS),
+        )
+    return type_text
 
 
-def _check_keys(r: NodeReader, fields: Fields, jtype: JointType, pair: PairKind) -> None:
+def _check_keys(r: NodeReader, fields: Fields, jtype: str, pair: PairKind) -> None:
     """Every key is a common one or this type's own; another type's key is named as such."""
     allowed = _allowed_keys(jtype, pair)
     for key, (kn, _) in fields.items():
         if key not in allowed:
-            others = [t.value for t, k in KINDS.items() if key in k.keys]
+            others = [t for t, k in KINDS.items() if key in k.keys]
             hint = f"`{key}` belongs to {', '.join(others)} joints" if others else did_you_mean(key, allowed)
-            r.problem(kn, f"unknown key {key!r} for a {jtype.value} joint", hint)
+            r.problem(kn, f"unknown key {key!r} for a {jtype} joint", hint)
 
 
-def _allowed_keys(jtype: JointType, pair: PairKind) -> frozenset[str]:
+def _allowed_keys(jtype: str, pair: PairKind) -> frozenset[str]:
     """The keys a joint of this type may have: the common ones and its own (made once per type)."""
-    allowed = _ALLOWED.get(jtype)
+    allowed = _ALLOWED.get(pair)
     if allowed is None:
-        allowed = _ALLOWED[jtype] = frozenset(COMMON_JOINT_KEYS) | frozenset(pair.keys)
+        allowed = _ALLOWED[pair] = frozenset(COMMON_JOINT_KEYS) | frozenset(pair.keys)
     return allowed
 
 
-_ALLOWED: dict[JointType, frozenset[str]] = {}
+_ALLOWED: dict[PairKind, frozenset[str]] = {}  # keyed by the kind itself: a kind registered again is new
 
 
 def _joint_links(
@@ -122,7 +116,7 @@ def _joint_links(
     what: str,
     links: set[str],
     pair: PairKind,
-    jtype: JointType,
+    jtype: str,
 ) -> list[str]:
     """The links a joint joins: known, not repeated, as many as its type allows."""
     if "links" not in fields:
@@ -152,7 +146,7 @@ def _joint_links(
     if pair.max_links is not None and len(lnode.value) > pair.max_links:
         raise r.problem(
             lnode,
-            f"a {jtype.value} joint joins exactly two links, not {len(lnode.value)}",
+            f"a {jtype} joint joins exactly two links, not {len(lnode.value)}",
             "only a revolute (pin) joint may join more than two",
         )
     return names

@@ -26,6 +26,7 @@ from typing import Any
 import yaml
 
 from mech.errors import InputError, Where, source_lines
+from mech.fields import is_null
 
 __all__ = [
     "compose",
@@ -340,11 +341,6 @@ def where_of(node: yaml.Node | None, path: str) -> Where:
     if node is None or node.start_mark is None:
         return Where(path)
     return Where(path, node.start_mark.line + 1, node.start_mark.column + 1)
-
-
-def is_null(node: yaml.Node | None) -> bool:
-    """An empty value (``key:``, ``~``, ``null``): YAML's resolver tagged it null."""
-    return isinstance(node, yaml.ScalarNode) and node.tag == "tag:yaml.org,2002:null"
 
 
 def node_kind(node: yaml.Node | None) -> str:

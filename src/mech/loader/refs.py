@@ -10,17 +10,19 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from mech.errors import Problem, Where
-from mech.model import Joint, JointType, Point
+from mech.model import Joint, Point
+from mech.pairs import kind_of
 
 __all__ = ["check_names", "check_refs", "located_on", "placement_cycles"]
 
 
 def located_on(joints: list[Joint], points: list[Point]) -> dict[str, set[str]]:
-    """Name → links it is a point of (see :attr:`Joint.located_on`)."""
+    """Name → links it is a point of (see :func:`mech.pairs.located_on`)."""
     out: dict[str, set[str]] = {}
     for j in joints:
-        if j.located_on:
-            out[j.name] = set(j.located_on)
+        links = kind_of(j).located_on(j)
+        if links:
+            out[j.name] = set(links)
     for p in points:
         out[p.name] = {p.link}
     return out
@@ -57,7 +59,7 @@ def check_refs(joints: list[Joint], points: list[Point], located: dict[str, set[
                             j.where,
                         )
                     )
-        if j.type in (JointType.PRISMATIC, JointType.SLOT) and len(j.links) == 2:
+        if kind_of(j).role == "path" and len(j.links) == 2:
             problems += _slider_refs(j, joints, points, located)
         problems += _profile_refs(j, located)
     for p in points:
@@ -102,11 +104,9 @@ def _slider_refs(
                     f"name a joint or point of {mover}",
                 )
             )
-    elif j.type is JointType.PRISMATIC and j.path is not None:
+    elif kind_of(j).keeps_angle and j.path is not None:
         # a slot's pin is the slot joint itself; a prismatic slider runs on a point of its own
-        others = [
-            o.name for o in joints if o is not j and mover in o.links and o.type is not JointType.PRISMATIC
-        ]
+        others = [o.name for o in joints if o is not j and mover in o.links and not kind_of(o).keeps_angle]
         others += [p.name for p in points if p.link == mover]
         if len(others) != 1:
             problems.append(

@@ -1,26 +1,55 @@
-"""Pair kinds: what each joint type reads, means and provides, in one place per layer.
+"""Pair kinds: everything a type of joint means, one module per kind, one registry.
 
-A joint type (``revolute``, ``cam``, ``gear`` …) is the unit of design.  Each
-layer that treats joints differently by type keeps a registry keyed by
-:class:`~mech.model.JointType`, and a test (``tests/test_pair_kinds.py``) walks every
-type through every registry, so a new kind is a checklist that fails until
-each layer has its entry:
+Every layer that treats joints differently by type asks the joint's kind
+(:func:`kind_of`), an instance of a :class:`~mech.pairs.base.PairKind`
+subclass: what it reads, how it is classified and counted, its constraint
+rows, its closed-form dyad, its I-centre by inspection, its glyph.  Nothing
+outside this package branches on a type's name.  A new kind is one module and
+one line in :data:`~mech.pairs.registry.KINDS` (or a :func:`register` call).
 
-===========================  =====================================  ============================
-layer                        registry                               entry provides
-===========================  =====================================  ============================
-model (this package)         :data:`mech.pairs.registry.KINDS`       keys + schema fragments, a
-                                                                    reader giving a typed spec,
-                                                                    classification, which links
-                                                                    the joint is a point of
-kinematics                   :data:`mech.kinematics.rows.ROWS`       constraint rows (named
-                                                                    records), curvature terms
-                                                                    come with each row type
-I-centres                    :data:`mech.icentres.inspection.RULES`  the I-centre by inspection
-drawing                      :data:`mech.draw.config.GLYPHS`         the glyph drawn at the joint
-===========================  =====================================  ============================
-
-This ``__init__`` imports nothing, so that :mod:`mech.model` can use the spec
-types of :mod:`mech.pairs.specs` without a cycle; the registry lives in
-:mod:`mech.pairs.registry`.
+The functions below answer, for a joint, the questions the model leaves to its
+kind (the model holds only what the file says).
 """
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from mech.pairs.base import PairKind
+from mech.pairs.registry import KINDS, kind_of, register
+
+if TYPE_CHECKING:
+    from mech.model import Joint, Mechanism
+    from mech.specs import JointSpec
+
+__all__ = ["KINDS", "PairKind", "closure_of", "kind_of", "located_on", "points_of", "register", "spec_of"]
+
+
+def located_on(joint: Joint) -> tuple[str, ...]:
+    """The links ``joint`` is a *point* of (where a length may end).
+
+    A prismatic joint is a pair, not a point (its ``point`` is the slider's).
+    A slot joint is the pin's centre, a point of the pin link only: it moves
+    along the slotted link.  Every other joint is a point of each link it joins
+    (a contact point at the drawn instant).
+    """
+    return KINDS[joint.type].located_on(joint)
+
+
+def points_of(mech: Mechanism, link: str) -> tuple[str, ...]:
+    """Names of every located thing on a link: its joints (those with a point) and points."""
+    names = [j.name for j in mech.joints if link in located_on(j)]
+    names += [p.name for p in mech.points if p.link == link]
+    return tuple(names)
+
+
+def closure_of(joint: Joint) -> str:
+    """``self`` or ``force``: the file's ``closure`` (form → self) or the kind's default."""
+    if joint.closure is None:
+        return KINDS[joint.type].closure
+    return "self" if joint.closure in ("form", "self") else "force"
+
+
+def spec_of(joint: Joint) -> JointSpec:
+    """The joint's spec, or its kind's empty spec when it was built without one."""
+    return joint.spec if joint.spec is not None else KINDS[joint.type].spec

@@ -1,95 +1,118 @@
-"""The model-layer protocol of a pair kind, and the readers and schema pieces kinds share.
+"""The base of every pair kind: one class whose hooks say everything a kind of joint means.
 
-A :class:`PairKind` says, for one :class:`~mech.model.JointType`: which keys
-a joint of that type may carry (each with its JSON-Schema fragment, from which
-``mech schema`` is generated), how to read them into the kind's typed spec
-(:mod:`mech.pairs.specs`), and how the kind is classified and counted.
+A joint type (``revolute``, ``cam``, ``gear`` …) is the unit of design, as a
+``Joint`` subclass is in sympy.physics.mechanics: one subclass of
+:class:`PairKind` per type, one instance of it in the registry
+(:data:`mech.pairs.registry.KINDS`), and every layer asks that instance instead
+of branching on the type's name.  What a kind says:
 
-Readers receive the loader's node reader (:class:`Reader`), so every value
-read here gets the same units, ranges and ``file:line:col`` messages as the
-rest of the file.  Nothing here imports numpy.
+* **reading** — the keys it adds to a joint (:attr:`PairKind.keys`, each with its
+  JSON-Schema fragment) and :meth:`PairKind.read`, which turns them into the
+  kind's typed spec (:mod:`mech.specs`);
+* **classification** — the lecture notes' facts: lower or higher (Kutzbach's j or
+  h), the relative motion, line or surface contact, self or force closure;
+* **what the solvers make of it** — :attr:`PairKind.role`, which links it is a
+  point of (:attr:`PairKind.located`), whether a path pair keeps the links'
+  relative angle (:attr:`PairKind.keeps_angle`), whether its profiles roll
+  (:attr:`PairKind.rolls`), how closed-form dyads close it (:attr:`PairKind.dyad`);
+* **its constraint rows** — :meth:`PairKind.rows`, in the row shapes of
+  :mod:`mech.pairs.rows`;
+* **its I-centre by inspection** — :attr:`PairKind.icentre` from the joints
+  alone, :meth:`PairKind.inspect` at a solved instant;
+* **its glyph** — :meth:`PairKind.glyph`, the geometry a configuration diagram
+  draws at the joint.
+
+The hooks are given small protocols of what they may read (the drawn
+configuration, the solved instant, the page), never the layers' own classes,
+so this package imports nothing above :mod:`mech.model`.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Mapping
-from dataclasses import field
-from functools import partial
-from typing import TYPE_CHECKING, Any, Protocol
+from collections.abc import Callable, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, ClassVar, Protocol
 
-from mech._records import dataclass
-from mech.model import Path, Ref, Vec
-from mech.pairs.specs import Circle, Curve, JointSpec, Knife, Line, Profile, Profiles
-from mech.units import Dimension
+from mech.errors import Problem, UnsupportedError
+from mech.specs import BareSpec, JointSpec, Profile
 
 if TYPE_CHECKING:
-    import yaml
+    from mech.fields import Fields, Reader
+    from mech.forces.result import PairForce
+    from mech.model import Joint, Mechanism
+    from mech.pairs.rows import RowBuilder
 
-    from mech.model import JointType
+#: A wrench on one link: force (N) and moment (N·m, ccw +) about the point it is given for.
+Wrench = tuple[float, float, float]
 
-__all__ = [
-    "NAME",
-    "NUMBER",
-    "REF",
-    "XY",
-    "Fields",
-    "PairKind",
-    "Reader",
-    "read_path",
-    "read_profiles",
-    "read_ref",
-]
-
-#: A mapping as the loader reads it: key → (key node, value node).
-Fields = Mapping[str, tuple[Any, Any]]
+Vec = tuple[float, float]
 
 
-class Reader(Protocol):
-    """What a kind's reader may ask of the loader (see :class:`mech.loader.reader.NodeReader`)."""
+class Carriers(Protocol):
+    """Who carries each location and each link's locations (the layout, or the row builder)."""
 
-    def problem(self, node: yaml.Node | None, message: str, hint: str | None = None) -> Exception: ...
-    def guard(self, fn: Callable[[], Any], default: Any) -> Any: ...
-    def optional(self, mapping: Fields, key: str, reader: Callable[..., Any]) -> Any: ...
-    def mapping(
-        self, node: yaml.Node, what: str, *, allowed: Iterable[str] | None = None
-    ) -> dict[str, tuple[yaml.Node, yaml.Node]]: ...
-    def sequence(self, node: yaml.Node, what: str) -> list[yaml.Node]: ...
-    def scalar(self, node: yaml.Node, what: str) -> str: ...
-    def name(self, node: yaml.Node, what: str) -> str: ...
-    def boolean(self, node: yaml.Node, what: str) -> bool: ...
-    def number(
-        self, node: yaml.Node, what: str, dimension: Dimension, *, positive: bool = False
-    ) -> float: ...
-    def vec(self, node: yaml.Node, what: str) -> Vec: ...
+    @property
+    def on_link(self) -> Mapping[str, tuple[str, ...]]: ...
+    @property
+    def carriers(self) -> Mapping[str, tuple[str, ...]]: ...
 
 
-@dataclass(frozen=True, slots=True)
+__all__ = ["Carriers", "InstantView", "PairKind", "Wrench", "contact_forces"]
+
+
+class InstantView(Protocol):
+    """What a kind's :meth:`~PairKind.inspect` reads of a solved instant and where it says what it sees.
+
+    Implemented by :mod:`mech.icentres.inspection` (metres, global).
+    """
+
+    @property
+    def mech(self) -> Mechanism: ...
+    @property
+    def positions(self) -> Mapping[str, Vec]: ...
+
+    def at(self, j: Joint) -> Vec | None:
+        """Where the joint's point is at the instant (a slider's point, a pin, a contact)."""
+        ...
+
+    def direction(self, j: Joint) -> Vec | None:
+        """The joint's path direction, or a contact's common tangent, as solved (None if not known)."""
+        ...
+
+    def pin(self, joint: str, links: tuple[str, ...], at: Vec) -> None:
+        """A pin at ``at``: the I-centre of every pair of the links it joins."""
+        ...
+
+    def slide(self, joint: str, slider: str, guide: str, direction: Vec, at: Vec | None, turns: bool) -> None:
+        """A straight path along ``direction``; ``turns``: the slider may turn on it (a pin in a slot)."""
+        ...
+
+    def contact(self, joint: str, links: tuple[str, str], at: Vec, normal: Vec | None = None) -> None:
+        """A higher pair touching at ``at``: rolling (no ``normal``), else sliding along a common normal."""
+        ...
+
+
 class PairKind:
-    """One joint type in the model layer.
+    """One joint type: subclass it, set the class attributes, override the hooks it needs.
 
     Attributes
     ----------
-    type
-        The joint type this entry is for.
+    name
+        The ``type:`` a file writes.
     keys
         Key → JSON-Schema fragment, for the keys this type adds to the common
         ones (``type``, ``links``, placement, ``closure``, ``description``).
-    read
-        ``read(reader, fields, what, links) -> spec``: the typed spec from the
-        joint's mapping (only this kind's keys are present; problems are
-        reported through ``reader``).
     spec
-        The spec a joint of this type has when built without one.
+        The spec a joint of this type has when its file gives none of its keys.
     higher
         Counted in Kutzbach's h (one freedom removed) rather than j.
-    planar
-        The planar solvers can model it.
     motion
         The lecture notes' classification by relative motion.
     line_contact
         Line or point contact (a higher pair in the strict sense), else surface.
     closure
         ``self`` or ``force``: how the elements are kept together by default.
+    planar
+        The planar solvers can model it.
     located
         Which of the joint's links it is a *point* of (where a length may end):
         ``"all"``, ``"first"`` (a slot's pin) or ``"none"`` (a prismatic pair).
@@ -99,166 +122,183 @@ class PairKind:
         What the position solvers make of it: ``pin`` (a point fixed in every link it
         joins), ``path`` (a point of the first link on a line of the second), ``contact``
         (a higher pair whose contact point is fixed in neither link), ``spatial`` (refused).
+    keeps_angle
+        A path pair that also keeps its two links' relative angle (a prismatic pair:
+        the block turns with its guide); a pin in a slot does not.
+    rolls
+        Its profiles roll on each other without slip (rolling, gears); a cam slides.
+    dyad
+        How the closed-form dyads use it (``pin`` of an RRR or RRP dyad or a crank's
+        pivot, ``path`` of an RRP or RPR dyad), or None: a mechanism with such a
+        joint is solved by Newton.
+    glyph
+        How a configuration diagram draws it: ``pin`` (open circle; a triangle on a
+        hatched base at a ground pivot), ``slider`` (a block on its guide, line of stroke
+        dash-dotted), ``slot`` (two lines along the path round the pin), ``pitch`` (pitch
+        circles about each pivot, the contact point), ``contact`` (common normal and
+        tangent at the contact point), ``none`` (not drawn).
+    icentre
+        What inspection gives from the joints alone (:mod:`mech.icentres.order`):
+        ``point`` (its I-centre), ``infinity`` (a point at infinity), ``line`` (only a
+        line through it), or ``none``; and how the notes say it (``{joint}`` is filled in).
     """
 
-    type: JointType
-    keys: Mapping[str, dict[str, Any]]
-    read: Callable[[Reader, Fields, str, tuple[str, ...]], JointSpec]
-    spec: JointSpec
-    higher: bool
-    motion: str
-    line_contact: bool
-    planar: bool = True
-    closure: str = "self"
-    located: str = "all"
-    max_links: int | None = 2
-    role: str = "contact"
-    notes: tuple[str, ...] = field(default=())
+    name: ClassVar[str]
+    keys: ClassVar[Mapping[str, dict[str, Any]]] = {}
+    spec: ClassVar[JointSpec] = BareSpec()
+    higher: ClassVar[bool] = False
+    motion: ClassVar[str]
+    line_contact: ClassVar[bool] = False
+    closure: ClassVar[str] = "self"
+    planar: ClassVar[bool] = True
+    located: ClassVar[str] = "all"
+    max_links: ClassVar[int | None] = 2
+    role: ClassVar[str] = "contact"
+    keeps_angle: ClassVar[bool] = False
+    rolls: ClassVar[bool] = False
+    dyad: ClassVar[str | None] = None
+    icentre: ClassVar[tuple[str, str]] = ("none", "")
+    glyph: ClassVar[str] = "none"
 
+    def __repr__(self) -> str:
+        return f"<pair kind {self.name}>"
 
-# -- JSON-Schema fragments shared by kinds and the rest of the schema ---------------------------
-NUMBER: dict[str, Any] = {
-    "description": 'A bare number in the file\'s units, or a string with its unit ("40 mm", "60 deg").',
-    "oneOf": [
-        {"type": "number"},
-        {"type": "string", "pattern": r"^\s*[+-]?(\d[\d_]*(\.\d*)?|\.\d+)([eE][+-]?\d+)?\s*[^\s\d]*.*$"},
-    ],
-}
-NAME: dict[str, Any] = {"type": "string", "pattern": r"^[^\s.\-\[\]{},:#]+$"}
-XY: dict[str, Any] = {"type": "array", "items": NUMBER, "minItems": 2, "maxItems": 2}
-REF: dict[str, Any] = {"oneOf": [NAME, XY], "description": "Coordinates [x, y] or the name of a point."}
-PATH: dict[str, Any] = {
-    "type": "object",
-    "required": ["through"],
-    "additionalProperties": False,
-    "properties": {"through": REF, "angle": NUMBER, "toward": REF},
-}
-PROFILE: dict[str, Any] = {
-    "description": "A curve fixed in the link: circle, line, point (knife edge) or closed curve.",
-    "type": "object",
-    "minProperties": 1,
-    "maxProperties": 1,
-    "additionalProperties": False,
-    "properties": {
-        "circle": {
-            "type": "object",
-            "required": ["centre", "radius"],
-            "additionalProperties": False,
-            "properties": {"centre": REF, "radius": NUMBER},
-        },
-        "line": PATH,
-        "point": REF,
-        "curve": {"type": "array", "items": XY, "minItems": 3},
-    },
-}
-PROFILES: dict[str, Any] = {
-    "description": "Each link's curve, keyed by link: with profiles the pair moves.",
-    "type": "object",
-    "additionalProperties": PROFILE,
-}
-RADII: dict[str, Any] = {
-    "type": "array",
-    "items": {"oneOf": [NUMBER, {"type": "null"}]},
-    "minItems": 2,
-    "maxItems": 2,
-}
+    # -- reading ------------------------------------------------------------------------------
+    def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> JointSpec:
+        """The typed spec from the joint's own keys (only this kind's keys are in ``fields``).
 
+        Problems are reported through ``r`` (located, collected); the default is the
+        kind's empty spec, for a kind with no keys of its own.
+        """
+        return self.spec
 
-# -- readers shared by kinds ------------------------------------------------------------------
-def read_ref(r: Reader, node: yaml.Node, what: str) -> Ref:
-    """Coordinates ``[x, y]`` or the name of a joint or point."""
-    import yaml
+    # -- where the joint is ---------------------------------------------------------------------
+    def fixed_in(self, j: Joint) -> tuple[str, ...]:
+        """The links the joint's point is fixed in (it moves with them), for the position solvers.
 
-    if isinstance(node, yaml.SequenceNode):
-        return Ref(xy=r.vec(node, what))
-    return Ref(name=r.name(node, what))
+        A pin is fixed in every link it joins; a pin in a slot in its pin link; a contact
+        point moves along both profiles (fixed in neither); a prismatic pair has no point.
+        """
+        if self.role == "pin":
+            return tuple(j.links)
+        if self.role == "path" and self.located == "first":
+            return j.links[:1]
+        return ()
 
+    def drawn_at(self, mech: Mechanism, j: Joint) -> Vec | None:
+        """Where the file's own data draw the joint when it has no ``at`` (None: it is solved for)."""
+        return None
 
-def read_path(r: Reader, node: yaml.Node, what: str, *, noun: str = "path") -> Path:
-    """``{through: P, angle: a}`` or ``{through: P, toward: Q}``."""
-    fields = r.mapping(node, f"the {noun} of {what}", allowed=("through", "angle", "toward"))
-    if "through" not in fields:
-        raise r.problem(
-            node, f"the {noun} of {what} has no `through`", f"e.g. `{noun}: {{through: O, angle: 0}}`"
+    # -- the drawn configuration ----------------------------------------------------------------
+    def contact_problem(self, j: Joint) -> Problem | None:
+        """What a contact pair's drawing lacks for its rows (its contact point), or None.
+
+        The default, for a pair whose contact point is fixed in neither link: the file
+        must draw it (``at``) unless profiles (or a programme) make the pair move.
+        """
+        if self.role != "contact" or j.place.at is not None:
+            return None
+        if j.profiles or getattr(j.spec, "program", None) is not None:
+            return None
+        return Problem(
+            f"{j.type} joint {j.name} has no contact point: positions and velocities need it",
+            j.where,
+            f"give `at: [x, y]`, the contact point in the drawn configuration{self.contact_hint}, "
+            "and `normal`, the common normal's angle",
         )
-    if ("angle" in fields) == ("toward" in fields):
-        raise r.problem(node, f"the {noun} of {what} needs exactly one of `angle` or `toward`")
-    through = read_ref(r, fields["through"][1], f"`through` of {what}")
-    angle = r.optional(fields, "angle", lambda n: r.number(n, f"the {noun} angle", Dimension.ANGLE))
-    toward = r.optional(fields, "toward", lambda n: read_ref(r, n, f"`toward` of {what}"))
-    return Path(through=through, angle=angle, toward=toward)
 
+    #: What else may stand for the contact point, said in :meth:`contact_problem`'s hint.
+    contact_hint: ClassVar[str] = ""
 
-def _read_profile(r: Reader, node: yaml.Node, what: str) -> Profile:
-    fields = r.mapping(node, what, allowed=("circle", "line", "point", "curve"))
-    if len(fields) != 1:
-        raise r.problem(
-            node,
-            f"{what} must be exactly one of circle, line, point or curve",
-            "e.g. `{circle: {centre: E, radius: 40}}` or `{line: {through: F, angle: 0}}`",
+    def complete(self, view: Carriers, j: Joint, positions: dict[str, Vec]) -> None:
+        """Positions the kind derives in a configuration (drawn or solved): a gear's pitch point."""
+
+    def drawing_problem(
+        self, view: Carriers, j: Joint, positions: Mapping[str, Vec], fmt: Callable[[float], str]
+    ) -> Problem | None:
+        """What makes the pair impossible as drawn (``fmt`` writes a length in the file's unit), or None."""
+        return None
+
+    def drawn_profiles(self, mech: Mechanism, j: Joint, contact: Vec | None) -> list[tuple[str, Profile]]:
+        """The curves a configuration diagram draws on the pair's links: the joint's ``profiles``.
+
+        ``contact`` is the contact point at the instant drawn (None when unknown).
+        """
+        return list(j.profiles)
+
+    # -- kinematics -----------------------------------------------------------------------------
+    def rows(self, b: RowBuilder, j: Joint) -> None:
+        """Append the joint's constraint rows to ``b`` (in the shapes of :mod:`mech.pairs.rows`).
+
+        Problems (a contact point missing, profiles that do not touch) go to
+        ``b.problems``, all reported at once.  The default refuses: the planar
+        solvers cannot model a kind without rows (the layout says so first).
+        """
+        raise UnsupportedError(
+            f"joint {j.name} is a {j.type} pair: planar solvers cannot model it", where=j.where
         )
-    ((kind, (_, vnode)),) = fields.items()
-    if kind == "circle":
-        c = r.mapping(vnode, f"the circle of {what}", allowed=("centre", "radius"))
-        missing = [k for k in ("centre", "radius") if k not in c]
-        if missing:
-            raise r.problem(
-                vnode, f"the circle of {what} has no `{missing[0]}`", "e.g. `{centre: E, radius: 40}`"
-            )
-        centre = read_ref(r, c["centre"][1], f"the centre of {what}")
-        radius = r.number(c["radius"][1], f"the radius of {what}", Dimension.LENGTH, positive=True)
-        return Circle(centre, radius)
-    if kind == "line":
-        p = read_path(r, vnode, what, noun="line")
-        return Line(p.through, p.angle, p.toward)
-    if kind == "point":
-        return Knife(read_ref(r, vnode, f"the point of {what}"))
-    items = r.sequence(vnode, f"the curve of {what}")
-    if len(items) < 3:
-        raise r.problem(vnode, f"the curve of {what} needs at least 3 points, not {len(items)}")
-    points = tuple(r.vec(item, f"a point of the curve of {what}") for item in items)
-    if len(set(points)) != len(points):
-        raise r.problem(
-            vnode,
-            f"the curve of {what} passes through the same point twice",
-            "a closed curve lists each point once",
-        )
-    return Curve(points)
+
+    # -- forces -----------------------------------------------------------------------------------
+    def forces(
+        self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+    ) -> list[PairForce]:
+        """The force the pair carries, from what its rows put on each of its links.
+
+        ``wrenches[link]`` is the force on that link from this joint and its moment about
+        ``at`` (the pair's point at the instant; ``direction`` its path or common tangent).
+        The default, for a pin or any pair that acts at its point: the force on each link
+        after the first, from the first (a binary joint: on its second link, as DESIGN
+        § 1.4's ``force.<joint>.x`` reads it).
+        """
+        from mech.forces.result import PairForce
+
+        first = j.links[0]
+        return [
+            PairForce(j.name, link, first, (wrenches[link][0], wrenches[link][1]), at)
+            for link in j.links[1:]
+            if link in wrenches
+        ]
+
+    def reaction_rows(self, j: Joint, view: Any) -> Sequence[Sequence[float]] | None:
+        """Rows that carry this pair's force where its kinematic rows only say how it moves (a gear
+        pair on fixed centres keeps its speed ratio as an angle row, but pushes along its line of
+        action); None: its own rows carry it."""
+        return None
+
+    # -- instantaneous centres -------------------------------------------------------------------
+    def inspect(self, seen: InstantView, j: Joint) -> None:
+        """Say what inspection sees of the joint at a solved instant (lecture notes 002, §6.4).
+
+        The default sees nothing: a pair the planar solvers refuse has no planar I-centre.
+        """
+
+    # -- classification -------------------------------------------------------------------------
+    def located_on(self, joint: Joint) -> tuple[str, ...]:
+        """The links ``joint`` is a *point* of (where a length may end), by :attr:`located`."""
+        if self.located == "none":
+            return ()
+        if self.located == "first":
+            return joint.links[:1]
+        return joint.links
+
+    @property
+    def contact(self) -> str:
+        """Lower (surface contact) or higher (line or point contact)."""
+        return "higher" if self.line_contact else "lower"
 
 
-def read_profiles(r: Reader, node: yaml.Node, what: str, links: tuple[str, ...]) -> Profiles:
-    """``profiles: {link: curve, …}``, keyed by the joint's own links."""
-    out: list[tuple[str, Profile]] = []
-    for key, (knode, vnode) in r.mapping(node, f"the profiles of {what}").items():
-        if links and key not in links:
-            r.problem(
-                knode,
-                f"the profiles of {what} name {key!r}, which it does not join",
-                f"key each profile by one of {', '.join(links)}",
-            )
-            continue
-        profile = r.guard(partial(_read_profile, r, vnode, f"the profile of {key} in {what}"), None)
-        if profile is not None:
-            out.append((key, profile))
-    return tuple(out)
+def contact_forces(
+    j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+) -> list[PairForce]:
+    """A higher pair's force on its second link at the contact, with its component along the
+    common normal (the tangent ``direction`` turned −90°): a cam's or a gear's tooth load."""
+    from mech.forces.result import PairForce
 
-
-def read_radii(r: Reader, node: yaml.Node, what: str, *, nulls: bool) -> tuple[Any, Any]:
-    """``radii: [r1, r2]`` (positive lengths; ``null`` for a straight line when ``nulls``)."""
-    from mech.loader.nodes import is_null
-
-    items = r.sequence(node, f"the radii of {what}")
-    if len(items) != 2:
-        raise r.problem(node, f"the radii of {what} must be a pair [r1, r2]")
-    out: list[float | None] = []
-    for k, item in enumerate(items):
-        if nulls and is_null(item):
-            out.append(None)
-        else:
-            ordinal = ("first", "second")[k]
-            out.append(r.number(item, f"the {ordinal} of radii", Dimension.LENGTH, positive=True))
-    if out == [None, None]:
-        raise r.problem(
-            node, f"the radii of {what} are both null", "at least one of the two must be a circle"
-        )
-    return (out[0], out[1])
+    on, by = j.links[1], j.links[0]
+    if on not in wrenches:
+        return []
+    fx, fy, _ = wrenches[on]
+    normal = None
+    if direction is not None:
+        normal = fx * direction[1] - fy * direction[0]
+    return [PairForce(j.name, on, by, (fx, fy), at, normal=normal)]

@@ -1,68 +1,55 @@
-"""Cam and contact pairs (h = 1): a common normal at the instant, or profiles that move.
-
-Without profiles, ``at`` (the contact point) and ``normal`` (the common
-normal's angle) describe the instant drawn.  With ``profiles`` (one curve per
-link, :mod:`mech.pairs.specs`) the pair moves; a cam may give its follower's
-``program`` instead, read by :func:`mech.cam.read_program`.
-"""
+"""Contact pair (h = 1): two profiles touching at a point, sliding and rolling on each other."""
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Mapping
+from types import MappingProxyType
+from typing import TYPE_CHECKING
 
-from mech.cam.program import program_schema
-from mech.model import JointType
-from mech.pairs.base import NUMBER, PROFILES, Fields, PairKind, Reader, read_profiles
-from mech.pairs.specs import ContactSpec
-from mech.units import Dimension
+from mech.fields import NUMBER, PROFILES, Fields, Reader
+from mech.pairs.base import PairKind, contact_forces
+from mech.pairs.cam import read_contact, see_contact
+from mech.specs import ContactSpec
 
-PROGRAM: dict[str, Any] = {
-    "description": "The follower's programme, from which mech generates the cam profile (DESIGN § 1.1).",
-    **program_schema(NUMBER),
-}
-
-
-def _read_program(r: Reader, node: Any, what: str) -> object:
-    try:
-        from mech.cam import read_program
-    except ImportError:
-        raise r.problem(node, f"{what}: cam programmes are not available in this version of mech") from None
-    return read_program(r, node, what)
+if TYPE_CHECKING:
+    from mech.forces.result import PairForce
+    from mech.model import Joint
+    from mech.pairs.base import InstantView, Wrench
+    from mech.pairs.rows import RowBuilder
 
 
-def _read(r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> ContactSpec:
-    normal = r.optional(fields, "normal", lambda n: r.number(n, "the common normal", Dimension.ANGLE))
-    profiles = r.optional(fields, "profiles", lambda n: read_profiles(r, n, what, links)) or ()
-    program = (
-        r.optional(fields, "program", lambda n: _read_program(r, n, what)) if "program" in fields else None
-    )
-    if "program" in fields and "profiles" in fields:
-        r.problem(
-            fields["program"][0],
-            f"{what} gives both `program` and `profiles`",
-            "the programme generates the cam's profile: give one",
-        )
-    return ContactSpec(normal=normal, profiles=profiles, program=program)
+Vec = tuple[float, float]
 
 
-CAM = PairKind(
-    type=JointType.CAM,
-    keys={"normal": NUMBER, "profiles": PROFILES, "program": PROGRAM},
-    read=_read,
-    spec=ContactSpec(),
-    higher=True,
-    motion="cam (sliding and rolling)",
-    line_contact=True,
-    closure="force",
-)
+class Contact(PairKind):
+    """A point contact between two curves, described at the instant or by profiles that move."""
 
-CONTACT = PairKind(
-    type=JointType.CONTACT,
-    keys={"normal": NUMBER, "profiles": PROFILES},
-    read=_read,
-    spec=ContactSpec(),
-    higher=True,
-    motion="sliding and rolling (point contact)",
-    line_contact=True,
-    closure="force",
-)
+    name = "contact"
+    keys = MappingProxyType({"normal": NUMBER, "profiles": PROFILES})
+    spec = ContactSpec()
+    higher = True
+    motion = "sliding and rolling (point contact)"
+    line_contact = True
+    closure = "force"
+    icentre = ("line", "contact {joint}: on the common normal at the contact")
+    glyph = "contact"
+
+    def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> ContactSpec:
+        return read_contact(r, fields, what, links)
+
+    def rows(self, b: RowBuilder, j: Joint) -> None:
+        """Profiles that touch and slide, else the common normal of the instant."""
+        from mech.pairs.profiles import instant_normal, moving_contact
+
+        if not moving_contact(b, j):
+            instant_normal(b, j, j.normal)
+
+    def inspect(self, seen: InstantView, j: Joint) -> None:
+        """On the common normal at the contact."""
+        see_contact(seen, j)
+
+    def forces(
+        self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+    ) -> list[PairForce]:
+        """The force on the second link at the contact, and its component along the common normal."""
+        return contact_forces(j, wrenches, at, direction)

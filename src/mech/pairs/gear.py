@@ -8,13 +8,29 @@ pivot (then the pitch point follows from the centres and the pair moves);
 
 from __future__ import annotations
 
+import math
 import re
-from typing import Any
+from collections.abc import Callable, Mapping
+from types import MappingProxyType
+from typing import TYPE_CHECKING, Any
 
-from mech.model import JointType
-from mech.pairs.base import NUMBER, PROFILES, Fields, PairKind, Reader, read_profiles, read_radii
-from mech.pairs.specs import GearSpec
+from mech.errors import Problem
+from mech.fields import NUMBER, PROFILES, Fields, Reader, read_profiles, read_radii
+from mech.pairs.base import Carriers, PairKind, contact_forces
+from mech.specs import GearSpec
 from mech.units import Dimension
+
+if TYPE_CHECKING:
+    from mech.forces.result import PairForce
+    from mech.model import Joint, Mechanism
+    from mech.pairs.base import InstantView, Wrench
+    from mech.pairs.rows import RowBuilder
+
+__all__ = ["Gear", "carrier_of", "gear_centre", "gear_normal", "gear_row"]
+
+Vec = tuple[float, float]
+#: Pitch radii and centre distance agree to this, relative (exact data that must close together).
+_AGREE = 1e-6
 
 
 def _teeth(r: Reader, node: Any) -> tuple[int, int]:
@@ -57,20 +73,219 @@ def _read(r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> GearS
     )
 
 
-GEAR = PairKind(
-    type=JointType.GEAR,
-    keys={
-        "normal": NUMBER,
-        "pressure_angle": NUMBER,
-        "radii": {"type": "array", "items": NUMBER, "minItems": 2, "maxItems": 2},
-        "teeth": {"type": "array", "items": {"type": "integer", "minimum": 1}, "minItems": 2, "maxItems": 2},
-        "module": NUMBER,
-        "internal": {"type": "boolean"},
-        "profiles": PROFILES,
-    },
-    read=_read,
-    spec=GearSpec(),
-    higher=True,
-    motion="gear (sliding and rolling)",
-    line_contact=True,
-)
+class Gear(PairKind):
+    """Two pitch circles that roll, kept in step by teeth (h = 1)."""
+
+    name = "gear"
+    keys = MappingProxyType(
+        {
+            "normal": NUMBER,
+            "pressure_angle": NUMBER,
+            "radii": {"type": "array", "items": NUMBER, "minItems": 2, "maxItems": 2},
+            "teeth": {
+                "type": "array",
+                "items": {"type": "integer", "minimum": 1},
+                "minItems": 2,
+                "maxItems": 2,
+            },
+            "module": NUMBER,
+            "internal": {"type": "boolean"},
+            "profiles": PROFILES,
+        }
+    )
+    spec = GearSpec()
+    higher = True
+    motion = "gear (sliding and rolling)"
+    line_contact = True
+    rolls = True
+    icentre = ("line", "gears {joint}: on the common normal at the mesh (the line of action)")
+    glyph = "pitch"
+    contact_hint = " or `radii` (or `teeth` with `module`)"
+
+    def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> GearSpec:
+        return _read(r, fields, what, links)
+
+    def contact_problem(self, j: Joint) -> Problem | None:
+        """Pitch radii (or teeth and module) put the pitch point between the centres: no ``at`` needed."""
+        if getattr(j.spec, "pitch_radii", None) is not None:
+            return None
+        return super().contact_problem(j)
+
+    def complete(self, view: Carriers, j: Joint, positions: dict[str, Vec]) -> None:
+        """A gear pair without ``at``: its pitch point from the centres and radii (or teeth·module/2)."""
+        if j.name in positions:
+            return
+        radii = getattr(j.spec, "pitch_radii", None)
+        c1, c2 = (gear_centre(view, lk, positions) for lk in j.links)
+        if radii is None or c1 is None or c2 is None:
+            return
+        d = math.hypot(c2[0] - c1[0], c2[1] - c1[1]) or 1.0
+        e = ((c2[0] - c1[0]) / d, (c2[1] - c1[1]) / d)
+        if j.internal and radii[0] > radii[1]:  # the ring is the first gear: pitch point beyond the second
+            positions[j.name] = (c1[0] + radii[0] * e[0], c1[1] + radii[0] * e[1])
+        elif j.internal:
+            positions[j.name] = (c2[0] - radii[1] * e[0], c2[1] - radii[1] * e[1])
+        else:
+            positions[j.name] = (c1[0] + radii[0] * e[0], c1[1] + radii[0] * e[1])
+
+    def drawing_problem(
+        self, view: Carriers, j: Joint, positions: Mapping[str, Vec], fmt: Callable[[float], str]
+    ) -> Problem | None:
+        """Gears whose pitch radii are given must have their centres that far apart.
+
+        External gears: centre distance r1 + r2; internal (a ring): |r1 − r2|.  A file
+        that says otherwise describes gears that cannot mesh, and every velocity
+        computed from it would be wrong.
+        """
+        radii = getattr(j.spec, "pitch_radii", None)
+        c1, c2 = (gear_centre(view, lk, positions) for lk in j.links)
+        if radii is None or c1 is None or c2 is None:
+            return None
+        d = math.hypot(c2[0] - c1[0], c2[1] - c1[1])
+        want = abs(radii[0] - radii[1]) if j.internal else radii[0] + radii[1]
+        if abs(d - want) <= _AGREE * max(want, d):
+            return None
+        kind = "internal (|r1 − r2|)" if j.internal else "external (r1 + r2)"
+        return Problem(
+            f"gear {j.name}: pitch radii {fmt(radii[0])} and {fmt(radii[1])} need centres "
+            f"{fmt(want)} apart ({kind}), but they are {fmt(d)} apart",
+            j.where,
+            "correct the radii, the teeth and module, or the positions of the gear centres",
+        )
+
+    def inspect(self, seen: InstantView, j: Joint) -> None:
+        """On the common normal at the mesh: the line of action."""
+        from mech.pairs.cam import see_contact
+
+        see_contact(seen, j, line_of_action(seen.mech, j, seen.positions))
+
+    def reaction_rows(self, j: Joint, view: Any) -> list[list[float]] | None:
+        """Gears on one carrier keep their speed ratio by an angle row, but push each other along
+        the line of action at the pitch point: that force's row, [n, (P − R₁) × n] on the first
+        gear and its opposite on the second (the same constraint, given the pins)."""
+        kin = view.kin
+        if j.name not in kin.positions or not any(r == j.name for r in view.sys.row_names):
+            return None
+        n = line_of_action(view.mech, j, kin.positions)
+        if n is None or j.name in view.sys.path_dirs or j.name in view.sys.normals:
+            return None
+        p = kin.positions[j.name]
+        row = [0.0] * view.width
+        for link, sign in ((j.links[0], 1.0), (j.links[1], -1.0)):
+            col, (ox, oy) = view.column(link), view.origin(link)
+            row[col] += sign * n[0]
+            row[col + 1] += sign * n[1]
+            row[col + 2] += sign * ((p[0] - ox) * n[1] - (p[1] - oy) * n[0])
+        return [row]
+
+    def forces(
+        self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+    ) -> list[PairForce]:
+        """The tooth load on the second gear, along the line of action at the pitch point (teeth push:
+        its normal component is its magnitude where the line of action was not solved for)."""
+        from dataclasses import replace
+
+        out = contact_forces(j, wrenches, at, direction)
+        return [replace(f, normal=f.magnitude) if f.normal is None else f for f in out]
+
+    def rows(self, b: RowBuilder, j: Joint) -> None:
+        """Pitch circles on one carrier roll (holonomic); pitch curves given roll; else the instant."""
+        from mech.pairs.profiles import instant_normal, moving_contact
+        from mech.pairs.rows import Angle
+
+        holo = gear_row(b, j)
+        if holo is not None:
+            b.angle.append(Angle(holo[0], holo[1], j.name))
+            return
+        if j.profiles and moving_contact(b, j, rolls=True, held=True):  # a rack and pinion
+            return
+        normal = j.normal if j.normal is not None else gear_normal(b, j, b.pos)
+        instant_normal(b, j, normal)
+
+
+def gear_centre(view: Carriers, link: str, positions: Mapping[str, Vec]) -> Vec | None:
+    """A gear link's centre: its only revolute joint (None when it has none or several)."""
+    pins = [n for n in view.on_link.get(link, ()) if n in positions and len(view.carriers.get(n, ())) >= 2]
+    return positions[pins[0]] if len(pins) == 1 else None
+
+
+def carrier_of(view: Carriers, link: str, positions: Mapping[str, Vec]) -> dict[str, str]:
+    """Pins of ``link`` with the other link each joins it to: ``{other_link: joint}``."""
+    out: dict[str, str] = {}
+    for name in view.on_link.get(link, ()):
+        carriers = view.carriers.get(name, ())
+        if len(carriers) >= 2 and name in positions:
+            for c in carriers:
+                if c != link:
+                    out.setdefault(c, name)
+    return out
+
+
+def gear_row(b: RowBuilder, j: Joint) -> tuple[dict[int, float], float] | None:
+    """A gear pair with both centres pinned to one carrier: ``r₁(θ₁−θc) ± r₂(θ₂−θc) = const``.
+
+    The pitch circles roll on each other relative to the carrier (ground for a
+    fixed-axis pair, the arm of an epicyclic train), which is holonomic: the
+    pair then moves, and accelerates, like any lower pair.  External pairs
+    turn opposite ways (+), internal pairs the same way (−).  Returns None
+    when there is no common carrier or no radii.
+    """
+    pos = b.pos
+    g1, g2 = j.links
+    c1, c2 = carrier_of(b, g1, pos), carrier_of(b, g2, pos)
+    common = [c for c in c1 if c in c2 and c not in (g1, g2)]
+    if not common:
+        return None
+    carrier = common[0]
+    o1, o2 = pos[c1[carrier]], pos[c2[carrier]]
+    given = getattr(j.spec, "pitch_radii", None) or j.radii  # a gear's (teeth × module / 2), or circles
+    internal = j.internal
+    radii: tuple[float, float]
+    if given is not None and given[0] is not None and given[1] is not None:
+        radii = (given[0], given[1])
+    else:
+        if j.name not in pos:
+            return None
+        p = pos[j.name]
+        r1 = math.hypot(p[0] - o1[0], p[1] - o1[1])
+        r2 = math.hypot(p[0] - o2[0], p[1] - o2[1])
+        d = math.hypot(o2[0] - o1[0], o2[1] - o1[1])
+        internal = internal or abs(abs(r1 - r2) - d) < abs(r1 + r2 - d)
+        radii = (r1, r2)
+    sign = -1.0 if internal else 1.0
+    i1, i2, ic = b.index[g1], b.index[g2], b.index[carrier]
+    coef: dict[int, float] = {}
+    for col, v in ((i1, radii[0]), (i2, sign * radii[1]), (ic, -radii[0] - sign * radii[1])):
+        coef[col] = coef.get(col, 0.0) + v / (max(radii) or 1.0)  # O(1) coefficients
+    theta = {i: (0.0 if i == b.n else float(b.q0[3 * i + 2])) for i in coef}
+    return coef, sum(v * theta[i] for i, v in coef.items())
+
+
+def gear_normal(view: Carriers, j: Joint, positions: Mapping[str, Vec]) -> float | None:
+    """Line of action of a gear pair: the common tangent turned by the pressure angle."""
+    centres = [gear_centre(view, lk, positions) for lk in j.links]
+    if centres[0] is None or centres[1] is None:
+        return None
+    (x1, y1), (x2, y2) = centres[0], centres[1]
+    return math.atan2(y2 - y1, x2 - x1) + math.pi / 2.0 - (j.pressure_angle or 0.0)
+
+
+def line_of_action(mech: Mechanism, j: Joint, positions: Mapping[str, Vec]) -> Vec | None:
+    """A gear pair's common normal: the common tangent of the pitch circles turned by the pressure angle.
+
+    Each gear's centre is its only pin; without both centres there is no line
+    of action to draw (the pitch point is then taken as a rolling contact).
+    """
+    from mech.pairs.registry import kind_of
+
+    centres = []
+    for lk in j.links:
+        pins = [k.name for k in mech.joints_of(lk) if kind_of(k).role == "pin" and k.name in positions]
+        if len(pins) != 1:
+            return None
+        centres.append(positions[pins[0]])
+    (x1, y1), (x2, y2) = centres
+    if (x1, y1) == (x2, y2):
+        return None
+    a = math.atan2(y2 - y1, x2 - x1) + math.pi / 2.0 - (j.pressure_angle or 0.0)
+    return (math.cos(a), math.sin(a))

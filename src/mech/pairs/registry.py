@@ -1,28 +1,44 @@
-"""The model layer's registry of pair kinds: :data:`KINDS`, keyed by joint type.
+"""The registry of pair kinds, keyed by the ``type:`` a file writes (:data:`KINDS`).
 
-Adding a kind: write its module here (keys, reader, classification — see
-:class:`mech.pairs.base.PairKind`), add it to :data:`KINDS`, then give it an
-entry in each registry ``tests/test_pair_kinds.py`` walks.
+Adding a kind: write its module in :mod:`mech.pairs` (a subclass of
+:class:`mech.pairs.base.PairKind`) and add one instance to :data:`KINDS`, or
+call :func:`register` from anywhere before the file is loaded (a plug-in);
+``tests/test_pair_kinds.py`` walks every kind through every hook.
 """
 
 from __future__ import annotations
 
-from mech.model import JointType
+from typing import TYPE_CHECKING
+
 from mech.pairs.base import PairKind
-from mech.pairs.contact import CAM, CONTACT
-from mech.pairs.gear import GEAR
-from mech.pairs.revolute import REVOLUTE
-from mech.pairs.rolling import ROLLING
-from mech.pairs.sliding import PRISMATIC, SLOT
-from mech.pairs.spatial import SCREW, SPHERICAL
+from mech.pairs.cam import Cam
+from mech.pairs.contact import Contact
+from mech.pairs.gear import Gear
+from mech.pairs.prismatic import Prismatic
+from mech.pairs.revolute import Revolute
+from mech.pairs.rolling import Rolling
+from mech.pairs.screw import Screw
+from mech.pairs.slot import Slot
+from mech.pairs.spherical import Spherical
 
-__all__ = ["KINDS", "kind"]
+if TYPE_CHECKING:
+    from mech.model import Joint
 
-KINDS: dict[JointType, PairKind] = {
-    k.type: k for k in (REVOLUTE, PRISMATIC, SLOT, ROLLING, CAM, CONTACT, GEAR, SCREW, SPHERICAL)
+__all__ = ["KINDS", "kind_of", "register"]
+
+#: ``type:`` → the kind, in the order the file format lists them.
+KINDS: dict[str, PairKind] = {
+    k.name: k
+    for k in (Revolute(), Prismatic(), Slot(), Rolling(), Cam(), Contact(), Gear(), Screw(), Spherical())
 }
 
 
-def kind(t: JointType) -> PairKind:
-    """The registry entry of joint type ``t``."""
-    return KINDS[t]
+def register(kind: PairKind) -> PairKind:
+    """Add (or replace) a kind: files may then write ``type: <kind.name>``."""
+    KINDS[kind.name] = kind
+    return kind
+
+
+def kind_of(joint: Joint | str) -> PairKind:
+    """The kind of a joint, or of a type's name."""
+    return KINDS[joint if isinstance(joint, str) else joint.type]

@@ -2,27 +2,54 @@
 
 from __future__ import annotations
 
-from mech.model import JointType
-from mech.pairs.base import NUMBER, Fields, PairKind, Reader
-from mech.pairs.specs import PinSpec
+from types import MappingProxyType
+from typing import TYPE_CHECKING
+
+from mech.fields import NUMBER, Fields, Reader
+from mech.pairs.base import PairKind
+from mech.specs import PinSpec
 from mech.units import Dimension
 
-
-def _read(r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> PinSpec:
-    radius = r.optional(
-        fields, "radius", lambda n: r.number(n, "the pin radius", Dimension.LENGTH, positive=True)
-    )
-    return PinSpec(radius=radius)
+if TYPE_CHECKING:
+    from mech.model import Joint
+    from mech.pairs.base import InstantView
+    from mech.pairs.rows import RowBuilder
 
 
-REVOLUTE = PairKind(
-    type=JointType.REVOLUTE,
-    keys={"radius": NUMBER},
-    read=_read,
-    spec=PinSpec(),
-    higher=False,
-    motion="turning",
-    line_contact=False,
-    max_links=None,
-    role="pin",  # a ternary joint is one pin through three links
-)
+class Revolute(PairKind):
+    """A pin: a point fixed in every link it joins (a ternary joint is one pin through three links)."""
+
+    name = "revolute"
+    keys = MappingProxyType({"radius": NUMBER})
+    spec = PinSpec()
+    motion = "turning"
+    max_links = None
+    role = "pin"
+    dyad = "pin of an rrr or rrp dyad, or a crank's pivot"
+    icentre = ("point", "pin {joint}")
+    glyph = "pin"
+
+    def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> PinSpec:
+        radius = r.optional(
+            fields, "radius", lambda n: r.number(n, "the pin radius", Dimension.LENGTH, positive=True)
+        )
+        return PinSpec(radius=radius)
+
+    def rows(self, b: RowBuilder, j: Joint) -> None:
+        """The pin's point of the first link on the same point of every other link it joins."""
+        from mech.pairs.rows import Coincide
+
+        if j.name not in b.pos:
+            return
+        xy = b.scn(j.name)
+        first = j.links[0]
+        for other in j.links[1:]:
+            b.coincide.append(
+                Coincide(b.index[first], b.to_local(first, xy), b.index[other], b.to_local(other, xy), j.name)
+            )
+
+    def inspect(self, seen: InstantView, j: Joint) -> None:
+        """A pin is the I-centre of the links it joins (a ternary pin: of each pair)."""
+        at = seen.at(j)
+        if at is not None:
+            seen.pin(j.name, tuple(j.links), at)

@@ -22,6 +22,7 @@ from typing import Any
 from mech.errors import InputError
 from mech.model import Mechanism
 from mech.options import SolveOptions
+from mech.pairs import points_of
 
 __all__ = ["Centrodes", "PointPath", "centrodes", "point_path"]
 
@@ -125,7 +126,7 @@ def centrodes(
         options = options.with_(omega=1.0)  # the loci do not depend on the speed
     now_kin = solve(mech, "position", options.with_(omega=None, direction=None, alpha=None))
     sw = sweep(mech, _angles(steps), level="velocity", options=options.with_(angle=None), quantities=())
-    origin = next((p for p in mech.points_of(link) if p in sw.points), None)
+    origin = next((p for p in points_of(mech, link) if p in sw.points), None)
     if origin is None or link not in sw.links:
         raise InputError(f"{link} has no located point to trace its centrodes from")
     k = sw.points.index(origin)

@@ -15,8 +15,9 @@ from mech._records import dataclass
 from mech.errors import MechError, UnsupportedError
 from mech.model import Mechanism
 from mech.options import SolveOptions
+from mech.pairs import located_on
 from mech.properties.cycle import Cycle, Transmission, cycle, included_angle, transmission_loop
-from mech.properties.grashof import linkage_loops
+from mech.topology.grashof import linkage_loops
 
 __all__ = ["LinkageProperties", "linkage_properties"]
 
@@ -142,4 +143,4 @@ def _carriers(mech: Mechanism, name: str) -> tuple[str, ...]:
     for p in mech.points:
         if p.name == name:
             return (p.link,)
-    return mech.joint(name).located_on
+    return located_on(mech.joint(name))

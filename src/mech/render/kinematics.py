@@ -403,8 +403,11 @@ def _joints_json(
     V, A = units.velocity, units.acceleration
     has_a = quiet.has_a
     sliders, rubbing = [], []
+    from mech.pairs import kind_of
+
     for name, j in kin.joints.items():
-        if j.type in ("prismatic", "slot"):
+        role = kind_of(j.type).role
+        if role == "path":
             v_sc, a_sc = quiet.joint_scales(name)
             cor = quiet.vector(kin.coriolis(name), a_sc) if has_a else None
             sliders.append(
@@ -421,7 +424,7 @@ def _joints_json(
                     "coriolis_magnitude": _num(math.hypot(*cor), A) if cor is not None else None,
                 }
             )
-        elif j.type == "revolute" and j.radius is not None:
+        elif role == "pin" and j.radius is not None:
             rubbing.append(
                 {
                     "joint": name,
@@ -462,9 +465,10 @@ _LEVEL_TITLES = {"position": "positions", "velocity": "velocities", "acceleratio
 
 def kinematics_table(kin: Kinematics, console: ReportConsole, *, units: OutputUnits) -> None:
     """Print the solve as rich tables on ``console`` (numbers in ``units``)."""
-    from mech.render.console import kit
+    from mech.render.console import table_box
+    from mech.render.table import Table, Text
 
-    Table, Text, box = kit(console)
+    box = table_box(console)
     data = kinematics_json(kin, units=units)
     u = {k: format_unit(v) for k, v in data["units"].items()}
 

@@ -1,4 +1,5 @@
-"""Typed specs: what a joint of each kind says beyond ``type``, ``links`` and its placement.
+"""What a joint says beyond ``type``, ``links`` and its placement, as typed records; and the
+references (``Ref``, ``Path``) they are written with.
 
 A :class:`~mech.model.Joint` carries one of these as ``joint.spec``, chosen by
 its type (see :data:`mech.pairs.registry.KINDS`), instead of one flat record
@@ -30,17 +31,13 @@ programme plugs in through two functions of :mod:`mech.cam`:
     typically a :class:`Curve` on the cam and a :class:`Knife`, :class:`Circle`
     (roller) or :class:`Line` (flat face) on the follower.
 
-This module imports nothing from :mod:`mech` at run time (annotations only).
+This module sits below :mod:`mech.model` (which holds a joint's spec and re-exports
+``Vec``, ``Ref`` and ``Path``) and imports nothing of mech's but :mod:`mech._records`.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from mech._records import dataclass
-
-if TYPE_CHECKING:
-    from mech.model import Path, Ref, Vec
 
 __all__ = [
     "BareSpec",
@@ -51,12 +48,42 @@ __all__ = [
     "JointSpec",
     "Knife",
     "Line",
+    "Path",
     "PinSpec",
     "Profile",
     "Profiles",
+    "Ref",
     "RollingSpec",
     "SlideSpec",
+    "Vec",
 ]
+
+
+Vec = tuple[float, float]
+
+
+@dataclass(frozen=True, slots=True)
+class Ref:
+    """A location named in a file: coordinates ``xy`` or the name of a joint or point."""
+
+    xy: Vec | None = None
+    name: str | None = None
+
+    def __str__(self) -> str:
+        return self.name if self.name is not None else f"({self.xy[0]:g}, {self.xy[1]:g})"  # type: ignore[index]
+
+
+@dataclass(frozen=True, slots=True)
+class Path:
+    """A straight line fixed in a guide link: through a point, at an angle or toward a point.
+
+    On a moving guide, ``angle`` is the line's direction in the analysed
+    (drawn) configuration; ``toward`` keeps it fixed to the guide's points.
+    """
+
+    through: Ref
+    angle: float | None = None
+    toward: Ref | None = None
 
 
 @dataclass(frozen=True, slots=True)

@@ -1,4 +1,4 @@
-"""A cam's layout read from a mechanism: where the cam turns and where its follower is.
+"""Where a cam with a programme sits in a mechanism: where the cam turns and where its follower is.
 
 The programme says how the follower moves; the mechanism's other joints say
 where it is:
@@ -27,12 +27,21 @@ from mech._records import dataclass
 from mech.cam.profile import CamLayout, evaluate, layout_problem
 from mech.cam.program import CamProgram, resolve
 from mech.errors import InputError, UnsupportedError, Where
-from mech.model import Joint, JointType, Mechanism, Ref
+from mech.model import Joint, Mechanism, Ref
+from mech.pairs.registry import kind_of
 
 if TYPE_CHECKING:
-    from mech.pairs.specs import Profile
+    from mech.specs import Profile
 
-__all__ = ["CamSetup", "cam_joints", "cam_setup", "follower_motion_kind", "joint_program", "program_profiles"]
+__all__ = [
+    "CamSetup",
+    "cam_joints",
+    "cam_setup",
+    "follower_motion_kind",
+    "follower_slide",
+    "joint_program",
+    "program_profiles",
+]
 
 Vec = tuple[float, float]
 
@@ -62,7 +71,7 @@ def joint_program(joint: Joint) -> CamProgram | None:
 
 def cam_joints(mechanism: Mechanism) -> tuple[Joint, ...]:
     """The cam joints that carry a programme, in file order."""
-    return tuple(j for j in mechanism.joints if j.type is JointType.CAM and joint_program(j) is not None)
+    return tuple(j for j in mechanism.joints if joint_program(j) is not None)
 
 
 def follower_motion_kind(mechanism: Mechanism, follower: str) -> str | None:
@@ -72,12 +81,10 @@ def follower_motion_kind(mechanism: Mechanism, follower: str) -> str | None:
     slides = [
         j
         for j in mechanism.joints
-        if j.type is JointType.PRISMATIC and j.links[:1] == (follower,) and ground in j.links
+        if kind_of(j).keeps_angle and j.links[:1] == (follower,) and ground in j.links
     ]
     turns = [
-        j
-        for j in mechanism.joints
-        if j.type is JointType.REVOLUTE and follower in j.links and ground in j.links
+        j for j in mechanism.joints if kind_of(j).role == "pin" and follower in j.links and ground in j.links
     ]
     if len(slides) + len(turns) != 1:
         return None
@@ -141,7 +148,7 @@ def cam_setup(
         )
     program = resolve(raw, motion)
     pivots = [
-        j for j in mechanism.joints if j.type is JointType.REVOLUTE and cam in j.links and ground in j.links
+        j for j in mechanism.joints if kind_of(j).role == "pin" and cam in j.links and ground in j.links
     ]
     if len(pivots) != 1 or pivots[0].place.at is None:
         raise _fail(
@@ -207,15 +214,17 @@ def _drive_of(mechanism: Mechanism, cam: str) -> tuple[float, int, float | None]
     return angle, sense, omega
 
 
+def follower_slide(mechanism: Mechanism, follower: str) -> Joint:
+    """The prismatic joint a translating follower slides on, on the ground (cam_setup checked it is one)."""
+    ground = mechanism.ground
+    return next(
+        j for j in mechanism.joints if kind_of(j).keeps_angle and j.links[0] == follower and ground in j.links
+    )
+
+
 def _translating(mechanism: Mechanism, cj: Joint, program: CamProgram, centre: Vec, sense: int) -> CamLayout:
     """A translating follower on its prismatic joint's path: its axis and signed offset."""
-    ground = mechanism.ground
-    follower = cj.links[1]
-    slide = next(
-        j
-        for j in mechanism.joints
-        if j.type is JointType.PRISMATIC and j.links[0] == follower and ground in j.links
-    )
+    slide = follower_slide(mechanism, cj.links[1])
     if slide.path is None:
         raise _fail(slide, f"the follower's prismatic joint {slide.name} needs a `path`: its line")
     through = _coords(mechanism, slide.path.through, slide)
@@ -250,9 +259,7 @@ def _oscillating(
     ground = mechanism.ground
     follower = cj.links[1]
     turn = next(
-        j
-        for j in mechanism.joints
-        if j.type is JointType.REVOLUTE and follower in j.links and ground in j.links
+        j for j in mechanism.joints if kind_of(j).role == "pin" and follower in j.links and ground in j.links
     )
     if turn.place.at is None:
         raise _fail(turn, f"the follower's pivot {turn.name} must be placed with `at`")
@@ -294,10 +301,10 @@ def program_profiles(
 ) -> dict[str, Profile]:
     """The profiles a cam's programme gives, in the drawn configuration, keyed by link.
 
-    The cam gets the generated surface as a closed :class:`~mech.pairs.specs.Curve`
+    The cam gets the generated surface as a closed :class:`~mech.specs.Curve`
     (720 points, the cam turned by its drive angle); the follower a
-    :class:`~mech.pairs.specs.Knife` at its edge, a :class:`~mech.pairs.specs.Circle`
-    (the roller) or a :class:`~mech.pairs.specs.Line` (the flat face), placed
+    :class:`~mech.specs.Knife` at its edge, a :class:`~mech.specs.Circle`
+    (the roller) or a :class:`~mech.specs.Line` (the flat face), placed
     where the programme puts it at that angle.  ``positions`` is not needed:
     the programme and the layout place everything.
     """
@@ -305,7 +312,7 @@ def program_profiles(
 
     import numpy as np
 
-    from mech.pairs.specs import Circle, Curve, Knife, Line
+    from mech.specs import Circle, Curve, Knife, Line
 
     del positions
     setup = cam_setup(mechanism, joint.name)

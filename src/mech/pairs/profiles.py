@@ -3,7 +3,7 @@
 Each link of a ``cam``, ``contact`` or ``rolling`` joint may carry a curve
 (:mod:`mech.pairs.specs`): a circle, a straight line, a point (knife edge).
 Two such curves in contact give holonomic rows in the shapes of
-:mod:`mech.kinematics.rows`, so the pair moves, sweeps and accelerates like
+:mod:`mech.pairs.rows`, so the pair moves, sweeps and accelerates like
 any lower pair, and the curvature terms come with the row shape:
 
 ==================  =========================================================  ===========
@@ -34,7 +34,11 @@ a straight line tangent to the other circle where the pair is drawn (at ``at``,
 or under the circle's centre when the joint has no ``at``).
 
 A closed ``curve`` (a periodic cubic spline through its points, see
-:mod:`mech.kinematics.curves`) moves against a point, a circle or a line.
+:mod:`mech.pairs.curves`) moves against a point, a circle or a line.
+
+Without profiles a higher pair describes the drawn instant only: its contact
+point (``at``) and common normal give one velocity-level row
+(:func:`instant_normal`), or two for rolling (:func:`instant_rolling`).
 """
 
 from __future__ import annotations
@@ -46,11 +50,11 @@ import numpy as np
 
 from mech._records import dataclass
 from mech.errors import Problem
-from mech.kinematics.rows import Angle, Build, Distance, OnLine
-from mech.model import Joint, JointType, Ref
-from mech.pairs.specs import Circle, Curve, Knife, Line, Profile
+from mech.model import Joint, Ref
+from mech.pairs.rows import Angle, Coincide, Distance, OnLine, RowBuilder
+from mech.specs import Circle, Curve, Knife, Line, Profile
 
-__all__ = ["drawn_profiles", "moving_contact"]
+__all__ = ["drawn_profiles", "instant_normal", "instant_point", "instant_rolling", "moving_contact"]
 
 #: Largest gap (relative to the mechanism's size) between profiles drawn in contact.
 TOUCH = 1e-6
@@ -68,26 +72,26 @@ class _Geo:
     pts: np.ndarray | None = None  # a curve's points, scaled global
 
 
-def drawn_profiles(lay: object, j: Joint, positions: dict[str, tuple[float, float]]) -> dict[str, Profile]:
-    """The profiles of ``j`` keyed by link: given, from ``radii``, or from a cam's programme."""
-    spec = j.spec
-    program = getattr(spec, "program", None)
-    if program is not None:
-        from mech.cam import program_profiles  # type: ignore[attr-defined]
+def drawn_profiles(
+    b: RowBuilder, j: Joint, radii: tuple[float | None, float | None] | None = None
+) -> dict[str, Profile]:
+    """The profiles of ``j`` keyed by link: given, or ``radii`` about each link's pivot.
 
-        return dict(program_profiles(lay.mech, j, positions))  # type: ignore[attr-defined]
+    ``radii`` (a rolling pair's shorthand) are circles about each link's only pin;
+    ``None`` for one of them is a straight line tangent to the other circle where
+    the pair is drawn (at ``at``, or under the circle's centre when it has no ``at``).
+    """
     if j.profiles:
         return dict(j.profiles)
-    radii = j.radii if j.type is JointType.ROLLING else None
     if radii is None:
         return {}
-    from mech.kinematics.assemble import gear_centre
+    from mech.pairs.gear import gear_centre
 
     out: dict[str, Profile] = {}
     for link, r in zip(j.links, radii, strict=True):
         if r is None:
             continue
-        c = gear_centre(lay, link, positions)  # type: ignore[arg-type]
+        c = gear_centre(b, link, b.pos)
         if c is None:
             return {}
         out[link] = Circle(Ref(xy=c), r)
@@ -105,11 +109,11 @@ def drawn_profiles(lay: object, j: Joint, positions: dict[str, tuple[float, floa
     return out
 
 
-def _geo(b: Build, j: Joint, link: str, prof: Profile) -> _Geo | None:
+def _geo(b: RowBuilder, j: Joint, link: str, prof: Profile) -> _Geo | None:
     def where(ref: Ref, what: str) -> np.ndarray | None:
         if ref.name is not None:
-            name = b.lay.resolve(ref.name)
-            if link not in b.lay.carriers.get(name, ()) or name not in b.pos:
+            name = b.resolve(ref.name)
+            if link not in b.carriers.get(name, ()) or name not in b.pos:
                 b.problems.append(
                     Problem(
                         f"the {what} of the profile of {link} in joint {j.name} is {ref.name!r}, "
@@ -146,12 +150,7 @@ def _geo(b: Build, j: Joint, link: str, prof: Profile) -> _Geo | None:
     return _Geo(link, "curve", pts.mean(axis=0), pts=pts)
 
 
-def _rolls(j: Joint) -> bool:
-    """Rolling and gear pairs roll their profiles (pitch curves) without slip; cams and contacts slide."""
-    return j.type in (JointType.ROLLING, JointType.GEAR)
-
-
-def _at(b: Build, link: str, s: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+def _at(b: RowBuilder, link: str, s: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
     """Global scaled position of local point ``s`` of ``link`` as a function of q."""
     i = b.index[link]
     if i == b.n:
@@ -165,7 +164,7 @@ def _at(b: Build, link: str, s: np.ndarray) -> Callable[[np.ndarray], np.ndarray
     return f
 
 
-def _dir(b: Build, link: str, u: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+def _dir(b: RowBuilder, link: str, u: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
     i = b.index[link]
     if i == b.n:
         return lambda q: u
@@ -178,12 +177,34 @@ def _dir(b: Build, link: str, u: np.ndarray) -> Callable[[np.ndarray], np.ndarra
     return f
 
 
-def moving_contact(b: Build, j: Joint) -> bool:
+@dataclass(frozen=True, slots=True)
+class _How:
+    """How a pair's profiles touch: ``rolls`` without slip; ``held`` in contact by teeth (no contact row)."""
+
+    rolls: bool = False
+    held: bool = False
+
+
+def moving_contact(
+    b: RowBuilder,
+    j: Joint,
+    *,
+    rolls: bool = False,
+    held: bool = False,
+    radii: tuple[float | None, float | None] | None = None,
+    profiles: dict[str, Profile] | None = None,
+) -> bool:
     """Add the rows of ``j``'s profiles to ``b``; False when ``j`` has none (the instant rows apply).
 
-    A contact point drawn with ``at`` as well must be where the profiles touch.
+    ``rolls``: the profiles roll without slip (rolling, gears); ``held``: the pair's
+    teeth keep them in contact, so only no slip is a row (a rack on its pinion, h = 1);
+    ``radii``: a rolling pair's circles about each link's pivot; ``profiles``: curves
+    the kind made itself (else the joint's own).  A contact point drawn with ``at`` as
+    well must be where the profiles touch.
     """
-    if not _moving_contact(b, j):
+    if profiles is None:
+        profiles = drawn_profiles(b, j, radii)
+    if not _moving_contact(b, j, profiles, _How(rolls, held)):
         return False
     locate = b.locators.get(j.name)
     if locate is not None and j.place.at is not None and j.name in b.pos:
@@ -191,7 +212,7 @@ def moving_contact(b: Build, j: Joint) -> bool:
         if gap > TOUCH:
             from mech.units import to_unit
 
-            unit = b.lay.mech.length_unit
+            unit = b.mech.length_unit
             b.problems.append(
                 Problem(
                     f"joint {j.name} is drawn at a point {to_unit(gap * b.scale, unit):.4g} {unit} from "
@@ -203,8 +224,7 @@ def moving_contact(b: Build, j: Joint) -> bool:
     return True
 
 
-def _moving_contact(b: Build, j: Joint) -> bool:
-    profiles = drawn_profiles(b.lay, j, b.pos)
+def _moving_contact(b: RowBuilder, j: Joint, profiles: dict[str, Profile], how: _How) -> bool:
     if not profiles:
         return False
     missing = [lk for lk in j.links if lk not in profiles]
@@ -224,7 +244,7 @@ def _moving_contact(b: Build, j: Joint) -> bool:
     ga, gb = geos
     assert ga is not None and gb is not None
     kinds = {ga.kind, gb.kind}
-    unit = b.lay.mech.length_unit
+    unit = b.mech.length_unit
     from mech.units import to_unit
 
     def gap_problem(gap: float, how: str) -> None:
@@ -238,12 +258,12 @@ def _moving_contact(b: Build, j: Joint) -> bool:
         )
 
     if "curve" in kinds:
-        return _curve_contact(b, j, ga, gb, gap_problem)
+        return _curve_contact(b, j, ga, gb, gap_problem, how)
     if "line" in kinds and len(kinds) == 2:
         other, line = (ga, gb) if gb.kind == "line" else (gb, ga)
-        return _line_contact(b, j, other, line, gap_problem)
+        return _line_contact(b, j, other, line, gap_problem, how)
     if kinds <= {"circle", "point"} and "circle" in kinds:
-        return _circle_contact(b, j, ga, gb, gap_problem)
+        return _circle_contact(b, j, ga, gb, gap_problem, how)
     b.problems.append(
         Problem(
             f"joint {j.name}: a {ga.kind} and a {gb.kind} do not touch at one point",
@@ -255,7 +275,7 @@ def _moving_contact(b: Build, j: Joint) -> bool:
 
 
 def _line_contact(
-    b: Build, j: Joint, other: _Geo, line: _Geo, gap_problem: Callable[[float, str], None]
+    b: RowBuilder, j: Joint, other: _Geo, line: _Geo, gap_problem: Callable[[float, str], None], how: _How
 ) -> bool:
     """A circle or point against a line: the distance row (none for a gear's pitch line), the
     rolling row when it rolls, and the contact point and normal as functions of q."""
@@ -273,11 +293,11 @@ def _line_contact(
     u_loc = np.array([n_loc[1], -n_loc[0]])
     io, il = b.index[other.link], b.index[line.link]
     # a gear's teeth keep its pitch line tangent: it adds only no slip (h = 1)
-    if j.type is not JointType.GEAR:
+    if not how.held:
         b.online.append(OnLine(io, s_loc, il, t_loc, n_loc, want, j.name))
-    if _rolls(j):
+    if how.rolls:
         if other.kind != "circle":
-            b.problems.append(Problem(f"{j.type.value} joint {j.name}: a point cannot roll", j.where))
+            b.problems.append(Problem(f"{j.type} joint {j.name}: a point cannot roll", j.where))
             return True
         k = side * other.r
         c0 = float(line.u @ (other.p - line.p)) + k * (b.theta(other.link) - b.theta(line.link))
@@ -289,7 +309,7 @@ def _line_contact(
 
 
 def _circle_contact(
-    b: Build, j: Joint, ga: _Geo, gb: _Geo, gap_problem: Callable[[float, str], None]
+    b: RowBuilder, j: Joint, ga: _Geo, gb: _Geo, gap_problem: Callable[[float, str], None], how: _How
 ) -> bool:
     """Two circles (or a circle and a point): the centre-distance row, or the rolling row of
     two circles pinned to one carrier, and the contact point and normal as functions of q."""
@@ -302,14 +322,14 @@ def _circle_contact(
         return True
     sa, sb = b.to_local(ga.link, ga.p), b.to_local(gb.link, gb.p)
     ca, cb = _at(b, ga.link, sa), _at(b, gb.link, sb)
-    if _rolls(j):
-        from mech.kinematics.constraints import gear_row
+    if how.rolls:
+        from mech.pairs.gear import gear_row
 
-        holo = gear_row(b.lay, j, b.pos, b.index, b.q0, b.n)
+        holo = gear_row(b, j)
         if holo is None:
             b.problems.append(
                 Problem(
-                    f"{j.type.value} joint {j.name}: two circles roll here only with both centres pinned "
+                    f"{j.type} joint {j.name}: two circles roll here only with both centres pinned "
                     "to one link (a carrier or the frame)",
                     j.where,
                 )
@@ -338,23 +358,25 @@ def _circle_contact(
     return True
 
 
-def _rotate_into(b: Build, link: str, v: np.ndarray) -> np.ndarray:
+def _rotate_into(b: RowBuilder, link: str, v: np.ndarray) -> np.ndarray:
     """A global direction as drawn, in ``link``'s frame (no translation)."""
     th = b.theta(link)
     c, s = math.cos(th), math.sin(th)
     return np.array([c * v[0] + s * v[1], -s * v[0] + c * v[1]])
 
 
-def _curve_contact(b: Build, j: Joint, ga: _Geo, gb: _Geo, gap_problem: Callable[[float, str], None]) -> bool:
+def _curve_contact(
+    b: RowBuilder, j: Joint, ga: _Geo, gb: _Geo, gap_problem: Callable[[float, str], None], how: _How
+) -> bool:
     """A closed curve against a point, a circle (its centre kept ±r off the curve) or a line."""
-    from mech.kinematics.curves import CurveRow, Spline, curve_row
+    from mech.pairs.curves import CurveRow, Spline, curve_rows
 
     curve, other = (ga, gb) if ga.kind == "curve" else (gb, ga)
-    if other.kind == "curve" or _rolls(j):
+    if other.kind == "curve" or how.rolls:
         b.problems.append(
             Problem(
                 f"joint {j.name}: a curve moves against a point, a circle or a line "
-                + ("(not rolling)" if _rolls(j) else "(not another curve)"),
+                + ("(not rolling)" if how.rolls else "(not another curve)"),
                 j.where,
             )
         )
@@ -362,7 +384,7 @@ def _curve_contact(b: Build, j: Joint, ga: _Geo, gb: _Geo, gap_problem: Callable
     assert curve.pts is not None
     spline = Spline(np.array([b.to_local(curve.link, p) for p in curve.pts]))
     ic, io = b.index[curve.link], b.index[other.link]
-    qf0 = np.append(b.q0, (0.0, 0.0, 0.0))
+    qf0 = np.append(b.q0, (0.0, 0.0, 0.0))[None]
     if other.kind == "line":
         assert other.u is not None
         n = np.array([-other.u[1], other.u[0]])
@@ -379,10 +401,10 @@ def _curve_contact(b: Build, j: Joint, ga: _Geo, gb: _Geo, gap_problem: Callable
             0.0,
             j.name,
         )
-        gap = abs(curve_row(row, qf0)[0])
+        gap = abs(float(curve_rows(row, qf0)[0][0]))
     else:
         probe = CurveRow(ic, spline, io, "point", b.to_local(other.link, other.p), None, 0.0, j.name)
-        f0 = curve_row(probe, qf0)[0]
+        f0 = float(curve_rows(probe, qf0)[0][0])
         want = math.copysign(other.r, f0) if other.r else 0.0
         row = CurveRow(ic, spline, io, "point", probe.s, None, want, j.name)
         gap = abs(f0 - want)
@@ -392,8 +414,53 @@ def _curve_contact(b: Build, j: Joint, ga: _Geo, gb: _Geo, gap_problem: Callable
     b.curves.append(row)
 
     def full(q: np.ndarray) -> np.ndarray:
-        return np.append(q, (0.0, 0.0, 0.0))
+        return np.append(q, (0.0, 0.0, 0.0))[None]
 
-    b.locators[j.name] = lambda q: curve_row(row, full(q))[3]
-    b.normals[j.name] = lambda q: curve_row(row, full(q))[4]
+    b.locators[j.name] = lambda q: curve_rows(row, full(q))[3][0]
+    b.normals[j.name] = lambda q: curve_rows(row, full(q))[4][0]
     return True
+
+
+# -- a higher pair at the drawn instant only ---------------------------------------------------
+def instant_point(b: RowBuilder, j: Joint) -> np.ndarray | None:
+    """The contact point as drawn (scaled), or None with the problem recorded."""
+    if j.name not in b.pos:
+        b.problems.append(
+            Problem(
+                f"{j.type} joint {j.name} needs at (the contact point of the instant) for velocities",
+                j.where,
+                "or give each link's curve under `profiles` (then the pair moves)",
+            )
+        )
+        return None
+    return b.scn(j.name)
+
+
+def instant_normal(b: RowBuilder, j: Joint, normal: float | None) -> None:
+    """The velocity-level row of a higher pair at the drawn instant: no relative motion along the normal."""
+    xy = instant_point(b, j)
+    if xy is None:
+        return
+    if normal is None:
+        b.problems.append(
+            Problem(
+                f"{j.type} joint {j.name} needs normal (the common normal's angle) for velocities", j.where
+            )
+        )
+        return
+    a_link, b_link = j.links
+    u = b.dir_local(b_link, normal)
+    local_a, local_b = b.to_local(a_link, xy), b.to_local(b_link, xy)
+    b.online.append(
+        OnLine(b.index[a_link], local_a, b.index[b_link], local_b, u, 0.0, j.name, holonomic=False)
+    )
+
+
+def instant_rolling(b: RowBuilder, j: Joint) -> None:
+    """Rolling at the drawn instant: the contact point has one velocity on both links (2 rows)."""
+    xy = instant_point(b, j)
+    if xy is None:
+        return
+    a_link, b_link = j.links
+    local_a, local_b = b.to_local(a_link, xy), b.to_local(b_link, xy)
+    b.coincide.append(Coincide(b.index[a_link], local_a, b.index[b_link], local_b, j.name, holonomic=False))

@@ -13,6 +13,11 @@
 
 Reference: the lecture slides in the project's seeds (Kutzbach criterion,
 Grübler's condition, types of joints); e.g. l = 4, j = 4 gives n = 1.
+
+:mod:`.grashof` finds the four-bar and slider-crank loops from the file's
+lengths and works Grashof's criterion for them (pure geometry, no numpy):
+``mech dof`` and ``mech classify`` show it, and :mod:`mech.properties`, above
+this room, reads the same loops.
 """
 
 from __future__ import annotations
@@ -20,7 +25,8 @@ from __future__ import annotations
 from typing import Any
 
 from mech._records import dataclass
-from mech.model import JointType, Mechanism
+from mech.model import Mechanism
+from mech.pairs import closure_of, kind_of
 
 __all__ = ["DofCount", "LinkClass", "PairClass", "Topology", "classify", "dof"]
 
@@ -148,7 +154,7 @@ class Topology:
     pairs: tuple[PairClass, ...]
     count: DofCount
     chain: str | None
-    #: Four-bar and slider-crank loops whose lengths the file gives (:mod:`mech.properties.grashof`).
+    #: Four-bar and slider-crank loops whose lengths the file gives (:mod:`mech.topology.grashof`).
     loops: tuple[Any, ...] = ()
     length_unit: str = "m"
 
@@ -186,8 +192,8 @@ def dof(mechanism: Mechanism) -> DofCount:
     The four-bar of the slides (l = 4, j = 4): ``n = 3(4 − 1) − 2·4 − 0 = 1``.
     """
     l = len(mechanism.links)  # noqa: E741
-    j = sum(jt.equivalent_binary for jt in mechanism.joints if not jt.type.is_higher)
-    higher = tuple(jt.name for jt in mechanism.joints if jt.type.is_higher)
+    j = sum(jt.equivalent_binary for jt in mechanism.joints if not kind_of(jt).higher)
+    higher = tuple(jt.name for jt in mechanism.joints if kind_of(jt).higher)
     h = len(higher)
     return DofCount(
         l=l, j=j, h=h, n=3 * (l - 1) - 2 * j - h, joints=len(mechanism.joints), higher_pairs=higher
@@ -198,7 +204,7 @@ def classify(mechanism: Mechanism) -> Topology:
     """Classify links, joints and pairs and count the degrees of freedom.
 
     Where the file gives a four-bar loop's lengths, Grashof's criterion for it
-    comes too (:func:`mech.properties.grashof.linkage_loops`, pure Python).
+    comes too (:func:`mech.topology.grashof.linkage_loops`, pure Python).
     """
     links = tuple(
         LinkClass(
@@ -213,14 +219,14 @@ def classify(mechanism: Mechanism) -> Topology:
     pairs = tuple(
         PairClass(
             joint=j.name,
-            type=j.type.value,
+            type=j.type,
             links=j.links,
             order=j.order,
             equivalent_binary=j.equivalent_binary,
-            relative_motion=j.type.relative_motion,
-            contact=j.type.contact,
-            closure="self-closed" if j.closure_kind == "self" else "force-closed",
-            kutzbach="h" if j.type.is_higher else "j",
+            relative_motion=kind_of(j).motion,
+            contact=kind_of(j).contact,
+            closure="self-closed" if closure_of(j) == "self" else "force-closed",
+            kutzbach="h" if kind_of(j).higher else "j",
         )
         for j in mechanism.joints
     )
@@ -241,7 +247,7 @@ def _loops(mechanism: Mechanism) -> tuple[Any, ...]:
     """Grashof loops, when the file gives any geometry (a DOF exercise does not even import them)."""
     if not mechanism.lengths and not any(j.place.at is not None for j in mechanism.joints):
         return ()
-    from mech.properties.grashof import linkage_loops
+    from mech.topology.grashof import linkage_loops
 
     return linkage_loops(mechanism)
 
@@ -255,13 +261,13 @@ def chain_name(mechanism: Mechanism) -> str | None:
     in Stephenson's).  None for anything else.
     """
     joints = mechanism.joints
-    if any(j.type.is_higher or j.order != 2 for j in joints):
+    if any(kind_of(j).higher or j.order != 2 for j in joints):
         return None
-    kinds = [j.type for j in joints]
-    if not all(k in (JointType.REVOLUTE, JointType.PRISMATIC) for k in kinds):
+    kinds = [kind_of(j) for j in joints]
+    if not all(k.role == "pin" or k.keeps_angle for k in kinds):  # turning and sliding pairs only
         return None
     n_links, n_joints = len(mechanism.links), len(joints)
-    prismatic = kinds.count(JointType.PRISMATIC)
+    prismatic = sum(1 for k in kinds if k.keeps_angle)
     if n_links == 4 and n_joints == 4:
         return {0: "four-bar", 1: "slider-crank", 2: "double-slider"}.get(prismatic)
     if n_links == 5 and n_joints == 5 and prismatic == 0:

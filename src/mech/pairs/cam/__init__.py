@@ -1,0 +1,150 @@
+"""Cam pair (h = 1): a common normal at the instant, profiles that move, or the follower's programme.
+
+Without profiles, ``at`` (the contact point) and ``normal`` (the common
+normal's angle) describe the instant drawn.  With ``profiles`` (one curve per
+link, :mod:`mech.specs`) the pair moves; a cam may give its follower's
+``program`` instead (:mod:`mech.cam`), and then the follower moves by its law.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from types import MappingProxyType
+from typing import TYPE_CHECKING, Any
+
+from mech.cam.program import program_schema
+from mech.cam.read import read_program
+from mech.fields import NUMBER, PROFILES, Fields, Reader, read_profiles
+from mech.pairs.base import PairKind, contact_forces
+from mech.specs import ContactSpec
+from mech.units import Dimension
+
+if TYPE_CHECKING:
+    from mech.forces.result import PairForce
+    from mech.model import Joint, Mechanism
+    from mech.pairs.base import InstantView, Wrench
+    from mech.pairs.rows import RowBuilder
+    from mech.specs import Profile
+
+Vec = tuple[float, float]
+
+__all__ = ["Cam", "read_contact", "see_contact"]
+
+PROGRAM: dict[str, Any] = {
+    "description": "The follower's programme, from which mech generates the cam profile (DESIGN § 1.1).",
+    **program_schema(NUMBER),
+}
+
+
+def read_contact(
+    r: Reader, fields: Fields, what: str, links: tuple[str, ...], *, program: bool = False
+) -> ContactSpec:
+    """``normal`` and ``profiles`` (and a cam's ``program``): what a cam or a contact pair reads."""
+    normal = r.optional(fields, "normal", lambda n: r.number(n, "the common normal", Dimension.ANGLE))
+    profiles = r.optional(fields, "profiles", lambda n: read_profiles(r, n, what, links)) or ()
+    prog = r.optional(fields, "program", lambda n: read_program(r, n, what)) if program else None
+    if program and "program" in fields and "profiles" in fields:
+        r.problem(
+            fields["program"][0],
+            f"{what} gives both `program` and `profiles`",
+            "the programme generates the cam's profile: give one",
+        )
+    return ContactSpec(normal=normal, profiles=profiles, program=prog)
+
+
+def see_contact(seen: InstantView, j: Joint, line_of_action: Vec | None = None) -> None:
+    """A cam, gear or point contact: its I-centre is somewhere on the common normal (Kennedy finishes it).
+
+    The normal is the solved common tangent turned a quarter, else the file's ``normal``,
+    else ``line_of_action`` (a gear's); with none, the contact is taken as rolling (a gear
+    whose pitch point is where its pitch circles roll).
+    """
+    import math
+
+    at = seen.at(j)
+    at = j.place.at if at is None else at
+    if at is None:
+        return
+    a, b = j.links[0], j.links[1]
+    tangent = seen.direction(j)
+    normal: Vec | None = line_of_action
+    if tangent is not None:
+        normal = (tangent[1], -tangent[0])  # the common tangent turned −90°
+    elif j.normal is not None:
+        normal = (math.cos(j.normal), math.sin(j.normal))
+    seen.contact(j.name, (a, b), at, normal)
+
+
+def _programme(j: Joint) -> bool:
+    return getattr(j.spec, "program", None) is not None
+
+
+class Cam(PairKind):
+    """A cam and its follower, touching at a point (line contact), kept together by a force."""
+
+    name = "cam"
+    keys = MappingProxyType({"normal": NUMBER, "profiles": PROFILES, "program": PROGRAM})
+    spec = ContactSpec()
+    higher = True
+    motion = "cam (sliding and rolling)"
+    line_contact = True
+    closure = "force"
+    icentre = ("line", "cam {joint}: on the common normal at the contact")
+    glyph = "contact"
+
+    def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> ContactSpec:
+        return read_contact(r, fields, what, links, program=True)
+
+    def fixed_in(self, j: Joint) -> tuple[str, ...]:
+        """A programme's joint stands for the follower's own point (DESIGN § 1.2); a contact moves."""
+        return j.links[1:2] if _programme(j) else ()
+
+    def located_on(self, j: Joint) -> tuple[str, ...]:
+        """A programme's joint is a point of the follower (its arm's length may end there)."""
+        return j.links[1:2] if _programme(j) else super().located_on(j)
+
+    def drawn_at(self, mech: Mechanism, j: Joint) -> Vec | None:
+        """The follower's point where the programme puts it at the drive's angle."""
+        if not _programme(j):
+            return None
+        from mech.cam.profile import evaluate
+        from mech.pairs.cam.setup import cam_setup
+
+        setup = cam_setup(mech, j.name)
+        x, y = evaluate(setup.layout, [setup.angle]).point[0]
+        return (float(x) + setup.centre[0], float(y) + setup.centre[1])
+
+    def rows(self, b: RowBuilder, j: Joint) -> None:
+        """The follower moved by its programme's law, profiles that touch, or the common normal of the instant."""
+        if _programme(j):
+            from mech.pairs.cam.law import programme_rows
+
+            programme_rows(b, j)
+            return
+        from mech.pairs.profiles import instant_normal, moving_contact
+
+        if not moving_contact(b, j):
+            instant_normal(b, j, j.normal)
+
+    def inspect(self, seen: InstantView, j: Joint) -> None:
+        """On the common normal at the contact."""
+        see_contact(seen, j)
+
+    def drawn_profiles(self, mech: Mechanism, j: Joint, contact: Vec | None) -> list[tuple[str, Profile]]:
+        """The profiles, or those a programme generates (none when the programme cannot be placed:
+        the analysis reports why)."""
+        if getattr(j.spec, "program", None) is None:
+            return list(j.profiles)
+        from mech.errors import MechError
+        from mech.pairs.cam.setup import program_profiles
+
+        try:
+            return list(program_profiles(mech, j).items())
+        except MechError:
+            return []
+
+    def forces(
+        self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+    ) -> list[PairForce]:
+        """The force on the second link at the contact, and its component along the common normal."""
+        return contact_forces(j, wrenches, at, direction)
