@@ -18,10 +18,11 @@ from mech._memo import Memo
 from mech._records import dataclass
 from mech.errors import GeometryError, InputError, Where
 from mech.kinematics.assemble import Drawn, assemble
+from mech.kinematics.blocks import BlockForm
 from mech.kinematics.constraints import System, build_system
 from mech.kinematics.drives import drives_as_used
 from mech.kinematics.layout import Layout, layout
-from mech.kinematics.linalg import SINGULAR, blocks_of, is_singular
+from mech.kinematics.linalg import SINGULAR, blocks_of, is_singular, padded_svd, pinv
 from mech.kinematics.mobility import kutzbach, numeric_mobility
 from mech.kinematics.result import Mobility
 from mech.model import Drive, Mechanism
@@ -33,7 +34,14 @@ __all__ = ["Compiled", "compiled", "drives_of", "instant_pairs", "mobility", "re
 
 @dataclass(frozen=True, slots=True)
 class Compiled:
-    """Everything about a mechanism that does not depend on the asked angle or speed."""
+    """Everything about a mechanism that does not depend on the asked angle or speed.
+
+    With it, what is judged of the drawn configuration, each made once when first
+    asked and kept in :attr:`memo`: the toggle test (:attr:`singular`), the SVD of Φ_q
+    as drawn that the drawn rates are solved and bounded with (:meth:`drawn_svd`,
+    :meth:`drawn_inverse`; a large chain's block condition, :meth:`drawn_blocks`),
+    and whether the drives match the mobility (:meth:`refuse_drives`).
+    """
 
     mech: Mechanism
     layout: Layout
@@ -43,8 +51,8 @@ class Compiled:
     #: Φ_q with the drive rows at the drawn configuration (read-only): the rates of a solve that
     #: is not moved use it again.
     jacobian: np.ndarray
-    #: Whether Φ_q is singular as drawn, judged block by block (a large chain); None: by
-    #: :func:`is_singular` when first asked (:attr:`singular`).
+    #: Whether Φ_q is singular as drawn, judged block by block (a large chain); None: by the
+    #: drawn SVD when first asked (:attr:`singular`).
     judged: bool | None
     #: What is derived from it in turn (the drives of each options, the closed-form program).
     memo: Memo = field(default_factory=Memo, init=False, repr=False, compare=False, hash=False)
@@ -54,7 +62,56 @@ class Compiled:
         """Φ_q with drive rows is singular at the drawn configuration (a toggle drawn)."""
         if self.judged is not None:
             return self.judged
-        return self.memo.get("singular", lambda: is_singular(self.jacobian))
+        return self.memo.get("singular", lambda: is_singular(self.jacobian, self.drawn_svd()[1]))
+
+    def drawn_svd(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The SVD of Φ_q with drive rows as drawn (:func:`~mech.kinematics.linalg.padded_svd`), made once."""
+        return self.memo.get("drawn svd", lambda: padded_svd(self.jacobian))
+
+    def drawn_inverse(self) -> np.ndarray:
+        """Φ_q⁺ as drawn, from :meth:`drawn_svd` (for the componentwise error bound of the drawn rates)."""
+        return self.memo.get("drawn inverse", lambda: pinv(self.drawn_svd()))
+
+    def drawn_blocks(self, form: BlockForm) -> tuple[float, np.ndarray | None]:
+        """A large chain's block condition number as drawn, and its null vector when singular, made once."""
+        return self.memo.get("drawn blocks", lambda: form.condition(self.jacobian))
+
+    def refuse_drives(self, count: int) -> None:
+        """Refuse ``count`` drives where the mobility by the Jacobian's rank asks for another number.
+
+        At a drawn toggle the rank drops and mobility looks one higher: that is the
+        singularity (reported by the velocity solve), not a missing drive.  Judged once
+        per mechanism and count; the error is raised afresh each time.
+
+        Raises
+        ------
+        InputError
+            The drives are more or fewer than the mobility: how many it needs.
+        """
+        numeric = self.mobility.numeric
+        mismatch = self.memo.get(
+            ("drives match", count),
+            lambda: (
+                numeric is not None
+                and count != numeric
+                and not (numeric > count and count == kutzbach(self.mech) and self.singular)
+            ),
+        )
+        if not mismatch or numeric is None:
+            return
+        mech, more = self.mech, count > numeric
+        raise InputError(
+            f"{mech.label} has mobility {numeric} (from the constraint Jacobian's rank) but "
+            f"{count} drive{'s' if count != 1 else ''}: "
+            + ("more drives than it can take" if more else f"it needs {numeric} inputs"),
+            where=mech.drives[0].where if mech.drives else None,
+            hint=(
+                "remove a drive"
+                if more
+                else f"give one drive per degree of freedom: drive: [{{link: …, rpm: …}}, …] ({numeric} of them)"
+            ),
+            source=mech.source,
+        )
 
 
 def compiled(
@@ -80,12 +137,14 @@ def _compile(mech: Mechanism, angles: tuple[float | None, ...] | None, allow_fre
         return Compiled(mech, lay, drawn, system, mob, jac, None)  # the toggle: judged if asked
     # A large chain, square with its drives: judged block by block, as its velocities are solved
     # (two dense SVDs of a 6,000-column Φ_q took 380 s on a 2,000-link chain of dyads).
-    cond, _ = form.condition(jac)
+    cond, null = form.condition(jac)
     singular = cond > SINGULAR
     mob = numeric_mobility(
         mech, system, system.q0, jacobian=jac, nonsingular=None if singular else (form, cond)
     )
-    return Compiled(mech, lay, drawn, system, mob, jac, singular)
+    comp = Compiled(mech, lay, drawn, system, mob, jac, singular)
+    comp.memo.get("drawn blocks", lambda: (cond, null))  # the drawn rates' check, judged already
+    return comp
 
 
 def mobility(mech: Mechanism) -> Mobility:

@@ -21,6 +21,7 @@ __all__ = [
     "blocks_of",
     "is_singular",
     "lin_solve",
+    "padded_svd",
     "pinv",
     "refined",
     "snap_to_error",
@@ -120,14 +121,23 @@ def snap_to_error(jac: np.ndarray, inverse: np.ndarray | None, x: np.ndarray, rh
     return x
 
 
-def is_singular(jac: np.ndarray) -> bool:
-    """True when Φ_q (with drive rows) does not determine q̇: fewer rows or condition above SINGULAR."""
+def padded_svd(jac: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The SVD of Φ_q (thin), zero rows added when it has fewer rows than unknowns so that the null vector shows."""
+    n = jac.shape[1]
+    if jac.shape[0] < n:
+        jac = np.vstack([jac, np.zeros((n - jac.shape[0], n))])
+    u, s, vt = np.linalg.svd(jac, full_matrices=False)
+    return u, s, vt
+
+
+def is_singular(jac: np.ndarray, s: np.ndarray) -> bool:
+    """True when Φ_q (with drive rows) does not determine q̇: fewer rows, or its singular values ``s``
+    spread beyond :data:`SINGULAR`."""
     m, n = jac.shape
     if n == 0:
         return False
     if m < n:
         return True
-    s = np.linalg.svd(jac, compute_uv=False)
     return bool(s[n - 1] <= s[0] / SINGULAR)
 
 

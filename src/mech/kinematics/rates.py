@@ -18,7 +18,7 @@ import numpy as np
 from mech.errors import GeometryError, UnsupportedError
 from mech.kinematics.compiled import Compiled
 from mech.kinematics.drives import angle_text
-from mech.kinematics.linalg import SINGULAR, blocks_of, lin_solve, pinv, refined, snap_to_error
+from mech.kinematics.linalg import SINGULAR, blocks_of, lin_solve, padded_svd, pinv, refined, snap_to_error
 from mech.model import Drive
 
 __all__ = ["accel_rhs", "rate_rhs", "rates"]
@@ -80,40 +80,33 @@ def _checked(
 ) -> Callable[[np.ndarray], np.ndarray]:
     """A solver of Φ_q x = b at a converged configuration, after refusing a singular one.
 
-    Rank and conditioning are judged here, once per configuration: by one SVD
-    (small systems), or block by block for a large chain (:mod:`.blocks`).  The
-    solver refines its answer once and zeroes what is below its error bound
-    (:func:`snap_to_error`).
+    Rank and conditioning are judged here: by one SVD (small systems), or block by
+    block for a large chain (:mod:`.blocks`); at the drawn configuration (``jac`` is
+    the compiled Φ_q) by the compiled mechanism's own, made once.  The solver refines
+    its answer once and zeroes what is below its error bound (:func:`snap_to_error`).
     """
+    drawn = jac is comp.jacobian
     form = blocks_of(comp.system)
     if form is None:
-        svd = _svd_checked(comp, jac, drives)
-        inverse = pinv(svd) if jac.shape[1] else None
+        svd = comp.drawn_svd() if drawn else padded_svd(jac)
+        n = jac.shape[1]
+        if n:
+            s = svd[1]
+            cond = float(s[0] / s[n - 1]) if s[n - 1] > 0 else math.inf
+            if cond > SINGULAR:
+                raise GeometryError(
+                    _singular_message(comp, svd[2][n - 1], cond, drives),
+                    hint="analyse a slightly different angle: velocities here are undetermined",
+                )
+        inverse = (comp.drawn_inverse() if drawn else pinv(svd)) if n else None
         return lambda rhs: snap_to_error(jac, inverse, refined(jac, lambda b: lin_solve(svd, b), rhs), rhs)
-    cond, null = form.condition(jac)
+    cond, null = comp.drawn_blocks(form) if drawn else form.condition(jac)
     if cond > SINGULAR:
         raise GeometryError(
             _singular_message(comp, null, cond, drives),  # type: ignore[arg-type]
             hint="analyse a slightly different angle: velocities here are undetermined",
         )
     return lambda rhs: snap_to_error(jac, None, refined(jac, lambda b: form.solve(jac, b), rhs), rhs)
-
-
-def _svd_checked(comp: Compiled, jac: np.ndarray, drives: tuple[Drive, ...]) -> tuple:
-    """SVD of Φ_q, refusing a singular configuration with the links that lose their guidance."""
-    n = jac.shape[1]
-    if jac.shape[0] < n:  # fewer equations than unknowns: pad so that the null vector shows
-        jac = np.vstack([jac, np.zeros((n - jac.shape[0], n))])
-    u, s, vt = np.linalg.svd(jac, full_matrices=False)
-    if n == 0:
-        return u, s, vt
-    cond = float(s[0] / s[n - 1]) if s[n - 1] > 0 else math.inf
-    if cond > SINGULAR:
-        raise GeometryError(
-            _singular_message(comp, vt[n - 1], cond, drives),
-            hint="analyse a slightly different angle: velocities here are undetermined",
-        )
-    return u, s, vt
 
 
 def _singular_message(comp: Compiled, v: np.ndarray, cond: float, drives: tuple[Drive, ...]) -> str:

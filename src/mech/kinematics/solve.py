@@ -40,8 +40,7 @@ from mech.kinematics.compiled import (
 from mech.kinematics.drives import angle_text, drives_as_used, omega_ref_of
 from mech.kinematics.geometry import wrap_angle
 from mech.kinematics.layout import layout
-from mech.kinematics.linalg import SINGULAR, pinv, snap_to_error
-from mech.kinematics.mobility import kutzbach
+from mech.kinematics.linalg import BLOCK_MIN, SINGULAR, pinv, snap_to_error
 from mech.kinematics.moving import continue_along, move_from_drawing, move_to
 from mech.kinematics.rates import accel_rhs, rate_rhs, rates
 from mech.kinematics.result import Kinematics
@@ -106,6 +105,34 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
     if level not in LEVELS:
         raise InputError(f"level must be one of {', '.join(LEVELS)}, not {level!r}")
     lvl = LEVELS.index(level)
+    _refuse_overrides(mech, options)
+    if lvl > 0 or options.angle is not None:
+        layout(mech)  # the file's own mistakes first (a drive's frame, a spatial pair): linear, remembered
+        refuse_underdriven(mech)  # then the count, before the assembly and the rank (cubic in the chain)
+    comp = _compiled(mech, options)
+    drives = drives_of(comp, options, lvl)
+    targets = [d.angle for d in drives]
+    moved = any(
+        spec.link is not None and abs(wrap_angle(t - a)) > 1e-15  # type: ignore[operator]
+        for spec, t, a in zip(comp.layout.drives, targets, comp.drawn.drive_angles, strict=False)
+    )
+    if lvl > 0 or moved:
+        comp.refuse_drives(len(drives))
+    notes = [*comp.drawn.notes, *comp.mobility.notes]
+    omega_ref = omega_ref_of(drives, comp.drawn.scale)
+    if _closed_route(comp, options, lvl, moved):
+        fast = _closed_form(comp, drives, lvl, omega_ref, options, moved)
+        if fast is not None:
+            state, note = fast
+            told = (lambda: (*notes, note())) if moved else tuple(notes)
+            return lazy_result(comp, level, state, omega_ref, moved, told, drives)
+    q = move_from_drawing(comp, drives, options, targets, notes) if moved else comp.system.q0
+    qd, qdd = rates(comp, q, drives, lvl, omega_ref)
+    return result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
+
+
+def _refuse_overrides(mech: Mechanism, options: SolveOptions) -> None:
+    """The command's overrides of a drive (--angle, --rpm …) apply to a file with one drive only."""
     overrides = any(
         v is not None for v in (options.angle, options.omega, options.speed, options.direction, options.alpha)
     )
@@ -117,58 +144,33 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
             if mech.drives
             else "add drive: {link: ..., angle: ..., rpm: ...}",
         )
-    if lvl > 0 or options.angle is not None:
-        layout(mech)  # the file's own mistakes first (a drive's frame, a spatial pair): linear, remembered
-        refuse_underdriven(mech)  # then the count, before the assembly and the rank (cubic in the chain)
+
+
+def _compiled(mech: Mechanism, options: SolveOptions) -> Compiled:
+    """The compiled mechanism; a file that draws only the ground pivots and gives no drive angle gets --angle's."""
     try:
-        comp = compiled(mech, None)
+        return compiled(mech, None)
     except GeometryError:
-        # A file that draws only the ground pivots and gives no drive angle: --angle supplies it.
         if options.angle is None or mech.drives[0].angle is not None or mech.drives[0].link is None:
             raise
-        comp = compiled(mech, (options.angle,))
-    sys_, lay, drawn = comp.system, comp.layout, comp.drawn
-    notes = list(drawn.notes) + list(comp.mobility.notes)
+        return compiled(mech, (options.angle,))
 
-    drives = drives_of(comp, options, lvl)
-    n_drives = len(drives)
-    numeric = comp.mobility.numeric
-    targets = [d.angle for d in drives]
-    moved = any(
-        spec.link is not None and abs(wrap_angle(t - a)) > 1e-15  # type: ignore[operator]
-        for spec, t, a in zip(lay.drives, targets, drawn.drive_angles, strict=False)
-    )
-    # At a drawn toggle the rank drops and mobility looks one higher: that is the
-    # singularity (reported by the velocity solve), not a missing drive.
-    toggle = numeric is not None and numeric > n_drives and n_drives == kutzbach(mech) and comp.singular
-    if (lvl > 0 or moved) and numeric is not None and n_drives != numeric and not toggle:
-        more = n_drives > numeric
-        raise InputError(
-            f"{mech.label} has mobility {numeric} (from the constraint Jacobian's rank) but "
-            f"{n_drives} drive{'s' if n_drives != 1 else ''}: "
-            + ("more drives than it can take" if more else f"it needs {numeric} inputs"),
-            where=mech.drives[0].where if mech.drives else None,
-            hint=(
-                "remove a drive"
-                if more
-                else f"give one drive per degree of freedom: drive: [{{link: …, rpm: …}}, …] ({numeric} of them)"
-            ),
-            source=mech.source,
-        )
 
-    q = sys_.q0
-    omega_ref = omega_ref_of(drives, drawn.scale)
-    if options.method == "closed" or (moved and options.method == "auto"):
-        fast = _closed_form(comp, drives, lvl, omega_ref, options)
-        if fast is not None:
-            state, note = fast
-            told = (lambda: (*notes, note())) if moved else tuple(notes)
-            return lazy_result(comp, level, state, omega_ref, moved, told, drives)
+def _closed_route(comp: Compiled, options: SolveOptions, lvl: int, moved: bool) -> bool:
+    """Whether the closed-form dyads are tried: asked for, or (``auto``) at any angle the chain reaches.
+
+    The drawn angle takes them as a moved one does, with two exceptions judged once
+    per mechanism: a toggle drawn (Φ_q singular as drawn: the general route refuses
+    it, naming the links in line), and a chain of :data:`~mech.kinematics.linalg.BLOCK_MIN`
+    unknowns or more, where generating and compiling the program costs more than the
+    drawn solve it would replace (a 200-link chain: 1.5 s against 25 ms), so the drawn
+    configuration and the block solver answer as before.
+    """
+    if options.method != "auto":
+        return options.method == "closed"
     if moved:
-        q = move_from_drawing(comp, drives, options, targets, notes)
-
-    qd, qdd = rates(comp, q, drives, lvl, omega_ref)
-    return result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
+        return True
+    return 3 * comp.system.n < BLOCK_MIN and (lvl == 0 or not comp.singular)
 
 
 def continuation(
@@ -220,9 +222,14 @@ def continuation(
 
 
 def _closed_form(
-    comp: Compiled, drives: tuple[Drive, ...], lvl: int, omega_ref: float, options: SolveOptions
+    comp: Compiled,
+    drives: tuple[Drive, ...],
+    lvl: int,
+    omega_ref: float,
+    options: SolveOptions,
+    moved: bool = True,
 ) -> tuple[Callable[[], State], Callable[[], str]] | None:
-    """q, q̇, q̈ (scaled) from the dyad program, or None to let Newton solve (and explain).
+    """q, q̇, q̈ (scaled) from the dyad program, or None to let the general route solve (and explain).
 
     Checked here (closure, reachability, toggles); the arrays and the note are
     made only when the result is read (two callables), so a solve whose caller
@@ -231,12 +238,14 @@ def _closed_form(
     None when the chain does not decompose, when the target angle cannot be
     reached from the drawn one by turning the crank (a gap in between: the
     closed form would land on a configuration the mechanism cannot move to),
-    when a dyad cannot close, or near a toggle.  With ``method="closed"`` the
-    first of these is an error instead.
+    when a dyad cannot close, or (at the drawn angle, not ``moved``) next to a
+    toggle, where the general route judges Φ_q as it always has.  With
+    ``method="closed"`` the first of these is an error instead, and a moved
+    angle next to a toggle is refused.
     """
-    from mech.kinematics.dyads import ACCURATE_COND, SLACK, branches, passed, program, route
+    from mech.kinematics.dyads import ACCURATE_COND, SLACK, program
 
-    prog = program(comp)
+    prog = program(comp, lvl)
     if prog is None:
         if options.method == "closed":
             raise UnsupportedError(
@@ -246,64 +255,102 @@ def _closed_form(
         return None
     d = drives[0]
     phi = d.angle if d.angle is not None else prog.drawn_angle
+    way = _way(prog, phi) if moved else ((), [])
+    if way is None:
+        return None
+    branch, met = way
+    try:
+        out = prog.raw(phi, d.omega or 0.0, d.alpha or 0.0, level=lvl, branch=branch)
+    except ZeroDivisionError:  # no closure, or exactly in line: Newton explains
+        return None
+    nd = len(prog.dyads)
+    if min(out[:nd], default=1.0) < -SLACK:
+        return None  # Newton reports the gap, in the file's unit
+    sines = [abs(x) for x in out[nd : 2 * nd]]
+    if lvl >= 1 and sines and min(sines) * ACCURATE_COND < 1.0:
+        if not moved and options.method == "auto":
+            return None
+        _refuse_singular(comp, prog, d, phi, sines)
+    return (lambda: _state(comp, prog.split(out, lvl), drives, lvl, omega_ref, moved)), (
+        lambda: _moved_note(prog, phi, met)
+    )
+
+
+def _way(prog: Any, phi: float) -> tuple[tuple, list] | None:
+    """How the crank reaches ``phi`` from the drawing: each dyad's branch there and the change points passed.
+
+    None when both ways round have a gap.  Past a change point a dyad continues on
+    the branch with a continuous tangent (its sign flips).
+    """
+    from mech.kinematics.dyads import branches, passed, route
+
     turn = route(prog, phi)
     if turn is None:
         return None
-    # past a change point a dyad continues on the branch with a continuous tangent (its sign flips)
     reached = prog.drawn_angle + turn
-    branch = branches(prog, prog.drawn_angle, reached)
-    met = passed(prog, prog.drawn_angle, reached)
-    w = d.omega or 0.0
-    al = d.alpha or 0.0
-    try:
-        out = prog.raw(phi, w, al, level=lvl, branch=branch)
-    except ZeroDivisionError:  # no closure, or exactly in line: Newton explains
-        return None
-    parts = prog.split(out, lvl)
-    if min(parts["disc"], default=1.0) < -SLACK:
-        return None  # Newton reports the gap, in the file's unit
-    sines = [abs(x) for x in parts["sin"]]
-    if lvl >= 1 and sines and min(sines) * ACCURATE_COND < 1.0:
-        _refuse_singular(comp, prog, d, phi, sines)
+    return branches(prog, prog.drawn_angle, reached), passed(prog, prog.drawn_angle, reached)
 
-    def state() -> State:
-        sys_ = comp.system
-        n, scale = sys_.n, sys_.scale
-        q = np.empty(3 * n)
-        q[0::3] = np.asarray(parts["lx"]) / scale
-        q[1::3] = np.asarray(parts["ly"]) / scale
-        q[2::3] = parts["lt"]
-        qd = qdd = None
-        if lvl >= 1:
-            qd = np.empty(3 * n)
-            qd[0::3] = np.asarray(parts["lvx"]) / (scale * omega_ref)
-            qd[1::3] = np.asarray(parts["lvy"]) / (scale * omega_ref)
-            qd[2::3] = np.asarray(parts["lw"]) / omega_ref
-            jac = sys_.jacobian(q)
-            inverse = pinv(np.linalg.svd(jac, full_matrices=False))
-            qd = snap_to_error(jac, inverse, qd, rate_rhs(comp, drives, omega_ref))
-        if lvl >= 2 and qd is not None:
-            qdd = np.empty(3 * n)
-            qdd[0::3] = np.asarray(parts["lax"]) / (scale * omega_ref**2)
-            qdd[1::3] = np.asarray(parts["lay"]) / (scale * omega_ref**2)
-            qdd[2::3] = np.asarray(parts["lal"]) / omega_ref**2
-            qdd = snap_to_error(jac, inverse, qdd, accel_rhs(comp, q, qd, drives, omega_ref))
-        return q, qd, qdd
 
-    def note() -> str:
-        kinds = ", ".join(dict.fromkeys(k for k, _, _ in prog.dyads)) or "crank only"
-        text = (
-            f"moved from the drawn angle ({angle_text(prog.drawn_angle)} → {angle_text(phi)}) keeping its branch, "
-            f"in closed form (dyads: {kinds})"
+def _state(
+    comp: Compiled,
+    parts: dict[str, tuple],
+    drives: tuple[Drive, ...],
+    lvl: int,
+    omega_ref: float,
+    moved: bool,
+) -> State:
+    """q, q̇, q̈ (scaled) from the program's outputs, each rate refined and snapped as a linear solve's are.
+
+    The closed form's rates are good to ε times the velocities they are built from
+    (a ground pivot's, reached round the loop from the coupler's, comes out at 1e-16
+    m/s, not 0), a normwise error that the componentwise bound would not snap.  One
+    step of iterative refinement on Φ_q (:func:`~mech.kinematics.linalg.refined`'s
+    second half) makes each component good to its own size, as the general route's
+    are; then :func:`~mech.kinematics.linalg.snap_to_error`.  Φ_q⁺ at the drawn angle is
+    the compiled mechanism's, made once.
+    """
+    sys_ = comp.system
+    n, scale = sys_.n, sys_.scale
+    q = np.empty(3 * n)
+    q[0::3] = np.asarray(parts["lx"]) / scale
+    q[1::3] = np.asarray(parts["ly"]) / scale
+    q[2::3] = parts["lt"]
+    if lvl < 1:
+        return q, None, None
+    if moved:
+        jac = sys_.jacobian(q)
+        inverse = pinv(np.linalg.svd(jac, full_matrices=False))
+    else:
+        jac, inverse = comp.jacobian, comp.drawn_inverse()
+    qd = np.empty(3 * n)
+    qd[0::3] = np.asarray(parts["lvx"]) / (scale * omega_ref)
+    qd[1::3] = np.asarray(parts["lvy"]) / (scale * omega_ref)
+    qd[2::3] = np.asarray(parts["lw"]) / omega_ref
+    rhs = rate_rhs(comp, drives, omega_ref)
+    qd = snap_to_error(jac, inverse, qd + inverse @ (rhs - jac @ qd), rhs)
+    if lvl < 2:
+        return q, qd, None
+    qdd = np.empty(3 * n)
+    qdd[0::3] = np.asarray(parts["lax"]) / (scale * omega_ref**2)
+    qdd[1::3] = np.asarray(parts["lay"]) / (scale * omega_ref**2)
+    qdd[2::3] = np.asarray(parts["lal"]) / omega_ref**2
+    gamma = accel_rhs(comp, q, qd, drives, omega_ref)
+    return q, qd, snap_to_error(jac, inverse, qdd + inverse @ (gamma - jac @ qdd), gamma)
+
+
+def _moved_note(prog: Any, phi: float, met: list) -> str:
+    """The note of a closed-form solve moved from the drawing: from where to where, the change points passed."""
+    kinds = ", ".join(dict.fromkeys(k for k, _, _ in prog.dyads)) or "crank only"
+    text = (
+        f"moved from the drawn angle ({angle_text(prog.drawn_angle)} → {angle_text(phi)}) keeping its branch, "
+        f"in closed form (dyads: {kinds})"
+    )
+    for at, c in met:
+        text += (
+            f"; passed a change point at {math.degrees(at):.6f}° ({c.what}) and continued on the "
+            "branch with a continuous tangent"
         )
-        for at, c in met:
-            text += (
-                f"; passed a change point at {math.degrees(at):.6f}° ({c.what}) and continued on the "
-                "branch with a continuous tangent"
-            )
-        return text
-
-    return state, note
+    return text
 
 
 def _refuse_singular(comp: Compiled, prog: Any, d: Drive, phi: float, sines: list[float]) -> None:

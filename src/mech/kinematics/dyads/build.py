@@ -34,27 +34,28 @@ from mech.pairs import kind_of
 __all__ = ["program"]
 
 
-def program(comp: Any) -> DyadProgram | None:
+def program(comp: Any, level: int = 0) -> DyadProgram | None:
     """The closed-form program of a compiled mechanism, or None when it does not decompose.
 
     Kept in the memo of the :class:`~mech.kinematics.compiled.Compiled` (itself
     kept in the mechanism's).  The program is accepted only if it reproduces the drawn
     configuration and satisfies *every* constraint row of the system (so a
     row the decomposition did not use, a redundant one, still holds) at a
-    few angles round the cycle; otherwise None, and Newton is used.
+    few angles round the cycle; otherwise None, and Newton is used.  ``level``
+    is the level the caller evaluates next: when the program is first made, that
+    level's function is the one compiled and checked (one compilation, not two).
     """
-    return comp.memo.get("program", lambda: _checked_program(comp))  # type: ignore[no-any-return]
+    return comp.memo.get("program", lambda: _checked_program(comp, level))  # type: ignore[no-any-return]
 
 
-def _checked_program(comp: Any) -> DyadProgram | None:
+def _checked_program(comp: Any, level: int) -> DyadProgram | None:
     """The program built and verified (or None): :func:`program`'s work, done once per compiled mechanism."""
     try:
         prog = _build(comp.layout, comp.system, comp.drawn.drive_angles)
     except _NoDecomposition:
-        prog = None
-    if prog is not None and not _verified(prog, comp.system):
-        prog = None
-    return prog
+        return None
+    prog.function(level)
+    return prog if _verified(prog, comp.system) else None
 
 
 class _NoDecomposition(Exception):
@@ -67,7 +68,8 @@ def _build(lay: Layout, sys_: System, drive_angles: tuple[float | None, ...]) ->
     The steps, each a method of :class:`_Builder`: the drawn frames of every
     link, the crank, then rounds of the four placement rules (a link posed
     rigidly from known points, an RRR apex, an RRP slider, an RPR guide) until
-    every link is known, and the three functions compiled (one per level).
+    every link is known, and the code of each level's function written (compiled
+    when first evaluated: :meth:`DyadProgram.function`).
     """
     if len(lay.drives) != 1 or sys_.velocity_only or any(kind_of(j).dyad is None for j in lay.mech.joints):
         raise _NoDecomposition
@@ -84,7 +86,6 @@ def _build(lay: Layout, sys_: System, drive_angles: tuple[float | None, ...]) ->
         raise _NoDecomposition
     for name in b.pos:
         b.emit_point(name)
-    fns, source = b.compile(lay.mech.label)
     return DyadProgram(
         steps=tuple(b.steps),
         links=sys_.links,
@@ -92,8 +93,8 @@ def _build(lay: Layout, sys_: System, drive_angles: tuple[float | None, ...]) ->
         dyads=tuple(b.dyads),
         centre=(float(sys_.centre[0]), float(sys_.centre[1])),
         drawn_angle=float(drive_angles[0]),
-        source=source,
-        _fns=fns,
+        sources=b.sources(),
+        label=lay.mech.label,
         _sizes=(len(b.dyads), b.n, len(b.pos)),
     )
 
@@ -389,8 +390,8 @@ class _Builder:
         return False
 
     # -- the functions --------------------------------------------------------------------
-    def compile(self, label: str) -> tuple[tuple[Any, Any, Any], str]:
-        """The generated function of each level (0, 1, 2) and the source of the last."""
+    def sources(self) -> tuple[str, str, str]:
+        """The code of the generated function of each level (0, 1, 2)."""
         n, pv, names, nd = self.n, self.pv, self._names, len(self.dyads)
         outs = [f"{w}{k}" for w in ("d", "sn", "ms") for k in range(nd)]
         outs += [f"l{i}_{w}" for w in ("x", "y", "t") for i in range(n)]
@@ -401,8 +402,9 @@ class _Builder:
         acc = [f"l{i}_{w}" for w in ("ax", "ay", "al") for i in range(n)] + [
             pv(p, w) for w in ("ax", "ay") for p in names
         ]
-        fns = []
-        source = ""
+        # b0, b1 …: each dyad's branch, flipped (−1) past a change point (see :func:`branches`)
+        branch = "".join(f", b{k}=1.0" for k in range(nd))
+        sources = []
         for level in range(3):
             lines = []
             for line in self.code:
@@ -416,19 +418,14 @@ class _Builder:
                 else:
                     lines.append(line)
             ret = outs + (vel if level >= 1 else []) + (acc if level >= 2 else [])
-            # b0, b1 …: each dyad's branch, flipped (−1) past a change point (see :func:`branches`)
-            branch = "".join(f", b{k}=1.0" for k in range(nd))
-            source = (
+            sources.append(
                 f"def run(phi, omega, alpha, sqrt, cos, sin, atan2, clip{branch}):\n"
                 + "\n".join(lines)
                 + "\n    return ("
                 + ", ".join(ret)
                 + ",)\n"
             )
-            env: dict[str, Any] = {}
-            exec(compile(source, f"<dyad program of {label}>", "exec"), env)  # our own generated code
-            fns.append(env["run"])
-        return (fns[0], fns[1], fns[2]), source
+        return (sources[0], sources[1], sources[2])
 
 
 def _name(sys_: System, i: int) -> str:
@@ -436,15 +433,20 @@ def _name(sys_: System, i: int) -> str:
 
 
 def _verified(prog: DyadProgram, sys_: System) -> bool:
-    """The program satisfies every constraint row at the drawn angle and at eight others."""
+    """The program satisfies every constraint row at the drawn angle and at seven others round the cycle.
+
+    Evaluated by the level already compiled, the rows of all eight configurations at once.
+    """
     import numpy as np
 
     n, scale = sys_.n, sys_.scale
-    phis = [prog.drawn_angle] + [prog.drawn_angle + k * math.pi / 4 for k in range(1, 8)]
-    ok_any = False
-    for k, phi in enumerate(phis):
+    level = prog.positions_level()
+    qs: list[np.ndarray] = []
+    turned: list[float] = []
+    for k in range(8):
+        phi = prog.drawn_angle + k * math.pi / 4
         try:
-            out = prog.raw(phi, level=0, xp=MATH)
+            out = prog.raw(phi, level=level, xp=MATH)
         except ZeroDivisionError:
             # a dyad's two base points coincide at this angle (the Peaucellier crank pin on its
             # fixed pivot): the apex is undetermined there, which says nothing about the others
@@ -460,13 +462,12 @@ def _verified(prog: DyadProgram, sys_: System) -> bool:
         q[0::3] = np.asarray(parts["lx"]) / scale
         q[1::3] = np.asarray(parts["ly"]) / scale
         q[2::3] = parts["lt"]
-        c_ang = sys_.ang_c.copy()
-        for r in sys_.drive_rows:
-            off = r - 2 * sys_.pc_i.size - sys_.ln_s.size
-            if off >= 0:
-                c_ang[off] += phi - prog.drawn_angle
-        res = sys_.phi(q, sys_.ln_c, c_ang)
-        if res.size and float(np.max(np.abs(res))) > 1e-9:
-            return False
-        ok_any = True
-    return ok_any
+        qs.append(q)
+        turned.append(phi - prog.drawn_angle)
+    c_ang = np.tile(sys_.ang_c, (len(qs), 1))
+    for r in sys_.drive_rows:
+        off = r - 2 * sys_.pc_i.size - sys_.ln_s.size
+        if off >= 0:
+            c_ang[:, off] += turned
+    res = sys_.phi(np.array(qs), sys_.ln_c, c_ang)
+    return not (res.size and float(np.max(np.abs(res))) > 1e-9)

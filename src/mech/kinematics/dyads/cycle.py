@@ -20,7 +20,7 @@ __all__ = ["ChangePoint", "branches", "change_points", "closing_edge", "closure_
 
 # -- where the loop closes -----------------------------------------------------------------
 def _worst_disc(prog: DyadProgram, phi: float) -> float:
-    out = prog.raw(phi, level=0)
+    out = prog.raw(phi, level=prog.positions_level())
     return min(out[: len(prog.dyads)], default=1.0)
 
 
@@ -72,7 +72,7 @@ def closure_gaps(prog: DyadProgram, samples: int = 2048) -> tuple[tuple[float, f
 
     two_pi = 2.0 * math.pi
     d = np.linspace(0.0, two_pi, samples + 1)
-    out = prog.raw(prog.drawn_angle + d, level=0, xp=numpy_namespace())
+    out = prog.raw(prog.drawn_angle + d, level=prog.positions_level(), xp=numpy_namespace())
     nd = len(prog.dyads)
     if nd == 0:
         prog._memo["gaps"] = ()
@@ -131,7 +131,7 @@ class ChangePoint:
 
 
 def _dyad_disc(prog: DyadProgram, k: int, phi: float) -> float:
-    return float(prog.raw(phi, level=0)[k])
+    return float(prog.raw(phi, level=prog.positions_level())[k])
 
 
 def change_points(prog: DyadProgram, samples: int = 2048) -> tuple[ChangePoint, ...]:
@@ -161,7 +161,7 @@ def change_points(prog: DyadProgram, samples: int = 2048) -> tuple[ChangePoint, 
     if nd:
         d = np.linspace(0.0, 2.0 * math.pi, samples + 1)
         with np.errstate(all="ignore"):
-            out = prog.raw(prog.drawn_angle + d, level=0, xp=numpy_namespace())
+            out = prog.raw(prog.drawn_angle + d, level=prog.positions_level(), xp=numpy_namespace())
         discs = np.vstack(np.broadcast_arrays(*out[:nd]))
         ok = np.min(discs, axis=0) >= -SLACK
         v, left, right = discs[:, 1:-1], discs[:, :-2], discs[:, 2:]
@@ -193,7 +193,7 @@ def _touch(prog: DyadProgram, k: int, lo: float, hi: float) -> float | None:
 def _meets(prog: DyadProgram, k: int, phi: float) -> str:
     """What meets what at dyad k's change point: the placed point and any named point on it."""
     kind, placed, line = prog.dyads[k]
-    out = prog.raw(phi, level=0)
+    out = prog.raw(phi, level=prog.positions_level())
     parts = prog.split(out, 0)
     names = prog.points
     j = names.index(placed) if placed in names else -1

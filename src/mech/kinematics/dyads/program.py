@@ -89,8 +89,11 @@ class DyadProgram:
         Global origin of the computed coordinates (m): add it to positions.
     drawn_angle
         The drive's angle in the drawn configuration (rad).
-    source
-        The generated code of the acceleration-level function (for reading).
+    sources
+        The generated code of each level's function (positions; and velocities; and
+        accelerations), compiled when that level is first evaluated (:meth:`function`):
+        compiling costs about as much as a solve by the general route, and one command
+        needs one level.
     """
 
     steps: tuple[str, ...]
@@ -99,12 +102,36 @@ class DyadProgram:
     dyads: tuple[tuple[str, str, str], ...]
     centre: tuple[float, float]
     drawn_angle: float
-    source: str
-    _fns: tuple[Any, Any, Any] = field(repr=False)
+    sources: tuple[str, str, str] = field(repr=False)
+    label: str = field(repr=False)
     _sizes: tuple[int, int, int] = field(repr=False)  # dyads, links, points
-    _memo: dict[str, Any] = field(default_factory=dict, repr=False)  # lazily computed closure gaps
+    #: The compiled functions (keys 0, 1, 2) and what is found once round the cycle (gaps, change points).
+    _memo: dict[Any, Any] = field(default_factory=dict, repr=False)
+
+    @property
+    def source(self) -> str:
+        """The generated code of the acceleration-level function (for reading)."""
+        return self.sources[2]
 
     # -- evaluation -------------------------------------------------------------------
+    def function(self, level: int) -> Any:
+        """The generated function of ``level`` (0, 1 or 2), compiled when first asked."""
+        fn = self._memo.get(level)
+        if fn is None:
+            env: dict[str, Any] = {}
+            code = compile(self.sources[level], f"<dyad program of {self.label}>", "exec")
+            exec(code, env)  # our own generated code
+            fn = self._memo[level] = env["run"]
+        return fn
+
+    def positions_level(self) -> int:
+        """The lowest level already compiled (0 if none): its outputs start with everything level 0 gives.
+
+        What needs only discriminants and positions (the gaps and change points round
+        the cycle, the program's own check) uses it, so that it compiles no other level.
+        """
+        return next((k for k in (0, 1, 2) if k in self._memo), 0)
+
     def raw(
         self,
         phi: Any,
@@ -117,13 +144,13 @@ class DyadProgram:
     ) -> tuple:
         """The flat output tuple of the generated function (see :meth:`split`).
 
-        ``xp`` is ``math`` for floats or :data:`NUMPY` for arrays of angles.
+        ``xp`` is :data:`MATH` for floats or :func:`numpy_namespace` for arrays of angles.
         ``branch`` holds each dyad's branch multiplier (+1 the drawn one, −1 the
         other; floats, or arrays shaped as ``phi``): :func:`branches` gives them
         for angles reached past change points; empty, the drawn branch throughout.
         """
         xp = xp or MATH
-        return self._fns[level](phi, omega, alpha, xp.sqrt, xp.cos, xp.sin, xp.atan2, xp.clip, *branch)
+        return self.function(level)(phi, omega, alpha, xp.sqrt, xp.cos, xp.sin, xp.atan2, xp.clip, *branch)
 
     def split(self, out: tuple, level: int) -> dict[str, tuple]:
         """Named slices of a raw output.
@@ -173,9 +200,9 @@ class DyadProgram:
         -4.785...
         """
         try:
-            out = self._fns[level](phi, omega, alpha, _sqrt, _cos, _sin, _atan2, _clip)
+            out = self.function(level)(phi, omega, alpha, _sqrt, _cos, _sin, _atan2, _clip)
         except ZeroDivisionError:  # a dyad that cannot close, or exactly in line: say which
-            out = self._fns[0](phi, omega, alpha, _sqrt, _cos, _sin, _atan2, _clip)
+            out = self.function(0)(phi, omega, alpha, _sqrt, _cos, _sin, _atan2, _clip)
             if min(out[: self._sizes[0]], default=1.0) >= -SLACK:
                 raise ValueError(
                     f"singular configuration at {math.degrees(phi):.6g}°: links in line (a toggle)"
