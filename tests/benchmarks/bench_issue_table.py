@@ -132,6 +132,11 @@ def main() -> None:
     parser.add_argument("--venv", type=Path, default=Path("/tmp/mech-bench-venv"))
     parser.add_argument("--no-install", action="store_true", help="use the venv as it is")
     parser.add_argument("--before", type=Path, help="a venv with an earlier tree pip-installed, to compare")
+    parser.add_argument(
+        "--quick",
+        action="store_true",
+        help="the commands and the one solves only (no Newton chains, no sweeps)",
+    )
     parser.add_argument("--links", default="4,40,100,200", help="chain sizes for Newton (first: reference)")
     args = parser.parse_args()
     try:
@@ -183,7 +188,7 @@ def main() -> None:
     cases["solve() full, four-bar"] = per_call(lambda: solve(four, "acceleration", moved), 500)
     cases["closed form lean, four-bar"] = per_call(lambda: prog.state(target, -4 * math.pi, 0.0), 5000)
 
-    sizes = [int(s) for s in args.links.split(",")]
+    sizes = [] if args.quick else [int(s) for s in args.links.split(",")]
     newton = SolveOptions(angle=math.radians(65), method="newton")
     for n in sizes:
         m = chain(n)
@@ -198,7 +203,7 @@ def main() -> None:
         "rolling wheel": mech.load(ROOT / "mechanisms" / "rolling_wheel.yaml"),
         "eccentric cam, roller": mech.load(ROOT / "mechanisms" / "eccentric_cam_roller.yaml"),
     }
-    for label, m in sweeps.items():
+    for label, m in ({} if args.quick else sweeps).items():
         sweep(m, phi[:10], level="acceleration", analyse=False)  # compile outside the timing
         cases[f"sweep series, {label}"] = per_call(
             lambda m=m: sweep(m, phi, level="acceleration", analyse=False), 1
@@ -264,15 +269,23 @@ def main() -> None:
         "≤ 0.3×",
         "pylinkage one step",
     )
-    base = sizes[0]
     for n in sizes[1:]:
         row(
             f"Newton solve, {n}-link chain",
             f"Newton, {n} links",
-            f"Newton, {base} links",
-            f"linear: ≤ {n / base:.0f}×",
-            f"{base}-link Newton",
+            f"Newton, {sizes[0]} links",
+            f"linear: ≤ {n / sizes[0]:.0f}×",
+            f"{sizes[0]}-link Newton",
         )
+    for kind in () if args.quick else ("series", "whole"):
+        for label in ("double parallelogram", "gear pair", "rolling wheel", "eccentric cam, roller"):
+            what = "series only" if kind == "series" else "whole sweep (extremes, dead centres)"
+            print(
+                f"| 3,600-step sweep, {label}, {what} | {fmt(med[f'sweep {kind}, {label}'])} | "
+                f"closed-form {fmt(med[f'sweep {kind}, four-bar (closed form)'])} | "
+                f"{med[f'sweep {kind}, {label}'] / med[f'sweep {kind}, four-bar (closed form)']:.0f}× | ≤ 0.25 s |"
+            )
+
     if args.before is not None:
         print()
         print(f"the tree now against the one before ({args.before}), in the same interleaved run:")
@@ -296,14 +309,6 @@ def main() -> None:
             then = then or f"before: {now}"
             print(f"| {label} | {fmt(med[then])} | {fmt(med[now])} | {med[now] / med[then]:.3f} |")
         print()
-    for kind in ("series", "whole"):
-        for label in ("double parallelogram", "gear pair", "rolling wheel", "eccentric cam, roller"):
-            what = "series only" if kind == "series" else "whole sweep (extremes, dead centres)"
-            print(
-                f"| 3,600-step sweep, {label}, {what} | {fmt(med[f'sweep {kind}, {label}'])} | "
-                f"closed-form {fmt(med[f'sweep {kind}, four-bar (closed form)'])} | "
-                f"{med[f'sweep {kind}, {label}'] / med[f'sweep {kind}, four-bar (closed form)']:.0f}× | ≤ 0.25 s |"
-            )
 
 
 if __name__ == "__main__":

@@ -20,16 +20,14 @@ from mech.errors import GeometryError, InputError, Where
 from mech.kinematics.assemble import Drawn, assemble
 from mech.kinematics.blocks import BlockForm
 from mech.kinematics.constraints import System, build_system
-from mech.kinematics.drives import drives_as_used
 from mech.kinematics.layout import Layout, layout
 from mech.kinematics.linalg import SINGULAR, blocks_of, is_singular, padded_svd, pinv
 from mech.kinematics.mobility import kutzbach, numeric_mobility
 from mech.kinematics.result import Mobility
-from mech.model import Drive, Mechanism
-from mech.options import SolveOptions
+from mech.model import Mechanism
 from mech.pairs import kind_of
 
-__all__ = ["Compiled", "compiled", "drives_of", "instant_pairs", "mobility", "refuse_underdriven"]
+__all__ = ["Compiled", "compiled", "instant_pairs", "mobility", "refuse_underdriven"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -54,7 +52,7 @@ class Compiled:
     #: Whether Φ_q is singular as drawn, judged block by block (a large chain); None: by the
     #: drawn SVD when first asked (:attr:`singular`).
     judged: bool | None
-    #: What is derived from it in turn (the drives of each options, the closed-form program).
+    #: What is derived from it in turn (each solve's plan, the closed-form program, the drawn checks).
     memo: Memo = field(default_factory=Memo, init=False, repr=False, compare=False, hash=False)
 
     @property
@@ -241,13 +239,3 @@ def instant_pairs(names: Sequence[str]) -> str:
     if len(names) == 1:
         return f"joint {names[0]} describes"
     return f"joints {', '.join(names)} describe"
-
-
-def drives_of(comp: Compiled, options: SolveOptions, lvl: int) -> tuple[Drive, ...]:
-    """:func:`drives_as_used` for a compiled mechanism, remembered in its memo: a repeated solve skips them.
-
-    Errors are raised afresh, never kept.
-    """
-    return comp.memo.get(
-        ("drives", options, lvl), lambda: drives_as_used(comp.mech, comp.layout, comp.drawn, options, lvl)
-    )

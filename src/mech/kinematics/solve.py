@@ -24,20 +24,23 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import replace
-from typing import Any
 
 import numpy as np
 
+from mech._records import dataclass
 from mech.errors import GeometryError, InputError, UnsupportedError
-from mech.kinematics.compiled import (
-    Compiled,
-    compiled,
-    drives_of,
-    instant_pairs,
-    mobility,
-    refuse_underdriven,
-)
+from mech.kinematics.compiled import Compiled, compiled, instant_pairs, mobility, refuse_underdriven
 from mech.kinematics.drives import angle_text, drives_as_used, omega_ref_of
+from mech.kinematics.dyads import (
+    ACCURATE_COND,
+    SLACK,
+    DyadProgram,
+    branches,
+    change_points,
+    passed,
+    program,
+    route,
+)
 from mech.kinematics.geometry import wrap_angle
 from mech.kinematics.layout import layout
 from mech.kinematics.linalg import BLOCK_MIN, SINGULAR, pinv, snap_to_error
@@ -110,25 +113,55 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
         layout(mech)  # the file's own mistakes first (a drive's frame, a spatial pair): linear, remembered
         refuse_underdriven(mech)  # then the count, before the assembly and the rank (cubic in the chain)
     comp = _compiled(mech, options)
-    drives = drives_of(comp, options, lvl)
-    targets = [d.angle for d in drives]
+    plan: _Plan = comp.memo.get(("plan", options, lvl), lambda: _plan(comp, options, lvl))
+    drives, moved, omega_ref = plan.drives, plan.moved, plan.omega_ref
+    if plan.closed:
+        fast = _closed_form(comp, drives, lvl, omega_ref, options, moved)
+        if fast is not None:
+            state, note = fast
+            told = (lambda: (*plan.notes, note())) if moved else plan.notes
+            return lazy_result(comp, level, state, omega_ref, moved, told, drives)
+    notes = list(plan.notes)
+    q = move_from_drawing(comp, drives, options, list(plan.targets), notes) if moved else comp.system.q0
+    qd, qdd = rates(comp, q, drives, lvl, omega_ref)
+    return result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
+
+
+@dataclass(frozen=True, slots=True)
+class _Plan:
+    """What a solve decides before it computes, for one compiled mechanism, options and level.
+
+    Made once and kept in the compiled mechanism's memo, so a repeated solve (a
+    batch of homework files asking the same instant, a caller's loop) repeats
+    none of it; an error found on the way is raised afresh each time, never kept.
+    """
+
+    drives: tuple[Drive, ...]  # as used: overrides applied, angles from the drawing, ω signed
+    targets: tuple[float | None, ...]  # each drive's angle asked for
+    moved: bool  # away from the drawing
+    omega_ref: float  # the time scale
+    notes: tuple[str, ...]  # the drawing's and the mobility's
+    closed: bool  # try the closed-form dyads first
+
+
+def _plan(comp: Compiled, options: SolveOptions, lvl: int) -> _Plan:
+    """:class:`_Plan` of a solve: the drives as used, checked against the mobility, and the route."""
+    drives = drives_as_used(comp.mech, comp.layout, comp.drawn, options, lvl)
+    targets = tuple(d.angle for d in drives)
     moved = any(
         spec.link is not None and abs(wrap_angle(t - a)) > 1e-15  # type: ignore[operator]
         for spec, t, a in zip(comp.layout.drives, targets, comp.drawn.drive_angles, strict=False)
     )
     if lvl > 0 or moved:
         comp.refuse_drives(len(drives))
-    notes = [*comp.drawn.notes, *comp.mobility.notes]
-    omega_ref = omega_ref_of(drives, comp.drawn.scale)
-    if _closed_route(comp, options, lvl, moved):
-        fast = _closed_form(comp, drives, lvl, omega_ref, options, moved)
-        if fast is not None:
-            state, note = fast
-            told = (lambda: (*notes, note())) if moved else tuple(notes)
-            return lazy_result(comp, level, state, omega_ref, moved, told, drives)
-    q = move_from_drawing(comp, drives, options, targets, notes) if moved else comp.system.q0
-    qd, qdd = rates(comp, q, drives, lvl, omega_ref)
-    return result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
+    return _Plan(
+        drives,
+        targets,
+        moved,
+        omega_ref_of(drives, comp.drawn.scale),
+        (*comp.drawn.notes, *comp.mobility.notes),
+        _closed_route(comp, options, lvl, moved),
+    )
 
 
 def _refuse_overrides(mech: Mechanism, options: SolveOptions) -> None:
@@ -243,8 +276,6 @@ def _closed_form(
     ``method="closed"`` the first of these is an error instead, and a moved
     angle next to a toggle is refused.
     """
-    from mech.kinematics.dyads import ACCURATE_COND, SLACK, program
-
     prog = program(comp, lvl)
     if prog is None:
         if options.method == "closed":
@@ -276,14 +307,12 @@ def _closed_form(
     )
 
 
-def _way(prog: Any, phi: float) -> tuple[tuple, list] | None:
+def _way(prog: DyadProgram, phi: float) -> tuple[tuple, list] | None:
     """How the crank reaches ``phi`` from the drawing: each dyad's branch there and the change points passed.
 
     None when both ways round have a gap.  Past a change point a dyad continues on
     the branch with a continuous tangent (its sign flips).
     """
-    from mech.kinematics.dyads import branches, passed, route
-
     turn = route(prog, phi)
     if turn is None:
         return None
@@ -338,7 +367,7 @@ def _state(
     return q, qd, snap_to_error(jac, inverse, qdd + inverse @ (gamma - jac @ qdd), gamma)
 
 
-def _moved_note(prog: Any, phi: float, met: list) -> str:
+def _moved_note(prog: DyadProgram, phi: float, met: list) -> str:
     """The note of a closed-form solve moved from the drawing: from where to where, the change points passed."""
     kinds = ", ".join(dict.fromkeys(k for k, _, _ in prog.dyads)) or "crank only"
     text = (
@@ -353,7 +382,7 @@ def _moved_note(prog: Any, phi: float, met: list) -> str:
     return text
 
 
-def _refuse_singular(comp: Compiled, prog: Any, d: Drive, phi: float, sines: list[float]) -> None:
+def _refuse_singular(comp: Compiled, prog: DyadProgram, d: Drive, phi: float, sines: list[float]) -> None:
     """Refuse rates at a closed-form configuration next to a toggle or a change point (which, and how bad)."""
     k = sines.index(min(sines))
     cond = 1.0 / min(sines) if min(sines) > 0 else math.inf
@@ -366,17 +395,15 @@ def _refuse_singular(comp: Compiled, prog: Any, d: Drive, phi: float, sines: lis
     )
 
 
-def _change_point_at(prog: Any, k: int, phi: float) -> str | None:
+def _change_point_at(prog: DyadProgram, k: int, phi: float) -> str | None:
     """ "a change point (P meets C …)" when dyad ``k`` has one within 1e-6 rad of ``phi``, else None."""
-    from mech.kinematics.dyads import change_points
-
     for c in change_points(prog):
         if c.dyad == k and abs(wrap_angle(prog.drawn_angle + c.offset - phi)) < 1e-6:
             return f"a change point, {c.what.split(' (')[0]}: two branches meet and either can follow"
     return None
 
 
-def closed_form(mech: Mechanism) -> Any:
+def closed_form(mech: Mechanism) -> DyadProgram | None:
     """The compiled closed-form (dyad) program of ``mech``, or None when it does not decompose.
 
     The lean single-solve path: ``closed_form(m).state(phi, omega, alpha)``
@@ -389,6 +416,4 @@ def closed_form(mech: Mechanism) -> Any:
     >>> prog = closed_form(mech)                                 # doctest: +SKIP
     >>> prog.state(math.radians(60), -4 * math.pi).omega         # doctest: +SKIP
     """
-    from mech.kinematics.dyads import program
-
     return program(compiled(mech, None))
