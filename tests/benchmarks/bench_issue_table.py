@@ -48,6 +48,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # a shared 2-core machine: t
 import argparse
 import math
 import platform
+import resource
 import statistics
 import subprocess
 import sys
@@ -86,10 +87,20 @@ def venv(path: Path, install: bool) -> Path:
     return path
 
 
+#: CPU seconds (user + system) of each command line's runs, in the order run (beside the wall times).
+CPU: dict[tuple[str, ...], list[float]] = {}
+
+
 def run_once(argv: list[str]) -> float:
+    """Wall seconds of one run of ``argv``; its CPU time (the child's, by getrusage) goes to :data:`CPU`."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     subprocess.run(argv, check=True, capture_output=True)
-    return time.perf_counter() - start
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    CPU.setdefault(tuple(argv), []).append(cpu)
+    return wall
 
 
 def per_call(fn: Callable[[], object], number: int) -> Callable[[], float]:
@@ -106,6 +117,25 @@ m, o = mech.load({path!r}), SolveOptions()
 solve(m, "acceleration", o).links
 print(timeit.timeit(lambda: solve(m, "acceleration", o){read}, number=500) / 500)
 """
+
+
+#: One sample of a command's solving: a fresh mechanism compiled, solved at its drawn angle and read.
+_FIRST_SOLVE_IN = """
+import time, mech
+from mech.kinematics import solve
+m = mech.load({path!r})
+start = time.process_time()  # CPU: a multi-millisecond span on a loaded machine is often descheduled
+solve(m, "velocity").links
+print(time.process_time() - start)
+"""
+
+
+def first_solve_in(python: str) -> Callable[[], float]:
+    """One sample: a fresh ``python`` loads the four-bar and times its first solve (all a command solves), CPU."""
+    code = _FIRST_SOLVE_IN.format(path=str(FOUR_BAR))
+    return lambda: float(
+        subprocess.run([python, "-c", code], check=True, capture_output=True, text=True).stdout
+    )
 
 
 def solve_in(python: str, read: bool) -> Callable[[], float]:
@@ -157,8 +187,11 @@ def main() -> None:
             [cmd, "velocity", str(FOUR_BAR), "--rpm", "600"]
         ),
     }
+    cpu_pairs: list[tuple[tuple[str, ...], tuple[str, ...]]] = []
     if args.before is not None:
         old = str(args.before / "bin" / "mech")
+        for tail in (["dof", "--json", str(FOUR_BAR)], ["velocity", str(FOUR_BAR), "--rpm", "600"]):
+            cpu_pairs.append((tuple([cmd, *tail]), tuple([old, *tail])))
         cases["before: mech dof --json four_bar.yaml"] = lambda: run_once(
             [old, "dof", "--json", str(FOUR_BAR)]
         )
@@ -185,6 +218,8 @@ def main() -> None:
         cases["solve() drawn angle, before (fresh interpreter)"] = solve_in(py_old, False)
         cases["solve() drawn angle, read, now (fresh interpreter)"] = solve_in(py, True)
         cases["solve() drawn angle, read, before (fresh interpreter)"] = solve_in(py_old, True)
+        cases["first solve, now (fresh interpreter)"] = first_solve_in(py)
+        cases["first solve, before (fresh interpreter)"] = first_solve_in(py_old)
     cases["solve() full, four-bar"] = per_call(lambda: solve(four, "acceleration", moved), 500)
     cases["closed form lean, four-bar"] = per_call(lambda: prog.state(target, -4 * math.pi, 0.0), 5000)
 
@@ -290,8 +325,8 @@ def main() -> None:
         print()
         print(f"the tree now against the one before ({args.before}), in the same interleaved run:")
         print()
-        print("| figure | before | now | now / before |")
-        print("| --- | ---: | ---: | ---: |")
+        print("| figure | before | now | now / before | paired: median (quartiles) |")
+        print("| --- | ---: | ---: | ---: | ---: |")
         for label, now, then in (
             ("`mech dof --json four_bar.yaml`", "mech dof --json four_bar.yaml", None),
             ("`mech velocity four_bar.yaml --rpm 600`", "mech velocity four_bar.yaml --rpm 600", None),
@@ -305,9 +340,34 @@ def main() -> None:
                 "solve() drawn angle, read, now (fresh interpreter)",
                 "solve() drawn angle, read, before (fresh interpreter)",
             ),
+            (
+                "a command's solving: the first solve of a fresh four-bar, read (CPU)",
+                "first solve, now (fresh interpreter)",
+                "first solve, before (fresh interpreter)",
+            ),
         ):
             then = then or f"before: {now}"
-            print(f"| {label} | {fmt(med[then])} | {fmt(med[now])} | {med[now] / med[then]:.3f} |")
+            # each repeat ran both, one after the other: the ratio within a repeat cancels slow load swings
+            paired = statistics.quantiles(
+                [a / b for a, b in zip(samples[now], samples[then], strict=True)], n=4
+            )
+            print(
+                f"| {label} | {fmt(med[then])} | {fmt(med[now])} | {med[now] / med[then]:.3f} | "
+                f"{paired[1]:.3f} ({paired[0]:.3f}–{paired[2]:.3f}) |"
+            )
+        print()
+        print("CPU time of the same runs (user + system, getrusage), before → now:")
+        print()
+        print("| command | before | now | now / before | paired: median (quartiles) |")
+        print("| --- | ---: | ---: | ---: | ---: |")
+        for argv_now, argv_then in cpu_pairs:
+            a, b = CPU[argv_now], CPU[argv_then]
+            q = statistics.quantiles([x / y for x, y in zip(a, b, strict=True)], n=4)
+            ma, mb = statistics.median(a), statistics.median(b)
+            print(
+                f"| `mech {' '.join(argv_now[1:2])}` | {fmt(mb)} | {fmt(ma)} | {ma / mb:.3f} | "
+                f"{q[1]:.3f} ({q[0]:.3f}–{q[2]:.3f}) |"
+            )
         print()
 
 
