@@ -118,7 +118,7 @@ def test_too_few_drives_are_refused_by_the_count_before_anything_is_assembled(
     def assemble(*args, **kwargs):
         raise AssertionError("assembled before the count refused the file")
 
-    monkeypatch.setattr(importlib.import_module("mech.kinematics.solve"), "assemble", assemble)
+    monkeypatch.setattr(importlib.import_module("mech.kinematics.compiled"), "assemble", assemble)
     path = write(FIVE_BAR_ONE_DRIVE, "five.yaml")
     result = run(*(a.format(tmp=path.parent) for a in command), str(path))
     assert result.exit_code == 2 and result.stdout == ""
