@@ -15,7 +15,7 @@ from typing import Any
 from mech.explain.worked import Line, Worked, g
 from mech.model import Mechanism
 from mech.pairs import kind_of
-from mech.pairs.gear import carrier_of
+from mech.pairs.gearing import carrier_of
 
 __all__ = ["working"]
 
