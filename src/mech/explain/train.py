@@ -81,7 +81,7 @@ def _view(kin: Any) -> _Carriers:
 
 def working(mech: Mechanism, kin: Any) -> Worked:
     """The train of ``mech``'s gear meshes, from the driver outward, and its value."""
-    gears = [j for j in mech.joints if kind_of(j).name == "gear"]
+    gears = [j for j in mech.joints if kind_of(j).meshes]
     driver = next((d.link for d in mech.drives if d.link), None)
     lines: list[Line] = []
     if driver is None:

@@ -150,6 +150,9 @@ class PairKind:
         the block turns with its guide); a pin in a slot does not.
     rolls
         Its profiles roll on each other without slip (rolling, gears); a cam slides.
+    meshes
+        Teeth keep its links' speed ratio: a stage of a gear train (``--explain`` writes
+        the train's value stage by stage).
     dyad
         How the closed-form dyads use it (``pin`` of an RRR or RRP dyad or a crank's
         pivot, ``path`` of an RRP or RPR dyad), or None: a mechanism with such a
@@ -179,6 +182,7 @@ class PairKind:
     role: ClassVar[str] = "contact"
     keeps_angle: ClassVar[bool] = False
     rolls: ClassVar[bool] = False
+    meshes: ClassVar[bool] = False
     dyad: ClassVar[str | None] = None
     icentre: ClassVar[tuple[str, str]] = ("none", "")
     glyph: ClassVar[str] = "none"

@@ -99,6 +99,7 @@ class Gear(PairKind):
     motion = "gear (sliding and rolling)"
     line_contact = True
     rolls = True
+    meshes = True
     icentre = ("line", "gears {joint}: on the common normal at the mesh (the line of action)")
     glyph = "pitch"
     contact_hint = " or `radii` (or `teeth` with `module`)"
