@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+import ast
 import json
 import math
 import textwrap
 from dataclasses import dataclass
+from pathlib import Path
 from types import MappingProxyType
 
 import pytest
 
+import mech
 from mech.errors import InputError
 from mech.fields import NUMBER, REF, read_ref
 from mech.icentres.order import kennedy_order
@@ -397,3 +400,39 @@ def test_a_plug_in_kinds_own_glyph_is_drawn_an_arc_of_its_slot_through_its_pin(a
         - math.atan2(points[0][1] - d[1], points[0][0] - d[0])
     )
     assert abs(math.remainder(swept, 360)) == pytest.approx(40, abs=0.5)
+
+
+def _kind_names_compared(tree: ast.AST) -> list[int]:
+    """Lines that compare a joint's ``type`` or a kind's ``name`` with a kind's name written out."""
+    names = set(KINDS)
+
+    def literal(node: ast.AST) -> bool:
+        if isinstance(node, ast.Constant):
+            return node.value in names
+        if isinstance(node, (ast.Tuple, ast.List, ast.Set)):
+            return any(literal(e) for e in node.elts)
+        return False
+
+    def asks_type(node: ast.AST) -> bool:
+        return isinstance(node, ast.Attribute) and node.attr in ("type", "name")
+
+    return [
+        node.lineno
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Compare)
+        and any(asks_type(side) for side in (node.left, *node.comparators))
+        and any(literal(side) for side in (node.left, *node.comparators))
+    ]
+
+
+def test_nothing_outside_the_pair_kinds_branches_on_a_kind_by_name():
+    # issue 20 item 1: a layer asks the kind for a property (kind_of(j).meshes), never
+    # `j.type == "gear"` or `kind_of(j).name in ("slot", "prismatic")`
+    src = Path(mech.__file__).parent
+    found = [
+        f"{path.relative_to(src)}:{line}"
+        for path in sorted(src.rglob("*.py"))
+        if "pairs" not in path.relative_to(src).parts
+        for line in _kind_names_compared(ast.parse(path.read_text(encoding="utf-8")))
+    ]
+    assert found == []

@@ -22,10 +22,12 @@ from mech.specs import JointSpec, Path, Profile, Profiles, Ref, Vec
 __all__ = [
     "Claim",
     "Drive",
+    "Flywheel",
     "Joint",
     "Length",
     "Link",
     "Load",
+    "Mass",
     "Mechanism",
     "Path",
     "Placement",
@@ -217,15 +219,53 @@ class Tolerance:
 
 @dataclass(frozen=True, slots=True)
 class Load:
-    """An external load for mechanical advantage and the input torque (no friction).
+    """An external load for mechanical advantage, the input torque and forces (no friction).
 
     ``target`` names a point or joint (a ``force`` (Fx, Fy) in N, in the
     file's frame) or a link (a ``torque`` in N·m, counter-clockwise positive).
+    A load that varies over the cycle gives ``table`` instead: rows of the
+    drive's angle (rad) and the force's two components or the torque, read
+    linearly between rows and repeated every ``period`` (the table's span: 4π
+    for a four-stroke engine).  ``on`` names the link a force at a pin shared
+    by two moving links acts on.
     """
 
     target: str
     force: Vec | None = None
     torque: float | None = None
+    where: Where | None = field(default=None, compare=False)
+    table: tuple[tuple[float, ...], ...] | None = None
+    on: str | None = None
+
+    @property
+    def is_force(self) -> bool:
+        """A force at a point (else a torque on a link)."""
+        return self.force is not None or (self.table is not None and len(self.table[0]) == 3)
+
+    @property
+    def period(self) -> float | None:
+        """The span of a table's angles, after which it repeats (None for a constant load)."""
+        return None if self.table is None else self.table[-1][0] - self.table[0][0]
+
+
+@dataclass(frozen=True, slots=True)
+class Mass:
+    """A link's mass (kg) at its centre ``centre`` (a point or joint of the link), and its moment
+    of inertia about that centre (kg·m²; 0 for a link that only translates or is given none)."""
+
+    link: str
+    mass: float
+    centre: str
+    inertia: float = 0.0
+    where: Where | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Flywheel:
+    """``flywheel: {fluctuation: 2%}``: the total coefficient of fluctuation of speed, a fraction
+    ((ω_max − ω_min)/ω_mean: "±1 %" is 0.02)."""
+
+    fluctuation: float
     where: Where | None = field(default=None, compare=False)
 
 
@@ -273,6 +313,9 @@ class Mechanism:
     angle_unit: str = "deg"
     asks: tuple[str, ...] = ()  # answer keys a student must answer (when `answers` carries no values)
     loads: tuple[Load, ...] = ()  # forces at points, torques on links (DESIGN § 1.1 "Loads")
+    masses: tuple[Mass, ...] = ()  # links with mass (DESIGN § 1.4); the others are massless
+    gravity: Vec | None = None  # m/s², in the file's frame; None: no gravity
+    flywheel: Flywheel | None = None
     source: str | None = field(default=None, repr=False, compare=False)
     #: What the analyses derive from this mechanism, kept with it (its compiled constraint system
     #: …): :class:`mech._memo.Memo`, never compared, hashed or pickled.

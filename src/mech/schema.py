@@ -29,6 +29,7 @@ from mech.loader.drives import DIRECTIONS, DRIVE_KEYS
 from mech.loader.joints import CLOSURES, COMMON_JOINT_KEYS
 from mech.loader.links import LINK_KEYS, LINK_KINDS
 from mech.loader.loads import LOAD_KEYS
+from mech.loader.masses import FLYWHEEL_KEYS, MASS_KEYS
 from mech.loader.mechanism import TOP_KEYS
 from mech.loader.points import PLACE_KEYS, POINT_KEYS
 from mech.loader.units import UNITS_KEYS
@@ -113,6 +114,18 @@ _DRIVE: dict[str, Any] = _only(
     },
 )
 
+
+def _table(columns: int) -> dict[str, Any]:
+    """``{table: [[angle, value…], …]}``: a load over the drive's angle."""
+    row = {"type": "array", "items": _NUMBER, "minItems": columns, "maxItems": columns}
+    return {
+        "type": "object",
+        "required": ["table"],
+        "additionalProperties": False,
+        "properties": {"table": {"type": "array", "items": row, "minItems": 2}},
+    }
+
+
 _SECTIONS: dict[str, Any] = {
     "name": {"type": "string"},
     "description": {"type": "string"},
@@ -165,19 +178,62 @@ _SECTIONS: dict[str, Any] = {
     },
     "loads": {
         "type": "object",
-        "description": "Loads for mechanical advantage and the input torque: {P: {force: [Fx, Fy]}} (N) "
-        "at a point, {link: {torque: T}} (N m, ccw +) on a link.",
+        "description": "Loads for mechanical advantage, the input torque and forces: {P: {force: [Fx, Fy]}} (N) "
+        "at a point, {link: {torque: T}} (N m, ccw +) on a link; either may be a table over the drive's angle "
+        "({table: [[angle, Fx, Fy], …]} or {table: [[angle, T], …]}); `on` names the link a force at a shared pin "
+        "acts on (DESIGN § 1.4).",
         "additionalProperties": {
             "type": "object",
             "additionalProperties": False,
             "properties": _only(
                 LOAD_KEYS,
                 {
-                    "force": {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
-                    "torque": _NUMBER,
+                    "force": {
+                        "oneOf": [
+                            {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
+                            _table(3),
+                        ]
+                    },
+                    "torque": {"oneOf": [_NUMBER, _table(2)]},
+                    "on": _NAME,
                 },
             ),
         },
+    },
+    "masses": {
+        "type": "object",
+        "description": "Links with mass (DESIGN § 1.4): {link: {mass: 5, centre: G, inertia: 0.08}} in kg and "
+        "kg m^2 (or radius_of_gyration, a length); the others are massless.",
+        "additionalProperties": {
+            "type": "object",
+            "required": ["mass", "centre"],
+            "additionalProperties": False,
+            "properties": _only(
+                MASS_KEYS,
+                {"mass": _NUMBER, "centre": _NAME, "inertia": _NUMBER, "radius_of_gyration": _NUMBER},
+            ),
+        },
+    },
+    "gravity": {
+        "type": "array",
+        "items": _NUMBER,
+        "minItems": 2,
+        "maxItems": 2,
+        "description": "[gx, gy] in m/s^2 (none by default).",
+    },
+    "flywheel": {
+        "type": "object",
+        "additionalProperties": False,
+        "required": ["fluctuation"],
+        "properties": _only(
+            FLYWHEEL_KEYS,
+            {
+                "fluctuation": {
+                    "type": ["string", "number"],
+                    "description": "e.g. 2% (total, (w_max - w_min)/w_mean)",
+                }
+            },
+        ),
     },
     "asks": {
         "type": "array",

@@ -43,6 +43,9 @@ class Dimension(str, Enum):
     TIME = "s"
     FORCE = "N"
     TORQUE = "N m"
+    MASS = "kg"
+    MOMENT_OF_INERTIA = "kg m^2"
+    ENERGY = "J"
     NUMBER = "1"
 
     @property
@@ -109,6 +112,21 @@ _UNITS: dict[str, tuple[Dimension, float]] = {
     "N·mm": (Dimension.TORQUE, 1e-3),
     "kNm": (Dimension.TORQUE, 1e3),
     "kN·m": (Dimension.TORQUE, 1e3),
+    # mass and moment of inertia (DESIGN § 1.4); a bare `g` is the acceleration of gravity
+    "kg": (Dimension.MASS, 1.0),
+    "t": (Dimension.MASS, 1e3),
+    "lb": (Dimension.MASS, 0.45359237),
+    "kgm^2": (Dimension.MOMENT_OF_INERTIA, 1.0),
+    "kg·m^2": (Dimension.MOMENT_OF_INERTIA, 1.0),
+    "kg*m^2": (Dimension.MOMENT_OF_INERTIA, 1.0),
+    "kgcm^2": (Dimension.MOMENT_OF_INERTIA, 1e-4),
+    "kg·cm^2": (Dimension.MOMENT_OF_INERTIA, 1e-4),
+    "kgmm^2": (Dimension.MOMENT_OF_INERTIA, 1e-6),
+    "kg·mm^2": (Dimension.MOMENT_OF_INERTIA, 1e-6),
+    # energy (a flywheel's fluctuation of energy)
+    "J": (Dimension.ENERGY, 1.0),
+    "kJ": (Dimension.ENERGY, 1e3),
+    "N·m·rad": (Dimension.ENERGY, 1.0),
     # time
     "s": (Dimension.TIME, 1.0),
     "ms": (Dimension.TIME, 1e-3),

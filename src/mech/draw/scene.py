@@ -451,6 +451,31 @@ def _crosses(a: Vec, b: Vec, box: Box, inset: float) -> bool:
     return t0 <= t1
 
 
+#: Clearance beyond this (mm) gains a label nothing: a segment farther from all of a candidate's
+#: samples cannot change its score, and is not measured (a traced path of 10,000 steps has
+#: 10,000 segments, nearly all of them far from any one label).
+_CAP = 3.0
+
+
+def _near_segments(
+    segs: Sequence[tuple[Vec, Vec, float]], box: Box, reach: float
+) -> list[tuple[Vec, Vec, float]]:
+    """The segments whose bounding box comes within ``reach`` of ``box`` on both axes.
+
+    Any other segment lies at least ``reach`` from every point of the box: it neither
+    crosses the label nor comes nearer to its samples than :data:`_CAP` when ``reach`` is that.
+    """
+    x0, y0, x1, y1 = box[0] - reach, box[1] - reach, box[2] + reach, box[3] + reach
+    return [
+        s
+        for s in segs
+        if min(s[0][0], s[1][0]) <= x1
+        and max(s[0][0], s[1][0]) >= x0
+        and min(s[0][1], s[1][1]) <= y1
+        and max(s[0][1], s[1][1]) >= y0
+    ]
+
+
 def text_box(text: str, size: float, bold: bool = False) -> Vec:
     """Half the width and half the height (mm) of a label centred on its point."""
     return (text_width(text, size, bold) / 2, (_ABOVE + _BELOW) / 2 * size)
@@ -476,22 +501,31 @@ def best_spot(
     moving further), then the bonus decides.
     """
     segs, discs, rects = _obstacles(drawn)
+    boxes = [_centred(c, text, size, bold) for c, _ in candidates]
+    if boxes:  # first the segments near any candidate (one pass), then near each
+        hull = (
+            min(b[0] for b in boxes),
+            min(b[1] for b in boxes),
+            max(b[2] for b in boxes),
+            max(b[3] for b in boxes),
+        )
+        segs = _near_segments(segs, hull, _CAP)
     best: tuple[float, Vec] | None = None
-    for c, bonus in candidates:
-        box = _centred(c, text, size, bold)
+    for (c, bonus), box in zip(candidates, boxes, strict=True):
         hits = sum(1 for r in rects if _overlap(box, r, 0.3))
         xs, ys = (
             (box[0], (box[0] + box[2]) / 2, box[2]),
             (box[1] + 0.1 * size, (box[1] + box[3]) / 2, box[3] - 0.2 * size),
         )
         samples = [(x, y) for x in xs for y in ys]
+        near = _near_segments(segs, box, _CAP)
         clear = min(
-            [_seg_dist(q, a, b) + soft for q in samples for a, b, soft in segs]
+            [_seg_dist(q, a, b) + soft for q in samples for a, b, soft in near]
             + [math.dist(q, dc) - dr for q in samples for dc, dr in discs]
             + [9.0]
         )
-        crossed = sum(4.5 if soft == 0 else 1.5 for a, b, soft in segs if _crosses(a, b, box, 0.15 * size))
-        score = min(clear, 3.0) + bonus - 100.0 * hits - crossed
+        crossed = sum(4.5 if soft == 0 else 1.5 for a, b, soft in near if _crosses(a, b, box, 0.15 * size))
+        score = min(clear, _CAP) + bonus - 100.0 * hits - crossed
         if best is None or score > best[0] + 1e-9:
             best = (score, c)
     assert best is not None

@@ -204,8 +204,9 @@ class System:
             out[:, r + kd + k_cv] = curve_rows(cv, qf)[0]
         return out[0] if one else out
 
-    def jacobian(self, q: np.ndarray) -> np.ndarray:
-        """Φ_q (m, 3n) or (K, m, 3n)."""
+    def jacobian(self, q: np.ndarray, *, ground: bool = False) -> np.ndarray:
+        """Φ_q (m, 3n) or (K, m, 3n); with ``ground``, the ground's three columns too (3n + 3): a
+        force analysis reads from them what the pairs put on the frame."""
         one = q.ndim == 1
         qf = self._full(np.atleast_2d(q))
         trig = self._trig(qf)
@@ -261,7 +262,8 @@ class System:
         for k_cv, cv in enumerate(self.cv):
             for col, v in curve_rows(cv, qf)[1].items():
                 jac[:, r0 + k_cv, col] += v
-        jac = jac[:, :, :-3]
+        if not ground:
+            jac = jac[:, :, :-3]
         return jac[0] if one else jac
 
     def gamma(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:

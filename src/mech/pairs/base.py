@@ -33,6 +33,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, ClassVar, Protocol
 
+from mech._records import dataclass
 from mech.errors import Problem, UnsupportedError
 from mech.specs import BareSpec, JointSpec, Profile
 
@@ -42,7 +43,33 @@ if TYPE_CHECKING:
     from mech.pairs.glyph import GlyphView, Shape
     from mech.pairs.rows import RowBuilder
 
+#: A wrench on one link: force (N) and moment (N·m, ccw +) about the point it is given for.
+Wrench = tuple[float, float, float]
+
 Vec = tuple[float, float]
+
+
+@dataclass(frozen=True, slots=True)
+class PairForce:
+    """The force a pair carries at the instant: ``force`` (N, global) acting on link ``on`` from ``by``.
+
+    ``at`` is where it acts (m): a pin's centre, a contact point, or for a sliding
+    pair the point of the guide where the normal force acts, ``offset`` (m) along
+    the path from the slider's point.  ``normal`` is the signed component along the
+    pair's normal (a slider's side thrust, a cam's or a gear's tooth load), None for a pin.
+    """
+
+    joint: str
+    on: str
+    by: str
+    force: Vec
+    at: Vec | None
+    normal: float | None = None
+    offset: float | None = None
+
+    @property
+    def magnitude(self) -> float:
+        return float((self.force[0] ** 2 + self.force[1] ** 2) ** 0.5)
 
 
 class Carriers(Protocol):
@@ -54,7 +81,7 @@ class Carriers(Protocol):
     def carriers(self) -> Mapping[str, tuple[str, ...]]: ...
 
 
-__all__ = ["Carriers", "InstantView", "PairKind"]
+__all__ = ["Carriers", "InstantView", "PairKind", "Wrench", "contact_forces"]
 
 
 class InstantView(Protocol):
@@ -125,6 +152,9 @@ class PairKind:
         the block turns with its guide); a pin in a slot does not.
     rolls
         Its profiles roll on each other without slip (rolling, gears); a cam slides.
+    meshes
+        Teeth keep its links' speed ratio: a stage of a gear train (``--explain`` writes
+        the train's value stage by stage).
     dyad
         How the closed-form dyads use it (``pin`` of an RRR or RRP dyad or a crank's
         pivot, ``path`` of an RRP or RPR dyad), or None: a mechanism with such a
@@ -148,6 +178,7 @@ class PairKind:
     role: ClassVar[str] = "contact"
     keeps_angle: ClassVar[bool] = False
     rolls: ClassVar[bool] = False
+    meshes: ClassVar[bool] = False
     dyad: ClassVar[str | None] = None
     icentre: ClassVar[tuple[str, str]] = ("none", "")
 
@@ -239,6 +270,32 @@ class PairKind:
             f"joint {j.name} is a {j.type} pair: planar solvers cannot model it", where=j.where
         )
 
+    # -- forces -----------------------------------------------------------------------------------
+    def forces(
+        self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+    ) -> list[PairForce]:
+        """The force the pair carries, from what its rows put on each of its links.
+
+        ``wrenches[link]`` is the force on that link from this joint and its moment about
+        ``at`` (the pair's point at the instant; ``direction`` its path or common tangent).
+        The default, for a pin or any pair that acts at its point: the force on each link
+        after the first, from the first (a binary joint: on its second link, as DESIGN
+        § 1.4's ``force.<joint>.x`` reads it).
+        """
+
+        first = j.links[0]
+        return [
+            PairForce(j.name, link, first, (wrenches[link][0], wrenches[link][1]), at)
+            for link in j.links[1:]
+            if link in wrenches
+        ]
+
+    def reaction_rows(self, j: Joint, view: Any) -> Sequence[Sequence[float]] | None:
+        """Rows that carry this pair's force where its kinematic rows only say how it moves (a gear
+        pair on fixed centres keeps its speed ratio as an angle row, but pushes along its line of
+        action); None: its own rows carry it."""
+        return None
+
     # -- instantaneous centres -------------------------------------------------------------------
     def inspect(self, seen: InstantView, j: Joint) -> None:
         """Say what inspection sees of the joint at a solved instant (lecture notes 002, §6.4).
@@ -259,3 +316,19 @@ class PairKind:
     def contact(self) -> str:
         """Lower (surface contact) or higher (line or point contact)."""
         return "higher" if self.line_contact else "lower"
+
+
+def contact_forces(
+    j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+) -> list[PairForce]:
+    """A higher pair's force on its second link at the contact, with its component along the
+    common normal (the tangent ``direction`` turned −90°): a cam's or a gear's tooth load."""
+
+    on, by = j.links[1], j.links[0]
+    if on not in wrenches:
+        return []
+    fx, fy, _ = wrenches[on]
+    normal = None
+    if direction is not None:
+        normal = fx * direction[1] - fy * direction[0]
+    return [PairForce(j.name, on, by, (fx, fy), at, normal=normal)]

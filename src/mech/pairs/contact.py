@@ -2,19 +2,23 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
 from mech.fields import NUMBER, PROFILES, Fields, Reader
-from mech.pairs.base import PairKind
-from mech.pairs.cam import read_contact, see_contact
+from mech.pairs.base import PairKind, contact_forces
+from mech.pairs.higher import read_contact, see_contact
 from mech.specs import ContactSpec
 
 if TYPE_CHECKING:
     from mech.model import Joint
-    from mech.pairs.base import InstantView
+    from mech.pairs.base import InstantView, PairForce, Wrench
     from mech.pairs.glyph import GlyphView, Shape
     from mech.pairs.rows import RowBuilder
+
+
+Vec = tuple[float, float]
 
 
 class Contact(PairKind):
@@ -48,3 +52,9 @@ class Contact(PairKind):
     def inspect(self, seen: InstantView, j: Joint) -> None:
         """On the common normal at the contact."""
         see_contact(seen, j)
+
+    def forces(
+        self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+    ) -> list[PairForce]:
+        """The force on the second link at the contact, and its component along the common normal."""
+        return contact_forces(j, wrenches, at, direction)

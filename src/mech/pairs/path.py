@@ -13,31 +13,18 @@ from collections.abc import Callable, Mapping
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
-from mech._records import dataclass
 from mech.fields import NAME, PATH, Fields, Reader, read_path
-from mech.pairs.base import PairKind
-from mech.specs import Path, Ref, SlideSpec
+from mech.pairs.base import PairForce, PairKind
+from mech.specs import Path, PathSpec, Ref, SlideSpec
 
 if TYPE_CHECKING:
     from mech.model import Joint
-    from mech.pairs.base import InstantView
+    from mech.pairs.base import InstantView, Wrench
     from mech.pairs.rows import RowBuilder
 
 __all__ = ["PathPair", "PathSpec", "path_angle", "path_direction"]
 
 Vec = tuple[float, float]
-
-
-@dataclass(frozen=True, slots=True)
-class PathSpec:
-    """A path pair as the layout resolved it: ``point`` of ``slider`` runs on ``path`` fixed in ``guide``."""
-
-    joint: str
-    type: str
-    slider: str
-    guide: str
-    point: str
-    path: Path
 
 
 def path_angle(path: Path, positions: Mapping[str, Vec], resolve: Callable[[str], str]) -> float:
@@ -116,3 +103,22 @@ class PathPair(PairKind):
             u = path_direction(j.path, seen.positions)
         if u is not None:
             seen.slide(j.name, j.links[0], j.links[1], u, seen.at(j), turns=not self.keeps_angle)
+
+    def forces(
+        self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+    ) -> list[PairForce]:
+        """The normal force the guide (the second link) takes from the slider, and where it acts.
+
+        Without friction the force is square to the path, ``N = F·n`` (n = k × u); with the
+        pair's couple about the slider's point it acts ``offset = M/N`` along the path from
+        that point (a block's side thrust is off its centre when the block is held from turning).
+        """
+        guide = j.links[1]
+        if guide not in wrenches or at is None:
+            return super().forces(j, wrenches, at, direction)
+        fx, fy, m = wrenches[guide]
+        u = direction or (1.0, 0.0)
+        normal = float(-u[1] * fx + u[0] * fy)
+        offset = float(m / normal) if normal != 0.0 else 0.0
+        acts = (float(at[0] + offset * u[0]), float(at[1] + offset * u[1]))
+        return [PairForce(j.name, guide, j.links[0], (fx, fy), acts, normal=normal, offset=offset)]

@@ -7,11 +7,12 @@ pair moves; with neither, ``at`` describes the instant.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
 from mech.fields import PROFILES, RADII, Fields, Reader, read_profiles, read_radii
-from mech.pairs.base import PairKind
+from mech.pairs.base import PairKind, contact_forces
 from mech.specs import RollingSpec
 
 Vec = tuple[float, float]
@@ -19,7 +20,7 @@ Vec = tuple[float, float]
 if TYPE_CHECKING:
     from mech.errors import Problem
     from mech.model import Joint, Mechanism
-    from mech.pairs.base import InstantView
+    from mech.pairs.base import InstantView, PairForce, Wrench
     from mech.pairs.glyph import GlyphView, Shape
     from mech.pairs.rows import RowBuilder
     from mech.specs import Profile
@@ -60,7 +61,7 @@ class Rolling(PairKind):
 
     def drawn_profiles(self, mech: Mechanism, j: Joint, contact: Vec | None) -> list[tuple[str, Profile]]:
         """The profiles, or ``radii``: circles about each link's pin, a straight line through the contact."""
-        from mech.pairs.registry import kind_of
+        from mech.pairs.table import kind_of
         from mech.specs import Circle, Line, Ref
 
         if j.profiles or j.radii is None:
@@ -87,3 +88,9 @@ class Rolling(PairKind):
         at = j.place.at if at is None else at
         if at is not None:
             seen.contact(j.name, (j.links[0], j.links[1]), at)
+
+    def forces(
+        self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
+    ) -> list[PairForce]:
+        """The force on the second link at the contact, and its component along the common normal."""
+        return contact_forces(j, wrenches, at, direction)

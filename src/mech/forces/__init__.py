@@ -1,0 +1,57 @@
+"""Forces: what drives a mechanism and what its pairs carry (DESIGN § 1.4), without friction.
+
+:func:`analyse` solves the kinematics at the level the question needs (the
+accelerations when links have mass and the drive a speed; the rates only for a
+static problem) and then the forces at that instant
+(:func:`mech.forces.instant.at_instant`).  Only what a question needs is
+modelled: a file without ``masses`` is massless, and gravity acts only when the
+file gives it.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from mech.forces.result import ForceAnalysis
+    from mech.model import Mechanism
+    from mech.options import SolveOptions
+
+__all__ = ["analyse"]
+
+
+def analyse(mech: Mechanism, options: SolveOptions | None = None) -> ForceAnalysis:
+    """The forces of ``mech`` at its drive's angle (``options`` as for :func:`mech.kinematics.solve`).
+
+    With masses and a drive speed the links' inertia counts (d'Alembert); a drive
+    without a speed is a static problem: the rates are taken at unit speed for the
+    power balance only, and no inertia acts.
+
+    Raises
+    ------
+    InputError
+        A load at a pin two moving links share without ``on``; a file that cannot be solved.
+    """
+    from mech.forces.instant import at_instant
+    from mech.kinematics.solve import compiled, solve
+    from mech.options import SolveOptions as _Options
+
+    options = options or _Options()
+    comp = compiled(mech, None)
+    static = not _has_speed(mech, options)
+    if static:
+        driven = mech.drives[0] if mech.drives else None
+        options = (
+            options.with_(omega=1.0)
+            if driven is not None and driven.link is not None
+            else options.with_(speed=1.0)
+        )
+    level = "velocity" if static else "acceleration"
+    kin = solve(mech, level, options)
+    return at_instant(mech, kin, comp, static=static)
+
+
+def _has_speed(mech: Mechanism, options: SolveOptions) -> bool:
+    if options.omega is not None or options.speed is not None:
+        return True
+    return any(d.omega is not None or d.speed is not None for d in mech.drives)

@@ -1,0 +1,239 @@
+"""Forces at an instant (mech.forces): each value against an independent derivation.
+
+- the slider-crank engine: gas force → thrust in the rod, side thrust on the cylinder wall,
+  crank effort and torque, by the textbook's triangle of forces (Khurmi & Gupta, *Theory of
+  Machines*, ch. 15, "turning moment": F_Q = F_P / cos φ, F_N = F_P tan φ, T = F_Q r sin(θ + φ));
+- the inertia force of the reciprocating parts: −m a_B with a_B the slider's exact
+  acceleration (tests/oracles/slider_crank.py), and the textbook's series m ω² r (cos θ +
+  cos 2θ / n) to its own truncation error;
+- a four-bar with masses on every moving link: every pin force and the input torque against a
+  Newton–Euler solve link by link (tests/oracles/newton_euler.py), and the power balance
+  T ω = Σ (m a_G · v_G + I α ω) − Σ m g · v_G to 1e-9;
+- gravity on a slow lever: the torque that holds a weight is m g times its arm;
+- the shaking force is −Σ m a_G.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from tests.oracles.newton_euler import four_bar_forces
+from tests.oracles.slider_crank import slider_crank
+
+from mech.forces import analyse
+from mech.loader import loads
+from mech.options import SolveOptions
+
+ENGINE = """\
+units: {{length: mm, angle: deg}}
+links: [frame, crank, rod, piston]
+joints:
+  O: {{type: revolute, links: [frame, crank], at: [0, 0]}}
+  A: {{type: revolute, links: [crank, rod]}}
+  B: {{type: revolute, links: [rod, piston], near: [600, 0]}}
+  P: {{type: prismatic, links: [piston, frame], path: {{through: [0, 0], angle: 0}}}}
+lengths: {{OA: 150, AB: 600}}
+drive: {{link: crank, angle: {angle}{speed}}}
+loads: {{B: {{force: [-2000, 0], on: piston}}}}
+{extra}"""
+
+
+@pytest.mark.parametrize("deg", [25.0, 40.0, 110.0, 200.0, 300.0])
+def test_gas_force_gives_the_textbook_rod_thrust_side_thrust_and_crank_torque(deg):
+    # Khurmi & Gupta ch. 15: the piston effort F_P = 2000 N toward the crank; the rod at φ with
+    # sin φ = sin θ / n (n = l/r = 4) carries F_Q = F_P / cos φ; the wall takes F_N = F_P tan φ;
+    # the crank effort F_T = F_Q sin(θ + φ) gives T = F_T r, which the input torque balances.
+    m = loads(ENGINE.format(angle=deg, speed="", extra=""), path="engine.yaml")
+    fa = analyse(m)
+    th = math.radians(deg)
+    phi = math.asin(0.15 * math.sin(th) / 0.6)  # the rod's angle below the line of stroke
+    f_p = 2000.0
+    f_q = f_p / math.cos(phi)
+    assert fa.pair("B").magnitude == pytest.approx(f_q, rel=1e-9)
+    assert abs(fa.pair("P").normal) == pytest.approx(abs(f_p * math.tan(phi)), rel=1e-9, abs=1e-9 * f_p)
+    torque = f_q * math.sin(th + phi) * 0.15  # the gas force turns the crank backwards above the line
+    assert fa.effort is not None and fa.effort.value == pytest.approx(
+        -torque, rel=1e-9, abs=1e-9 * f_p * 0.15
+    )
+    assert fa.pair("O").magnitude == pytest.approx(f_q, rel=1e-9)  # a two-force rod: the main bearing too
+
+
+ENGINE_MASSES = """\
+points:
+  Gp: {link: piston, from: B, toward: A, distance: 0}
+masses:
+  piston: {mass: 2.5, centre: B}
+"""
+
+
+@pytest.mark.parametrize("deg", [0.0, 30.0, 90.0, 150.0, 233.0])
+def test_inertia_of_the_reciprocating_parts_is_minus_m_a_and_the_textbooks_series(deg):
+    text = ENGINE.format(
+        angle=deg, speed=", rpm: 1200, direction: ccw", extra="masses: {piston: {mass: 2.5, centre: B}}\n"
+    )
+    text = text.replace("loads: {B: {force: [-2000, 0], on: piston}}\n", "")
+    fa = analyse(loads(text, path="engine.yaml"))
+    w = 1200 * 2 * math.pi / 60
+    th = math.radians(deg)
+    *_, a_b = slider_crank(0.15, 0.6, 0.0, th, w)
+    (piston,) = fa.inertia
+    assert piston.force[0] == pytest.approx(-2.5 * a_b, rel=1e-9, abs=1e-9 * 2.5 * w * w * 0.15)
+    series = 2.5 * w * w * 0.15 * (math.cos(th) + math.cos(2 * th) / 4.0)
+    # the series drops (λ³/4)(cos 2θ − cos 4θ) and smaller (λ = r/l = 1/4): 0.6 m ω² r λ³ bounds them
+    assert piston.force[0] == pytest.approx(series, abs=0.6 * 2.5 * w * w * 0.15 / 4.0**3)
+    # the crank's torque holds the piston's inertia: T ω = m a_B v_B (power), no gravity, no load
+    _, _, v_b, _, _ = slider_crank(0.15, 0.6, 0.0, th, w)
+    assert fa.effort is not None
+    assert fa.effort.value * w == pytest.approx(2.5 * a_b * v_b, abs=1e-9 * 2.5 * (w * w * 0.15) * (w * 0.15))
+    assert fa.effort.inertia == pytest.approx(fa.effort.value, rel=1e-12)
+
+
+FOUR_BAR = """\
+units: {{length: mm, angle: deg}}
+links: [frame, crank, coupler, rocker]
+joints:
+  A: {{type: revolute, links: [frame, crank], at: [0, 0]}}
+  B: {{type: revolute, links: [crank, coupler]}}
+  C: {{type: revolute, links: [coupler, rocker], near: [160, 80]}}
+  D: {{type: revolute, links: [rocker, frame], at: [150, 0]}}
+lengths: {{AB: 40, BC: 150, CD: 170}}
+points:
+  G2: {{link: crank, from: A, toward: B, distance: 15}}
+  G3: {{link: coupler, from: B, toward: C, distance: 70}}
+  G4: {{link: rocker, from: D, toward: C, distance: 90}}
+masses:
+  crank: {{mass: 0.4, centre: G2, inertia: 0.0002}}
+  coupler: {{mass: 1.5, centre: G3, inertia: 0.004}}
+  rocker: {{mass: 1.8, centre: G4, radius_of_gyration: 60}}
+gravity: [0, -9.81]
+drive: {{link: crank, angle: {angle}, rpm: 300, direction: ccw}}
+"""
+MASSES = {
+    "crank": (0.4, 0.0002, 0.015),
+    "coupler": (1.5, 0.004, 0.070),
+    "rocker": (1.8, 1.8 * 0.06**2, 0.090),
+}
+
+
+@pytest.mark.parametrize("deg", [10.0, 60.0, 135.0, 250.0, 320.0])
+def test_four_bar_with_masses_matches_newton_euler_link_by_link(deg):
+    fa = analyse(loads(FOUR_BAR.format(angle=deg), path="fourbar.yaml"))
+    w = 300 * 2 * math.pi / 60
+    ne = four_bar_forces((0.040, 0.150, 0.170, 0.150), math.radians(deg), w, MASSES, (0.0, -9.81))
+    scale = max(float(np.linalg.norm(ne[k])) for k in "ABCD")
+    assert fa.determinate
+    assert np.allclose(fa.pair("A").force, ne["A"], rtol=0, atol=1e-9 * scale)  # on the crank from the frame
+    assert np.allclose(fa.pair("B").force, ne["B"], rtol=0, atol=1e-9 * scale)  # on the coupler
+    assert np.allclose(fa.pair("C").force, ne["C"], rtol=0, atol=1e-9 * scale)  # on the rocker
+    assert np.allclose(
+        fa.pair("D").force, -ne["D"], rtol=0, atol=1e-9 * scale
+    )  # on the frame from the rocker
+    assert fa.effort is not None
+    assert fa.effort.value == pytest.approx(ne["T"], abs=1e-9 * scale * 0.17)
+
+
+@pytest.mark.parametrize("deg", [10.0, 135.0, 320.0])
+def test_four_bar_power_balances(deg):
+    # input power = the rate of change of kinetic energy + the rate of work against gravity
+    from mech.kinematics import solve
+
+    text = FOUR_BAR.format(angle=deg)
+    m = loads(text, path="fourbar.yaml")
+    fa = analyse(m)
+    kin = solve(m, "acceleration")
+    w = kin.links["crank"].omega
+    power = 0.0
+    for ms in m.masses:
+        v, a = kin.velocity(ms.centre, ms.link), kin.acceleration(ms.centre, ms.link)
+        lk = kin.links[ms.link]
+        power += ms.mass * (a[0] * v[0] + a[1] * v[1]) + ms.inertia * lk.alpha * lk.omega
+        power -= ms.mass * (0.0 * v[0] - 9.81 * v[1])
+    assert fa.effort is not None
+    assert fa.effort.value * w == pytest.approx(power, rel=1e-9)
+    assert fa.effort.loads == 0.0
+    assert fa.effort.value == pytest.approx(fa.effort.inertia + fa.effort.gravity, rel=1e-12)
+
+
+def test_the_shaking_force_is_minus_the_sum_of_m_a_g():
+    from mech.kinematics import solve
+
+    m = loads(FOUR_BAR.format(angle=60), path="fourbar.yaml")
+    fa = analyse(m)
+    kin = solve(m, "acceleration")
+    fx = -sum(ms.mass * kin.acceleration(ms.centre, ms.link)[0] for ms in m.masses)
+    fy = -sum(ms.mass * kin.acceleration(ms.centre, ms.link)[1] for ms in m.masses)
+    assert fa.shaking_force == pytest.approx((fx, fy), rel=1e-12)
+    # and about the crank's pivot A = (0, 0): −Σ (r_G × m a_G + I_G α)
+    mz = 0.0
+    for ms in m.masses:
+        (gx, gy), (ax, ay) = kin.positions[ms.centre], kin.acceleration(ms.centre, ms.link)
+        mz -= gx * ms.mass * ay - gy * ms.mass * ax + ms.inertia * kin.links[ms.link].alpha
+    assert fa.shaking_moment == pytest.approx(mz, rel=1e-12)
+
+
+LIFT = """\
+units: {length: mm, angle: deg}
+links: [frame, crank, rod, platform]
+joints:
+  O: {type: revolute, links: [frame, crank], at: [0, 0]}
+  A: {type: revolute, links: [crank, rod]}
+  B: {type: revolute, links: [rod, platform], near: [0, 300]}
+  S: {type: prismatic, links: [platform, frame], path: {through: [0, 0], angle: 90}}
+lengths: {OA: 100, AB: 250}
+points:
+  G: {link: crank, from: O, toward: A, distance: 50}
+masses:
+  crank: {mass: 3, centre: G}
+  platform: {mass: 20, centre: B}
+gravity: [0, -9.81]
+drive: {link: crank, angle: ANGLE}
+"""
+
+
+@pytest.mark.parametrize("deg", [20.0, 75.0, 140.0])
+def test_gravity_alone_on_a_slow_lift_needs_the_torque_of_virtual_work(deg):
+    # no speed: a static problem.  The platform B rides the vertical through O on a crank OA
+    # (r = 100 mm) and a rod AB (l = 250 mm): y_B = r sin θ + √(l² − r² cos² θ); the crank's own
+    # 3 kg act at r/2.  Virtual work: T = g (m_p dy_B/dθ + m_c (r/2) cos θ).
+    fa = analyse(loads(LIFT.replace("ANGLE", str(deg)), path="lift.yaml"))
+    r, rod, th, g = 0.1, 0.25, math.radians(deg), 9.81
+    dy_b = r * math.cos(th) + r * r * math.sin(th) * math.cos(th) / math.sqrt(
+        rod**2 - (r * math.cos(th)) ** 2
+    )
+    want = g * (20 * dy_b + 3 * (r / 2) * math.cos(th))
+    assert fa.effort is not None
+    assert fa.effort.value == pytest.approx(want, rel=1e-9)
+    assert fa.effort.inertia == 0.0 and fa.effort.gravity == pytest.approx(fa.effort.value)
+    # the guide carries the rod's side thrust only: the weight is along the path
+    assert fa.pair("S").force[1] == pytest.approx(0.0, abs=1e-9 * 20 * g)
+
+
+def test_a_redundant_chain_gives_its_input_torque_and_says_the_pin_forces_are_indeterminate():
+    from tests.mechanism_texts import EXAMPLES
+
+    text = (EXAMPLES / "double_parallelogram.yaml").read_text()
+    text = text[: text.index("\nanswers:")] + "\nloads: {coupler: {torque: 5}}\n"
+    fa = analyse(loads(text, path="dp.yaml"), SolveOptions(angle=math.radians(50)))
+    assert not fa.determinate and fa.pairs == () and "indeterminate" in fa.note
+    # a torque on the translating coupler does no work: nothing holds it but the pins
+    assert fa.effort is not None and fa.effort.value == pytest.approx(0.0, abs=1e-9)
+
+
+def test_gears_push_along_their_line_of_action_and_the_bearings_take_the_tooth_load():
+    # 20 and 40 teeth, module 5 mm: pitch radii 50 and 100 mm, pressure angle 20°.  A torque of
+    # 10 N·m on the wheel is held by a tooth load F = T / (r₂ cos φ) = 106.42 N along the line of
+    # action, which each bearing takes back; the pinion's torque is T r₁ / r₂ = 5 N·m.
+    from tests.mechanism_texts import EXAMPLES
+
+    text = (EXAMPLES / "gear_pair.yaml").read_text()
+    text = text[: text.index("\nanswers:")] if "\nanswers:" in text else text
+    fa = analyse(loads(text + "\nloads: {wheel: {torque: 10}}\n", path="gears.yaml"))
+    tooth = 10 / (0.100 * math.cos(math.radians(20)))
+    mesh = fa.pair("mesh")
+    assert mesh.magnitude == pytest.approx(tooth, rel=1e-9)
+    assert abs(mesh.normal) == pytest.approx(tooth, rel=1e-9)
+    assert fa.pair("O1").magnitude == pytest.approx(tooth, rel=1e-9)
+    assert fa.pair("O2").magnitude == pytest.approx(tooth, rel=1e-9)
+    assert fa.effort is not None and abs(fa.effort.value) == pytest.approx(5.0, rel=1e-9)
