@@ -502,3 +502,47 @@ def test_labels_are_placed_without_measuring_every_segment_of_a_long_path(monkey
     slow = config.configuration(m, kin, curves=[("path of P", dense, "path")])
     assert to_svg(fast) == to_svg(slow)
     assert calls_fast < calls / 50, (calls_fast, calls)
+
+
+@pytest.mark.parametrize(
+    "name", ["cam_follower", "cam_roller_program", "cam_flat_follower", "cam_valve_khurmi"]
+)
+def test_a_translating_cam_follower_is_drawn_with_its_stem_in_its_guide(name):
+    """As ``mech cam -o`` and the notes draw it: the follower's stem on its line of stroke, from
+    the follower outward (away from the cam's pivot), held by a guide hatched on both sides."""
+    m, kin = _solve(MECHANISMS / f"{name}.yaml", "position")
+    root = _parse(to_svg(draw(m, kin)))
+
+    def ends(e: ET.Element) -> tuple[tuple[float, float], tuple[float, float]]:
+        x1, y1, x2, y2 = (float(e.get(k)) for k in ("x1", "y1", "x2", "y2"))
+        return (x1, y1), (x2, y2)
+
+    lines = list(root.iter(f"{SVG}line"))
+    (stem,) = [ends(e) for e in lines if e.get("class") == "stem"]
+    (stroke,) = [ends(e) for e in lines if e.get("class") == "stroke-line"]
+    (pivot,) = [
+        (float(e.get("cx")), float(e.get("cy"))) for e in root.iter(f"{SVG}circle") if e.get("class") == "pin"
+    ]
+    a, b = stem
+    length = math.dist(a, b)
+    u = ((b[0] - a[0]) / length, (b[1] - a[1]) / length)
+    n = (-u[1], u[0])
+
+    def off(p: tuple[float, float]) -> float:  # signed distance from the stem's axis
+        return (p[0] - a[0]) * n[0] + (p[1] - a[1]) * n[1]
+
+    def along(p: tuple[float, float]) -> float:
+        return (p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1]
+
+    assert length > 5.0  # mm on the page: a stem, not a dot
+    assert off(stroke[0]) == pytest.approx(0, abs=0.05) and off(stroke[1]) == pytest.approx(0, abs=0.05)
+    assert math.dist(b, pivot) > math.dist(a, pivot) + 0.9 * length  # outward, away from the cam
+    guide = [
+        side
+        for e in lines
+        if e.get("class") == "hatch"
+        for p in ends(e)
+        for side in (-1, 1)
+        if off(p) * side == pytest.approx(1.6, abs=0.05) and 0 < along(p) < length
+    ]
+    assert guide.count(-1) >= 3 and guide.count(1) >= 3, guide

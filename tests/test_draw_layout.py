@@ -151,6 +151,26 @@ def test_every_element_of_a_drawing_lies_in_its_view_box(name, way):
     assert not outside, f"{name} {way} ({fig.width:.1f} × {fig.height:.1f} mm): " + "; ".join(outside)
 
 
+#: A circle smaller than this (mm) is a mark: a pin, a point, an I-centre, a node of Kennedy's circle.
+MARK = 3.0
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("name", "way"), CASES, ids=[f"{n}-{w}" for n, w in CASES])
+def test_no_text_of_a_drawing_lies_on_a_pin_or_a_mark(name, way):
+    """A label struck through by a pin or an I-centre's mark (O₂ under I24) cannot be read."""
+    items = measured_case(name, way)
+    texts = [(item, box) for item, box in items if isinstance(item, Text)]
+    marks = [(item, box) for item, box in items if isinstance(item, Circle) and item.r < MARK]
+    clashes = [
+        f"{t.text!r} on {c.cls} {c.name} by {_overlap(bt, bc):.2f} mm"
+        for t, bt in texts
+        for c, bc in marks
+        if _overlap(bt, bc) > 0.2
+    ]
+    assert not clashes, f"{name} {way}: " + "; ".join(clashes)
+
+
 def test_the_cases_cover_every_drawable_example_and_the_six_bars():
     names = {n for n, _ in CASES}
     assert {

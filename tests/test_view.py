@@ -259,3 +259,24 @@ def test_a_slider_drives_page_reads_position_in_the_files_unit(tmp_path):
     assert shown["omega.rod"] == pytest.approx(0.1 / 0.160, rel=1e-5)
     assert shown["velocity.B"] == pytest.approx(0.1 / 0.160 * 0.120, rel=1e-5)
     assert not _console_errors(log)
+
+
+@needs_browser
+def test_a_page_of_two_drives_plays_the_first_and_shows_the_closed_form_at_the_files_instant(tmp_path):
+    """The five-bar driven by both cranks (mechanisms/five_bar_two_cranks.yaml, its header's
+    closed form at θ₂ = θ₅ = 90°): ω₃ = −9.6077, ω₄ = +9.6077 rad/s, |v_C| = 0.52035 m/s; the
+    slider is the first drive's angle, the second crank moving in proportion (ω₅/ω₂ = −2)."""
+    page = tmp_path / "five_bar.html"
+    run = mech("view", str(MECHANISMS / "five_bar_two_cranks.yaml"), "-o", str(page))
+    assert run.returncode == 0, run.stderr
+    dom, log = _browse(page, "#angle=banana", tmp_path)  # the file's own instant
+    shown = _shown(dom)
+    assert shown["angle"] == pytest.approx(math.radians(90), rel=1e-9)
+    assert shown["omega.link_2"] == pytest.approx(10.0, rel=1e-9)
+    assert shown["omega.link_5"] == pytest.approx(-20.0, rel=1e-9)
+    w3 = -1200 / (2 * math.sqrt(80**2 - 50**2))  # -400 - h w3 = 800 + h w3, h = C_y - B_y (mm)
+    assert shown["omega.link_3"] == pytest.approx(w3, rel=1e-6)
+    assert shown["omega.link_4"] == pytest.approx(-w3, rel=1e-6)
+    h = math.sqrt(80**2 - 50**2) / 1000
+    assert shown["velocity.C"] == pytest.approx(math.hypot(-0.4 - w3 * h, w3 * 0.050), rel=1e-6)
+    assert not _console_errors(log)

@@ -174,7 +174,7 @@ def configuration(
     Figure
         In page millimetres; the caption states the scale in the file's unit.
     """
-    from mech.draw.icentres import overlay, reachable
+    from mech.draw.icentres import marks, overlay, reachable
 
     pos = dict(kin.positions if positions is None else positions)
     members = link_members(mech, kin, pos)
@@ -207,12 +207,16 @@ def configuration(
     for layer in ("contact", "ground", "block", "pin"):
         page.extend(paint(shapes, tr, layer))
     page.extend(_points(mech, pos, tr, page.items))
-    page.extend(_labels(mech, members, pos, tr, list(page.items)))
-    page.extend(_drive_arrows(mech, kin, pos, tr, [i for i in page.items if isinstance(i, Text)]))
+    box = (MARGIN, TITLE_H + MARGIN, width - MARGIN, height - MARGIN - FOOT_H)
+    spots = marks(icentres, tr, box) if icentres else []  # the joints' labels and ω keep off them
+    page.extend(_labels(mech, members, pos, tr, [*page.items, *spots]))
+    near = [i.centre for i in spots if isinstance(i, Circle)]
+    page.extend(_drive_arrows(mech, kin, pos, tr, [i for i in page.items if isinstance(i, Text)], near))
     if icentres:
-        box = (MARGIN, TITLE_H + MARGIN, width - MARGIN, height - MARGIN - FOOT_H)
+        page.extend(spots)
         unit = (mech.length_unit, _unit_factor(mech.length_unit))
-        page.extend(overlay(icentres, tr, box, drawn=page.items, origin=_first_pivot(mech, pos), unit=unit))
+        origin = _first_pivot(mech, pos)
+        page.extend(overlay(icentres, tr, box, drawn=page.items, origin=origin, unit=unit, marked=True))
 
     return page.figure(title, fit=not frame)
 
@@ -457,9 +461,17 @@ def _points(mech: Mechanism, pos: Mapping[str, Vec], tr: Transform, drawn: Seque
 
 
 def _drive_arrows(
-    mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec], tr: Transform, labels: Sequence[Text] = ()
+    mech: Mechanism,
+    kin: Kinematics,
+    pos: Mapping[str, Vec],
+    tr: Transform,
+    labels: Sequence[Text] = (),
+    marks: Sequence[Vec] = (),
 ) -> list[Item]:
-    """A curved arrow round each driven pivot showing the sense of ω, as the notes draw it."""
+    """A curved arrow round each driven pivot showing the sense of ω, as the notes draw it.
+
+    It turns away from the links, the labels and the ``marks`` (I-centres) near the pivot.
+    """
     items: list[Item] = []
     for d in getattr(kin, "drives", ()):
         if d.link is None or d.omega is None or d.omega == 0:
@@ -484,6 +496,7 @@ def _drive_arrows(
                 q = tr(pos[name])
                 busy.append(math.atan2(q[1] - cy, q[0] - cx))
         busy += [math.atan2(t.at[1] - cy, t.at[0] - cx) for t in labels if math.dist(t.at, (cx, cy)) < 12]
+        busy += [math.atan2(q[1] - cy, q[0] - cx) for q in marks if 0.5 < math.dist(q, (cx, cy)) < 12]
         centre = max(
             (math.radians(15 * k) for k in range(24)),
             key=lambda a: min(abs(math.remainder(a - b, 2 * math.pi)) for b in busy),

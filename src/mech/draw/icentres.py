@@ -70,6 +70,7 @@ def overlay(
     drawn: Sequence[Item] = (),
     origin: tuple[str, Vec] | None = None,
     unit: tuple[str, float] = ("m", 1.0),
+    marked: bool = False,
 ) -> list[Item]:
     """Items that mark ``centres`` on a configuration drawn by ``tr`` inside ``box`` (page mm).
 
@@ -77,7 +78,9 @@ def overlay(
     share one mark and one label "I12, I13".  Labels keep clear of what is
     ``drawn`` (and of each other), with a leader line when they stand off.  A far
     I-centre's distance is measured from ``origin`` (the frame's first pivot: its
-    label and world point) and written in ``unit`` (name, metres per unit).
+    label and world point) and written in ``unit`` (name, metres per unit).  ``marked``: the
+    marks are already drawn (:func:`marks`, before the configuration's own labels, so that
+    those keep off them); only the labels and the far centres' arrows are given.
     """
     items: list[Item] = []
     x0, y0, x1, y1 = box
@@ -107,11 +110,8 @@ def overlay(
     if origin is not None and any(w not in ("∞", "far") for _, _, w in far):
         note = f"far I-centres: arrows at the edge, their distances from {origin[0]}"
         items.append(Text((x0 - 6, y1 + 11.5), note, 2.6, "start", COLOUR, cls="icentre-note"))
-    for key in inside:
-        q = where[key]
-        items.append(Circle(q, 1.5, Style(COLOUR, 0.35), "icentre", inside[key][0]))
-        items.append(Line((q[0] - 1.1, q[1] - 1.1), (q[0] + 1.1, q[1] + 1.1), Style(COLOUR, 0.3), "icentre"))
-        items.append(Line((q[0] - 1.1, q[1] + 1.1), (q[0] + 1.1, q[1] - 1.1), Style(COLOUR, 0.3), "icentre"))
+    if not marked:
+        items.extend(_marks(where, inside))
     for key, names in inside.items():
         q = where[key]
         label = place_label(
@@ -120,6 +120,36 @@ def overlay(
         line = leader(q, label, COLOUR)
         items.extend([line, label] if line is not None else [label])
     items.extend(_border_arrows(far, box, [*drawn, *items]))
+    return items
+
+
+def marks(centres: Sequence[Any], tr: Transform, box: tuple[float, float, float, float]) -> list[Item]:
+    """The marks (a circle and a cross) of the I-centres inside ``box``, as :func:`overlay` draws them.
+
+    Drawn before the configuration's labels, they are obstacles those labels keep clear of.
+    """
+    where: dict[tuple[int, int], Vec] = {}
+    inside: dict[tuple[int, int], list[str]] = {}
+    x0, y0, x1, y1 = box
+    for c in centres:
+        p = getattr(c, "point", None)
+        if p is None or getattr(c, "at_infinity", False):
+            continue
+        q = tr(p)
+        if x0 - 1e-6 <= q[0] <= x1 + 1e-6 and y0 - 1e-6 <= q[1] <= y1 + 1e-6:
+            key = (round(q[0] * 4), round(q[1] * 4))
+            inside.setdefault(key, []).append(_label(c.name))
+            where[key] = q
+    return _marks(where, inside)
+
+
+def _marks(where: dict[tuple[int, int], Vec], inside: dict[tuple[int, int], list[str]]) -> list[Item]:
+    items: list[Item] = []
+    for key in inside:
+        q = where[key]
+        items.append(Circle(q, 1.5, Style(COLOUR, 0.35), "icentre", inside[key][0]))
+        items.append(Line((q[0] - 1.1, q[1] - 1.1), (q[0] + 1.1, q[1] + 1.1), Style(COLOUR, 0.3), "icentre"))
+        items.append(Line((q[0] - 1.1, q[1] + 1.1), (q[0] + 1.1, q[1] - 1.1), Style(COLOUR, 0.3), "icentre"))
     return items
 
 

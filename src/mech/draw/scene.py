@@ -455,6 +455,8 @@ def _crosses(a: Vec, b: Vec, box: Box, inset: float) -> bool:
 #: samples cannot change its score, and is not measured (a traced path of 10,000 steps has
 #: 10,000 segments, nearly all of them far from any one label).
 _CAP = 3.0
+#: A circle smaller than this (mm) is a mark (a pin, a point, an I-centre): no label is put on it.
+_MARK = 3.0
 
 
 def _near_segments(
@@ -495,12 +497,13 @@ def best_spot(
 ) -> Vec:
     """Of candidate label centres (each with a preference bonus), the one clearest of ``drawn``.
 
-    A spot where the label would lie on a text already drawn is taken only when every
-    spot would (then the least overlapped).  Otherwise clearance from lines and circles
+    A spot where the label would lie on a text or a mark already drawn is taken only when
+    every spot would (then the least overlapped).  Otherwise clearance from lines and circles
     is sampled over the label's box and capped at 3 mm (beyond that, nothing is gained by
     moving further), then the bonus decides.
     """
     segs, discs, rects = _obstacles(drawn)
+    marks = [(c[0] - r, c[1] - r, c[0] + r, c[1] + r) for c, r in discs if r < _MARK]
     boxes = [_centred(c, text, size, bold) for c, _ in candidates]
     if boxes:  # first the segments near any candidate (one pass), then near each
         hull = (
@@ -513,6 +516,7 @@ def best_spot(
     best: tuple[float, Vec] | None = None
     for (c, bonus), box in zip(candidates, boxes, strict=True):
         hits = sum(1 for r in rects if _overlap(box, r, 0.3))
+        hits += sum(1 for r in marks if _overlap(box, r, 0.0))  # a pin or an I-centre's mark under it
         xs, ys = (
             (box[0], (box[0] + box[2]) / 2, box[2]),
             (box[1] + 0.1 * size, (box[1] + box[3]) / 2, box[3] - 0.2 * size),
