@@ -102,6 +102,7 @@ class System:
         default_factory=dict
     )  # a pair's contact, its location elsewhere
     row_names: tuple[str, ...] = ()  # per row: the joint or drive it comes from
+    notes: tuple[str, ...] = ()  # what the rows approximate (a fitted profile), for every result
     holonomic: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))  # per row
     drive_rows: np.ndarray = field(default_factory=lambda: np.zeros(0, int))  # row per drive (file order)
     path_dirs: dict[str, tuple[int, np.ndarray]] = field(
@@ -387,6 +388,7 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     sys_.locators = b.locators
     sys_.normals = b.normals
     sys_.contact_points = b.contact_points
+    sys_.notes = tuple(b.notes)
     sys_.loc_names = tuple(local)
     sys_.loc_i = np.array([local[k][0] for k in local], int)
     sys_.loc_s = np.array([local[k][1] for k in local], float).reshape(-1, 2)
