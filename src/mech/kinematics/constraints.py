@@ -461,8 +461,25 @@ def _link_frames(
         slider_dir.setdefault(ps.slider, ps)
     for ps in lay.paths:
         slider_dir.setdefault(ps.guide, ps)
+    # A crank's frame: at its pivot, on its drive's angle (pivot → toward) as the drive gives it,
+    # not as atan2 gives it back an ulp or a turn away: the closed form turns the crank by
+    # phi + (q0 − drawn), and near ±π that difference of two π-sized numbers keeps only their
+    # rounding (4.4e-16 rad), 2.5e-5 of a crank drawn 1e-11 rad from a dead centre.
+    crank_at: dict[str, tuple[str, float]] = {}
+    for k, spec in enumerate(lay.drives):
+        if spec.link and spec.pivot in pos and spec.toward in pos and spec.reference == lay.mech.ground:
+            w = scn(spec.toward) - scn(spec.pivot)  # type: ignore[arg-type]
+            drive = drawn.drive_angles[k]
+            if drive is not None and abs(math.remainder(math.atan2(w[1], w[0]) - drive, math.tau)) < 1e-9:
+                crank_at[spec.link] = (spec.pivot, drive)  # type: ignore[assignment]
     for name in links:
         names = [p for p in lay.on_link.get(name, ()) if p in pos]
+        if name in crank_at:
+            pivot, theta = crank_at[name]
+            origin = scn(pivot)
+            frames[name] = pivot
+            q0[3 * index[name] : 3 * index[name] + 3] = (origin[0], origin[1], theta)
+            continue
         origin = scn(names[0]) if names else np.zeros(2)
         theta = None
         for other in names[1:]:
