@@ -475,10 +475,10 @@ def _link_frames(
     for name in links:
         names = [p for p in lay.on_link.get(name, ()) if p in pos]
         if name in crank_at:
-            pivot, theta = crank_at[name]
+            pivot, on_drive = crank_at[name]
             origin = scn(pivot)
             frames[name] = pivot
-            q0[3 * index[name] : 3 * index[name] + 3] = (origin[0], origin[1], theta)
+            q0[3 * index[name] : 3 * index[name] + 3] = (origin[0], origin[1], on_drive)
             continue
         origin = scn(names[0]) if names else np.zeros(2)
         theta = None
