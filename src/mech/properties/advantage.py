@@ -316,8 +316,8 @@ def _by_icentres(
 
 def _unresolved(what: str, value: float, six: float) -> str:
     return (
-        f"the I-centre ratio is not resolved to six figures: {what} = {value:.3g} m is less than a "
-        f"million times the rounding of the points ({six:.2g} m), and the velocity solution finds the "
+        f"the I-centre ratio is not resolved to six figures: {what} = {value:.3g} m is less than "
+        f"{six:.2g} m, a million times the rounding of the points, and the velocity solution finds the "
         "output moving"
     )
 
