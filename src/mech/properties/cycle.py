@@ -33,6 +33,8 @@ from mech.pairs import kind_of
 from mech.topology.grashof import FourBarLoop, linkage_loops
 
 if TYPE_CHECKING:  # pragma: no cover
+    import numpy as np
+
     from mech.kinematics import Kinematics, Sweep
 
 __all__ = [
@@ -245,6 +247,10 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
     quantities = ([trans.quantity] if trans else []) + slides_and_links
     angles = np.linspace(0.0, 2.0 * math.pi, steps + 1)
     sw = sweep(mech, angles, level="position", options=options, quantities=quantities or None)
+    window = _drawn_circuit(sw.angles, sw.assembled, base.drives[0].angle if base.drives else None)
+    if window is not None:  # the turn met other circuits: read the drawn one's alone
+        angles = np.linspace(window[0], window[1], steps + 1)
+        sw = sweep(mech, angles, level="position", options=options, quantities=quantities or None)
     ext = {e.quantity: e for e in sw.extremes}
     mu = ext.get(trans.quantity) if trans else None  # 0 or 180° where coupler and output fold in line
     mu_min = (mu.min_value, mu.min_angle) if mu else None
@@ -296,6 +302,36 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
         time_ratio_output=sw.time_ratio.output if sw.time_ratio else None,
         gaps=tuple((g.start, g.end) for g in sw.gaps),
     )
+
+
+def _drawn_circuit(angles: np.ndarray, ok: np.ndarray, drawn: float | None) -> tuple[float, float] | None:
+    """The drive angles around the drawn circuit, when a turn assembled separate circuits; else None.
+
+    A drive that cannot turn fully (a rocker driving a crank-rocker) meets, over a whole turn,
+    the same branch of the closed form on each circuit of the loop (C above AD, and its mirror
+    below); no motion joins them. Extremes read over all of them join positions of different
+    circuits (the crank's stroke from one circuit's low to the other's high). The window runs
+    from the unassembled step before the drawn circuit to the one after it, so the sweep of it
+    locates both limit positions as before and holds nothing of another circuit.
+    """
+    import numpy as np
+
+    n = angles.size - 1  # a full turn: step n is step 0 again
+    if drawn is None or n < 2 or abs(angles[-1] - angles[0] - 2.0 * math.pi) > 1e-9:
+        return None
+    turn = 2.0 * math.pi
+    k = int(np.argmin(np.abs((angles[:n] - drawn + math.pi) % turn - math.pi)))
+    if not ok[k] or bool(np.all(ok[:n])):
+        return None
+    left, right = k, k
+    while ok[(left - 1) % n]:
+        left -= 1
+    while ok[(right + 1) % n]:
+        right += 1
+    if int(np.count_nonzero(ok[:n])) == right - left + 1:
+        return None  # one circuit: nothing else was read
+    lo, hi = left - 1, right + 1
+    return float(angles[lo % n] + turn * (lo // n)), float(angles[hi % n] + turn * (hi // n))
 
 
 def stroke_joints(mech: Mechanism) -> Sequence[str]:
