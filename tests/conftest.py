@@ -102,6 +102,17 @@ SLOW: dict[str, str] = {
     "tests/test_cli.py::test_no_file_gives_a_traceback_or_an_undocumented_status": "every example, every command: 2 s",
     "tests/test_cli.py::test_a_reader_that_has_closed_the_pipe_gives_141_and_no_message": "a pipeline each: 2.8 s",
     "tests/kinematics/test_dyads.py::test_closed_form_and_newton_agree_on_examples": "every example twice: 4.6 s",
+    # the browser: a Chromium launch each, about 1 s of CPU; the default run keeps the four-bar's
+    # pages (closed form at three angles) and the page's own size
+    "tests/test_view.py::test_slider_crank_page_shows_the_closed_form": "Chromium, 3 launches",
+    "tests/test_view.py::test_six_bar_page_shows_what_mech_velocity_and_acceleration_give": "Chromium, 3 launches",
+    "tests/test_view.py::test_a_fragment_the_page_cannot_read_shows_the_files_own_instant": "Chromium per fragment",
+    "tests/test_view.py::test_page_screenshot_is_not_blank": "Chromium",
+    "tests/test_view.py::test_page_notices_a_script_error": "Chromium",
+    "tests/test_view.py::test_a_slider_drives_page_reads_position_in_the_files_unit": "Chromium",
+    "tests/test_view.py::test_a_page_of_two_drives_plays_the_first_and_shows_the_closed_form_at_the_files_instant": (
+        "Chromium, 2 s"
+    ),
 }
 
 
