@@ -507,3 +507,12 @@ drive: {link: pinion, rpm: 1200, direction: cw}
         "at every angle, with no toggle or change point (links or gear ratios of very different scales)"
         in said
     )
+
+
+def test_a_sweep_of_a_links_point_at_a_contact_is_refused_saying_so(run, write):
+    # K@cam names the cam's point at the contact (DESIGN § 1.2); a sweep does not follow it yet and
+    # says that, rather than "no point named K@cam"
+    text = (ROOT / "mechanisms" / "cam_roller_program.yaml").read_text(encoding="utf-8")
+    result = run("sweep", str(write(text)), "--quantity", "velocity.K@cam")
+    assert result.exit_code == 2
+    assert "a link's point at a contact" in result.stderr and "--angle" in result.stderr

@@ -76,6 +76,14 @@ def check_quantity(
             _slide_message(key, kind, name, slides, sw_points),
             hint=_slide_hint(kind, name, slides, sw_points),
         )
+    if name not in pool and "@" in name:
+        raise InputError(
+            f"{key}: {name} is a link's point at a contact (DESIGN § 1.2); a sweep does not follow "
+            "such points yet",
+            hint=f"mech {kind if kind != 'position' else 'position'} FILE --angle A gives {name} at one "
+            f"angle; a sweep follows {name.split('@')[0]} where it is a follower's own point, and the "
+            f"links' named points: {', '.join(pool)}",
+        )
     if name not in pool:
         raise InputError(
             f"{key}: no {'link' if kind in ('angle', 'omega', 'alpha') else 'joint' if kind in ('displacement', 'sliding') else 'point'} named {name}",

@@ -46,10 +46,18 @@ def _dir(v: tuple[float, float]) -> float | None:
 
 
 def _point_rows(kin: Kinematics) -> Iterator[tuple[str, str | None]]:
-    """(point, link) for every reported point: a contact point once per link when they differ."""
+    """(point, link) for every reported point; a higher pair's points at the contact as ``K@link``.
+
+    A contact point whose links' points move differently there is listed once per link,
+    ``K@cam`` and ``K@follower`` (DESIGN § 1.2); a higher pair whose name is the follower's
+    own point (a programme cam's roller centre) lists it, then each link's point at the contact.
+    """
+    moving = _at_least(kin, "velocity")
     for name in kin.positions:
-        if not _at_least(kin, "velocity"):
+        joint = kin.joints.get(name)
+        if not moving:
             yield name, None
+            yield from _contact_rows(kin, name)
             continue
         try:
             kin.velocity(name)
@@ -57,9 +65,22 @@ def _point_rows(kin: Kinematics) -> Iterator[tuple[str, str | None]]:
                 kin.acceleration(name)  # a rolling contact: one velocity, two accelerations
             yield name, None
         except InputError:
-            joint = kin.joints.get(name)
             for link in joint.links if joint else ():
-                yield name, link
+                yield f"{name}@{link}", link
+            continue
+        yield from _contact_rows(kin, name)
+
+
+def _contact_rows(kin: Kinematics, name: str) -> Iterator[tuple[str, str | None]]:
+    """``K@cam``, ``K@follower`` after a higher pair's own point ``K`` when it is not where they touch."""
+    from mech.pairs import kind_of
+
+    joint = kin.joints.get(name)
+    if joint is None or not kin.carriers.get(name) or joint.at is None or not kind_of(joint.type).higher:
+        return
+    if math.dist(joint.at, kin.positions[name]) > 1e-12 * max(kin.size, 1e-300):
+        for link in joint.links:  # the follower's own point (a roller's centre) is not where it touches
+            yield f"{name}@{link}", link
 
 
 def _link_pairs(kin: Kinematics) -> Iterator[tuple[str, str, str]]:
@@ -131,10 +152,10 @@ class _Noise:
         return out
 
     def point_v_scale(self, name: str, link: str | None) -> float:
-        return self.v_scale(self._links_at(name, link), self.kin.positions[name])
+        return self.v_scale(self._links_at(name, link), self.kin.position(name))
 
     def point_a_scale(self, name: str, link: str | None) -> float:
-        return self.a_scale(self._links_at(name, link), self.kin.positions[name])
+        return self.a_scale(self._links_at(name, link), self.kin.position(name))
 
     def angle(self, theta: float) -> float:
         return 0.0 if abs(math.remainder(theta, 2 * math.pi)) < self.RELATIVE else theta
@@ -358,7 +379,7 @@ def _points_json(kin: Kinematics, quiet: _Noise, units: OutputUnits) -> list[dic
             {
                 "point": name,
                 "link": link,
-                "position": _vec(quiet.position(kin.positions[name]), units.length),
+                "position": _vec(quiet.position(kin.position(name)), units.length),
                 "velocity": _vec(v, V),
                 "speed": _num(math.hypot(*v), V) if v is not None else None,
                 "direction": _dir(v) if v is not None else None,
@@ -456,8 +477,8 @@ def _col(table: Any, header: str, justify: str = "left") -> None:
 
 
 def _point_label(p: dict[str, Any]) -> str:
-    """``C``, or ``C (on coupler)`` where coincident points of two links differ."""
-    return p["point"] if p["link"] is None else f"{p['point']} (on {p['link']})"
+    """``C``, ``K@cam`` (a link's point at a contact), or ``C (on coupler)`` for a coincident point."""
+    return p["point"] if p["link"] is None or "@" in p["point"] else f"{p['point']} (on {p['link']})"
 
 
 _LEVEL_TITLES = {"position": "positions", "velocity": "velocities", "acceleration": "accelerations"}
