@@ -533,20 +533,44 @@ def test_a_cam_joint_is_the_followers_point_and_k_at_link_each_links_point_at_th
         kin.velocity("K@frame")
 
 
-def test_a_contact_points_velocity_refused_names_the_k_at_link_syntax():
-    from pathlib import Path
-
+def test_a_contact_points_acceleration_refused_names_the_k_at_link_syntax():
+    # a gear's pitch point: both gears' points there share a velocity but not an acceleration
     from mech.loader import load
 
-    kin = solve(load(Path(__file__).resolve().parents[2] / "mechanisms" / "eccentric_cam.yaml"), "velocity")
+    kin = solve(load(Path(__file__).resolve().parents[2] / "mechanisms" / "gear_pair.yaml"), "acceleration")
     with pytest.raises(InputError) as err:
-        kin.velocity("K")
-    assert "K@cam or K@follower" in (err.value.hint or "")
-    # θ = 30°, e = 15 mm, ω = 31.416 rad/s ccw: the face rises at eω cos θ (the file's closed form)
-    w, e = 10 * math.pi, 0.015
-    assert kin.velocity("K@follower")[1] == pytest.approx(e * w * math.cos(math.radians(30)), rel=1e-9)
+        kin.acceleration("mesh")
+    assert "mesh@pinion or mesh@wheel" in (err.value.hint or "")
+    # pinion 1200 rpm on r = 50 mm, wheel 600 rpm on r = 100 mm: ω²r toward each centre
+    w1, w2 = 1200 * math.pi / 30, 600 * math.pi / 30
+    assert kin.acceleration("mesh@pinion") == pytest.approx((-(w1**2) * 0.050, 0.0), rel=1e-9, abs=1e-9)
+    assert kin.acceleration("mesh@wheel") == pytest.approx((w2**2 * 0.100, 0.0), rel=1e-9, abs=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("name", "own"),
+    [("eccentric_cam.yaml", "F"), ("eccentric_cam_roller.yaml", "C")],
+)
+def test_a_profile_cams_joint_is_the_followers_own_point_and_k_at_link_the_contact(name, own):
+    # DESIGN § 1.2: a flat face's point on the follower's axis (here F, on x = 0, at e sin θ + R),
+    # a roller's centre (C, at e sin θ + √((R + r)² − e² cos² θ)); θ = 30°, e = 15, R = 40, r = 10 mm
+    from mech.loader import load
+
+    kin = solve(load(Path(__file__).resolve().parents[2] / "mechanisms" / name), "acceleration")
+    w, e, th = 10 * math.pi, 0.015, math.radians(30)
+    y = e * math.sin(th) + (0.040 if own == "F" else math.sqrt(0.050**2 - (e * math.cos(th)) ** 2))
+    assert kin.position("K") == pytest.approx((0.0, y), abs=1e-12)
+    assert kin.velocity("K") == pytest.approx(kin.velocity(own), abs=1e-12)
+    # the contact: a flat face touches straight above E (x = e cos θ), a roller on the line E–C
     c = kin.position("K@cam")
+    if own == "F":
+        assert c == pytest.approx((e * math.cos(th), y), abs=1e-12)
+    else:
+        ex, ey = e * math.cos(th), e * math.sin(th)
+        assert math.dist(c, (ex, ey)) == pytest.approx(0.040, rel=1e-9)
+        assert math.dist(c, (0.0, y)) == pytest.approx(0.010, rel=1e-9)
     assert kin.velocity("K@cam") == pytest.approx((-w * c[1], w * c[0]), rel=1e-12)
+    assert kin.velocity("K@follower") == pytest.approx(kin.velocity(own), abs=1e-12)
 
 
 def test_tables_and_json_name_each_links_point_at_a_contact_k_at_link(run, write):

@@ -509,10 +509,32 @@ drive: {link: pinion, rpm: 1200, direction: cw}
     )
 
 
-def test_a_sweep_of_a_links_point_at_a_contact_is_refused_saying_so(run, write):
-    # K@cam names the cam's point at the contact (DESIGN § 1.2); a sweep does not follow it yet and
-    # says that, rather than "no point named K@cam"
-    text = (ROOT / "mechanisms" / "cam_roller_program.yaml").read_text(encoding="utf-8")
-    result = run("sweep", str(write(text)), "--quantity", "velocity.K@cam")
-    assert result.exit_code == 2
-    assert "a link's point at a contact" in result.stderr and "--angle" in result.stderr
+def test_a_sweep_follows_each_links_point_at_a_cam_contact(run):
+    # mechanisms/eccentric_cam.yaml (R = 40, e = 15 mm, 300 rpm): the face touches straight above E,
+    # so the cam's point there is e sin θ + R from the shaft: ω(R + e) = 1.7279 m/s at θ = 90°,
+    # ω(R − e) = 0.7854 at 270°; the face's point rises at eω cos θ, at most eω = 0.4712 m/s
+    w = 10 * math.pi
+    result = run(
+        "sweep",
+        str(ROOT / "mechanisms" / "eccentric_cam.yaml"),
+        "--json",
+        "--quantity",
+        "velocity.K@cam",
+        "--quantity",
+        "velocity.K@follower",
+        "--quantity",
+        "velocity.K",
+    )
+    assert result.exit_code == 0, result.output
+    ext = {e["quantity"]: e for e in json.loads(result.output)["extremes"]}
+    cam = ext["velocity.K@cam"]
+    assert cam["max"] == pytest.approx(w * 0.055, rel=1e-6) and cam["max_angle"] == pytest.approx(
+        90, abs=1e-3
+    )
+    assert cam["min"] == pytest.approx(w * 0.025, rel=1e-6) and cam["min_angle"] == pytest.approx(
+        270, abs=1e-3
+    )
+    assert ext["velocity.K@follower"]["max"] == pytest.approx(w * 0.015, rel=1e-6)
+    assert ext["velocity.K"]["max"] == pytest.approx(w * 0.015, rel=1e-6)
+    wrong = run("sweep", str(ROOT / "mechanisms" / "eccentric_cam.yaml"), "--quantity", "velocity.K@frame")
+    assert wrong.exit_code == 2 and "K@cam or K@follower" in wrong.stderr

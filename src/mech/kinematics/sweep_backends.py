@@ -202,6 +202,7 @@ class Newton:
         alpha: float,
         lvl: int,
         lead: int | None = None,
+        extra: tuple[str, ...] = (),
     ) -> None:
         self.mech, self.comp, self.lvl = mech, comp, lvl
         # lead: the drive whose coordinate is the parameter when every drive follows a linear law
@@ -216,7 +217,10 @@ class Newton:
         )
         self.links = comp.system.links
         self.slides = tuple(ps.joint for ps in comp.layout.paths)
-        self.points = tuple(p for p in comp.system.loc_names if not p.startswith("#"))
+        # the located points, then any link's point at a contact asked for (K@cam: DESIGN § 1.2)
+        located = tuple(p for p in comp.system.loc_names if not p.startswith("#"))
+        self.extra = tuple(p for p in extra if p not in located)
+        self.points = located + self.extra
         self.marcher: Marcher | None = None  # set when the series was marched: grids can then be evaluated
         # the marched series' steps and, per step, where the march solved it: the marcher's own step
         # (index) and the parameter's shift (a whole period, for a step reached round the other way)
@@ -277,7 +281,7 @@ class Newton:
         lay = self.comp.layout
         singular = kin.level != LEVELS[self.lvl]
         res: dict[str, Any] = {
-            "positions": np.array([kin.positions[p] for p in self.points]),
+            "positions": np.array([kin.position(p) for p in self.points]),
             "link_angles": np.array([kin.links[lk].angle for lk in self.links]),
             "condition": math.inf if singular else 1.0,
         }

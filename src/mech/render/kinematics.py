@@ -83,6 +83,14 @@ def _contact_rows(kin: Kinematics, name: str) -> Iterator[tuple[str, str | None]
             yield f"{name}@{link}", link
 
 
+def _higher(kin: Kinematics, name: str) -> bool:
+    """Whether ``name`` is a higher pair's joint (its name a follower's own point)."""
+    from mech.pairs import kind_of
+
+    joint = kin.joints.get(name)
+    return joint is not None and kind_of(joint.type).higher
+
+
 def _link_pairs(kin: Kinematics) -> Iterator[tuple[str, str, str]]:
     """(link, from point, to point): each moving link's first point to each of its others."""
     on_link: dict[str, list[str]] = {}
@@ -90,10 +98,19 @@ def _link_pairs(kin: Kinematics) -> Iterator[tuple[str, str, str]]:
         if name in kin.positions:
             for lk in carriers:
                 on_link.setdefault(lk, []).append(name)
+    tol = 1e-12 * max(kin.size, 1e-300)
     for lk, state in kin.links.items():
         if lk == kin.ground:
             continue
         names = on_link.get(lk, [])
+        # a cam joint standing for the follower's own point where a named point already is
+        # (a roller's centre C): the same point twice, no vector between them
+        names = [
+            n
+            for n in names
+            if not _higher(kin, n)
+            or not any(m != n and math.dist(kin.positions[m], kin.positions[n]) <= tol for m in names)
+        ]
         # start from the link's origin point (its ground pivot where it has one)
         names.sort(key=lambda n: math.dist(kin.positions[n], state.origin) > 1e-12 * max(kin.size, 1e-300))
         for other in names[1:]:
