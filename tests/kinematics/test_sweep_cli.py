@@ -538,3 +538,20 @@ def test_a_sweep_follows_each_links_point_at_a_cam_contact(run):
     assert ext["velocity.K"]["max"] == pytest.approx(w * 0.015, rel=1e-6)
     wrong = run("sweep", str(ROOT / "mechanisms" / "eccentric_cam.yaml"), "--quantity", "velocity.K@frame")
     assert wrong.exit_code == 2 and "K@cam or K@follower" in wrong.stderr
+
+
+def test_a_swept_rolling_wheels_point_at_the_ground_accelerates_at_omega_squared_r():
+    # mechanisms/rolling_wheel.yaml: a wheel of r = 30 mm rolling without slip on straight ground.
+    # Its point at the contact is the instant centre (at rest) and accelerates toward the wheel's
+    # centre at ω² r, whatever α (rolling kinematics); the ground's point there is at rest. W alone
+    # is asked for its velocity: its acceleration, two-valued, is not given (NaN), not an error.
+    from mech.kinematics import sweep
+    from mech.loader import load
+
+    m = load(ROOT / "mechanisms" / "rolling_wheel.yaml")
+    keys = ["acceleration.W@wheel", "acceleration.W@frame", "velocity.W"]
+    s = sweep(m, np.radians(np.arange(0.0, 360.0, 10.0)), level="acceleration", quantities=keys)
+    w = s.series("omega.wheel")
+    assert s.series("acceleration.W@wheel") == pytest.approx(w * w * 0.030, rel=1e-9, abs=1e-12)
+    assert s.series("acceleration.W@frame") == pytest.approx(np.zeros(w.size), abs=1e-12)
+    assert s.series("velocity.W") == pytest.approx(np.zeros(w.size), abs=1e-12)

@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["sweep_arrays"]
+__all__ = ["point_or_nan", "sweep_arrays"]
 
 
 def sweep_arrays(
@@ -130,8 +130,19 @@ def _contact_columns(
             if use >= 1:
                 vel[k, i] = kin.velocity(name)
             if use >= 2:
-                acc[k, i] = kin.acceleration(name)
+                acc[k, i] = point_or_nan(kin.acceleration, name)
     return pos, vel, acc
+
+
+def point_or_nan(read: Any, name: str) -> tuple[float, float]:
+    """A point's vector, or NaN where it has none of its own (a rolling pair's pitch point has
+    one velocity but two accelerations: asked for its velocity, its acceleration is not given)."""
+    from mech.errors import InputError
+
+    try:
+        return read(name)  # type: ignore[no-any-return]
+    except InputError:
+        return (math.nan, math.nan)
 
 
 def _slides(

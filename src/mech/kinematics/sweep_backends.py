@@ -20,6 +20,7 @@ import numpy as np
 from mech.errors import GeometryError
 from mech.kinematics.dyads import SLACK, DyadProgram, branches, numpy_namespace
 from mech.kinematics.march import Marcher
+from mech.kinematics.march_arrays import point_or_nan
 from mech.kinematics.quantities import LEVELS
 from mech.kinematics.result import Kinematics
 from mech.kinematics.solve import Compiled, continuation
@@ -305,7 +306,9 @@ class Newton:
             res["omegas"] = nan_l if singular else np.array([kin.links[lk].omega for lk in self.links])
             res["sliding"] = np.full(len(self.slides), np.nan) if singular else np.array(slid)
         if self.lvl >= 2:
-            res["accelerations"] = nan_p if singular else np.array([kin.acceleration(p) for p in self.points])
+            res["accelerations"] = (
+                nan_p if singular else np.array([point_or_nan(kin.acceleration, p) for p in self.points])
+            )
             res["alphas"] = nan_l if singular else np.array([kin.links[lk].alpha for lk in self.links])
         return res
 

@@ -67,5 +67,8 @@ def spec_of(joint: Joint) -> JointSpec:
 
 
 def higher_pairs(joints: Iterable[Joint]) -> tuple[tuple[str, tuple[str, ...]], ...]:
-    """(name, links) of every higher pair: each link's point at its contact is ``K@link`` (DESIGN § 1.2)."""
-    return tuple((j.name, tuple(j.links)) for j in joints if j.type in KINDS and KINDS[j.type].higher)
+    """(name, links) of every cam, contact, rolling or gear pair (DESIGN § 1.2): each link's point at its
+    contact is ``K@link``.  Rolling counts as a lower pair in Kutzbach's j, but touches as these do."""
+    return tuple(
+        (j.name, tuple(j.links)) for j in joints if j.type in KINDS and KINDS[j.type].role == "contact"
+    )
