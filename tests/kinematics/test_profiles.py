@@ -92,10 +92,11 @@ def test_contact_point_lies_on_both_profiles_where_the_cam_is_drawn():
     mech = loads(_cam("{line: {through: F, angle: 0}}", "F", 47.5), path="cam.yaml")
     kin = solve(mech, "acceleration")
     ex, ey = kin.positions["E"]
-    kx, ky = kin.positions["K"]
+    kx, ky = kin.position("K@cam")  # DESIGN § 1.2: K is the face's point on the axis, K@cam the contact
     assert (kx, ky) == pytest.approx((ex, ey + R), abs=1e-15)  # under the face, above the centre
+    assert kin.position("K") == pytest.approx((0.0, ey + R), abs=1e-15)
     # the follower's point at K moves with the follower; the cam's with the cam (ω × r)
-    vx, vy = kin.velocity("K", link="cam")
+    vx, vy = kin.velocity("K@cam")
     assert (vx, vy) == pytest.approx((-W * ky, W * kx), rel=1e-12)
 
 
@@ -261,7 +262,7 @@ def test_a_contact_point_drawn_away_from_where_the_profiles_touch_is_refused():
     with pytest.raises(InputError, match="1 mm from where its profiles touch"):
         solve(loads(doc, path="cam.yaml"), "velocity")
     good = doc.replace(f"at: [{x_k + 1!r}, 47.5]", f"at: [{x_k!r}, 47.5]")
-    assert solve(loads(good, path="cam.yaml"), "velocity").positions["K"][0] == pytest.approx(
+    assert solve(loads(good, path="cam.yaml"), "velocity").position("K@cam")[0] == pytest.approx(
         0.015 * math.cos(math.radians(30))
     )
 
