@@ -719,3 +719,97 @@ for _kind in (
     ),
 ):
     register(_kind)
+
+
+# -- forces (issue 24, DESIGN § 1.4): compute functions in mech.forces.keys ------------------
+def _forces(name: str) -> Callable[[Any, tuple[str, ...]], Any]:
+    """A force key computed in :mod:`mech.forces.keys` (imported when first asked)."""
+
+    def compute(an: Any, names: tuple[str, ...]) -> Any:
+        from mech.forces import keys
+
+        return getattr(keys, name)(an, names)
+
+    compute.__name__ = name
+    return compute
+
+
+def _supersede(kind: AnswerKind) -> None:
+    """Put ``kind`` in the place of the registered key of the same pattern, in the registry and in
+    :data:`KINDS` (input_torque and input_force now count the links' inertia and weight when the
+    file gives masses)."""
+    global KINDS
+    old = next(k for k in _KINDS if k.pattern == kind.pattern)
+    _KINDS[_KINDS.index(old)] = kind
+    heads = _BY_HEAD[kind.parts[0]]
+    heads[heads.index(old)] = kind
+    KINDS = tuple(kind if k is old else k for k in KINDS)
+    _parse_cached.cache_clear()
+
+
+for _kind in (
+    AnswerKind(
+        "input_torque",
+        Compare.SIGNED,
+        "velocity",
+        _D.TORQUE,
+        _forces("input_torque"),
+        "torque on the input link balancing the loads, and the links' inertia and weight (ccw +)",
+    ),
+    AnswerKind(
+        "input_force",
+        Compare.SIGNED,
+        "velocity",
+        _D.FORCE,
+        _forces("input_force"),
+        "force on a slider drive balancing the loads, and the links' inertia and weight",
+    ),
+):
+    _supersede(_kind)
+for _kind in (
+    AnswerKind(
+        "force.<joint>", Compare.MAGNITUDE, "position", _D.FORCE, _forces("force"), "force a pair carries"
+    ),
+    AnswerKind(
+        "force.<joint>.x", Compare.SIGNED, "position", _D.FORCE, _forces("force_x"), "on its second link, x"
+    ),
+    AnswerKind(
+        "force.<joint>.y", Compare.SIGNED, "position", _D.FORCE, _forces("force_y"), "on its second link, y"
+    ),
+    AnswerKind(
+        "shaking_force", Compare.MAGNITUDE, "position", _D.FORCE, _forces("shaking_force"), "|−Σ m a_G|"
+    ),
+    AnswerKind(
+        "shaking_moment",
+        Compare.SENSE,
+        "position",
+        _D.TORQUE,
+        _forces("shaking_moment"),
+        "−Σ (r_G × m a_G + I_G α) about the drive's pivot (ccw +)",
+    ),
+    AnswerKind(
+        "torque.mean",
+        Compare.SENSE,
+        "position",
+        _D.TORQUE,
+        _forces("torque_mean"),
+        "mean input torque, cycle",
+    ),
+    AnswerKind(
+        "energy.fluctuation",
+        Compare.MAGNITUDE,
+        "position",
+        _D.ENERGY,
+        _forces("energy_fluctuation"),
+        "greatest minus least of ∫(T − T_mean) dθ",
+    ),
+    AnswerKind(
+        "flywheel.inertia",
+        Compare.MAGNITUDE,
+        "position",
+        _D.MOMENT_OF_INERTIA,
+        _forces("flywheel_inertia"),
+        "ΔE / (ω² C_s)",
+    ),
+):
+    register(_kind)

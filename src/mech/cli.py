@@ -226,6 +226,23 @@ def acceleration(request: Request, explain: bool) -> None:
     _kinematics(request, "acceleration", explain)
 
 
+@cli.command(name="forces")
+@click.option(
+    "--explain", is_flag=True, help="Write each link's free body: its forces and ΣF = m a_G, ΣM_G = I_G α."
+)
+@kinematic_command(alpha=True)
+def forces_command(request: Request, explain: bool) -> None:
+    """Forces at the crank angle: what each pair carries, the input torque and its parts, the shaking.
+
+    Without friction, from the masses, gravity and loads the file gives
+    (d'Alembert's inertia forces when the drive has a speed).  The body is
+    mech.render.forces.run.
+    """
+    from mech.render.forces import run
+
+    run(request, explain=explain, echo=click.echo)
+
+
 @cli.command()
 @_EXPLAIN_OPTION
 @click.option(
@@ -338,9 +355,10 @@ def properties_command(request: Request, outputs: tuple[str, ...]) -> None:
 )
 @click.option(
     "--level",
-    type=click.Choice(["position", "velocity", "acceleration"]),
+    type=click.Choice(["position", "velocity", "acceleration", "forces"]),
     default=None,
-    help="How far to solve (default: velocity with a drive speed, else position).",
+    help="How far to solve (default: velocity with a drive speed, else position); forces: the "
+    "turning-moment diagram, the fluctuation of energy and the flywheel, the greatest pair forces.",
 )
 @click.option(
     "--quantity",
@@ -418,6 +436,14 @@ def sweep_command(
             "--csv - writes the CSV to standard output, where --json would write too",
             hint="write the CSV to a file (--csv series.csv), or leave out --json",
         )
+    if level == "forces":  # issue 24: the force sweep's body is mech.render.forces_sweep.run
+        from mech.render.forces_sweep import Asked as ForcesAsked
+        from mech.render.forces_sweep import run as force_sweep
+
+        wanted = ForcesAsked(start, stop, steps, lead, method, quantities, csv_path, plot_path)
+        refused = (("--animate", gif_path), ("--path", paths), ("--svg", svg_path))
+        force_sweep(request, wanted, refused=refused, echo=click.echo)
+        return
     quantities = tuple(quantities) + tuple(f"position.{p}.{c}" for p in paths for c in ("x", "y"))
     if plot_path or gif_path:
         from mech.draw.raster import use_matplotlib
@@ -598,6 +624,16 @@ def _write(path: str, text: str | Iterable[str]) -> None:
 @click.option(
     "--centrodes", multiple=True, help="Draw a link's fixed and moving centrodes over the cycle (repeatable)."
 )
+@click.option(
+    "--forces", "with_forces", is_flag=True, help="Draw the force vectors (F₂₃ …) on the configuration."
+)
+@click.option(
+    "--free-body",
+    "free_bodies",
+    multiple=True,
+    metavar="LINK",
+    help="Add LINK's free-body diagram (repeatable).",
+)
 @kinematic_command(alpha=True)
 def draw_command(
     request: Request,
@@ -607,6 +643,8 @@ def draw_command(
     with_icentres: bool,
     paths: tuple[str, ...],
     centrodes: tuple[str, ...],
+    with_forces: bool = False,
+    free_bodies: tuple[str, ...] = (),
 ) -> None:
     """Draw the configuration diagram to scale, with polygons and I-centres on request.
 
@@ -619,6 +657,13 @@ def draw_command(
     from mech.render.emit import choose, emit
 
     check_output(output)
+    if with_forces or free_bodies:  # issue 24: drawn by mech.render.forces.draw_forces
+        from mech.render.forces import draw_forces
+
+        others = {"--velocity": velocity, "--acceleration": acceleration, "--icentres": with_icentres}
+        summary = draw_forces(request, output, free_bodies=free_bodies, refused={**others, "--path": paths})
+        emit("draw", choose(request.as_json), summary, echo=click.echo, name=summary["name"])
+        return
     mechanism = load_mechanism(request.file)
     level = drawing_level(
         mechanism, request.options, velocity=velocity, acceleration=acceleration, icentres=with_icentres
