@@ -442,7 +442,7 @@ def sweep_command(
 
         wanted = ForcesAsked(start, stop, steps, lead, method, quantities, csv_path, plot_path)
         refused = (("--animate", gif_path), ("--path", paths), ("--svg", svg_path))
-        force_sweep(request, wanted, refused=refused, echo=click.echo)
+        force_sweep(request, wanted, refused=refused, echo=click.echo, write=_write)
         return
     quantities = tuple(quantities) + tuple(f"position.{p}.{c}" for p in paths for c in ("x", "y"))
     if plot_path or gif_path:

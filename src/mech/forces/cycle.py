@@ -143,9 +143,12 @@ def _lcm(a: Fraction, b: Fraction) -> Fraction:
     return Fraction(num * other // math.gcd(num, other), den)
 
 
-def gauss_nodes(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def gauss_nodes(
+    a: np.ndarray, b: np.ndarray, piece: float = PIECE
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The nodes (ascending), weights and owning interval of 4-node Gauss–Legendre rules on each
-    interval (a_i, b_i), cut into pieces no wider than :data:`PIECE`: ∫ₐᵇ f ≈ Σ w f(x) over its nodes.
+    interval (a_i, b_i), cut into pieces no wider than ``piece`` (:data:`PIECE`, in the drive's
+    angle; a slider drive's pieces are that times the mechanism's size): ∫ₐᵇ f ≈ Σ w f(x).
 
     The rule is exact for polynomials of degree 7; on a 2° piece of a torque whose harmonics
     reach the 10th its error is below 1e-14 of the torque.  The intervals must hold no kink of
@@ -153,7 +156,7 @@ def gauss_nodes(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, n
     """
     a, b = np.asarray(a, float), np.asarray(b, float)
     width = b - a
-    pieces = np.maximum(np.ceil(np.abs(width) / PIECE - 1e-9), 1).astype(int)
+    pieces = np.maximum(np.ceil(np.abs(width) / piece - 1e-9), 1).astype(int)
     owner = np.repeat(np.arange(a.size), pieces)
     index = np.arange(owner.size) - np.repeat(np.cumsum(pieces) - pieces, pieces)
     h = (width / pieces)[owner]
@@ -166,12 +169,14 @@ def gauss_nodes(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray, n
     return x[order], weights[order], who[order]
 
 
-def integrate(f: Callable[[np.ndarray], np.ndarray], a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def integrate(
+    f: Callable[[np.ndarray], np.ndarray], a: np.ndarray, b: np.ndarray, piece: float = PIECE
+) -> np.ndarray:
     """∫ₐᵇ f for each interval (a_i, b_i) by :func:`gauss_nodes`; ``f`` takes every node at once."""
     a = np.asarray(a, float)
     if not a.size:
         return np.zeros(0)
-    x, w, owner = gauss_nodes(a, b)
+    x, w, owner = gauss_nodes(a, b, piece)
     return np.bincount(owner, weights=w * f(x), minlength=a.size)
 
 
@@ -316,11 +321,16 @@ def _over_range(
         peak_jobs = _peak_jobs(_pick(series, order))
         _zoom(ev, list(peak_jobs.values()))
         return _Totals(np.full(grid.size, math.nan)), _peaks(peak_jobs)
-    breaks = _breaks(mech, lo, hi)
-    nx, weights, owner = gauss_nodes(breaks[:-1], breaks[1:])
-    nodes = ev(nx)
-    pieces = np.bincount(owner, weights=weights * nodes.effort, minlength=breaks.size - 1)
-    dense = _merge(_pick(series, order), nodes)
+    piece = PIECE if mech.drives[0].link is not None else PIECE * ev.sys.scale  # a slider's: in m
+    breaks = _breaks(mech, lo, hi, piece)
+    nx, weights, owner = gauss_nodes(breaks[:-1], breaks[1:], piece)
+    at = np.concatenate((nx, breaks))  # the breaks too: a peak at a table's row (a kink) is sampled exactly
+    sort = np.argsort(at, kind="stable")
+    solved = ev(at[sort])
+    back = np.empty_like(sort)
+    back[sort] = np.arange(sort.size)
+    pieces = np.bincount(owner, weights=weights * solved.effort[back[: nx.size]], minlength=breaks.size - 1)
+    dense = _merge(_pick(series, order), solved)
     peak_jobs = _peak_jobs(dense)
     if not np.isfinite(pieces).all():
         _zoom(ev, list(peak_jobs.values()))
@@ -331,12 +341,12 @@ def _over_range(
     at_breaks = mean * (breaks - lo) - cum  # E(θ) = ∫ (T_mean − T) dθ from lo, exact at the breaks
     above = dense.effort > mean
     crossings = np.flatnonzero(above[:-1] != above[1:])
-    at = dense.angles
-    root_jobs = [_Job(float(at[k]), float(at[k + 1]), _minus(mean), root=True) for k in crossings]
+    x = dense.angles
+    root_jobs = [_Job(float(x[k]), float(x[k + 1]), _minus(mean), root=True) for k in crossings]
     _zoom(ev, root_jobs + list(peak_jobs.values()))
     roots = np.array([(job.lo + job.hi) / 2 for job in root_jobs])
     base = np.clip(np.searchsorted(breaks, roots, side="right") - 1, 0, breaks.size - 2)
-    at_roots = at_breaks[base] + integrate(lambda a: mean - ev(a).effort, breaks[base], roots)
+    at_roots = at_breaks[base] + integrate(lambda a: mean - ev(a).effort, breaks[base], roots, piece)
     where = np.concatenate((breaks, roots))
     energy = np.concatenate((at_breaks, at_roots))
     origin = float(np.interp(grid[0], breaks, at_breaks))
@@ -354,7 +364,7 @@ def _over_range(
 
 
 def _merge(a: ForceSeries, b: ForceSeries) -> ForceSeries:
-    """Two series as one, by ascending angle."""
+    """Two series as one, by ascending angle, each angle once."""
     joined = ForceSeries(
         np.concatenate((a.angles, b.angles)),
         np.concatenate((a.effort, b.effort)),
@@ -366,7 +376,10 @@ def _merge(a: ForceSeries, b: ForceSeries) -> ForceSeries:
         np.concatenate((a.solved, b.solved)),
         np.concatenate((a.determinate, b.determinate)),
     )
-    return _pick(joined, np.argsort(joined.angles, kind="stable"))
+    order = np.argsort(joined.angles, kind="stable")
+    x = joined.angles[order]
+    distinct = np.concatenate(([True], np.diff(x) > 1e-14 * max(1.0, float(np.abs(x).max()))))
+    return _pick(joined, order[distinct])  # a break on the grid once: a peak's bracket must not be empty
 
 
 def _minus(mean: float) -> Extract:
@@ -479,10 +492,10 @@ def _narrow(job: _Job, pts: np.ndarray, vals: np.ndarray) -> None:
     job.lo, job.hi = float(pts[max(j - 1, 0)]), float(pts[min(j + 1, pts.size - 1)])
 
 
-def _breaks(mech: Mechanism, lo: float, hi: float) -> np.ndarray:
+def _breaks(mech: Mechanism, lo: float, hi: float, piece: float) -> np.ndarray:
     """Where the integral is split: every table row (repeated with its span) inside the range, and
-    enough more that no piece is wider than :data:`PIECE`; ascending, the range's ends included."""
-    points = [np.linspace(lo, hi, math.ceil((hi - lo) / PIECE) + 1)]
+    enough more that no piece is wider than ``piece``; ascending, the range's ends included."""
+    points = [np.linspace(lo, hi, math.ceil((hi - lo) / piece) + 1)]
     for load in mech.loads:
         if load.table is None or not load.period:
             continue

@@ -33,7 +33,7 @@ from mech.options import SolveOptions
 from mech.pairs import kind_of
 from mech.pairs.base import PairKind
 
-__all__ = ["Evaluator", "ForceSeries", "PairKey", "drive_options"]
+__all__ = ["Evaluator", "ForceSeries", "PairKey", "drive_options", "has_speed"]
 
 #: A pair force over a sweep: (joint, the link it acts on, the link it comes from).
 PairKey = tuple[str, str, str]
@@ -67,15 +67,20 @@ class ForceSeries:
         return np.hypot(self.forces[:, index, 0], self.forces[:, index, 1])
 
 
+def has_speed(mech: Mechanism, options: SolveOptions) -> bool:
+    """True when the drive turns (or slides) at a speed other than zero: inertia acts."""
+    if options.omega is not None or options.speed is not None:
+        return bool(options.omega or options.speed)
+    return any(d.omega or d.speed for d in mech.drives)
+
+
 def drive_options(mech: Mechanism, options: SolveOptions) -> tuple[SolveOptions, bool]:
     """The options a force solve runs with, and whether it is static (no drive speed).
 
-    A static problem (loads and gravity on a mechanism at rest) is solved at unit
-    speed for the power balance only; no inertia acts.
+    A static problem (loads and gravity on a mechanism at rest, or turning at a
+    speed of zero) is solved at unit speed for the power balance only; no inertia acts.
     """
-    if options.omega is not None or options.speed is not None:
-        return options, False
-    if any(d.omega is not None or d.speed is not None for d in mech.drives):
+    if has_speed(mech, options):
         return options, False
     driven = mech.drives[0] if mech.drives else None
     if driven is not None and driven.link is not None:
@@ -105,6 +110,8 @@ class Evaluator:
         self.lead = d.link or d.joint
         self.several = len(mech.drives) != 1 or d.link is None
         self.batched = self._batched()
+        #: True once the kinematics are swept by Newton continuation (analysed, to pass change points).
+        self.newton = False
         #: The drive's speed (rad/s, ccw +, or a slider's m/s) as the last call solved it.
         self.speed: float | None = None
 
@@ -127,16 +134,11 @@ class Evaluator:
 
     # -- the batched path ---------------------------------------------------------------------
     def _batch(self, angles: np.ndarray) -> ForceSeries:
-        from mech.kinematics import sweep
-
-        sw = sweep(
-            self.mech,
-            angles,
-            level=self.level,
-            options=self.options,
-            analyse=False,
-            drive=self.lead if self.several else None,
-        )
+        sw = self._sweep(angles, analyse=self.newton)
+        if not self.newton and sw.method == "newton":
+            # continuation passes a change point only when the sweep analyses its steps
+            self.newton = True
+            sw = self._sweep(angles, analyse=True)
         self.speed = _lead_speed(self.mech, sw)
         motion, ok = _motion(self.mech, self.sys, sw, static=self.static)
         out = _empty(angles, self.pairs)
@@ -154,6 +156,12 @@ class Evaluator:
         solved = solve(self.mech, self.sys, part, about=about)
         _fill(out, ok, solved, self.sys, self.pairs)
         return out
+
+    def _sweep(self, angles: np.ndarray, *, analyse: bool) -> Any:
+        from mech.kinematics import sweep
+
+        drive = self.lead if self.several else None
+        return sweep(self.mech, angles, level=self.level, options=self.options, analyse=analyse, drive=drive)
 
     # -- angle by angle -----------------------------------------------------------------------
     def _one_by_one(self, angles: np.ndarray) -> ForceSeries:

@@ -16,24 +16,39 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
-from mech.options import OutputUnits
+from mech.options import OutputUnits, SolveOptions
 from mech.units import format_unit, to_unit
 
 if TYPE_CHECKING:  # pragma: no cover
-    from mech.commands import Request
     from mech.forces.freebody import FreeBody
     from mech.forces.result import ForceAnalysis, PairForce
     from mech.model import Mechanism
     from mech.render.console import ReportConsole
 
-__all__ = ["draw_forces", "forces_dict", "forces_json", "forces_table", "free_body_dict", "run"]
+__all__ = ["Asking", "draw_forces", "forces_dict", "forces_json", "forces_table", "free_body_dict", "run"]
 
 Echo = Callable[[str], None]
 
 
-def run(request: Request, *, explain: bool, echo: Echo) -> None:
+class Asking(Protocol):
+    """What a force command was asked, as the command line folds it (a :class:`mech.commands.Request`)."""
+
+    @property
+    def file(self) -> str: ...
+
+    @property
+    def options(self) -> SolveOptions: ...
+
+    @property
+    def units(self) -> OutputUnits: ...
+
+    @property
+    def as_json(self) -> bool: ...
+
+
+def run(request: Asking, *, explain: bool, echo: Echo) -> None:
     """``mech forces FILE``: the forces at the drive's instant, as tables or JSON."""
     from mech.analysis import load_mechanism
     from mech.forces import analyse
@@ -53,7 +68,7 @@ def run(request: Request, *, explain: bool, echo: Echo) -> None:
 
 
 def draw_forces(
-    request: Request, output: str, *, free_bodies: tuple[str, ...] = (), refused: dict[str, Any] | None = None
+    request: Asking, output: str, *, free_bodies: tuple[str, ...] = (), refused: dict[str, Any] | None = None
 ) -> dict[str, Any]:
     """``mech draw --forces`` / ``--free-body LINK``: the forces on the configuration, and each named
     link's free-body diagram beside it; returns the summary ``--json`` prints."""

@@ -25,9 +25,9 @@ from mech.options import OutputUnits
 from mech.units import to_unit
 
 if TYPE_CHECKING:  # pragma: no cover
-    from mech.commands import Request
     from mech.forces.cycle import ForceCycle, Peak
     from mech.render.console import ReportConsole
+    from mech.render.forces import Asking
 
 __all__ = ["Asked", "columns", "cycle_csv", "cycle_dict", "cycle_json", "cycle_table", "run"]
 
@@ -50,11 +50,19 @@ class Asked:
     plot_path: str | None
 
 
-def run(request: Request, asked: Asked, *, echo: Echo, refused: Sequence[tuple[str, object]] = ()) -> None:
+def run(
+    request: Asking,
+    asked: Asked,
+    *,
+    echo: Echo,
+    write: Callable[[str, str], None],
+    refused: Sequence[tuple[str, object]] = (),
+) -> None:
     """The force sweep: solve, then the CSV, the plot and the report, as asked.
 
-    ``refused`` are options of the sweep that draw positions (``--animate``,
-    ``--path``, ``--svg``): given with ``--level forces`` they are an error.
+    ``echo`` prints a block of text, ``write`` writes a file (the command line's own, which
+    writes atomically and makes a failure bad input); ``refused`` are options of the sweep
+    that draw positions (``--animate``, ``--path``, ``--svg``): an error with ``--level forces``.
     """
     from mech.analysis import load_mechanism
     from mech.forces.cycle import force_cycle
@@ -79,9 +87,7 @@ def run(request: Request, asked: Asked, *, echo: Echo, refused: Sequence[tuple[s
         echo(cycle_csv(cycle, keys, units=request.units).rstrip("\n"))
         return
     if asked.csv_path:
-        from mech.commands import write_report
-
-        write_report(asked.csv_path, cycle_csv(cycle, keys, units=request.units))
+        write(asked.csv_path, cycle_csv(cycle, keys, units=request.units))
     if asked.plot_path:
         from mech.draw.forces import turning_moment_plot
 
