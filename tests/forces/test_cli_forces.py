@@ -170,6 +170,19 @@ def test_draw_forces_refuses_what_it_cannot_draw(tmp_path, extra, says):
     assert says in out.stderr
 
 
+@pytest.mark.parametrize("command", [["forces"], ["sweep", "--level", "forces", "--steps", "12"]])
+def test_every_example_answers_in_strict_json_or_refuses_it_as_bad_input(command):
+    # the DOF-only files have no geometry or no drive, a slider drive wants its stroke: exit 2, said
+    for path in sorted(EXAMPLES.glob("*.yaml")):
+        out = mech(*command, str(path), "--json")
+        no_traceback(out)
+        assert out.returncode in (0, 2), (path.name, out.stderr[-400:])
+        if out.returncode == 0:
+            strict_json(out.stdout)
+        else:
+            assert out.stdout == "" and json.loads(out.stderr)["error"]["problems"], path.name
+
+
 # -- hostile files ---------------------------------------------------------------------------
 _COMMANDS = [
     ["forces"],

@@ -23,7 +23,8 @@ __all__ = ["analyse"]
 def analyse(mech: Mechanism, options: SolveOptions | None = None) -> ForceAnalysis:
     """The forces of ``mech`` at its drive's angle (``options`` as for :func:`mech.kinematics.solve`).
 
-    With masses and a drive speed the links' inertia counts (d'Alembert); a drive
+    With masses and a drive speed the links' inertia counts (d'Alembert: the
+    mechanism is solved to accelerations; without masses to velocities); a drive
     without a speed (or at a speed of zero) is a static problem: the rates are taken
     at unit speed for the power balance only, and no inertia acts.
 
@@ -39,5 +40,6 @@ def analyse(mech: Mechanism, options: SolveOptions | None = None) -> ForceAnalys
 
     options, static = drive_options(mech, options or _Options())
     comp = compiled(mech, None)
-    kin = solve(mech, "velocity" if static else "acceleration", options)
+    # accelerations only where they act: a massless mechanism (a cam known at its instant) needs rates alone
+    kin = solve(mech, "acceleration" if mech.masses and not static else "velocity", options)
     return at_instant(mech, kin, comp, static=static)

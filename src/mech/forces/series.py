@@ -35,6 +35,9 @@ from mech.pairs.base import PairKind
 
 __all__ = ["Evaluator", "ForceSeries", "PairKey", "drive_options", "has_speed"]
 
+#: Most Jacobian entries one batched solve holds (16 MB of them): a longer sweep is solved in chunks.
+CHUNK = 2_000_000
+
 #: A pair force over a sweep: (joint, the link it acts on, the link it comes from).
 PairKey = tuple[str, str, str]
 
@@ -100,7 +103,7 @@ class Evaluator:
 
         self.mech = mech
         self.options, self.static = drive_options(mech, (options or SolveOptions()).with_(angle=None))
-        self.level = "velocity" if self.static else "acceleration"
+        self.level = "acceleration" if mech.masses and not self.static else "velocity"
         self.sys = compiled(mech, None).system
         rows = set(self.sys.row_names)
         self.pairs: tuple[PairKey, ...] = tuple(
@@ -140,21 +143,23 @@ class Evaluator:
             self.newton = True
             sw = self._sweep(angles, analyse=True)
         self.speed = _lead_speed(self.mech, sw)
-        motion, ok = _motion(self.mech, self.sys, sw, static=self.static)
+        motion, ok = _motion(self.mech, self.sys, sw, static=self.level != "acceleration")
         out = _empty(angles, self.pairs)
-        if not ok.any():
-            return out
-        part = Motion(
-            motion.pose[ok],
-            motion.rates[ok],
-            None if motion.accels is None else motion.accels[ok],
-            motion.angle[ok],
-            motion.rate[ok],
-            {k: v[ok] for k, v in motion.named.items()},
-        )
-        about = _pivot(self.mech, self.sys, part)
-        solved = solve(self.mech, self.sys, part, about=about)
-        _fill(out, ok, solved, self.sys, self.pairs)
+        steps = np.flatnonzero(ok)
+        chunk = max(1, CHUNK // max(1, self.sys.m * 3 * (self.sys.n + 1)))
+        for first in range(0, steps.size, chunk):  # bounded memory: the Jacobians of a chunk at a time
+            take = np.zeros(ok.size, bool)
+            take[steps[first : first + chunk]] = True
+            part = Motion(
+                motion.pose[take],
+                motion.rates[take],
+                None if motion.accels is None else motion.accels[take],
+                motion.angle[take],
+                motion.rate[take],
+                {k: v[take] for k, v in motion.named.items()},
+            )
+            solved = solve(self.mech, self.sys, part, about=_pivot(self.mech, self.sys, part))
+            _fill(out, take, solved, self.sys, self.pairs)
         return out
 
     def _sweep(self, angles: np.ndarray, *, analyse: bool) -> Any:

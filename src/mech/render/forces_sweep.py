@@ -81,7 +81,13 @@ def run(
 
         use_matplotlib()  # before solving: fail fast when the plot extra is missing
     options = request.options.with_(method=asked.method)
-    cycle = force_cycle(mech, options, start=lo, stop=hi, steps=asked.steps)
+    try:
+        cycle = force_cycle(mech, options, start=lo, stop=hi, steps=asked.steps)
+    except MemoryError:
+        raise InputError(
+            f"out of memory sweeping the forces of {mech.label} at {asked.steps + 1:,} angles",
+            hint="give fewer --steps: the integrals and peaks are refined between steps anyway",
+        ) from None
     keys = columns(cycle, asked.quantities)
     if asked.csv_path == "-":
         echo(cycle_csv(cycle, keys, units=request.units).rstrip("\n"))
@@ -270,7 +276,8 @@ def _table(d: dict[str, Any], console: ReportConsole) -> None:
     if d["mean"] is not None:
         power = f"; power {_g(d['power'])} W" if d["power"] is not None else ""
         console.print(
-            f"  mean {effort}: {_g(d['mean'])} {unit} (work {_g(d['work'])} J over the range{power})"
+            f"  mean {effort}: {_g(d['mean'])} {unit} (work {_g(d['work'])} J over the range{power})",
+            soft_wrap=True,
         )
         console.print(
             f"  fluctuation of energy ΔE = {_g(d['fluctuation'])} J: the energy (and the speed) is greatest at "
