@@ -194,7 +194,7 @@ def test_a_quantity_that_cannot_be_computed_is_an_error_with_the_reason() -> Non
 def test_least_speed_matches_a_brute_force_search_along_the_line() -> None:
     """A turning coupler: sample the line densely with v = v_O + ω × r, no closed form used."""
     from mech import load
-    from mech.check import least_speed
+    from mech.grading.keys import least_speed
     from mech.kinematics import solve
 
     root = Path(__file__).resolve().parent.parent
@@ -483,3 +483,31 @@ def test_an_icentre_of_a_link_with_itself_is_a_located_input_error(write):
     c = mech("check", str(f), "-j", "1")
     assert c.returncode == 1
     assert "internal error" not in c.stdout
+
+
+@pytest.mark.parametrize(
+    "answer, words",
+    [
+        # 5,000 digits: Python refuses to read more than 4,300 (issue 25: an internal error, exit 70)
+        ("dof: " + "9" * 5000, "5,000 digits"),
+        ("dof: -" + "9" * 5000, "5,000 digits"),
+        # a float beyond 1.8e308 is read as infinity: the message says so, not "must be a number"
+        ("velocity.C: " + "9" * 5000 + " m/s", "too large"),
+        ("position.C: [" + "9" * 5000 + ", 0]", "too large"),
+    ],
+)
+def test_an_answer_of_5000_digits_is_a_located_input_error(write, answer, words):
+    text = EXAMPLE_FOUR_BAR.read_text(encoding="utf-8").split("answers:")[0]
+    f = write(text + "answers:\n  " + answer + "\n")
+    assert_bad_input(mech("dof", str(f)), f)
+    c = mech("check", str(f), "-j", "1")
+    assert c.returncode == 1 and "Traceback" not in c.stderr
+    assert "internal error" not in c.stdout and words in c.stdout
+    assert "26:" in c.stdout  # located at the answer (line 26)
+
+
+def test_a_count_claim_of_4000_digits_is_read_and_fails(write):
+    # within Python's limit a long whole number is a (wrong) count like any other: dof is 1
+    text = EXAMPLE_FOUR_BAR.read_text(encoding="utf-8").split("answers:")[0]
+    (v,) = check(loads(text + "answers:\n  dof: " + "9" * 4000 + "\n"))
+    assert v.status == FAIL and v.computed == 1 and v.message.startswith("dof is 1, not 999")

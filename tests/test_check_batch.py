@@ -167,6 +167,17 @@ def test_the_pool_reports_a_crashed_job_and_reruns_the_jobs_its_worker_held() ->
     assert got == ["done 1", "lost crash: crash", "done 2", "done 3", "done 4"]
 
 
+def test_a_pool_started_before_its_jobs_exist_runs_them_and_replaces_a_crashed_worker() -> None:
+    # mech check starts its workers before it reads a class's sheets: the jobs travel with
+    # their chunks, made after the workers were forked
+    from mech.batchpool import Pool
+
+    pool = Pool(_job, _lost, workers=2, timeout=None).start()
+    jobs = [("ok", 1.0), ("crash", 0.0), ("ok", 2.0), ("ok", 3.0)]
+    assert list(pool.map(jobs, chunk=1)) == ["done 1", "lost crash: crash", "done 2", "done 3"]
+    assert pool.slots == [None, None]  # closed at the end of its map
+
+
 def test_the_soft_limit_stops_a_slow_job_in_this_process() -> None:
     got = list(run_jobs([("slow", 60.0), ("ok", 1.0)], _job, _lost, workers=1, timeout=0.2))
     assert got == ["lost slow: timeout", "done 1"]
@@ -192,37 +203,57 @@ def test_cli_reports_replace_an_old_report_whole(run, tmp_path: Path) -> None:
     assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".mech-")] == []
 
 
+#: ``mech`` as a user runs it, with one hook: loading a file named ``*blocks.yaml`` says so (a
+#: marker file) and waits for the interrupt, however long (a worker forked from this process
+#: inherits the hook, and is killed by the parent).  Under load a slow file could finish before
+#: the interrupt arrived; this one cannot.
+BLOCKING_MECH = """\
+import pathlib, sys, time
+import mech.loader
+marker = pathlib.Path(sys.argv.pop(1))
+real = mech.loader.load
+def load(path, *args, **kwargs):
+    if str(path).endswith("blocks.yaml"):
+        marker.write_text("loading")
+        while True:
+            time.sleep(3600)
+    return real(path, *args, **kwargs)
+mech.loader.load = load
+from mech.entry import main
+main()
+"""
+
+
 @pytest.mark.parametrize("jobs", ["1", "2"])
 def test_cli_interrupted_exits_130_and_leaves_no_report(tmp_path: Path, jobs: str) -> None:
     d = tmp_path / "hw"
     d.mkdir()
     (d / "a.yaml").write_text(GOOD)
-    (d / "b_long.yaml").write_text(long_chain())
+    (d / "b_blocks.yaml").write_text(GOOD)
+    marker = tmp_path / "loading"
     junit, grades = tmp_path / "junit.xml", tmp_path / "grades.csv"
     junit.write_text("<old/>")  # an older run's report: it must not pass for this run's
+    command = ["check", str(d), "-j", jobs, "--timeout", "600", "--junit", str(junit), "--csv", str(grades)]
     proc = subprocess.Popen(
-        [
-            sys.executable,
-            "-m",
-            "mech",
-            "check",
-            str(d),
-            "-j",
-            jobs,
-            "--junit",
-            str(junit),
-            "--csv",
-            str(grades),
-        ],
+        [sys.executable, "-c", BLOCKING_MECH, str(marker), *command],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
         start_new_session=True,
     )
-    first = proc.stdout.readline()  # the fast file's line is streamed before the slow one ends
-    assert "a.yaml" in first, first
-    os.killpg(proc.pid, signal.SIGINT)  # Ctrl-C reaches the whole foreground group
-    _, err = proc.communicate(timeout=60)
+    try:
+        first = proc.stdout.readline()  # the fast file's line is streamed while the other one loads
+        assert "a.yaml" in first, first
+        deadline = time.monotonic() + 120
+        while not marker.exists():  # the batch is running, and cannot end: the interrupt lands in it
+            assert proc.poll() is None and time.monotonic() < deadline, proc.stderr.read()
+            time.sleep(0.01)
+        os.killpg(proc.pid, signal.SIGINT)  # Ctrl-C reaches the whole foreground group
+        _, err = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
     assert proc.returncode == 130, err
     assert "interrupted" in err and "Traceback" not in err
     assert not junit.exists() and not grades.exists()

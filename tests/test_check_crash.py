@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-import mech.batch as batch
+import mech.check.problem as problem
 from mech.batch import CheckOptions, run
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "mechanisms"
@@ -20,14 +20,14 @@ NAMES = ["four_bar_dof.yaml", "five_bar.yaml", "structure_three_bar.yaml", "seve
 def test_a_crashing_file_is_one_error_row_and_the_others_are_checked(tmp_path, monkeypatch):
     for name in NAMES:
         shutil.copy(EXAMPLES / name, tmp_path / name)
-    real = batch._check_task
+    real = problem._check_task
 
     def crash_on_five_bar(task):
         if task.path.endswith("five_bar.yaml"):
             os._exit(139)  # what a segfault in a C extension looks like to the pool
         return real(task)
 
-    monkeypatch.setattr(batch, "_check_task", crash_on_five_bar)
+    monkeypatch.setattr(problem, "_check_task", crash_on_five_bar)
     report = run(CheckOptions(paths=(str(tmp_path),), jobs=2))
     rows = {Path(r.path).name: r for r in report.results}
     assert set(rows) == set(NAMES)

@@ -205,15 +205,15 @@ def test_a_right_answer_passes_without_a_diagnosis(answer: str) -> None:
 @pytest.mark.parametrize("answer", RIGHT)
 def test_diagnose_never_names_a_mistake_for_the_right_value(answer: str) -> None:
     from mech.answers import parse_key
-    from mech.check import Analysis
     from mech.diagnose import diagnose
+    from mech.grading import Analysis, value
 
     mech = loads(FOUR_BAR + f"  {answer}\n")
     (claim,) = mech.answers
     an = Analysis(mech)
     an.need([claim])
     akey = parse_key(claim.key)
-    assert diagnose(claim, akey, akey.kind.compute(an, akey.names), an, mech.tolerance) is None
+    assert diagnose(claim, akey, value(akey, an), an, mech.tolerance) is None
 
 
 @pytest.mark.parametrize(

@@ -12,7 +12,16 @@ from pathlib import Path
 
 import pytest
 
-from mech.answers import KINDS, PLACEHOLDERS, AnswerKind, Compare, key_forms, parse_key, register
+from mech.answers import (
+    KINDS,
+    PLACEHOLDERS,
+    AnswerKind,
+    Compare,
+    key_forms,
+    parse_key,
+    register,
+    unregister,
+)
 from mech.check import FAIL, PASS, check
 from mech.errors import InputError
 from mech.loader import loads
@@ -56,6 +65,43 @@ def test_every_registered_key_is_documented_in_cli_md() -> None:
     assert not missing, f"cli.md § answers does not list {missing}"
 
 
+def test_every_form_has_its_compute_function_and_every_function_its_form() -> None:
+    # forms (mech.answers, below the loader) and values (mech.grading, above the analysis) are two
+    # tables keyed by the pattern: neither may hold a key the other lacks
+    from mech.grading import COMPUTE
+
+    forms = set(key_forms())
+    assert sorted(forms - set(COMPUTE)) == [] and sorted(set(COMPUTE) - forms) == []
+
+
+def test_a_key_added_as_a_form_and_a_compute_function_is_read_and_checked() -> None:
+    # ARCHITECTURE.md "Where to add an answer key": a form in mech.answers, a function in
+    # mech.grading under the same pattern; the loader and mech check need nothing else.
+    # The crank's length |OA| is r = 0.1 m by the file's lengths.
+    from mech.grading import COMPUTE
+    from mech.grading import register as register_compute
+
+    pattern = "crank_length_for_test.<link>"
+    register(AnswerKind(pattern, Compare.MAGNITUDE, "position", Dimension.LENGTH, "a link's OA"))
+    register_compute(pattern, lambda an, names: math.dist(an.kin.positions["O"], an.kin.positions["A"]))
+    try:
+        got = _verdicts("  crank_length_for_test.crank: 100 mm\n  crank_length_for_test.rod: 90 mm\n")
+        assert got["crank_length_for_test.crank"][0] == PASS
+        assert got["crank_length_for_test.rod"][0] == FAIL
+    finally:
+        unregister(pattern)
+        del COMPUTE[pattern]
+
+
+def test_a_form_without_a_compute_function_is_an_error_row_that_says_it_is_a_bug() -> None:
+    register(AnswerKind("no_value_for_test", Compare.COUNT, "topology", Dimension.NUMBER, "nothing"))
+    try:
+        (v,) = check(loads(SLIDER + "answers:\n  no_value_for_test: 1\n"))
+        assert v.status == "error" and "no compute function" in v.message and "a bug" in v.message
+    finally:
+        unregister("no_value_for_test")
+
+
 def test_a_pattern_registered_twice_is_refused() -> None:
     with pytest.raises(ValueError, match="registered twice"):
         register(KINDS[0])
@@ -63,7 +109,7 @@ def test_a_pattern_registered_twice_is_refused() -> None:
 
 def test_an_unknown_placeholder_is_refused_when_registering() -> None:
     with pytest.raises(ValueError, match="unknown placeholder"):
-        AnswerKind("speed.<thing>", Compare.MAGNITUDE, "velocity", Dimension.VELOCITY, lambda an, n: 0.0)
+        AnswerKind("speed.<thing>", Compare.MAGNITUDE, "velocity", Dimension.VELOCITY)
 
 
 @pytest.mark.parametrize(

@@ -585,3 +585,155 @@ def test_escape_codes_from_a_sheet_never_reach_the_teachers_terminal(problems, t
     p = mech("check", str(problems), "--answers", str(sheet), "-j", "1")
     no_traceback(p)
     assert "\x1b" not in p.stdout
+
+
+# -- untrusted sheets: bounded memory, messages that say what is true (issue 25 items 10, 13) ----
+def test_keys_beyond_twenty_that_are_not_questions_are_counted_in_one_row(problems, tmp_path):
+    """A sheet entry with 500 junk keys: 20 listed, one row counting the other 480, none scored."""
+    junk = "\n".join(f"  junk_{k}: {k}" for k in range(500))
+    sheet = _put(tmp_path / "s.yaml", f"four_bar:\n  dof: 1\n{junk}\n")
+    p, report = check_json(str(problems), "--answers", str(sheet))
+    assert p.returncode == 1
+    (row,) = [r for r in rows_of(report, "s") if r["file"].endswith("four_bar.yaml")]
+    ignored = [a for a in row["answers"] if a["status"] == IGNORED]
+    assert [a["key"] for a in ignored[:20]] == [f"junk_{k}" for k in range(20)]
+    assert len(ignored) == 21 and "480 more keys" in ignored[20]["message"]
+    assert [(a["key"], a["status"]) for a in row["answers"] if a["status"] != IGNORED] == [
+        ("dof", PASS),
+        ("omega.rocker", FAIL),
+    ]
+
+
+def test_entries_beyond_twenty_naming_no_problem_are_counted_in_one_row(problems, tmp_path):
+    sheet = _put(tmp_path / "s.yaml", "".join(f"nothing_{k}: {{dof: 1}}\n" for k in range(100)))
+    _, report = check_json(str(problems), "--answers", str(sheet))
+    rows = [r for r in rows_of(report, "s") if r["file"].endswith("s.yaml")]
+    keys = [r["answers"][0]["key"] for r in rows]
+    assert keys[:20] == [f"nothing_{k}" for k in range(20)] and len(keys) == 21
+    assert "80 more entries" in rows[20]["answers"][0]["message"]
+
+
+@pytest.mark.slow
+def test_a_class_of_junk_keys_is_checked_in_memory_that_does_not_grow_with_it(problems, tmp_path):
+    """10 sheets of 1,500 keys that are not questions (30,000 YAML values).
+
+    The sheets' nodes used to be kept for the whole run (~365 bytes a value, 11 MB here) and
+    every key was a row (15,000 rows, ~7 MB); now a sheet is its text, one entry is composed at
+    a time, and an entry is 21 rows. The bound (8 MB, tracemalloc's peak) is under half of what
+    it took.
+    """
+    import tracemalloc
+
+    def sheets(name: str, count: int, keys: int) -> str:
+        junk = "\n".join(f"  junk_key_number_{k}: {k}" for k in range(keys))
+        for s in range(count):
+            _put(tmp_path / name / f"student{s:02d}.yaml", f"four_bar:\n  dof: 1\n{junk}\n")
+        return str(tmp_path / name)
+
+    warm = CheckOptions((str(problems),), answers=sheets("warm", 1, 30), jobs=1, timeout=None)
+    run(warm)  # imports and first-use caches are not what is measured
+    options = CheckOptions((str(problems),), answers=sheets("class", 10, 1500), jobs=1, timeout=None)
+    tracemalloc.start()
+    try:
+        report = run(options)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert report.ignored == 10 * 21
+    assert peak < 8e6, f"{peak / 1e6:.1f} MB"
+
+
+def test_an_answer_sheet_that_is_a_link_to_a_fifo_is_named_as_such_not_missing(problems, tmp_path):
+    """A sheet that exists but is not a file (issue 25: a link to /dev/zero was "no such sheet")."""
+    import os
+
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    link = tmp_path / "sheet.yaml"
+    link.symlink_to(fifo)
+    p = mech("check", str(problems), "--answers", str(link))
+    no_traceback(p)
+    assert p.returncode == 2
+    assert "no such" not in p.stderr
+    assert f"a symbolic link to {fifo}" in p.stderr and "a FIFO (named pipe), not a file" in p.stderr
+
+
+@pytest.mark.slow
+def test_a_sheet_with_too_many_values_says_so_not_alias_bomb(problems, tmp_path):
+    """100,001 plain keys are more than the 200,000 values a file may hold: said as that, located."""
+    junk = "\n".join(f"  k{k}: {k}" for k in range(100_001))
+    sheet = _put(tmp_path / "s.yaml", f"four_bar:\n{junk}\n")
+    _, report = check_json(str(problems), "--answers", str(sheet))
+    (row,) = [r for r in rows_of(report, "s") if r["file"].endswith("s.yaml")]
+    message = row["answers"][0]["message"]
+    assert "alias" not in message
+    assert "more than 200,000 values" in message and "answer sheet" in message
+
+
+def test_an_alias_bomb_sheet_is_still_called_one(problems, tmp_path):
+    bomb = "a: &a [x, x, x, x, x, x, x, x, x, x]\n" + "".join(
+        f"{c}: &{c} [*{p}, *{p}, *{p}, *{p}, *{p}, *{p}, *{p}, *{p}, *{p}, *{p}]\n"
+        for p, c in zip("abcde", "bcdef", strict=True)
+    )
+    sheet = _put(tmp_path / "s.yaml", bomb)
+    _, report = check_json(str(problems), "--answers", str(sheet))
+    (row,) = [r for r in rows_of(report, "s") if r["file"].endswith("s.yaml")]
+    assert "alias" in row["answers"][0]["message"]
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_a_class_graded_in_parts_gives_the_report_of_one_part(classroom, monkeypatch, jobs):
+    """A class's problem is graded STUDENTS sheets at a time (a worker holds one part): the
+    rows, scores and streamed files are those of grading everyone at once."""
+    import mech.batch as batch
+
+    whole = run(CheckOptions((str(classroom / "problems"),), answers=str(classroom / "sheets"), jobs=jobs))
+    monkeypatch.setattr(batch, "STUDENTS", 2)  # five students: parts of 2, 2 and 1
+    streamed: list[tuple[str, ...]] = []
+    parts = run(
+        CheckOptions((str(classroom / "problems"),), answers=str(classroom / "sheets"), jobs=jobs),
+        on_file=lambda rows: streamed.append(tuple(sorted({Path(r.path).name for r in rows}))),
+    )
+    assert parts.results == whole.results and parts.scores() == whole.scores()
+    assert streamed == [("p1.yaml",), ("p2.yaml",), ("p3.yaml",), ("p4.yaml",)]  # once a file, all students
+
+
+def test_a_part_of_a_class_past_the_time_limit_excludes_the_problem_for_everyone(classroom, monkeypatch):
+    """Scores mean the same for everyone: the students of the parts that finished are not
+    graded on a problem the others could not be graded on."""
+    import mech.batch as batch
+    import mech.check.problem as problem
+    from mech.batchpool import JobTimeout
+
+    real = problem._check_sheets
+
+    def slow_for_erin(task, mech, questions):
+        if task.path.endswith("p1.yaml") and any(s.student == "erin" for s in task.submissions):
+            raise JobTimeout  # what the time limit raises inside a job
+        return real(task, mech, questions)
+
+    monkeypatch.setattr(batch, "STUDENTS", 2)  # erin is in the last part, alone
+    monkeypatch.setattr(problem, "_check_sheets", slow_for_erin)
+    report = grade(classroom)
+    teacher = {Path(r.path).name: r for r in report.teacher}
+    assert set(teacher) == {"p1.yaml", "p3.yaml", "p4.yaml"}
+    assert "time limit" in teacher["p1.yaml"].verdicts[0].message
+    for r in report.results:
+        if r.student is not None and r.path.endswith("p1.yaml"):
+            assert r.excluded and r.total == 0, r
+    assert {s.asked for s in report.scores()} == {2}  # p2's two questions, for every student
+
+
+def test_an_entry_using_an_anchor_written_in_another_entry_is_graded(problems, tmp_path):
+    """An entry is composed again from its own text; one aliasing an anchor written elsewhere
+    on the sheet is taken from the whole sheet instead (same value, same locations)."""
+    sheet = _put(
+        tmp_path / "s.yaml",
+        "notes: {n: &one 1}\nfour_bar:\n  dof: *one\n  omega.rocker: [1, 2]\nslider_crank: {dof: *one}\n",
+    )
+    _, report = check_json(str(problems), "--answers", str(sheet))
+    rows = {Path(r["file"]).name: r for r in rows_of(report, "s")}
+    four = {a["key"]: a for a in rows["four_bar.yaml"]["answers"]}
+    assert four["dof"]["status"] == PASS
+    assert four["omega.rocker"]["status"] == ERROR and four["omega.rocker"]["line"] == 4
+    assert rows["slider_crank.yaml"]["answers"][0]["status"] == PASS

@@ -118,7 +118,7 @@ def test_too_few_drives_are_refused_by_the_count_before_anything_is_assembled(
     def assemble(*args, **kwargs):
         raise AssertionError("assembled before the count refused the file")
 
-    monkeypatch.setattr(importlib.import_module("mech.kinematics.solve"), "assemble", assemble)
+    monkeypatch.setattr(importlib.import_module("mech.kinematics.compiled"), "assemble", assemble)
     path = write(FIVE_BAR_ONE_DRIVE, "five.yaml")
     result = run(*(a.format(tmp=path.parent) for a in command), str(path))
     assert result.exit_code == 2 and result.stdout == ""
@@ -407,17 +407,15 @@ def test_a_bug_exits_70_with_one_line_on_how_to_report_it(monkeypatch, capsys):
         assert "bug in mech" in err and "MECH_DEBUG=1" in err and "--debug" in err
         assert "Traceback" not in err
         assert len(err.strip().splitlines()) == 2  # the line, and how to report it
+        # no invented address: README's section on reporting, which exists, and the version
+        assert "http" not in err and f"mech {__version__}" in err
+        assert 'README.md, "Reporting a bug"' in err
+        assert "\n## Reporting a bug\n" in (ROOT / "README.md").read_text(encoding="utf-8")
 
 
 def test_exit_statuses_of_the_entry_point_are_the_documented_ones():
-    from mech import entry
     from mech.commands import ExitStatus
 
-    assert (entry.INTERNAL_ERROR, entry.INTERRUPTED, entry.PIPE_CLOSED) == (
-        ExitStatus.INTERNAL_ERROR,
-        ExitStatus.INTERRUPTED,
-        ExitStatus.PIPE_CLOSED,
-    )
     doc = (ROOT / "cli.md").read_text(encoding="utf-8")
     section = doc.split("### Exit statuses", 1)[1].split("\n### ", 1)[0]
     for status in ExitStatus:
@@ -455,6 +453,43 @@ def test_an_interrupt_exits_130_with_one_line(monkeypatch, capsys):
         assert _main_exit(args) == 130
         err = capsys.readouterr().err
         assert err == "mech: interrupted\n"
+
+
+INTERRUPT_ON_IMPORT = """
+import os, signal, sys
+
+class Interrupt:
+    def find_spec(self, name, path=None, target=None):
+        if name == sys.argv[1]:
+            sys.meta_path.remove(self)
+            os.kill(os.getpid(), signal.SIGINT)  # Ctrl-C, while mech is still starting
+        return None
+
+sys.meta_path.insert(0, Interrupt())
+from mech.entry import main
+main(sys.argv[2:])
+"""
+
+
+@pytest.mark.parametrize(
+    ("module", "argv"),
+    [
+        ("mech.commands", ("dof", FOUR_BAR)),
+        ("mech.commands.params", ("velocity", FOUR_BAR)),
+        ("mech.cli", ("sweep", FOUR_BAR)),
+        ("click", ("dof", "--", FOUR_BAR)),
+        ("mech.analysis", ("velocity", FOUR_BAR)),
+    ],
+    ids=["fast path", "reading options", "click's commands", "click", "the analysis"],
+)
+def test_an_interrupt_while_starting_exits_130_without_a_traceback(module, argv):
+    done = subprocess.run(
+        [sys.executable, "-c", INTERRUPT_ON_IMPORT, module, *argv],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert (done.returncode, done.stderr) == (130, "mech: interrupted\n")
 
 
 def test_the_entry_point_keeps_each_commands_own_status(capsys, tmp_path):
@@ -706,3 +741,18 @@ def test_no_file_gives_a_traceback_or_an_undocumented_status(tmp_path_factory):
         assert not runtime, (args, runtime, text)
 
     one()
+
+
+@pytest.mark.parametrize("command", ["position", "velocity", "acceleration", "icentres", "properties"])
+def test_an_angle_beyond_float_precision_is_refused_as_a_sweep_refuses_it(run, command):
+    # 1e308° is held only to ~1e292° in floating point: no crank position is known there
+    result = run(command, FOUR_BAR, "--angle", "1e308")
+    assert result.exit_code == 2
+    assert "held only to" in result.stderr and "nearer 0" in result.stderr
+
+
+def test_a_large_angle_within_float_precision_is_its_turn_modulo_360(run):
+    # 1e8° = 277,777 turns + 280°, exactly representable: the crank is at 280°
+    result = run("position", FOUR_BAR, "--angle", "1e8", "--json")
+    assert result.exit_code == 0
+    assert json.loads(result.stdout)["links"]["crank"]["angle"] == pytest.approx(280.0)

@@ -10,6 +10,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 from types import SimpleNamespace
 
+import numpy as np
 import pytest
 
 from cli_runner import mech, no_traceback, strict_json
@@ -399,3 +400,49 @@ def test_draw_to_a_missing_folder_is_exit_2(tmp_path):
     p = mech("draw", str(f), "-o", str(tmp_path / "no" / "such" / "x.svg"))
     no_traceback(p)
     assert p.returncode == 2
+
+
+@pytest.mark.parametrize("option", [("--path", "C"), ("--centrodes", "link_3")])
+def test_tracing_a_two_drive_file_is_refused_with_a_command_line_hint(run, tmp_path, option):
+    """The hint names options of real commands, never a Python call (issue 25, item 13)."""
+    from mech.cli import cli
+
+    result = run("draw", str(MECHANISMS / "five_bar_two_cranks.yaml"), "-o", str(tmp_path / "x.svg"), *option)
+    assert result.exit_code == 2
+    err = result.stderr
+    assert "sweep(" not in err and "drive=" not in err
+    hinted = re.search(r"mech (\w+) \S+ (.*?) \(", err)
+    assert hinted is not None, err
+    command = cli.commands[hinted.group(1)]
+    known = {o for p in command.params for o in getattr(p, "opts", ())}
+    named = set(re.findall(r"--[a-z-]+", err.split("hint:", 1)[1]))
+    assert named and named <= known, named - known
+    assert not (tmp_path / "x.svg").exists()
+
+
+def test_labels_are_placed_without_measuring_every_segment_of_a_long_path(monkeypatch):
+    """A 10,000-step path: each label measures only the segments within its reach (issue 25,
+    item 9), and lands exactly where measuring every segment puts it."""
+    from mech.draw import config, scene
+
+    m = load(MECHANISMS / "four_bar.yaml")
+    kin = solve(m, level="position")
+    dense = [
+        (0.05 + 0.06 * math.cos(t), 0.05 + 0.04 * math.sin(t)) for t in np.linspace(0, 2 * math.pi, 10_001)
+    ]
+    calls = 0
+    measure = scene._seg_dist
+
+    def counted(p, a, b):
+        nonlocal calls
+        calls += 1
+        return measure(p, a, b)
+
+    monkeypatch.setattr(scene, "_seg_dist", counted)
+    fast = config.configuration(m, kin, curves=[("path of P", dense, "path")])
+    # every segment, as before: no segment is ever out of reach
+    monkeypatch.setattr(scene, "_near_segments", lambda segs, c, rx, ry: list(segs))
+    calls_fast, calls = calls, 0
+    slow = config.configuration(m, kin, curves=[("path of P", dense, "path")])
+    assert to_svg(fast) == to_svg(slow)
+    assert calls_fast < calls / 50, (calls_fast, calls)

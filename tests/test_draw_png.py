@@ -8,6 +8,7 @@ anti-aliasing or a freetype version cannot break but a moved link can.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import replace
 from pathlib import Path
@@ -20,7 +21,7 @@ PIL_Image = pytest.importorskip("PIL.Image")
 import numpy as np  # noqa: E402
 
 from mech.draw import draw  # noqa: E402
-from mech.draw.plot import Series, animate, extremes, sweep_plot  # noqa: E402
+from mech.draw.plot import Series, animate, extremes, sweep_plot, thin  # noqa: E402
 from mech.draw.raster import to_png  # noqa: E402
 from mech.kinematics import solve  # noqa: E402
 from mech.loader import load  # noqa: E402
@@ -116,6 +117,39 @@ def test_animate_writes_one_gif_frame_per_position_set(tmp_path):
     animate(out, m, kin, frames, fps=10, dpi=40)
     gif = PIL_Image.open(out)
     assert gif.n_frames == 4
+
+
+def test_thinning_leaves_a_path_as_coarse_as_the_resolution_unchanged():
+    circle = [(math.cos(t), math.sin(t)) for t in np.linspace(0, 2 * math.pi, 100)]
+    step = 2 * math.sin(math.pi / 99)  # the chord between neighbours
+    assert thin(circle, 0.999 * step) == circle
+    broken = [*circle[:40], (math.nan, math.nan), *circle[40:]]
+    assert thin(broken, 0.999 * step) == broken
+
+
+def test_thinning_a_dense_path_keeps_its_ends_and_spaces_the_rest_by_the_resolution():
+    dense = [(math.cos(t), math.sin(t)) for t in np.linspace(0, 2 * math.pi, 10_001)]
+    kept = thin(dense, 0.01)
+    assert kept[0] == dense[0] and kept[-1] == dense[-1]
+    gaps = [math.dist(a, b) for a, b in itertools.pairwise(kept[:-1])]  # the last may be nearer
+    assert min(gaps) >= 0.01 and max(gaps) < 0.011  # 2π / 0.01 ≈ 628 points, not 10,001
+    assert 600 < len(kept) < 640
+
+
+def test_an_animation_of_a_coarse_path_draws_the_same_frames(tmp_path, monkeypatch):
+    """Thinning to the frame's pixel changes nothing where the path is already that coarse."""
+    import mech.draw.plot as plot
+
+    m = load(ROOT / "mechanisms" / "four_bar.yaml")
+    angles = [math.radians(a) for a in range(0, 360, 12)]
+    solved = [solve(m, level="position", options=SolveOptions(angle=a)).positions for a in angles]
+    path = [solved_at["B"] for solved_at in solved]  # the crank pin: 12° apart on a circle
+    kin = solve(m, level="position")
+    curves = [("path of B", path, "path")]
+    animate(tmp_path / "thinned.gif", m, kin, solved[:3], dpi=40, curves=curves)
+    monkeypatch.setattr(plot, "thin", lambda points, resolution: list(points))
+    animate(tmp_path / "whole.gif", m, kin, solved[:3], dpi=40, curves=curves)
+    assert (tmp_path / "thinned.gif").read_bytes() == (tmp_path / "whole.gif").read_bytes()
 
 
 if __name__ == "__main__":  # regenerate the references after an intended change

@@ -96,3 +96,55 @@ def test_plain_forms_are_taken_without_click(argv):
 @pytest.mark.parametrize("argv", SLOW, ids=lambda a: " ".join(Path(x).name for x in a) or "none")
 def test_other_forms_are_left_to_click(argv):
     assert _fast(list(argv)) is None
+
+
+def test_every_option_is_declared_once_and_click_reads_the_declaration():
+    """click's commands are built from mech.commands.params (issue 20, item 6): each option's
+    names, help, default and type come from one declaration, which the fast path reads too."""
+    import click
+
+    from mech.cli import cli
+    from mech.commands.params import COMMANDS
+
+    assert set(cli.commands) == set(COMMANDS)
+    for name, command in cli.commands.items():
+        declared = {p.dest: p for p in COMMANDS[name]}
+        built = {p.name: p for p in command.params if p.name != "help"}
+        assert set(built) == set(declared), name
+        for dest, param in built.items():
+            p = declared[dest]
+            if isinstance(param, click.Option):
+                assert tuple(param.opts + param.secondary_opts) == p.names, (name, dest)
+                assert param.help == p.help and param.multiple == p.multiple, (name, dest)
+                if p.kind != "flag" and not p.multiple:
+                    assert param.default == p.default, (name, dest)
+            else:
+                assert param.nargs == p.nargs and param.required == p.required, (name, dest)
+
+
+def test_the_fast_path_has_no_parser_of_its_own():
+    """No option is spelt in mech.entry: it reads mech.commands.params like click."""
+    import re
+
+    source = (ROOT / "src" / "mech" / "entry.py").read_text(encoding="utf-8")
+    code = re.sub(r'"""(.|\n)*?"""', "", source)  # the docstrings may name options
+    assert not re.findall(r"""["']--?[a-z]""", code)
+
+
+@pytest.mark.parametrize(
+    ("argv", "values"),
+    [
+        (("--rpm=600", "--units", "mm", "f.yaml"), {"rpm": 600.0, "unit_system": "mm", "file": "f.yaml"}),
+        (
+            ("--angle", "-30", "--rpm", "1", "--rpm", "2"),
+            {"angle": -30.0, "rpm": 2.0, "file": "mechanism.yaml"},
+        ),
+        (("--tol", "1e-9", "-"), {"tol": 1e-9, "file": "-", "as_json": False, "direction": None}),
+    ],
+)
+def test_the_fast_path_reads_values_as_click_converts_them(argv, values):
+    from mech.commands.params import read
+
+    read_values = read("velocity", list(argv))
+    assert read_values is not None
+    assert {k: read_values[k] for k in values} == values

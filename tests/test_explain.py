@@ -211,3 +211,97 @@ def test_a_slider_on_a_moving_guide_starts_from_the_guides_point_under_it(kind):
     assert math.dist(pts["b" + mark], want) <= 1e-9 * math.hypot(*want)
     if kind == "acceleration":
         assert any(k.what.startswith("Coriolis") for s in c.steps for k in s.known)
+
+
+# -- cams and gear trains worked out (issue 21) ------------------------------------------------
+CAMS = [
+    ("mechanisms/cam_roller_program.yaml", (7.0, 60.0, 131.0, 200.0, 300.0)),
+    ("mechanisms/cam_valve_khurmi.yaml", (20.0, 170.0, 230.0)),
+    ("mechanisms/cam_oscillating_roller.yaml", (45.0, 100.0, 250.0)),
+]
+
+
+@pytest.mark.parametrize(("path", "angles"), CAMS)
+def test_a_cams_working_rebuilt_from_its_lines_is_the_solution(path, angles):
+    # each line carries its inputs: the law's s, ds/dθ, d²s/dθ² are rebuilt here from the textbook
+    # (tests/oracles/cam.py) at the line's h, β and x, and must be the line's values, which must be
+    # the solver's motion of the follower (the arm's ω for an oscillating one, K's speed otherwise)
+    from mech.cam.profile import evaluate
+    from mech.options import SolveOptions
+    from mech.pairs.cam.setup import cam_setup
+    from oracles.cam import textbook_rise
+
+    m = load(path)
+    setup = cam_setup(m)
+    for deg in angles:
+        kin = solve(m, "acceleration", SolveOptions(angle=math.radians(deg)))
+        work = explain(m, kin)
+        lines = {ln.quantity: ln for ln in work.lines}
+        inp = lines["s"].inputs
+        law = (
+            next(seg.law for seg in setup.layout.program.segments if seg.over == inp["beta"] and seg.law)
+            if inp["h"]
+            else None
+        )
+        w = lines["v"].inputs["omega"]
+        s, v, a = (
+            textbook_rise(law, inp["x"] * inp["beta"], inp["h"], inp["beta"], w) if law else (0.0, 0.0, 0.0)
+        )
+        sign = inp["sign"]
+        assert lines["s"].value == pytest.approx(inp["base"] + sign * s, abs=1e-12)
+        assert lines["v"].value == pytest.approx(sign * v, abs=1e-9 * max(abs(v), 1))
+        assert lines["a"].value == pytest.approx(sign * a, abs=1e-9 * max(abs(a), 1))
+        if setup.layout.oscillating:
+            assert abs(kin.links["arm"].omega) == pytest.approx(abs(lines["v"].value), rel=1e-9, abs=1e-12)
+        else:
+            assert abs(kin.velocity("K")[1]) == pytest.approx(abs(lines["v"].value), rel=1e-9, abs=1e-12)
+        theta = lines["theta"].value
+        got = lines["pressure"]
+        if got.formula and got.formula.startswith("atan2"):
+            p = got.inputs
+            assert got.value == pytest.approx(
+                math.atan2(p["ds/dtheta"] - p["e"], math.sqrt(p["rp"] ** 2 - p["e"] ** 2) + p["s"])
+            )
+        assert abs(got.value) == pytest.approx(
+            abs(float(evaluate(setup.layout, [theta]).pressure[0])), abs=1e-9
+        )
+
+
+def test_the_shipped_cams_explained_pressure_angle_is_its_answer():
+    # mechanisms/cam_roller_program.yaml: pressure angle at 60° = atan(22.5 / (50 + 15)) = 19.093°
+    m = load("mechanisms/cam_roller_program.yaml")
+    work = explain(m, solve(m, "velocity"))
+    (pressure,) = [ln for ln in work.lines if ln.quantity == "pressure"]
+    assert math.degrees(pressure.value) == pytest.approx(math.degrees(math.atan(22.5 / 65)), rel=1e-9)
+    assert "19.093°" in work.text()
+
+
+GEAR_TRAIN = """\
+units: {length: mm, angle: deg}
+links: [frame, a, bc, d]
+joints:
+  Oa: {type: revolute, links: [frame, a], at: [0, 0]}
+  Ob: {type: revolute, links: [frame, bc], at: [150, 0]}
+  Od: {type: revolute, links: [frame, d], at: [150, 105]}
+  m1: {type: gear, links: [a, bc], teeth: [20, 40], module: 5}
+  m2: {type: gear, links: [bc, d], teeth: [15, 27], module: 5}
+drive: {link: a, rpm: 1200, direction: ccw}
+"""
+
+
+def test_a_compound_train_is_worked_out_stage_by_stage_and_its_value_rebuilt():
+    # 20 → 40 on one shaft with 15 → 27: the train value is (−20/40)(−15/27) = +5/18 (Khurmi ch. 13)
+    from mech.loader import loads
+
+    m = loads(GEAR_TRAIN, path="train.yaml")
+    kin = solve(m, "velocity")
+    work = explain(m, kin)
+    stages = [ln for ln in work.lines if ln.quantity and ln.quantity.startswith("omega.") and ln.inputs]
+    assert [ln.quantity for ln in stages] == ["omega.bc", "omega.d"]
+    for ln in stages:
+        p = ln.inputs
+        k = (p["r_a"] / p["r_b"]) * (1.0 if p["internal"] else -1.0)
+        assert ln.value == pytest.approx(p["omega_arm"] + k * (p["omega_a"] - p["omega_arm"]), rel=1e-12)
+        assert ln.value == pytest.approx(kin.links[ln.quantity.split(".")[1]].omega, rel=1e-9)
+    (value,) = [ln for ln in work.lines if ln.quantity == "train_value"]
+    assert value.value == pytest.approx(5 / 18, rel=1e-9)

@@ -278,7 +278,7 @@ def test_alias_bomb_is_refused_not_expanded():
     bomb = "a: &a [x, x, x, x, x, x, x, x, x, x]\n"
     for i in range(1, 7):
         bomb += f"{'abcdefg'[i]}: &{'abcdefg'[i]} [" + ", ".join([f"*{'abcdefg'[i - 1]}"] * 10) + "]\n"
-    with pytest.raises(InputError, match="too many values"):
+    with pytest.raises(InputError, match="through its aliases"):
         loads(
             "links: [frame, crank]\njoints: {}\nx:\n" + "".join("  " + ln + "\n" for ln in bomb.splitlines())
         )
@@ -693,3 +693,28 @@ def test_a_ten_thousand_joint_chain_is_read_with_every_joint_located():
     bad = joints.replace("links: [l4999, l5000]", "links: [l4999, l5000x]")
     line, column, message = one_problem(f"links: [{', '.join(links)}]\njoints:\n{bad}")
     assert (line, column) == (4999 + 3, 42) and "l5000x" in message  # J4999, its second link
+
+
+@pytest.mark.parametrize("value", ['"120 rad/s"', '"2 rev/s"', '"30 deg/s"'])
+def test_rpm_in_another_unit_is_refused_not_read_silently(value):
+    text = FOUR_BAR.replace(
+        "drive: {link: crank, angle: 60, rpm: 120, direction: cw}", f"drive: {{link: crank, rpm: {value}}}"
+    )
+    with pytest.raises(InputError) as err:
+        loads(text, path="d.yaml")
+    text = err.value.format()
+    assert "d.yaml:11:" in text and "rpm is in revolutions per minute" in text and "omega:" in text
+
+
+def test_rpm_with_its_own_unit_and_omega_in_any_unit_are_read():
+    base = FOUR_BAR.replace(
+        "drive: {link: crank, angle: 60, rpm: 120, direction: cw}", "drive: {link: crank, KEY}"
+    )
+    assert loads(base.replace("KEY", 'rpm: "120 rpm"')).drives[0].omega == pytest.approx(4 * math.pi)
+    assert loads(base.replace("KEY", 'omega: "120 rpm"')).drives[0].omega == pytest.approx(4 * math.pi)
+
+
+def test_an_unknown_key_near_a_known_one_still_gets_a_hint():
+    with pytest.raises(InputError) as info:
+        loads(BASE + "answer: {dof: 1}\n")
+    assert info.value.problems[0].hint == "did you mean 'answers'?"

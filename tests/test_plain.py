@@ -24,7 +24,8 @@ from mech.kinematics import solve
 from mech.loader import load
 from mech.options import OutputUnits
 from mech.render.kinematics import kinematics_table
-from mech.render.plain import SIMPLE, PlainConsole, Table, Text
+from mech.render.plain import PlainConsole
+from mech.render.table import SIMPLE, Table, Text
 from mech.render.topology import classify_tables, dof_table
 from mech.topology import classify
 from mechanism_texts import expected_refusal
@@ -104,3 +105,53 @@ def test_odd_cells_and_titles_come_out_as_rich_prints_them(cell, justify):
 
     plain, rich = both(render)
     assert plain == rich
+
+
+RENDER = Path(__file__).resolve().parents[1] / "src" / "mech" / "render"
+
+
+@pytest.mark.parametrize("path", sorted(RENDER.glob("*.py")), ids=lambda p: p.stem)
+def test_every_table_is_built_once_with_mechs_table(path):
+    """Renderers build mech.render.table's Table and Text, printed by whichever console stands on
+    stdout; none builds rich's (which would be a second, rich-only copy of the table)."""
+    import ast
+
+    if path.stem in ("table", "richconsole"):
+        return  # the one place that turns a table into rich's, and rich's console itself
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    imported = {
+        node.module for node in ast.walk(tree) if isinstance(node, ast.ImportFrom) and node.module is not None
+    }
+    assert not imported & {"rich.table", "rich.text", "rich.box"}, sorted(
+        imported & {"rich.table", "rich.text"}
+    )
+
+
+@pytest.mark.parametrize(
+    "package", ["mech.render", "mech.commands"], ids=["render: console, plain", "commands"]
+)
+def test_no_import_circle_in_the_cli_and_report_layers(package):
+    """console and plain (and cli and entry, through mech.commands) import one way (issue 20, item 5)."""
+    grimp = pytest.importorskip("grimp")
+
+    graph = grimp.build_graph("mech")
+    modules = sorted(m for m in graph.modules if m.startswith(package) or m in ("mech.cli", "mech.entry"))
+    for a in modules:
+        for b in modules:
+            if a < b and graph.chain_exists(a, b) and graph.chain_exists(b, a):
+                pytest.fail(f"{a} and {b} import each other (through {graph.find_shortest_chain(b, a)})")
+
+
+def test_joined_text_prints_on_a_terminal_as_riches_own_joined_text():
+    """``Text(name, style="bold") + Text(" — velocities")`` is bold throughout, as rich's own is
+    (the kinematics report's heading: a terminal's bytes unchanged by building it once)."""
+    from rich.text import Text as RichText
+
+    def coloured(obj: Any) -> str:
+        out = io.StringIO()
+        Console(file=out, force_terminal=True, color_system="truecolor", width=80).print(obj)
+        return out.getvalue()
+
+    ours = Text("Four-bar", style="bold") + Text(" — velocities") + " !"
+    rich = RichText("Four-bar", style="bold") + RichText(" — velocities") + " !"
+    assert coloured(ours) == coloured(rich)

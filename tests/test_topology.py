@@ -221,3 +221,24 @@ SLIDE_COUNTS = {
 def test_slide_counts(name, expected):
     count = dof(load(MECHANISMS / name))
     assert (count.l, count.j, count.h, count.n) == expected
+
+
+def test_topology_imports_nothing_from_the_rooms_above_it():
+    # ROOMS.md: topology sits below kinematics and properties.  Every import counts, those inside a
+    # function too (Grashof's loops were once imported from mech.properties inside classify).
+    import ast
+
+    above = ("mech.properties", "mech.kinematics", "mech.icentres", "mech.analysis", "mech.check")
+    package = Path(__file__).resolve().parent.parent / "src" / "mech" / "topology"
+    found = []
+    for path in sorted(package.glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            names = (
+                [a.name for a in node.names]
+                if isinstance(node, ast.Import)
+                else [node.module or ""]
+                if isinstance(node, ast.ImportFrom)
+                else []
+            )
+            found += [f"{path.name}:{node.lineno} {n}" for n in names if n.startswith(above)]
+    assert not found, found

@@ -13,13 +13,16 @@ and renderers that need them, so ``mech dof`` starts fast in a batch.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
-
+# typing is not imported at run time: ``import mech`` is the console script's first step, before
+# mech.entry can answer a Ctrl-C quietly, and typing (with re and enum) is most of its cost
+TYPE_CHECKING = False
 __version__ = "0.1.0"
 
 __all__ = ["MechError", "__version__", "classify", "dof", "load", "loads"]
 
 if TYPE_CHECKING:  # pragma: no cover
+    from typing import Any
+
     from mech.errors import MechError
     from mech.loader import load, loads
     from mech.topology import classify, dof

@@ -1,24 +1,25 @@
-"""The answer-key registry: every key ``answers`` and ``asks`` accept, in one table.
+"""The answer-key forms: every key ``answers`` and ``asks`` accept, in one table.
 
-The loader reads keys with it (to validate a file at once, with locations) and
-``mech check`` computes reference values with it (only what the claims ask).
-This module is imported by the loader, so it stays light: no numpy, no rich;
-compute functions import what they need inside their bodies.
+A form says what a key looks like and how a claim of it is read and compared:
+its pattern (``omega.<link>``), how a claim is held against the value
+(:class:`Compare`), the least analysis the value needs (:data:`LEVELS`), the
+quantity a claim's unit must measure.  The loader reads keys with it (to
+validate a file at once, with locations); ``mech check`` parses the claims
+with it and asks :mod:`mech.grading` for the reference values (the compute
+function of each form, keyed by its pattern).
+
+This room sits just above the pair kinds and below the loader, so it imports
+nothing of mech above :mod:`mech.units`: no compute function, no lazy import of
+an analysis (issue 20: an answer key's form and its value were one row here,
+and the lazy imports of the values tied the loader, the analyses and the
+checker into one import circle).
 
 How to add an answer key
 ------------------------
-1. Write ``def _my_key(an, names) -> value``: the reference value, SI, computed
-   from ``an``, a :class:`mech.check.Analysis` (``an.mech`` the model,
-   ``an.topology``, ``an.mobility``, ``an.kin`` the solution at the level the
-   key declares, ``an.icentres``; anything else: import it inside the function,
-   call it on ``an.mech`` / ``an.kin`` and, if it is costly, keep it with
-   ``an.cached("name", make)``).  ``names`` are the names the key's placeholders
-   matched, in order.  Raise :class:`Undefined` ("ω of b is zero …") when the
-   quantity does not exist for this mechanism, a :class:`mech.errors.MechError`
-   when it cannot be computed (the verdict is then an error row with the reason).
-2. Add one line to :data:`KINDS` (or call :func:`register` from this module)::
+1. Add its form to :data:`KINDS` (or call :func:`register` from a module of
+   your own)::
 
-       AnswerKind("transmission_angle", Compare.MAGNITUDE, "position", Dimension.ANGLE, _tangle,
+       AnswerKind("transmission_angle", Compare.MAGNITUDE, "position", Dimension.ANGLE,
                   "interior angle between coupler and output link (0–180°)")
 
    - ``pattern``: literal segments and placeholders joined by dots;
@@ -28,8 +29,9 @@ How to add an answer key
      (``I13``); ``<out>`` a link or a point.  The loader checks every name.
    - ``compare``: how a claim is held against the value (:class:`Compare`):
      ``COUNT`` exact int, ``LABEL`` exact name after ``normalise``, ``POINT``
-     ``[x, y]`` within tolerance × size (``infinity=True`` also reads
-     ``infinity``; the value may then be an :class:`AtInfinity`),
+     ``[x, y]`` within tolerance × size (``infinity=True``, for any mode,
+     also reads ``infinity``; the value may then be an :class:`AtInfinity`,
+     or ``math.inf`` for a magnitude),
      ``MAGNITUDE`` |claimed| vs |value|, ``SENSE`` signed when the claim says
      cw/ccw else magnitudes, ``RATIO`` signed for a negative claim else
      magnitudes, ``SIGNED`` as is.
@@ -38,26 +40,27 @@ How to add an answer key
      file is solved once, at the highest level any claim needs.
    - ``dimension``: what a claim's unit must measure (a bare number is SI);
      ``also`` lists other dimensions accepted (a stroke: a length or an angle).
+2. Write its compute function in :mod:`mech.grading` (the recipe is that
+   module's docstring) and add it to ``mech.grading.COMPUTE`` under the same
+   pattern.
 3. Add a row to cli.md § answers, and a test in ``tests/test_check.py`` whose
    reference value comes from an independent derivation.
 """
 
 from __future__ import annotations
 
-import math
 import re
 from collections.abc import Callable, Iterable, Iterator
 from collections.abc import Set as AbstractSet
 from enum import Enum
 from functools import lru_cache
-from typing import Any
 
 from mech._records import dataclass
 from mech.units import Dimension
 
 __all__ = [
     "COUNT_KEYS",
-    "KEY_FORMS",
+    "JOINT_CLASSES",
     "KINDS",
     "LEVELS",
     "LINK_CLASSES",
@@ -70,12 +73,16 @@ __all__ = [
     "Undefined",
     "icentre_name",
     "names_by_kind",
+    "normal_chain",
+    "normal_grashof",
     "parse_icentre_name",
     "parse_key",
     "register",
+    "unregister",
 ]
 
 LINK_CLASSES = ("singular", "binary", "ternary", "quaternary", "pentagonal", "hexagonal")
+JOINT_CLASSES = ("binary", "ternary", "quaternary")
 
 #: Analysis levels, least first: a claim needs its key's level and every level below it.
 LEVELS = ("topology", "mobility", "position", "velocity", "acceleration")
@@ -127,16 +134,15 @@ class AtInfinity:
 
 @dataclass(frozen=True, slots=True)
 class AnswerKind:
-    """One row of the registry: a key pattern and how its reference value is had."""
+    """One row of the table: a key's pattern, how a claim of it is compared, what it needs."""
 
     pattern: str
     compare: Compare
     level: str
     dimension: Dimension | None
-    compute: Callable[[Any, tuple[str, ...]], Any]
     doc: str = ""
     distinct: bool = False  # the names must differ (icentre.a.b, omega_ratio.a.b)
-    infinity: bool = False  # a POINT key may be claimed `infinity`
+    infinity: bool = False  # the key may be claimed `infinity` (a point, or a magnitude such as MA)
     normalise: Callable[[str], str] | None = None  # LABEL: the name both sides are compared in
     also: tuple[Dimension, ...] = ()  # further dimensions a claim's unit may measure
 
@@ -170,40 +176,33 @@ class AnswerKind:
 
 @dataclass(frozen=True, slots=True)
 class AnswerKey:
-    """A parsed key: its registry row and the names after it.
+    """A parsed key: its form and the names after it.
 
-    ``kinds`` say what each name must be (``link``, ``point`` …); ``level`` is
-    the analysis a claim needs.
+    ``kinds`` say what each name must be (``link``, ``point`` …).  The form's
+    ``family``, ``compare``, ``level`` and ``dimensions`` are copied onto the key
+    when it is parsed (a form never changes): the checker reads them for every
+    claim, as plain values.
     """
 
     key: str
     kind: AnswerKind
     names: tuple[str, ...]
     kinds: tuple[str, ...]
+    family: str
+    compare: Compare
+    level: str
+    dimension: Dimension | None
+    dimensions: tuple[Dimension, ...]
 
-    @property
-    def family(self) -> str:
-        return self.kind.family
-
-    @property
-    def compare(self) -> Compare:
-        return self.kind.compare
-
-    @property
-    def dimension(self) -> Dimension | None:
-        return self.kind.dimension
-
-    @property
-    def dimensions(self) -> tuple[Dimension, ...]:
-        return self.kind.dimensions
-
-    @property
-    def level(self) -> str:
-        return self.kind.level
+    @classmethod
+    def of(cls, key: str, kind: AnswerKind, names: tuple[str, ...], kinds: tuple[str, ...]) -> AnswerKey:
+        return cls(
+            key, kind, names, kinds, kind.family, kind.compare, kind.level, kind.dimension, kind.dimensions
+        )
 
     @property
     def is_count(self) -> bool:
-        return self.kind.compare is Compare.COUNT
+        return self.compare is Compare.COUNT
 
 
 # -- the registry ---------------------------------------------------------------------------
@@ -217,6 +216,19 @@ def register(kind: AnswerKind) -> AnswerKind:
         raise ValueError(f"answer key {kind.pattern} is registered twice")
     _KINDS.append(kind)
     _BY_HEAD.setdefault(kind.parts[0], []).append(kind)
+    _parse_cached.cache_clear()
+    return kind
+
+
+def unregister(pattern: str) -> AnswerKind:
+    """Remove a key pattern from the registry (a plug-in's, or a test's); KeyError if it is not there."""
+    kind = next((k for k in _KINDS if k.pattern == pattern), None)
+    if kind is None:
+        raise KeyError(pattern)
+    _KINDS.remove(kind)
+    _BY_HEAD[kind.parts[0]].remove(kind)
+    if not _BY_HEAD[kind.parts[0]]:
+        del _BY_HEAD[kind.parts[0]]
     _parse_cached.cache_clear()
     return kind
 
@@ -265,7 +277,7 @@ def _parse(key: str) -> AnswerKey:
     kind = best[1]
     names = tuple(got for want, got in zip(kind.parts, parts, strict=True) if want.startswith("<"))
     kinds = tuple(PLACEHOLDERS[p] for p in kind.parts if p.startswith("<"))
-    return AnswerKey(key, kind, names, kinds)
+    return AnswerKey.of(key, kind, names, kinds)
 
 
 _parse_cached = lru_cache(maxsize=4096)(_parse)
@@ -335,43 +347,7 @@ class ICentreNames(AbstractSet[str]):
         return self if self.n_links * (self.n_links - 1) // 2 <= self.SUGGEST else self.points
 
 
-# -- built-in keys: compute functions (an: mech.check.Analysis; names: the key's names) ------
-def _count(attr: str) -> Callable[[Any, tuple[str, ...]], int]:
-    def compute(an: Any, names: tuple[str, ...]) -> int:
-        return int(getattr(an.topology.count, attr))
-
-    return compute
-
-
-def _link_class(cls: str) -> Callable[[Any, tuple[str, ...]], int]:
-    def compute(an: Any, names: tuple[str, ...]) -> int:
-        return len(an.topology.link_classes().get(cls, ()))
-
-    return compute
-
-
-def _joint_class(cls: str) -> Callable[[Any, tuple[str, ...]], int]:
-    def compute(an: Any, names: tuple[str, ...]) -> int:
-        return len(an.topology.joint_classes().get(cls, ()))
-
-    return compute
-
-
-def _icentre_count(an: Any, names: tuple[str, ...]) -> int:
-    return int(an.topology.icentres)
-
-
-def _mobility(an: Any, names: tuple[str, ...]) -> int:
-    value = an.mobility
-    if value is None:
-        raise Undefined("cannot be computed: the file has no geometry for a Jacobian")
-    return int(value)
-
-
-def _chain(an: Any, names: tuple[str, ...]) -> str | None:
-    return an.topology.chain
-
-
+# -- how two labels are compared (LABEL keys' ``normalise``) -----------------------------------
 def normal_chain(name: str) -> str:
     """``Four Bar chain``, ``4-bar``, ``fourbar`` → ``four-bar``: one spelling per chain."""
     s = name.strip().lower().replace("_", "-").replace(" ", "-")
@@ -380,182 +356,53 @@ def normal_chain(name: str) -> str:
     return {"fourbar": "four-bar", "4-bar": "four-bar", "fivebar": "five-bar", "5-bar": "five-bar"}.get(s, s)
 
 
-def _position(an: Any, names: tuple[str, ...]) -> tuple[float, float]:
-    p = an.kin.positions.get(names[0])
-    if p is None:
-        raise Undefined(
-            f"cannot be computed: {names[0]} has no position of its own (a contact or slider joint)"
-        )
-    return (float(p[0]), float(p[1]))
-
-
-def _velocity(an: Any, names: tuple[str, ...]) -> tuple[float, float]:
-    kin = an.kin
-    return kin.velocity(names[0]) if len(names) == 1 else kin.relative_velocity(names[0], names[1])
-
-
-def _acceleration(an: Any, names: tuple[str, ...]) -> tuple[float, float]:
-    kin = an.kin
-    return kin.acceleration(names[0]) if len(names) == 1 else kin.relative_acceleration(names[0], names[1])
-
-
-def _omega(an: Any, names: tuple[str, ...]) -> float:
-    return float(an.kin.links[names[0]].omega)
-
-
-def _alpha(an: Any, names: tuple[str, ...]) -> float:
-    return float(an.kin.links[names[0]].alpha)
-
-
-def _omega_ratio(an: Any, names: tuple[str, ...]) -> float:
-    wa, wb = an.kin.links[names[0]].omega, an.kin.links[names[1]].omega
-    if abs(wb) <= an.noise * an.omega_ref:
-        raise Undefined(
-            f"cannot be computed: ω of {names[1]} is zero, so ω_{names[0]}/ω_{names[1]} is undefined"
-        )
-    return float(wa / wb)
-
-
-def _sliding(an: Any, names: tuple[str, ...]) -> float:
-    return float(an.kin.sliding(names[0]))
-
-
-def _rubbing(an: Any, names: tuple[str, ...]) -> float:
-    return float(an.kin.rubbing(names[0]))
-
-
-def _coriolis(an: Any, names: tuple[str, ...]) -> tuple[float, float]:
-    return an.kin.coriolis(names[0])
-
-
-def _least_speed(an: Any, names: tuple[str, ...]) -> float:
-    from mech.check import least_speed
-
-    return least_speed(an.mech, an.kin, names[0])
-
-
-def _icentre(an: Any, names: tuple[str, ...]) -> tuple[float, float] | AtInfinity:
-    ic = an.icentres.get(names[0], names[1])
-    if ic.at_infinity:
-        return AtInfinity(getattr(ic, "direction", None), f"I-centre {names[0]}–{names[1]}")
-    return (float(ic.point[0]), float(ic.point[1]))
-
-
-def _distance(an: Any, names: tuple[str, ...]) -> float | AtInfinity:
-    points = []
-    for name in names:
-        if name in an.kin.positions:
-            points.append(an.kin.positions[name])
-            continue
-        numbers = parse_icentre_name(name)
-        numbered = an.mech.numbered_links
-        if numbers is None or not all(1 <= n <= len(numbered) for n in numbers):
-            raise Undefined(f"cannot be computed: {name} is neither a point nor an I-centre")
-        ic = an.icentres.get(numbered[numbers[0] - 1].name, numbered[numbers[1] - 1].name)
-        if ic.at_infinity:
-            return AtInfinity(getattr(ic, "direction", None), name)
-        points.append(tuple(ic.point))
-    return math.dist(points[0], points[1])
-
-
-def _property(name: str) -> Callable[[Any, tuple[str, ...]], Any]:
-    """A linkage-property key computed in :mod:`mech.properties.keys` (imported when first asked)."""
-
-    def compute(an: Any, names: tuple[str, ...]) -> Any:
-        from mech.properties import keys
-
-        return getattr(keys, name)(an, names)
-
-    compute.__name__ = name
-    return compute
-
-
-def _normal_grashof(name: str) -> str:
-    from mech.properties.keys import normal_grashof
-
-    return normal_grashof(name)
+def normal_grashof(name: str) -> str:
+    """``Crank Rocker``, ``crank_rocker`` → ``crank-rocker``; ``triple rocker`` → ``non-grashof``."""
+    s = re.sub(r"[\s_–—]+", "-", name.strip().lower())
+    return {
+        "triple-rocker": "non-grashof",
+        "nongrashof": "non-grashof",
+        "drag-link": "double-crank",
+        "rocker-crank": "crank-rocker",
+        "changepoint": "change-point",
+    }.get(s, s)
 
 
 _D = Dimension
 KINDS: tuple[AnswerKind, ...] = (
-    AnswerKind("dof", Compare.COUNT, "topology", _D.NUMBER, _count("n"), "Kutzbach's count"),
-    AnswerKind("links.count", Compare.COUNT, "topology", _D.NUMBER, _count("l"), "links"),
-    *(
-        AnswerKind(f"links.{c}", Compare.COUNT, "topology", _D.NUMBER, _link_class(c), f"{c} links")
-        for c in LINK_CLASSES
-    ),
-    AnswerKind("joints.count", Compare.COUNT, "topology", _D.NUMBER, _count("joints"), "joints as written"),
-    *(
-        AnswerKind(f"joints.{c}", Compare.COUNT, "topology", _D.NUMBER, _joint_class(c), f"{c} joints")
-        for c in ("binary", "ternary", "quaternary")
-    ),
-    AnswerKind(
-        "joints.equivalent_binary", Compare.COUNT, "topology", _D.NUMBER, _count("j"), "j of Kutzbach's count"
-    ),
-    AnswerKind("higher_pairs", Compare.COUNT, "topology", _D.NUMBER, _count("h"), "h of Kutzbach's count"),
-    AnswerKind("icentres.count", Compare.COUNT, "topology", _D.NUMBER, _icentre_count, "n(n − 1)/2"),
-    AnswerKind(
-        "mobility", Compare.COUNT, "mobility", _D.NUMBER, _mobility, "rank of the constraint Jacobian"
-    ),
-    AnswerKind("chain", Compare.LABEL, "topology", None, _chain, "the chain's name", normalise=normal_chain),
-    AnswerKind(
-        "position.<point>", Compare.POINT, "position", _D.LENGTH, _position, "where a point is, [x, y]"
-    ),
-    AnswerKind("velocity.<point>", Compare.MAGNITUDE, "velocity", _D.VELOCITY, _velocity, "speed of a point"),
-    AnswerKind(
-        "velocity.<point>.<other>", Compare.MAGNITUDE, "velocity", _D.VELOCITY, _velocity, "relative velocity"
-    ),
-    AnswerKind("omega.<link>", Compare.SENSE, "velocity", _D.ANGULAR_VELOCITY, _omega, "angular velocity"),
-    AnswerKind(
-        "omega_ratio.<a>.<b>", Compare.RATIO, "velocity", _D.NUMBER, _omega_ratio, "ω_a/ω_b", distinct=True
-    ),
-    AnswerKind(
-        "sliding.<joint>", Compare.MAGNITUDE, "velocity", _D.VELOCITY, _sliding, "speed along a slide"
-    ),
-    AnswerKind(
-        "rubbing.<joint>", Compare.MAGNITUDE, "velocity", _D.VELOCITY, _rubbing, "rubbing speed at a pin"
-    ),
-    AnswerKind(
-        "least_speed.<link>",
-        Compare.MAGNITUDE,
-        "velocity",
-        _D.VELOCITY,
-        _least_speed,
-        "least speed on the line",
-    ),
-    AnswerKind(
-        "acceleration.<point>",
-        Compare.MAGNITUDE,
-        "acceleration",
-        _D.ACCELERATION,
-        _acceleration,
-        "acceleration",
-    ),
+    AnswerKind("dof", Compare.COUNT, "topology", _D.NUMBER, "Kutzbach's count"),
+    AnswerKind("links.count", Compare.COUNT, "topology", _D.NUMBER, "links"),
+    *(AnswerKind(f"links.{c}", Compare.COUNT, "topology", _D.NUMBER, f"{c} links") for c in LINK_CLASSES),
+    AnswerKind("joints.count", Compare.COUNT, "topology", _D.NUMBER, "joints as written"),
+    *(AnswerKind(f"joints.{c}", Compare.COUNT, "topology", _D.NUMBER, f"{c} joints") for c in JOINT_CLASSES),
+    AnswerKind("joints.equivalent_binary", Compare.COUNT, "topology", _D.NUMBER, "j of Kutzbach's count"),
+    AnswerKind("higher_pairs", Compare.COUNT, "topology", _D.NUMBER, "h of Kutzbach's count"),
+    AnswerKind("icentres.count", Compare.COUNT, "topology", _D.NUMBER, "n(n − 1)/2"),
+    AnswerKind("mobility", Compare.COUNT, "mobility", _D.NUMBER, "rank of the constraint Jacobian"),
+    AnswerKind("chain", Compare.LABEL, "topology", None, "the chain's name", normalise=normal_chain),
+    AnswerKind("position.<point>", Compare.POINT, "position", _D.LENGTH, "where a point is, [x, y]"),
+    AnswerKind("velocity.<point>", Compare.MAGNITUDE, "velocity", _D.VELOCITY, "speed of a point"),
+    AnswerKind("velocity.<point>.<other>", Compare.MAGNITUDE, "velocity", _D.VELOCITY, "relative velocity"),
+    AnswerKind("omega.<link>", Compare.SENSE, "velocity", _D.ANGULAR_VELOCITY, "angular velocity"),
+    AnswerKind("omega_ratio.<a>.<b>", Compare.RATIO, "velocity", _D.NUMBER, "ω_a/ω_b", distinct=True),
+    AnswerKind("sliding.<joint>", Compare.MAGNITUDE, "velocity", _D.VELOCITY, "speed along a slide"),
+    AnswerKind("rubbing.<joint>", Compare.MAGNITUDE, "velocity", _D.VELOCITY, "rubbing speed at a pin"),
+    AnswerKind("least_speed.<link>", Compare.MAGNITUDE, "velocity", _D.VELOCITY, "least speed on the line"),
+    AnswerKind("acceleration.<point>", Compare.MAGNITUDE, "acceleration", _D.ACCELERATION, "acceleration"),
     AnswerKind(
         "acceleration.<point>.<other>",
         Compare.MAGNITUDE,
         "acceleration",
         _D.ACCELERATION,
-        _acceleration,
         "relative acceleration",
     ),
-    AnswerKind(
-        "alpha.<link>", Compare.SENSE, "acceleration", _D.ANGULAR_ACCELERATION, _alpha, "angular accel."
-    ),
-    AnswerKind(
-        "coriolis.<joint>",
-        Compare.MAGNITUDE,
-        "acceleration",
-        _D.ACCELERATION,
-        _coriolis,
-        "Coriolis component",
-    ),
+    AnswerKind("alpha.<link>", Compare.SENSE, "acceleration", _D.ANGULAR_ACCELERATION, "angular accel."),
+    AnswerKind("coriolis.<joint>", Compare.MAGNITUDE, "acceleration", _D.ACCELERATION, "Coriolis component"),
     AnswerKind(
         "icentre.<a>.<b>",
         Compare.POINT,
         "velocity",
         _D.LENGTH,
-        _icentre,
         "an I-centre, [x, y] or infinity",
         distinct=True,
         infinity=True,
@@ -565,26 +412,24 @@ KINDS: tuple[AnswerKind, ...] = (
         Compare.MAGNITUDE,
         "velocity",
         _D.LENGTH,
-        _distance,
-        "between points",
+        "between points (infinity to an I-centre at infinity)",
         distinct=True,
+        infinity=True,
     ),
-    # linkage properties (mech.properties; DESIGN § 1.1 "Answer keys for linkage properties")
+    # linkage properties (DESIGN § 1.1 "Answer keys for linkage properties")
     AnswerKind(
         "grashof",
         Compare.LABEL,
         "topology",
         None,
-        _property("grashof"),
         "Grashof class of the driven four-bar loop",
-        normalise=_normal_grashof,
+        normalise=normal_grashof,
     ),
     AnswerKind(
         "transmission_angle",
         Compare.MAGNITUDE,
         "position",
         _D.ANGLE,
-        _property("transmission_angle"),
         "coupler–output interior angle at the instant (0–180°)",
     ),
     AnswerKind(
@@ -592,7 +437,6 @@ KINDS: tuple[AnswerKind, ...] = (
         Compare.MAGNITUDE,
         "position",
         _D.ANGLE,
-        _property("transmission_angle_min"),
         "least transmission angle over the cycle",
     ),
     AnswerKind(
@@ -600,18 +444,14 @@ KINDS: tuple[AnswerKind, ...] = (
         Compare.MAGNITUDE,
         "position",
         _D.ANGLE,
-        _property("transmission_angle_max"),
         "greatest transmission angle over the cycle",
     ),
-    AnswerKind(
-        "time_ratio", Compare.MAGNITUDE, "position", _D.NUMBER, _property("time_ratio"), "slow / fast stroke"
-    ),
+    AnswerKind("time_ratio", Compare.MAGNITUDE, "position", _D.NUMBER, "slow / fast stroke"),
     AnswerKind(
         "stroke.<joint>",
         Compare.MAGNITUDE,
         "position",
         _D.LENGTH,
-        _property("stroke"),
         "a slider's travel, or a frame pivot's swing",
         also=(_D.ANGLE,),
     ),
@@ -620,24 +460,68 @@ KINDS: tuple[AnswerKind, ...] = (
         Compare.MAGNITUDE,
         "velocity",
         _D.NUMBER,
-        _property("mechanical_advantage"),
-        "output load over input effort (1/m for a point output of a crank)",
+        "output load over input effort (1/m for a point output of a crank); infinity at a dead centre",
+        infinity=True,
     ),
     AnswerKind(
         "input_torque",
         Compare.SIGNED,
         "velocity",
         _D.TORQUE,
-        _property("input_torque"),
-        "torque on the input link balancing the loads (ccw +)",
+        "torque on the input link balancing the loads, and the links' inertia and weight (ccw +)",
     ),
     AnswerKind(
         "input_force",
         Compare.SIGNED,
         "velocity",
         _D.FORCE,
-        _property("input_force"),
-        "force on a slider drive balancing the loads",
+        "force on a slider drive balancing the loads, and the links' inertia and weight",
+    ),
+    # forces (issue 24, DESIGN § 1.4): solved by mech.forces from the position up (level position:
+    # the force solve takes the rates and accelerations it needs itself)
+    AnswerKind("force.<joint>", Compare.MAGNITUDE, "position", _D.FORCE, "force a pair carries"),
+    AnswerKind("force.<joint>.x", Compare.SIGNED, "position", _D.FORCE, "on its second link, x"),
+    AnswerKind("force.<joint>.y", Compare.SIGNED, "position", _D.FORCE, "on its second link, y"),
+    AnswerKind("shaking_force", Compare.MAGNITUDE, "position", _D.FORCE, "|−Σ m a_G|"),
+    AnswerKind(
+        "shaking_moment",
+        Compare.SENSE,
+        "position",
+        _D.TORQUE,
+        "−Σ (r_G × m a_G + I_G α) about the drive's pivot (ccw +)",
+    ),
+    AnswerKind("torque.mean", Compare.SENSE, "position", _D.TORQUE, "mean input torque, cycle"),
+    AnswerKind(
+        "energy.fluctuation",
+        Compare.MAGNITUDE,
+        "position",
+        _D.ENERGY,
+        "greatest minus least of ∫(T − T_mean) dθ",
+    ),
+    AnswerKind("flywheel.inertia", Compare.MAGNITUDE, "position", _D.MOMENT_OF_INERTIA, "ΔE / (ω² C_s)"),
+    # cams given by their follower's programme (DESIGN § 1.1): the cam's own analysis answers these
+    # (level topology: the linkage solver is never started for them)
+    AnswerKind(
+        "pressure_angle.<joint>",
+        Compare.MAGNITUDE,
+        "topology",
+        _D.ANGLE,
+        "a cam's pressure angle at the drive angle",
+    ),
+    AnswerKind(
+        "pressure_angle.<joint>.max",
+        Compare.MAGNITUDE,
+        "topology",
+        _D.ANGLE,
+        "a cam's largest pressure angle over the turn",
+    ),
+    AnswerKind(
+        "displacement.<point>",
+        Compare.MAGNITUDE,
+        "topology",
+        _D.LENGTH,
+        "a cam follower's lift from its lowest position (an angle for an oscillating one)",
+        also=(_D.ANGLE,),
     ),
 )
 for _kind in KINDS:
@@ -650,10 +534,6 @@ COUNT_KEYS = frozenset(k.pattern for k in KINDS if k.compare is Compare.COUNT an
 def key_forms() -> tuple[str, ...]:
     """Every form a key may take (registered so far), for hints and docs."""
     return tuple(k.pattern for k in _KINDS)
-
-
-#: Every built-in form a key may take, for hints (``key_forms()`` includes later registrations).
-KEY_FORMS = key_forms()
 
 
 # -- I-centre names -------------------------------------------------------------------------
@@ -677,139 +557,3 @@ def parse_icentre_name(name: str) -> tuple[int, int] | None:
         return None
     a, b = (int(g) for g in (m.groups()[:2] if m.group(1) else m.groups()[2:]))
     return (a, b) if a != b else None
-
-
-# -- cams given by their follower's programme (mech.cam), DESIGN § 1.1 -----------------------
-def _cam(quantity: str) -> Callable[[Any, tuple[str, ...]], float]:
-    """A cam's own analysis answers these keys (the linkage solver is never started for them)."""
-
-    def compute(an: Any, names: tuple[str, ...]) -> float:
-        from mech.cam.answers import cam_value
-
-        return cam_value(an, quantity, names[0])
-
-    return compute
-
-
-for _kind in (
-    AnswerKind(
-        "pressure_angle.<joint>",
-        Compare.MAGNITUDE,
-        "topology",
-        _D.ANGLE,
-        _cam("pressure_angle"),
-        "a cam's pressure angle at the drive angle",
-    ),
-    AnswerKind(
-        "pressure_angle.<joint>.max",
-        Compare.MAGNITUDE,
-        "topology",
-        _D.ANGLE,
-        _cam("pressure_angle.max"),
-        "a cam's largest pressure angle over the turn",
-    ),
-    AnswerKind(
-        "displacement.<point>",
-        Compare.MAGNITUDE,
-        "topology",
-        _D.LENGTH,
-        _cam("displacement"),
-        "a cam follower's lift from its lowest position (an angle for an oscillating one)",
-        also=(_D.ANGLE,),
-    ),
-):
-    register(_kind)
-
-
-# -- forces (issue 24, DESIGN § 1.4): compute functions in mech.forces.keys ------------------
-def _forces(name: str) -> Callable[[Any, tuple[str, ...]], Any]:
-    """A force key computed in :mod:`mech.forces.keys` (imported when first asked)."""
-
-    def compute(an: Any, names: tuple[str, ...]) -> Any:
-        from mech.forces import keys
-
-        return getattr(keys, name)(an, names)
-
-    compute.__name__ = name
-    return compute
-
-
-def _supersede(kind: AnswerKind) -> None:
-    """Put ``kind`` in the place of the registered key of the same pattern, in the registry and in
-    :data:`KINDS` (input_torque and input_force now count the links' inertia and weight when the
-    file gives masses)."""
-    global KINDS
-    old = next(k for k in _KINDS if k.pattern == kind.pattern)
-    _KINDS[_KINDS.index(old)] = kind
-    heads = _BY_HEAD[kind.parts[0]]
-    heads[heads.index(old)] = kind
-    KINDS = tuple(kind if k is old else k for k in KINDS)
-    _parse_cached.cache_clear()
-
-
-for _kind in (
-    AnswerKind(
-        "input_torque",
-        Compare.SIGNED,
-        "velocity",
-        _D.TORQUE,
-        _forces("input_torque"),
-        "torque on the input link balancing the loads, and the links' inertia and weight (ccw +)",
-    ),
-    AnswerKind(
-        "input_force",
-        Compare.SIGNED,
-        "velocity",
-        _D.FORCE,
-        _forces("input_force"),
-        "force on a slider drive balancing the loads, and the links' inertia and weight",
-    ),
-):
-    _supersede(_kind)
-for _kind in (
-    AnswerKind(
-        "force.<joint>", Compare.MAGNITUDE, "position", _D.FORCE, _forces("force"), "force a pair carries"
-    ),
-    AnswerKind(
-        "force.<joint>.x", Compare.SIGNED, "position", _D.FORCE, _forces("force_x"), "on its second link, x"
-    ),
-    AnswerKind(
-        "force.<joint>.y", Compare.SIGNED, "position", _D.FORCE, _forces("force_y"), "on its second link, y"
-    ),
-    AnswerKind(
-        "shaking_force", Compare.MAGNITUDE, "position", _D.FORCE, _forces("shaking_force"), "|−Σ m a_G|"
-    ),
-    AnswerKind(
-        "shaking_moment",
-        Compare.SENSE,
-        "position",
-        _D.TORQUE,
-        _forces("shaking_moment"),
-        "−Σ (r_G × m a_G + I_G α) about the drive's pivot (ccw +)",
-    ),
-    AnswerKind(
-        "torque.mean",
-        Compare.SENSE,
-        "position",
-        _D.TORQUE,
-        _forces("torque_mean"),
-        "mean input torque, cycle",
-    ),
-    AnswerKind(
-        "energy.fluctuation",
-        Compare.MAGNITUDE,
-        "position",
-        _D.ENERGY,
-        _forces("energy_fluctuation"),
-        "greatest minus least of ∫(T − T_mean) dθ",
-    ),
-    AnswerKind(
-        "flywheel.inertia",
-        Compare.MAGNITUDE,
-        "position",
-        _D.MOMENT_OF_INERTIA,
-        _forces("flywheel_inertia"),
-        "ΔE / (ω² C_s)",
-    ),
-):
-    register(_kind)

@@ -12,11 +12,12 @@
    suffix).  A sheet maps a problem — its file stem, file name, path under a
    folder given, or ``name`` — to an answers mapping in the same grammar as a
    file's own ``answers``.
-3. Each problem file is loaded and solved **once**, however many students
-   answered it (:class:`mech.check.Analysis`), in worker processes that can be
-   killed (:mod:`mech.batchpool`): a file past ``timeout`` seconds is its own
-   error row and the others finish.  Results come back in sorted order, as
-   soon as they are ready, so a report can be streamed.
+3. Each problem file is one task (:class:`mech.check.problem.Task`), loaded
+   and solved **once** however many students answered it, in worker processes
+   that can be killed (:mod:`mech.batchpool` runs :func:`mech.check.problem.run_task`):
+   a file past ``timeout`` seconds is its own error row and the others finish.
+   Results come back in sorted order, as soon as they are ready, so a report
+   can be streamed.
 4. :class:`Report` holds every row, counts them, scores students and owns the
    exit status.
 
@@ -33,30 +34,42 @@ score.
 **A sheet error costs only what it touches**: each answer of a sheet entry is
 read on its own (:func:`mech.loader.parse_answer_entries`), so a bad key or
 value is an error for that question alone, located ``line:column``.
+
+**Memory stays bounded** however many sheets a class hands in, and however much
+is written on them: a sheet is kept as its text and where each entry's answers
+are (:class:`mech.loader.sheets.SheetEntry`), never as YAML nodes; a worker
+composes one entry at a time; at most :data:`mech.check.problem.MAX_LISTED`
+keys that are not questions are listed per entry (and per sheet, entries naming
+no problem), the rest counted in one row.
+
+The trip runs one way: this module calls the pool, the pool calls
+:mod:`mech.check.problem`, and nothing below imports this module back.
 """
 
 from __future__ import annotations
 
-import errno
+import contextlib
 import os
-import stat
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import field, replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from mech._records import dataclass
-from mech.check import (
-    ERROR,
-    FAIL,
-    IGNORED,
-    Analysis,
-    FileResult,
-    InternalError,
-    Verdict,
-    check,
-    error_result,
+from mech.batchpool import Pool, cpu_count, run_jobs
+from mech.check.problem import (
+    MAX_LISTED,
+    Done,
+    Submission,
+    Task,
+    ambiguous,
+    lost_task,
+    probe,
+    questions_of,
+    run_task,
 )
-from mech.errors import InputError, MechError, Problem, Where
+from mech.check.verdicts import ERROR, IGNORED, FileResult, Verdict, error_result
+from mech.errors import InputError, Problem, Where
+from mech.loader.sheets import SheetEntry
 from mech.options import SolveOptions
 
 if TYPE_CHECKING:  # pathlib costs mech check ~5 ms of start-up (urllib, ipaddress): only sheets need it
@@ -80,6 +93,9 @@ SUFFIXES = (".yaml", ".yml")
 
 #: Seconds one problem file may take (load, solve, every student's claims) before it is an error row.
 DEFAULT_TIMEOUT = 30.0
+
+#: Students graded in one task: a class's problem is checked in parts of this many sheets.
+STUDENTS = 200
 
 
 @dataclass(frozen=True, slots=True)
@@ -117,8 +133,6 @@ class CheckOptions:
 
     @property
     def workers(self) -> int:
-        from mech.batchpool import cpu_count
-
         return self.jobs if self.jobs is not None else cpu_count()
 
 
@@ -300,49 +314,6 @@ def _linked_folder(e: os.DirEntry[str]) -> bool:
         return False
 
 
-def probe(path: str) -> str | None:
-    """Why ``path`` cannot be read as a problem file without opening it, or None when it can.
-
-    A FIFO would block the read forever, a device could be endless: neither is
-    opened.  Dangling and looping symbolic links are named as such.
-    """
-    try:
-        st = os.stat(path)
-    except FileNotFoundError:
-        if os.path.islink(path):
-            return f"a symbolic link to {os.readlink(path)}, which does not exist"
-        return "no such file (it was removed while checking)"
-    except OSError as exc:
-        if exc.errno == errno.ELOOP:
-            return "a symbolic link loop (the link leads back to itself)"
-        return f"cannot be read: {exc.strerror}"
-    mode = st.st_mode
-    if stat.S_ISREG(mode):
-        return None
-    if stat.S_ISDIR(mode):
-        return "a folder, not a file"
-    if stat.S_ISFIFO(mode):
-        return "a FIFO (named pipe), not a file: not read"
-    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
-        return "a device, not a file: not read"
-    if stat.S_ISSOCK(mode):
-        return "a socket, not a file: not read"
-    return "not a regular file: not read"
-
-
-def special_result(path: str, reason: str, *, student: str | None = None) -> FileResult:
-    """The error row of a path that is not a readable regular file."""
-    error = InputError(
-        f"this path is {reason}", where=Where(path), hint="problem files are regular YAML files"
-    )
-    return error_result(path, error, student=student)
-
-
-def questions_of(mech: Any) -> tuple[str, ...]:
-    """A problem's questions: its ``answers`` keys, else its ``asks`` (DESIGN.md § 1.1)."""
-    return tuple(c.key for c in mech.answers) or tuple(mech.asks)
-
-
 @dataclass(frozen=True, slots=True)
 class _Index:
     """Which problem files each sheet key names: by stem, file name or path under a folder given.
@@ -379,26 +350,6 @@ class _Index:
 
 
 # -- answer sheets --------------------------------------------------------------------------
-@dataclass(frozen=True, slots=True)
-class SheetEntry:
-    """One top-level entry of a sheet: a problem key, where it is written, and its answers.
-
-    ``node`` is the answers mapping node (kept, not converted, so that the
-    loader validates it with the same code and locations as a file's own
-    ``answers``); None for an empty entry (``four_bar: {}`` or ``four_bar:``),
-    which answers nothing.  ``problem`` says why the value cannot be answers.
-    """
-
-    key: str
-    where: Where
-    node: Any = None
-    problem: str | None = None
-
-    @property
-    def empty(self) -> bool:
-        return self.problem is None and (self.node is None or not self.node.value)
-
-
 @dataclass(frozen=True, slots=True)
 class Sheet:
     """One student's answer sheet: its entries, or the error row that it could not be read.
@@ -445,6 +396,18 @@ def read_sheets(path: str) -> tuple[Sheet, ...]:
         )
     if root.is_file():
         return (_read_sheet(root, root.stem),)
+    if os.path.lexists(path):  # it is there, but neither a sheet nor a folder of sheets: say what it is
+        why = probe(path) or "neither a file nor a folder"
+        link = (
+            f" (a symbolic link to {os.readlink(path)})"
+            if os.path.islink(path) and os.path.exists(path)
+            else ""
+        )
+        raise InputError(
+            f"the answer sheet {path}{link} is {why}",
+            where=Where(path),
+            hint="give one sheet (a YAML file) or a folder of sheets",
+        )
     raise InputError(f"no such answer sheet or folder: {path}", where=Where(path), hint="check the path")
 
 
@@ -484,258 +447,7 @@ def _read_sheet(path: Path, student: str) -> Sheet:
         entries, bad_keys = sheet_entries(text, name)
     except InputError as error:
         return failed(error, text)
-    return Sheet(student, name, text, tuple(SheetEntry(*e) for e in entries), bad_keys=tuple(bad_keys))
-
-
-@dataclass(frozen=True, slots=True)
-class _Submission:
-    """What a worker needs of one student's sheet for one problem."""
-
-    student: str
-    sheet: str
-    source: str
-    entries: tuple[SheetEntry, ...]  # entries naming this problem file (and no other) by path
-    ambiguous: tuple[tuple[SheetEntry, tuple[str, ...]], ...]  # entries naming it and others: candidates
-    unresolved: tuple[SheetEntry, ...]  # entries naming no file by path: maybe a problem's `name`
-    unreadable: bool = False  # the sheet could not be read: nothing on it is graded
-
-
-@dataclass(frozen=True, slots=True)
-class _Task:
-    path: str
-    submissions: tuple[_Submission, ...] | None
-    solve: SolveOptions
-
-
-@dataclass(frozen=True, slots=True)
-class _Done:
-    results: tuple[FileResult, ...]
-    used: tuple[tuple[str, str, str], ...] = ()  # (student, sheet key, problem file) matched by `name`
-
-
-# -- the worker -----------------------------------------------------------------------------
-def _run_task(task: _Task) -> _Done:
-    try:
-        return _check_task(task)
-    except Exception as exc:  # a bug: this file's rows say so, the batch goes on
-        return _lost(task, str(InternalError.of(exc)))
-
-
-def _lost_task(task: _Task, why: str) -> _Done:
-    """The rows of a problem file whose check did not finish: past the time limit, or a crash."""
-    if why == "timeout":
-        message = "not checked: it took longer than the time limit (--timeout)"
-    else:
-        message = "mech crashed while checking this file (a bug in mech or its YAML parser: please report it)"
-    return _lost(task, message)
-
-
-def _lost(task: _Task, message: str) -> _Done:
-    row = FileResult(task.path, verdicts=(Verdict("file", ERROR, message=message, where=Where(task.path)),))
-    if task.submissions is None:
-        return _Done((row,))
-    return _Done(_exclude(task, row))
-
-
-def _exclude(task: _Task, teacher: FileResult) -> tuple[FileResult, ...]:
-    """A problem left out of every score: the teacher's row, and a not-scored row per student."""
-    from mech.loader.sheets import answer_keys
-
-    why = teacher.verdicts[0].message if teacher.verdicts else "the problem asks nothing"
-    rows = [replace(teacher, excluded=True)]
-    for sub in task.submissions or ():
-        keys = [
-            (k, w) for e in sub.entries if e.node is not None for k, w in answer_keys(e.node, e.where.path)
-        ]
-        verdicts = tuple(
-            Verdict(k, IGNORED, message=f"not scored: the problem file is excluded ({why})", where=w)
-            for k, w in keys
-        )
-        rows.append(FileResult(task.path, teacher.name, verdicts, student=sub.student, excluded=True))
-    return tuple(rows)
-
-
-def _check_task(task: _Task) -> _Done:
-    if task.submissions is None:
-        from mech.check import check_file
-
-        return _Done((check_file(task.path, options=task.solve),))
-    from mech.loader import load
-
-    why = probe(task.path)
-    if why is not None:
-        return _Done(_exclude(task, special_result(task.path, why)))
-    try:
-        mech = load(task.path)
-    except MechError as error:
-        return _Done(_exclude(task, error_result(task.path, error)))
-    questions = questions_of(mech)
-    if not questions:
-        asks_nothing = InputError(
-            f"{task.path} asks nothing: it has neither `answers` nor `asks`, so no student can be graded on it",
-            where=Where(task.path),
-            hint="list its questions: `asks: [omega.rocker, velocity.C]` (or give `answers`)",
-        )
-        return _Done(_exclude(task, replace(error_result(task.path, asks_nothing), name=mech.name)))
-    return _check_sheets(task, mech, questions)
-
-
-def _check_sheets(task: _Task, mech: Any, questions: tuple[str, ...]) -> _Done:
-    """Every student's answers to one problem, against one shared solution."""
-    analysis = Analysis(mech, options=task.solve)
-    analysis.need(questions)
-    teacher_tol = {c.key: c.tolerance for c in mech.answers if c.tolerance is not None}
-    results = []
-    used: list[tuple[str, str, str]] = []
-    for sub in task.submissions or ():
-        entries = list(sub.entries)
-        for e in sub.unresolved:
-            if mech.name is not None and e.key == mech.name:
-                entries.append(e)
-                used.append((sub.student, e.key, task.path))
-        verdicts = _grade(sub, entries, task.path, mech, questions, teacher_tol, analysis)
-        results.append(FileResult(task.path, mech.name, verdicts, student=sub.student))
-    return _Done(tuple(results), tuple(used))
-
-
-def _everyone(
-    questions: Sequence[str], status: str, message: str, where: Where | None
-) -> tuple[Verdict, ...]:
-    return tuple(Verdict(q, status, message=message, where=where) for q in questions)
-
-
-def _grade(
-    sub: _Submission,
-    entries: Sequence[SheetEntry],
-    path: str,
-    mech: Any,
-    questions: tuple[str, ...],
-    teacher_tol: dict[str, Any],
-    analysis: Analysis,
-) -> tuple[Verdict, ...]:
-    """Exactly one scored verdict per question, in the problem's order, then the ignored keys."""
-    if sub.unreadable:
-        return _everyone(questions, ERROR, "not graded: the answer sheet could not be read", Where(sub.sheet))
-    if len(entries) > 1:
-        e = _twice(path, entries)
-        return _everyone(questions, ERROR, e.problems[0].message, e.problems[0].where)
-    if not entries:
-        if sub.ambiguous:
-            e = _ambiguous(sub.ambiguous[0][0], sub.ambiguous[0][1])
-            return _everyone(questions, ERROR, e.problems[0].message, e.problems[0].where)
-        return _everyone(
-            questions, FAIL, "not answered: the sheet has no answers for this problem", Where(sub.sheet)
-        )
-    entry = entries[0]
-    if entry.problem is not None:
-        return _everyone(questions, ERROR, f"not graded: {entry.problem}", entry.where)
-    if entry.empty:
-        return _everyone(
-            questions, FAIL, "not answered: the sheet's entry for this problem is empty", entry.where
-        )
-    claims, errors, ignored = _read_entry(sub, entry, mech, questions, teacher_tol)
-    checked = dict(
-        zip(
-            claims,
-            check(mech, tuple(claims.values()), tolerance=mech.tolerance, analysis=analysis),
-            strict=True,
-        )
-    )
-    out = []
-    for q in questions:
-        if q in errors:
-            out.append(errors[q])
-        elif q in checked:
-            out.append(checked[q])
-        else:
-            out.append(Verdict(q, FAIL, message="not answered", where=entry.where))
-    return tuple(out) + tuple(ignored)
-
-
-def _read_entry(
-    sub: _Submission, entry: SheetEntry, mech: Any, questions: tuple[str, ...], teacher_tol: dict[str, Any]
-) -> tuple[dict[str, Any], dict[str, Verdict], list[Verdict]]:
-    """A sheet entry's answers read against the problem: the claims to check (with the teacher's
-    tolerance), the questions that cannot be graded (why), and the keys ignored (why)."""
-    from mech.loader import parse_answer_entries
-    from mech.loader.sheets import own_tolerances
-
-    asked = set(questions)
-    own_tolerance = own_tolerances(entry.node, sub.sheet)
-    claims: dict[str, Any] = {}
-    errors: dict[str, Verdict] = {}
-    first: dict[str, Where] = {}
-    ignored: list[Verdict] = []
-    for key, where, got in parse_answer_entries(entry.node, mech, path=sub.sheet, source=sub.source):
-        if key not in asked:
-            ignored.append(_ignored(key, where, got, questions))
-            continue
-        if key in first:
-            errors[key] = Verdict(
-                key,
-                ERROR,
-                message=f"answered twice on this sheet (lines {first[key].line} and {where.line}): neither is graded",
-                where=where,
-            )
-            claims.pop(key, None)
-            continue
-        first[key] = where
-        if isinstance(got, InputError):
-            p = got.problems[0]
-            more = len(got.problems) - 1
-            text = (
-                p.message + (f" ({p.hint})" if p.hint else "") + (f" (and {more} more)" if more > 0 else "")
-            )
-            errors[key] = Verdict(
-                key, ERROR, claimed="", message=f"not graded: {text}", where=p.where or where
-            )
-        elif key in own_tolerance:
-            errors[key] = Verdict(
-                key,
-                ERROR,
-                claimed=got.text,
-                message="not graded: an answer sheet cannot set a tolerance (the problem file sets it)",
-                where=own_tolerance[key],
-            )
-        else:
-            tol = teacher_tol.get(key)
-            claims[key] = replace(got, tolerance=tol)
-    return claims, errors, ignored
-
-
-def _ignored(key: str, where: Where, got: Any, questions: tuple[str, ...]) -> Verdict:
-    """A sheet key that is not a question of the problem: reported, not scored."""
-    if key == "tolerance":
-        reason = "an answer sheet cannot set a tolerance (the problem file sets it)"
-    elif isinstance(got, InputError):
-        reason = got.problems[0].message + (f" ({got.problems[0].hint})" if got.problems[0].hint else "")
-    else:
-        reason = f"not a question of this problem (it asks {', '.join(questions)})"
-    written = "" if isinstance(got, InputError) else got.text
-    return Verdict(key, IGNORED, claimed=written, message=f"ignored, not scored: {reason}", where=where)
-
-
-def _twice(path: str, entries: Sequence[SheetEntry]) -> InputError:
-    """One problem answered by two entries of a sheet: neither is graded (which one was meant?)."""
-    from pathlib import Path
-
-    entries = sorted(entries, key=lambda e: (e.where.line, e.where.column))
-    keys = " and ".join(f"`{e.key}` (line {e.where.line})" for e in entries)
-    return InputError(
-        f"{Path(path).name} is answered twice on this sheet: by {keys}; neither is graded",
-        where=entries[-1].where,
-        hint="keep one entry per problem (a problem's stem, file name, path and `name` all name it)",
-    )
-
-
-def _ambiguous(entry: SheetEntry, candidates: Sequence[str]) -> InputError:
-    """A sheet key that names several problem files: it is graded against none of them."""
-    return InputError(
-        f"`{entry.key}` names {len(candidates)} problem files ({', '.join(candidates)}); it is graded "
-        "against none of them",
-        where=entry.where,
-        hint=f"name one by its path under the problems folder (`{candidates[0]}:`) or by its `name`",
-    )
+    return Sheet(student, name, text, tuple(entries), bad_keys=tuple(bad_keys))
 
 
 # -- the batch ------------------------------------------------------------------------------
@@ -759,31 +471,51 @@ def run(
         sheet folder with no sheets.
     """
     files = find_problem_files(options.paths)
-    sheets = read_sheets(options.answers) if options.answers else None
-    index = _Index.of(files, options.paths) if sheets is not None else _Index({}, {})  # keys name files
-    tasks, extra = _plan(files, sheets, options.solve, index)
-    if on_start is not None:
-        on_start(len(tasks))
-    from mech.batchpool import run_jobs
+    sheets_given = _yaml_files(options.answers) if options.answers and os.path.isdir(options.answers) else ()
+    parts = max(1, -(-len(sheets_given) // STUDENTS))  # a class's problem is graded in parts
+    pool: Pool[Task, Done] | None = None
+    if options.workers > 1 and len(files) * parts > 1:
+        from mech import topology  # noqa: F401  (what every file needs, imported once, before the fork)
 
-    if options.workers > 1 and len(tasks) > 1:
-        # what every problem file needs (not numpy: a folder of DOF exercises never imports it),
-        # imported once here rather than once in each worker process
-        from mech.diagnose import diagnose  # noqa: F401
-        from mech.loader import load  # noqa: F401
-        from mech.topology import classify  # noqa: F401
-
-    results = list(extra)
-    used: list[tuple[str, str, str]] = []
-    chunk = max(1, min(32, len(tasks) // (options.workers * 8)))
-    for done in run_jobs(
-        tasks, _run_task, _lost_task, workers=options.workers, timeout=options.timeout, chunk=chunk
-    ):
-        if on_file is not None:
-            on_file(done.results)
-        results += done.results
-        used += done.used
+        # the workers start now, from a parent that has read no sheet yet: none of them inherits
+        # (and counts again in its resident memory) a class's sheets; each task carries its own
+        pool = Pool(run_task, lost_task, workers=options.workers, timeout=options.timeout).start()
+    with pool or contextlib.nullcontext():
+        sheets = read_sheets(options.answers) if options.answers else None
+        index = _Index.of(files, options.paths) if sheets is not None else _Index({}, {})  # keys name files
+        tasks, extra = _plan(files, sheets, options.solve, index)
+        if sheets is not None:  # the tasks carry the texts and entries now, each let go once done;
+            # what is left to report is the entries naming no problem file by path
+            sheets = tuple(
+                replace(s, source="", entries=tuple(e for e in s.entries if e.key not in index.files))
+                for s in sheets
+            )
+        if on_start is not None:
+            on_start(len(files))
+        paths = [t.path for t in tasks]
+        if pool is not None and len(tasks) > 1:
+            # a class's part is heavy (hundreds of students): one at a time, so a worker holds one
+            chunk = 1 if sheets is not None else max(1, min(32, len(tasks) // (options.workers * 8)))
+            done_tasks = pool.map(tasks, chunk=chunk)
+        else:
+            done_tasks = run_jobs(tasks, run_task, lost_task, workers=1, timeout=options.timeout)
+        del tasks  # the pool keeps them while it needs them
+        results = list(extra)
+        used: list[tuple[str, str, str]] = []
+        lost: dict[str, str] = {}
+        landed: list[FileResult] = []
+        for i, done in enumerate(done_tasks):
+            results += done.results
+            used += done.used
+            landed += done.results
+            if done.lost is not None:
+                lost.setdefault(paths[i], done.lost)
+            if i + 1 == len(paths) or paths[i + 1] != paths[i]:  # a problem file's last part
+                if on_file is not None:
+                    on_file(tuple(landed))
+                landed = []
     if sheets is not None:
+        results = _exclude_lost(results, lost)
         results = _shared_names(results, sheets, index, used)
         results += _unmatched(sheets, index, {(student, key) for student, key, _ in used})
     report = Report.of(results, students=[s.student for s in sheets] if sheets is not None else ())
@@ -797,10 +529,10 @@ def run(
 
 def _plan(
     files: Sequence[str], sheets: Sequence[Sheet] | None, solve: SolveOptions, index: _Index
-) -> tuple[list[_Task], list[FileResult]]:
+) -> tuple[list[Task], list[FileResult]]:
     """One task per problem file; with sheets, each task carries every student's answers to it."""
     if sheets is None:
-        return [_Task(f, None, solve) for f in files], []
+        return [Task(f, None, solve) for f in files], []
     extra = [s.error for s in sheets if s.error is not None]
     # per student: the entries naming one file, several files (with their labels), or none
     alone: list[dict[str, list[SheetEntry]]] = []
@@ -821,7 +553,7 @@ def _plan(
     tasks = []
     for f in files:
         subs = tuple(
-            _Submission(
+            Submission(
                 s.student,
                 s.path,
                 s.source,
@@ -832,8 +564,32 @@ def _plan(
             )
             for s, one, several, loose in zip(sheets, alone, shared, unresolved, strict=True)
         )
-        tasks.append(_Task(f, subs, solve))
+        # a class's problem in parts of STUDENTS students: a worker holds (and sends back) one part
+        # at a time, and each part loads and solves the problem again (milliseconds)
+        for start in range(0, len(subs), STUDENTS) or (0,):
+            tasks.append(Task(f, subs[start : start + STUDENTS], solve, first=start == 0))
     return tasks, extra
+
+
+def _exclude_lost(results: list[FileResult], lost: dict[str, str]) -> list[FileResult]:
+    """A class's problem of which any part was lost (the time limit, a crash) is left out of
+    every score, like a problem that cannot be read: the teacher's row once, and every student's
+    rows for it not scored, whichever part they were graded in (scores mean the same for all)."""
+    if not lost:
+        return results
+    out = []
+    teachers = {r.path for r in results if r.path in lost and r.student is None and not r.sheet}
+    for path, why in lost.items():
+        if path not in teachers:
+            row = FileResult(path, verdicts=(Verdict("file", ERROR, message=why, where=Where(path)),))
+            out.append(replace(row, excluded=True))
+    for r in results:
+        if r.path in lost and r.student is not None and not (r.excluded or r.sheet):
+            message = f"not scored: the problem file is excluded ({lost[r.path]})"
+            verdicts = tuple(Verdict(v.key, IGNORED, message=message, where=v.where) for v in r.verdicts)
+            r = replace(r, verdicts=verdicts, excluded=True)
+        out.append(r)
+    return out
 
 
 def _shared_names(
@@ -850,7 +606,7 @@ def _shared_names(
     swap: dict[tuple[str, str], InputError] = {}
     for (student, key), paths in clashes.items():
         entry = next(e for e in by_student[student].entries if e.key == key)
-        error = _ambiguous(entry, [index.labels[p] for p in paths])
+        error = ambiguous(entry, [index.labels[p] for p in paths])
         for path in paths:
             swap[(student, path)] = error
     out = []
@@ -868,7 +624,10 @@ def _shared_names(
 
 
 def _unmatched(sheets: Sequence[Sheet], index: _Index, used: set[tuple[str, str]]) -> list[FileResult]:
-    """An ignored row for every sheet entry that names no problem file, or whose key is not text."""
+    """An ignored row for every sheet entry that names no problem file, or whose key is not text.
+
+    At most :data:`~mech.check.problem.MAX_LISTED` rows a sheet; one more counts the rest.
+    """
     out = []
     for s in sheets:
         if s.error is not None:
@@ -880,8 +639,9 @@ def _unmatched(sheets: Sequence[Sheet], index: _Index, used: set[tuple[str, str]
                 message=f"ignored: a problem is named by text (its file name, stem, path or `name`), not by {kind}",
                 where=where,
             )
-            for written, kind, where in s.bad_keys
+            for written, kind, where in s.bad_keys[:MAX_LISTED]
         ]
+        unnamed = [e for e in s.entries if e.key not in index.files and (s.student, e.key) not in used]
         rows += [
             Verdict(
                 e.key,
@@ -889,8 +649,17 @@ def _unmatched(sheets: Sequence[Sheet], index: _Index, used: set[tuple[str, str]
                 message=f"ignored: no problem file is named {e.key!r} (by file name, stem, path or `name`)",
                 where=e.where,
             )
-            for e in s.entries
-            if e.key not in index.files and (s.student, e.key) not in used
+            for e in unnamed[: max(0, MAX_LISTED - len(rows))]
         ]
+        more = len(s.bad_keys) + len(unnamed) - len(rows)
+        if more > 0:
+            rows.append(
+                Verdict(
+                    "…",
+                    IGNORED,
+                    message=f"ignored: {more:,} more entries of this sheet name no problem file, not listed",
+                    where=Where(s.path),
+                )
+            )
         out += [FileResult(s.path, verdicts=(v,), student=s.student, sheet=True) for v in rows]
     return out

@@ -18,6 +18,11 @@ Two limits protect a batch:
 
 Results are handed back **in job order** as soon as every earlier job is done,
 so a caller can stream a sorted report while later jobs still run.
+
+Jobs travel to the workers with their chunks (pickled), so a :class:`Pool` can be
+started before its jobs exist: ``mech check`` starts its workers before it reads a
+class's answer sheets, so that no worker inherits (and counts again in its resident
+memory) what the parent read.
 """
 
 from __future__ import annotations
@@ -36,7 +41,7 @@ from typing import TYPE_CHECKING, Any, Generic, TypeVar
 if TYPE_CHECKING:  # multiprocessing is imported only when a pool starts
     from multiprocessing.context import ForkContext, ForkServerContext, SpawnContext
 
-__all__ = ["JobTimeout", "run_jobs", "time_limit"]
+__all__ = ["JobTimeout", "Pool", "run_jobs", "time_limit"]
 
 T = TypeVar("T")
 R = TypeVar("R")
@@ -107,12 +112,13 @@ def run_jobs(
     (module-level functions, plain data).  Closing the iterator early (or
     Ctrl-C) kills every worker.
     """
-    limited = _Limited(work, on_lost, timeout)
     if workers <= 1 or len(jobs) < 2:
+        limited = _Limited(work, on_lost, timeout)
         for job in jobs:
             yield limited(job)
         return
-    yield from _Pool(jobs, limited, on_lost, min(workers, len(jobs)), timeout, max(1, chunk)).results()
+    with Pool(work, on_lost, workers=min(workers, len(jobs)), timeout=timeout) as pool:
+        yield from pool.map(jobs, chunk=chunk)
 
 
 # -- the pool -----------------------------------------------------------------------------------
@@ -146,22 +152,24 @@ def _one_blas_thread() -> None:
         os.environ.setdefault(name, "1")
 
 
-def _worker(conn: Any, slot: int, board: Any, limited: _Limited[Any, Any], jobs: Sequence[Any]) -> None:
-    """Run the chunks of job indices the parent sends; say on ``board`` which job runs since when."""
+def _worker(conn: Any, slot: int, board: Any, limited: _Limited[Any, Any]) -> None:
+    """Run the chunks of ``(index, job)`` the parent sends; say on ``board`` which job runs since when."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle: it kills us
     _one_blas_thread()
     gc.freeze()  # what the parent imported lives as long as we do: no collection walks it again
     frozen: set[str] | None = set(sys.modules)
     try:
         while True:
-            indices = conn.recv()
-            if indices is None:
+            chunk = conn.recv()
+            if chunk is None:
                 return
             out = []
-            for index in indices:
+            while chunk:  # each job let go once done: a class's answer sheets are not kept
+                index, job = chunk.pop(0)
                 board[2 * slot] = index
                 board[2 * slot + 1] = time.monotonic()
-                out.append((index, limited(jobs[index])))
+                out.append((index, limited(job)))
+                del job
             board[2 * slot] = -1.0
             conn.send(out)
             if frozen is not None and len(sys.modules) > len(frozen):  # numpy, imported by a solve
@@ -189,15 +197,22 @@ class _Slot:
         return [i for chunk in self.chunks for i in chunk]
 
 
-class _Pool(Generic[T, R]):
+class Pool(Generic[T, R]):
+    """Worker processes that run ``work(job)`` under the limits of the module docstring.
+
+    The workers start when :meth:`start` is called (or when :meth:`map` first needs
+    them); :meth:`map` runs one sequence of jobs and yields their results in job
+    order, then closes the pool.  A worker that dies or is killed is replaced by a
+    fresh one.  ``work``, ``on_lost`` and the jobs must be picklable.
+    """
+
     def __init__(
         self,
-        jobs: Sequence[T],
-        limited: _Limited[T, R],
+        work: Callable[[T], R],
         on_lost: Callable[[T, str], R],
+        *,
         workers: int,
-        timeout: float | None,
-        chunk: int,
+        timeout: float | None = None,
     ) -> None:
         import multiprocessing as mp
 
@@ -212,19 +227,52 @@ class _Pool(Generic[T, R]):
             self.ctx = mp.get_context("forkserver")
         else:
             self.ctx = mp.get_context("spawn")
-        self.jobs, self.limited, self.on_lost = jobs, limited, on_lost
+        self.limited, self.on_lost = _Limited(work, on_lost, timeout), on_lost
         self.timeout = timeout
         self.grace = None if timeout is None else 2.0 + 0.5 * timeout
         self.board = self.ctx.Array("d", [-1.0, 0.0] * workers, lock=False)
-        self.queue: deque[list[int]] = deque(_chunks(len(jobs), chunk, workers))
         self.slots: list[_Slot | None] = [None] * workers
+        self.jobs: list[T | None] = []
+        self.queue: deque[list[int]] = deque()
         self.done: dict[int, R] = {}
+
+    def __enter__(self) -> Pool[T, R]:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def start(self) -> Pool[T, R]:
+        """Start every worker now (forked from this process as it is now), before any job exists."""
+        for slot, s in enumerate(self.slots):
+            if s is None:
+                self._start(slot)
+        return self
+
+    def map(self, jobs: Sequence[T], *, chunk: int = 1) -> Iterator[R]:
+        """``work(job)`` for every job, yielded in job order (``on_lost(job, why)`` for a lost one).
+
+        Closing the iterator early (or Ctrl-C) kills every worker; the pool is closed at the end.
+        The pool keeps its own list of the jobs and lets each go once its result is yielded (a
+        class's answer sheets travel in its jobs): a caller that keeps no reference to them
+        holds none of the jobs that are done.
+        """
+        self.jobs, self.done = list(jobs), {}
+        self.queue = deque(_chunks(len(self.jobs), max(1, chunk), len(self.slots)))
+        del jobs
+        try:
+            yield from self._results()
+        finally:
+            self.close()
+
+    def _job(self, index: int) -> T:
+        job = self.jobs[index]
+        assert job is not None, f"job {index} is sent or lost after its result was yielded"
+        return job
 
     def _start(self, slot: int) -> _Slot:
         parent, child = self.ctx.Pipe()
-        proc = self.ctx.Process(
-            target=_worker, args=(child, slot, self.board, self.limited, self.jobs), daemon=True
-        )
+        proc = self.ctx.Process(target=_worker, args=(child, slot, self.board, self.limited), daemon=True)
         proc.start()
         child.close()
         self.board[2 * slot] = -1.0
@@ -244,46 +292,48 @@ class _Pool(Generic[T, R]):
         self.slots[slot] = None
         rest = [i for i in s.held if i != current and i not in self.done]
         if current >= 0 and current in s.held:
-            self.done[current] = self.on_lost(self.jobs[current], why)
+            self.done[current] = self.on_lost(self._job(current), why)
         elif not rest and s.held:  # died between jobs with nothing left: the first is the culprit
-            self.done[s.held[0]] = self.on_lost(self.jobs[s.held[0]], why)
+            self.done[s.held[0]] = self.on_lost(self._job(s.held[0]), why)
         if rest:
             self.queue.appendleft(rest)
 
-    def results(self) -> Iterator[R]:
+    def _results(self) -> Iterator[R]:
         from multiprocessing.connection import wait
 
         emitted = 0
-        try:
-            while emitted < len(self.jobs):
-                for slot, s in enumerate(self.slots):
-                    while self.queue and (s is None or len(s.chunks) < _IN_FLIGHT):
-                        s = s or self._start(slot)
-                        s.chunks.append(self.queue.popleft())
-                        try:
-                            s.conn.send(s.chunks[-1])
-                        except OSError:  # it died meanwhile: its end of the pipe says so, and _lose
-                            break  # hands every job it held (this chunk too) to a fresh worker
-                busy = {s.conn: i for i, s in enumerate(self.slots) if s is not None and s.held}
-                ready = wait(list(busy), timeout=0.25) if busy else []
-                for conn in ready:
-                    slot = busy[conn]
-                    s = self.slots[slot]
-                    assert s is not None
-                    try:
-                        got = s.conn.recv()  # s.conn is conn, as the Connection it is
-                    except (EOFError, OSError):
-                        self._lose(slot, "crash")
-                        continue
-                    for index, result in got:
-                        self.done[index] = result
-                    s.chunks.popleft()  # a worker answers its chunks in the order they were sent
-                self._police()
-                while emitted in self.done:
-                    yield self.done.pop(emitted)
-                    emitted += 1
-        finally:
-            self._close()
+        while emitted < len(self.jobs):
+            self._feed()
+            busy = {s.conn: i for i, s in enumerate(self.slots) if s is not None and s.held}
+            ready = wait(list(busy), timeout=0.25) if busy else []
+            for conn in ready:
+                slot = busy[conn]
+                s = self.slots[slot]
+                assert s is not None
+                try:
+                    got = s.conn.recv()  # s.conn is conn, as the Connection it is
+                except (EOFError, OSError):
+                    self._lose(slot, "crash")
+                    continue
+                for index, result in got:
+                    self.done[index] = result
+                s.chunks.popleft()  # a worker answers its chunks in the order they were sent
+            self._police()
+            while emitted in self.done:
+                self.jobs[emitted] = None  # done: never sent or lost again
+                yield self.done.pop(emitted)
+                emitted += 1
+
+    def _feed(self) -> None:
+        """Send each worker chunks (the jobs themselves) until it holds ``_IN_FLIGHT`` of them."""
+        for slot, s in enumerate(self.slots):
+            while self.queue and (s is None or len(s.chunks) < _IN_FLIGHT):
+                s = s or self._start(slot)
+                s.chunks.append(self.queue.popleft())
+                try:
+                    s.conn.send([(i, self._job(i)) for i in s.chunks[-1]])
+                except OSError:  # it died meanwhile: its end of the pipe says so, and _lose
+                    break  # hands every job it held (this chunk too) to a fresh worker
 
     def _police(self) -> None:
         """Kill a worker whose job is past the hard limit, or notice one that died."""
@@ -301,7 +351,8 @@ class _Pool(Generic[T, R]):
             ):
                 self._lose(slot, "timeout")
 
-    def _close(self) -> None:
+    def close(self) -> None:
+        """Stop every worker: an idle one is told to leave, a busy one is killed."""
         for s in self.slots:
             if s is None:
                 continue
@@ -321,6 +372,7 @@ class _Pool(Generic[T, R]):
                 s.proc.kill()
                 s.proc.join()
             s.conn.close()
+        self.slots = [None] * len(self.slots)
 
 
 def cpu_count() -> int:

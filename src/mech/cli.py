@@ -10,26 +10,60 @@ from __future__ import annotations
 
 import math
 import sys
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Sequence
 from functools import wraps
 from typing import TYPE_CHECKING, Any
 
 import click
 
 from mech import __version__
-from mech.commands import DEFAULT_FILE, Request, classify_files, count_dof, handles_errors
-from mech.commands import kinematics as _kinematics
-from mech.commands import solve_options as _solve_options
+from mech.commands import Request, handles_errors, request_of, run_command
+from mech.commands.params import COMMANDS, DEBUG, Param, validate
 from mech.errors import InputError
 from mech.options import OutputUnits
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.analysis import Result
 
-file_argument = click.argument("file", default=DEFAULT_FILE, type=click.Path(dir_okay=False, allow_dash=True))
-json_option = click.option(
-    "--json", "as_json", is_flag=True, help="Print JSON (structure in cli.md) instead of tables."
-)
+
+def _type(p: Param) -> Any:
+    """click's type for a declared parameter (:class:`mech.commands.params.Param`)."""
+    if p.kind == "choice":
+        return click.Choice(list(p.choices))
+    if p.kind == "path":
+        return click.Path(exists=p.exists, dir_okay=p.dir_okay, allow_dash=p.allow_dash, writable=p.writable)
+    bounded = p.low is not None or p.high is not None
+    if p.kind == "float":
+        return click.FloatRange(min=p.low, max=p.high, min_open=p.low_open) if bounded else float
+    if p.kind == "int":
+        return click.IntRange(min=p.low, max=p.high) if bounded else int  # type: ignore[arg-type]
+    return None
+
+
+def params_of(command: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """click's options and arguments of ``command``, built from its declarations, in their order."""
+
+    def decorate(fn: Callable[..., Any]) -> Callable[..., Any]:
+        for p in reversed(COMMANDS[command]):
+            if not p.is_option:
+                extra = {"default": p.default} if p.default is not None else {}
+                fn = click.argument(p.dest, nargs=p.nargs, required=p.required, type=_type(p), **extra)(fn)
+            elif p.kind == "flag":
+                fn = click.option(*p.names, p.dest, is_flag=True, help=p.help)(fn)
+            else:
+                fn = click.option(
+                    *p.names,
+                    p.dest,
+                    type=_type(p),
+                    default=p.default,
+                    show_default=p.show_default,
+                    required=p.required,
+                    multiple=p.multiple,
+                    help=p.help,
+                )(fn)
+        return fn
+
+    return decorate
 
 
 class _PastClick(Exception):
@@ -51,12 +85,12 @@ class _Group(click.Group):
 @click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, "-V", "--version", prog_name="mech", message="%(prog)s %(version)s")
 @click.option(
-    "--debug",
+    *DEBUG.names,
     is_flag=True,
     expose_value=False,
     is_eager=True,
     callback=lambda ctx, param, value: _debug(value),
-    help="Show the traceback of a bug in mech (as MECH_DEBUG=1 does).",
+    help=DEBUG.help,
 )
 def cli() -> None:
     """Analyse planar mechanisms described in YAML.
@@ -72,7 +106,7 @@ def cli() -> None:
 
 
 def _debug(on: bool) -> None:
-    """``mech --debug …``: a bug's traceback is shown (read by :func:`mech.entry.guarded`)."""
+    """``mech --debug …``: a bug's traceback is shown (read by :func:`mech.commands.exits.guarded`)."""
     if on:
         import os
 
@@ -81,38 +115,31 @@ def _debug(on: bool) -> None:
 
 # -- counting -------------------------------------------------------------------------
 @cli.command()
-@click.argument("files", nargs=-1, type=click.Path(dir_okay=False, allow_dash=True))
-@click.option(
-    "--mobility",
-    is_flag=True,
-    help="Also compute the true mobility from the constraint Jacobian's rank (needs geometry).",
-)
-@json_option
-def dof(files: Sequence[str], mobility: bool, as_json: bool) -> None:
+@params_of("dof")
+def dof(**values: Any) -> None:
     """Count degrees of freedom by Kutzbach and check Grübler's criterion.
 
     Shows l, j and h, the link and joint classes and the count worked out;
     several files give one table.  A bad file is reported on stderr and the
     others are still counted (exit status 2 at the end).
     """
-    count_dof(files, mobility, as_json)
+    run_command("dof", values)
 
 
 @cli.command(name="classify")
-@file_argument
-@json_option
-def classify_command(file: str, as_json: bool) -> None:
+@params_of("classify")
+def classify_command(**values: Any) -> None:
     """Classify links (binary, ternary …), joints and kinematic pairs.
 
     Pairs are classified as the lecture notes do: by relative motion (turning,
     sliding, rolling, screw, spherical, cam or gear), by contact (lower or
     higher) and by closure (self-closed or force-closed).
     """
-    classify_files(file=file, as_json=as_json)
+    run_command("classify", values)
 
 
 @cli.command()
-@click.option("-o", "--output", type=click.Path(dir_okay=False, writable=True), help="Write to a file.")
+@params_of("schema")
 @handles_errors
 def schema(output: str | None) -> None:
     """Print the JSON Schema (draft-07) of the mechanism file format.
@@ -124,113 +151,61 @@ def schema(output: str | None) -> None:
 
     text = dumps(schema())
     if output:
-        _write(output, text + "\n")
+        from mech._files import write_file
+
+        write_file(output, text + "\n")
     else:
         click.echo(text)
 
 
 # -- kinematics -----------------------------------------------------------------------
-_KINEMATIC_OPTIONS = (
-    file_argument,
-    click.option("--rpm", type=float, help="Crank speed in rev/min (overrides the file)."),
-    click.option("--omega", type=float, help="Crank speed in rad/s (overrides the file)."),
-    click.option("--angle", type=float, help="Crank angle in degrees, counter-clockwise from +x."),
-    click.option("--speed", type=float, help="A slider drive's speed in m/s, signed along its path."),
-    click.option("--direction", type=click.Choice(["cw", "ccw"]), help="Sense of the crank's rotation."),
-    click.option(
-        "--tol",
-        type=float,
-        default=1e-12,
-        show_default=True,
-        help="Newton tolerance on the loop closure, relative to the mechanism's size.",
-    ),
-    click.option(
-        "--units",
-        "unit_system",
-        type=click.Choice(["si", "mm", "cm"]),
-        default="si",
-        show_default=True,
-        help="Print lengths and speeds in m, mm or cm (angles always in deg, rad/s).",
-    ),
-    json_option,
-)
-
-_ALPHA_OPTION = click.option(
-    "--alpha", type=float, help="Crank angular acceleration in rad/s², counter-clockwise positive."
-)
-
-
-def kinematic_command(*, alpha: bool = False) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
-    """The options shared by the commands that solve the mechanism, folded into a :class:`Request`.
+def kinematic_command(command: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """A command that solves the mechanism: its declared options, folded into a :class:`Request`.
 
     The command function receives ``request`` first and its own options by
     name; errors, in the options or anywhere below, are reported (exit 2).
     """
+    solving = {p.dest for p in COMMANDS["position"]} | {"alpha"}
 
     def decorate(fn: Callable[..., Any]) -> Callable[..., Any]:
-        @wraps(fn)
-        @handles_errors
-        def command(
-            file: str,
-            rpm: float | None,
-            omega: float | None,
-            angle: float | None,
-            speed: float | None,
-            direction: str | None,
-            tol: float,
-            unit_system: str,
-            as_json: bool,
-            alpha: float | None = None,
-            **own: Any,
-        ) -> Any:
-            options = _solve_options(rpm, omega, angle, direction, tol, alpha, speed)
-            return fn(Request(file, options, OutputUnits.named(unit_system), as_json), **own)
+        def command_(**values: Any) -> Any:
+            own = {k: v for k, v in values.items() if k not in solving}
+            return fn(request_of(values, COMMANDS[command]), **own)
 
-        for decorator in reversed((*_KINEMATIC_OPTIONS, *((_ALPHA_OPTION,) if alpha else ()))):
-            command = decorator(command)
-        return command
+        # handles_errors names the command after fn (less "_command") and finds file and --json
+        return params_of(command)(handles_errors(wraps(fn)(command_)))
 
     return decorate
 
 
-_EXPLAIN_OPTION = click.option(
-    "--explain", is_flag=True, help="Write the construction out step by step, as the lecture notes draw it."
-)
-
-
 @cli.command()
-@kinematic_command()
-def position(request: Request) -> None:
+@params_of("position")
+def position(**values: Any) -> None:
     """Solve the positions of every joint and point at the crank angle."""
-    _kinematics(request, "position")
+    run_command("position", values)
 
 
 @cli.command()
-@_EXPLAIN_OPTION
-@kinematic_command()
-def velocity(request: Request, explain: bool) -> None:
+@params_of("velocity")
+def velocity(**values: Any) -> None:
     """Velocities of every point and link at the crank angle and speed.
 
     Absolute velocities of joints and points, angular velocities of links,
     relative velocities along links (the velocity polygon's ab, bc …), sliding
     velocities in slides and slots, and rubbing velocities at pins with a radius.
     """
-    _kinematics(request, "velocity", explain)
+    run_command("velocity", values)
 
 
 @cli.command()
-@_EXPLAIN_OPTION
-@kinematic_command(alpha=True)
-def acceleration(request: Request, explain: bool) -> None:
+@params_of("acceleration")
+def acceleration(**values: Any) -> None:
     """Accelerations (normal, tangential, Coriolis) of every point and link."""
-    _kinematics(request, "acceleration", explain)
+    run_command("acceleration", values)
 
 
 @cli.command(name="forces")
-@click.option(
-    "--explain", is_flag=True, help="Write each link's free body: its forces and ΣF = m a_G, ΣM_G = I_G α."
-)
-@kinematic_command(alpha=True)
+@kinematic_command("forces")
 def forces_command(request: Request, explain: bool) -> None:
     """Forces at the crank angle: what each pair carries, the input torque and its parts, the shaking.
 
@@ -244,14 +219,7 @@ def forces_command(request: Request, explain: bool) -> None:
 
 
 @cli.command()
-@_EXPLAIN_OPTION
-@click.option(
-    "--circle",
-    "circle_path",
-    type=click.Path(dir_okay=False),
-    help="Draw Kennedy's circle diagram to an .svg or .png file.",
-)
-@kinematic_command()
+@kinematic_command("icentres")
 def icentres(request: Request, explain: bool, circle_path: str | None) -> None:
     """Locate all n(n−1)/2 instantaneous centres at the crank angle.
 
@@ -264,6 +232,7 @@ def icentres(request: Request, explain: bool, circle_path: str | None) -> None:
     from mech.loader import load
     from mech.render.emit import choose, emit
 
+    _writable(circle_path)
     mechanism = load(request.file)
     if not mechanism.has_geometry and not explain and not circle_path:
         # nothing placed: the centres can still be counted, named and ordered (no coordinates)
@@ -297,13 +266,7 @@ def icentres(request: Request, explain: bool, circle_path: str | None) -> None:
 
 
 @cli.command(name="properties")
-@click.option(
-    "--output",
-    "outputs",
-    multiple=True,
-    help="A link or point whose mechanical advantage to give (repeatable; default: every moving link).",
-)
-@kinematic_command()
+@kinematic_command("properties")
 def properties_command(request: Request, outputs: tuple[str, ...]) -> None:
     """Grashof, transmission angle, limit positions, strokes and time ratio of a linkage.
 
@@ -325,82 +288,7 @@ def properties_command(request: Request, outputs: tuple[str, ...]) -> None:
 
 
 @cli.command(name="sweep")
-@click.option(
-    "--from",
-    "start",
-    type=float,
-    default=None,
-    help="First crank angle, degrees (default 0); a slider drive's first position, file's length unit.",
-)
-@click.option(
-    "--to",
-    "stop",
-    type=float,
-    default=None,
-    help="Last crank angle, degrees (default 360); a slider drive's last position, file's length unit.",
-)
-@click.option(
-    "--drive",
-    "lead",
-    default=None,
-    help="With several drives: the drive (link or slider joint) whose angle or position is swept "
-    "(default the first); the others move in proportion to their speeds.",
-)
-@click.option(
-    "--steps",
-    type=click.IntRange(min=1, max=10_000_000),
-    default=360,
-    show_default=True,
-    help="Steps (angles − 1).",
-)
-@click.option(
-    "--level",
-    type=click.Choice(["position", "velocity", "acceleration", "forces"]),
-    default=None,
-    help="How far to solve (default: velocity with a drive speed, else position); forces: the "
-    "turning-moment diagram, the fluctuation of energy and the flywheel, the greatest pair forces.",
-)
-@click.option(
-    "--quantity",
-    "quantities",
-    multiple=True,
-    help="A quantity to report (repeatable): omega.rocker, velocity.B, displacement.P … (default: all).",
-)
-@click.option(
-    "--csv",
-    "csv_path",
-    type=click.Path(dir_okay=False, allow_dash=True),
-    help="Write the series as CSV (- for standard output, instead of the report).",
-)
-@click.option(
-    "--method",
-    type=click.Choice(["auto", "closed", "newton"]),
-    default="auto",
-    show_default=True,
-    help="Closed-form dyads where the chain decomposes (auto), only them, or Newton with --tol.",
-)
-@click.option(
-    "--plot",
-    "plot_path",
-    type=click.Path(dir_okay=False),
-    help="Plot the quantities to a PNG (needs matplotlib).",
-)
-@click.option(
-    "--animate",
-    "gif_path",
-    type=click.Path(dir_okay=False),
-    help="Animate the cycle to a GIF (needs matplotlib).",
-)
-@click.option(
-    "--path",
-    "paths",
-    multiple=True,
-    help="A point whose path to trace (repeatable): its x and y become quantities (CSV columns, extent).",
-)
-@click.option(
-    "--svg", "svg_path", type=click.Path(dir_okay=False), help="Draw the --path curves alone to an SVG file."
-)
-@kinematic_command()
+@kinematic_command("sweep")
 def sweep_command(
     request: Request,
     start: float | None,
@@ -436,13 +324,15 @@ def sweep_command(
             "--csv - writes the CSV to standard output, where --json would write too",
             hint="write the CSV to a file (--csv series.csv), or leave out --json",
         )
+    _writable(None if csv_path == "-" else csv_path, plot_path, gif_path, svg_path)
     if level == "forces":  # issue 24: the force sweep's body is mech.render.forces_sweep.run
+        from mech._files import write_file
         from mech.render.forces_sweep import Asked as ForcesAsked
         from mech.render.forces_sweep import run as force_sweep
 
         wanted = ForcesAsked(start, stop, steps, lead, method, quantities, csv_path, plot_path)
         refused = (("--animate", gif_path), ("--path", paths), ("--svg", svg_path))
-        force_sweep(request, wanted, refused=refused, echo=click.echo, write=_write)
+        force_sweep(request, wanted, refused=refused, echo=click.echo, write=write_file)
         return
     quantities = tuple(quantities) + tuple(f"position.{p}.{c}" for p in paths for c in ("x", "y"))
     if plot_path or gif_path:
@@ -496,6 +386,7 @@ def _sweep_files(
     svg_path: str | None,
 ) -> None:
     """The files ``mech sweep`` writes beside its report: CSV, PNG plot, GIF, the paths' SVG."""
+    from mech._files import write_file
     from mech.render import sweep as render
 
     sweep, quantities, drawn = result.sweep, quantities_asked, result.drawn
@@ -503,7 +394,7 @@ def _sweep_files(
     if csv_path == "-":
         click.echo(render.sweep_csv(sweep, units=units, quantities=quantities), nl=False)
     elif csv_path:
-        _write(csv_path, render.sweep_csv(sweep, units=units, quantities=quantities))
+        write_file(csv_path, render.sweep_csv(sweep, units=units, quantities=quantities))
     if plot_path:
         render.sweep_plot_file(plot_path, sweep, units=units, quantities=quantities)
     if gif_path:
@@ -528,57 +419,8 @@ def _sweep_files(
 
 # -- checking answers -----------------------------------------------------------------
 @cli.command(name="check")
-@click.argument("paths", nargs=-1, required=True, type=click.Path(exists=True))
-@click.option(
-    "--answers",
-    "answers",
-    type=click.Path(exists=True),
-    help="A student's answer sheet, or a folder of sheets (one per student) to check a class.",
-)
-@click.option(
-    "-j",
-    "--jobs",
-    type=click.IntRange(min=1),
-    default=None,
-    help="Worker processes (default: one per CPU core; 1: no pool).",
-)
-@click.option(
-    "--junit", type=click.Path(dir_okay=False), help="Also write JUnit XML (one testcase per answer)."
-)
-@click.option(
-    "--gradescope", type=click.Path(dir_okay=False), help="Also write a Gradescope autograder results.json."
-)
-@click.option(
-    "--csv",
-    "csv_path",
-    type=click.Path(dir_okay=False),
-    help="Also write a CSV gradebook (student, problem …).",
-)
-@click.option("-q", "--quiet", is_flag=True, help="List only files, students and answers that did not pass.")
-@click.option(
-    "-v", "--verbose", is_flag=True, help="List every answer (default: one line per file, or per student)."
-)
-@click.option(
-    "--timeout",
-    type=click.FloatRange(min=0, min_open=True),
-    default=30.0,
-    show_default=True,
-    help="Seconds one problem file may take before it is an error row (the others finish).",
-)
-@json_option
-@handles_errors
-def check_command(
-    paths: Sequence[str],
-    answers: str | None,
-    jobs: int | None,
-    junit: str | None,
-    gradescope: str | None,
-    csv_path: str | None,
-    quiet: bool,
-    verbose: bool,
-    timeout: float,
-    as_json: bool,
-) -> None:
+@params_of("check")
+def check_command(**values: Any) -> None:
     """Check claimed answers against computed ones: files, folders, answer sheets.
 
     Every file under PATHS (recursively, *.yaml and *.yml) is a row: its
@@ -588,53 +430,17 @@ def check_command(
     Exit status 0 when all pass, 1 when any fails or errors, 2 on a usage
     error, 130 when interrupted (no report file is left behind).
     """
-    from mech.batch import CheckOptions
-    from mech.commands import check_paths, check_targets, check_usage
+    from mech.commands import check_usage
 
-    targets = check_targets(junit, gradescope, csv_path)
-    problem = check_usage(answers, targets)
+    problem = check_usage(values)
     if problem is not None:
         raise click.UsageError(problem)
-    options = CheckOptions(paths=tuple(paths), answers=answers, jobs=jobs, timeout=timeout)
-    check_paths(options, targets, quiet=quiet, verbose=verbose, as_json=as_json)
-
-
-def _write(path: str, text: str | Iterable[str]) -> None:
-    """Write a report file atomically; exit 2 if it cannot be (:func:`mech.commands.write_report`)."""
-    from mech.commands import write_report
-
-    write_report(path, text)
+    run_command("check", values)
 
 
 # -- drawings -------------------------------------------------------------------------
 @cli.command(name="draw")
-@click.option(
-    "-o",
-    "--output",
-    required=True,
-    type=click.Path(dir_okay=False),
-    help="The drawing to write: .svg or .png.",
-)
-@click.option(
-    "--velocity", is_flag=True, help="Add the velocity polygon (o, a, b …) beside the configuration."
-)
-@click.option("--acceleration", is_flag=True, help="Add the acceleration polygon with its components.")
-@click.option("--icentres", "with_icentres", is_flag=True, help="Mark the I-centres on the configuration.")
-@click.option("--path", "paths", multiple=True, help="Trace a point's path over the cycle (repeatable).")
-@click.option(
-    "--centrodes", multiple=True, help="Draw a link's fixed and moving centrodes over the cycle (repeatable)."
-)
-@click.option(
-    "--forces", "with_forces", is_flag=True, help="Draw the force vectors (F₂₃ …) on the configuration."
-)
-@click.option(
-    "--free-body",
-    "free_bodies",
-    multiple=True,
-    metavar="LINK",
-    help="Add LINK's free-body diagram (repeatable).",
-)
-@kinematic_command(alpha=True)
+@kinematic_command("draw")
 def draw_command(
     request: Request,
     output: str,
@@ -661,10 +467,13 @@ def draw_command(
         from mech.render.forces import draw_forces
 
         others = {"--velocity": velocity, "--acceleration": acceleration, "--icentres": with_icentres}
-        summary = draw_forces(request, output, free_bodies=free_bodies, refused={**others, "--path": paths})
+        refused = {**others, "--path": paths, "--centrodes": centrodes}
+        summary = draw_forces(request, output, free_bodies=free_bodies, refused=refused)
         emit("draw", choose(request.as_json), summary, echo=click.echo, name=summary["name"])
         return
     mechanism = load_mechanism(request.file)
+    if paths or centrodes:
+        _one_turn(mechanism, "--path" if paths else "--centrodes", paths)
     level = drawing_level(
         mechanism, request.options, velocity=velocity, acceleration=acceleration, icentres=with_icentres
     )
@@ -676,33 +485,38 @@ def draw_command(
     emit("draw", choose(request.as_json), summary, echo=click.echo, name=mechanism.label)
 
 
+def _writable(*paths: str | None) -> None:
+    """Say now, before any solving, that an output file cannot be written (exit 2, naming it)."""
+    from mech._files import check_writable
+
+    for path in paths:
+        if path:
+            check_writable(path)
+
+
+def _one_turn(mechanism: Any, option: str, paths: tuple[str, ...]) -> None:
+    """Refuse ``mech draw --path/--centrodes`` on a file whose drive is not one crank, saying what can.
+
+    The traced curves come from a crank's whole turn; ``mech draw`` has no ``--drive``.
+    ``mech sweep --path P --svg`` sweeps the first drive (or the one ``--drive`` names).
+    """
+    drives = mechanism.drives
+    if len(drives) <= 1 and (not drives or drives[0].link is not None):
+        return  # one crank (or none: the analysis says so)
+    what = f"{len(drives)} drives" if len(drives) > 1 else f"a slider drive ({drives[0].joint})"
+    point = paths[0] if paths else "P"
+    hint = (
+        f"draw a path with mech sweep {mechanism.path or 'FILE'} --path {point} --svg paths.svg "
+        "(it sweeps the first drive, or the one --drive names)"
+    )
+    if not paths:
+        hint = "centrodes are drawn for a mechanism driven by one crank; " + hint
+    raise InputError(f"{mechanism.label} has {what}: mech draw {option} traces one crank's turn", hint=hint)
+
+
 # -- cams -----------------------------------------------------------------------------
 @cli.command(name="cam")
-@file_argument
-@click.option("--rpm", type=float, help="Cam speed in rpm (overrides the file's drive).")
-@click.option(
-    "--direction", type=click.Choice(["cw", "ccw"]), help="The sense the cam turns (overrides the drive)."
-)
-@click.option("--joint", help="The cam joint to analyse, when the file has several with a programme.")
-@click.option(
-    "--step",
-    type=click.FloatRange(min=0.1, max=360.0),
-    default=30.0,
-    show_default=True,
-    help="Cam angle between rows of the motion table, degrees.",
-)
-@click.option(
-    "--samples",
-    type=click.IntRange(min=36, max=100_000),
-    default=1440,
-    show_default=True,
-    help="Cam angles sampled over the turn (points on the profile).",
-)
-@click.option(
-    "-o", "--output", type=click.Path(dir_okay=False), help="Draw the cam profile to scale (.svg or .png)."
-)
-@click.option("--diagram", type=click.Path(dir_okay=False), help="Plot the s–v–a–j diagrams (.svg or .png).")
-@json_option
+@params_of("cam")
 @handles_errors
 def cam_command(
     file: str,
@@ -726,8 +540,8 @@ def cam_command(
     from mech.loader import load
     from mech.pairs.cam.setup import cam_setup
 
-    if rpm is not None and not (rpm > 0 and math.isfinite(rpm)):
-        raise InputError(f"--rpm must be a positive number, not {rpm:g}")
+    validate(COMMANDS["cam"], {"rpm": rpm})
+    _writable(output, diagram)
     mechanism = load(file)
     sense = None if direction is None else (1 if direction == "ccw" else -1)
     omega = None if rpm is None else rpm * 2 * math.pi / 60
@@ -751,12 +565,11 @@ def main(argv: Sequence[str] | None = None) -> None:
     """Run a command line through click, with every way out given its own status.
 
     The console script is :func:`mech.entry.main`; this is its click half, also
-    callable on its own (tests, scripts).  See :func:`mech.entry.guarded`.
+    callable on its own (tests, scripts).  See :func:`mech.commands.exits.guarded`.
     """
-    from mech.entry import guarded, prepare
+    from mech.commands.exits import guarded, prepare
 
-    args = prepare(sys.argv[1:] if argv is None else argv)
-    guarded(lambda: run_click(args))
+    guarded(lambda: run_click(prepare(sys.argv[1:] if argv is None else argv)))
 
 
 def run_click(args: list[str]) -> None:
@@ -765,7 +578,7 @@ def run_click(args: list[str]) -> None:
     click's standalone mode would turn a closed pipe (EPIPE) into status 1 — a
     failed check's — and ^C into "Aborted!" with status 1; here a closed pipe
     and an interrupt leave as :class:`BrokenPipeError` and
-    :class:`KeyboardInterrupt` for :func:`mech.entry.guarded` to answer, and
+    :class:`KeyboardInterrupt` for :func:`mech.commands.exits.guarded` to answer, and
     usage errors keep click's message and status 2.
     """
     try:

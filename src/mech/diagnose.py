@@ -36,12 +36,13 @@ from collections.abc import Callable, Iterator
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
+from mech import grading
 from mech.answers import AnswerKey, AtInfinity, Compare
+from mech.grading import Analysis
 from mech.pairs import kind_of
 from mech.units import Dimension
 
 if TYPE_CHECKING:  # pragma: no cover
-    from mech.check import Analysis
     from mech.model import Claim, Tolerance
 
 __all__ = ["diagnose"]
@@ -161,7 +162,7 @@ def _point_candidates(akey: AnswerKey, value: Any, an: Analysis) -> Iterator[tup
     if akey.level in _KINEMATIC:
         for text, alt in _branches(an):
             try:
-                raw = akey.kind.compute(alt, akey.names)
+                raw = grading.value(akey, alt)
             except Exception:  # that branch cannot give this point
                 continue
             if not isinstance(raw, AtInfinity):
@@ -284,7 +285,7 @@ def _branch_candidates(
 ) -> Iterator[tuple[str, float]]:
     for text, alt in _branches(an):
         try:
-            raw = akey.kind.compute(alt, akey.names)
+            raw = grading.value(akey, alt)
         except Exception:  # that branch cannot give this quantity: no diagnosis from it
             continue
         if isinstance(raw, AtInfinity):
@@ -310,8 +311,6 @@ def _branches(an: Analysis) -> list[tuple[str, Analysis]]:
 
 
 def _resolved(an: Analysis, joint: Any, near: Vec) -> Analysis | None:
-    from mech.check import Analysis
-
     mech = an.mech
     moved = replace(joint, place=replace(joint.place, near=near))
     other = replace(mech, joints=tuple(moved if j is joint else j for j in mech.joints), answers=(), asks=())

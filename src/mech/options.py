@@ -12,7 +12,22 @@ from dataclasses import replace
 from mech._records import dataclass
 from mech.units import MAGNITUDE_RANGE
 
-__all__ = ["OutputUnits", "SolveOptions"]
+__all__ = ["ANGLE_PRECISION", "OutputUnits", "SolveOptions", "angle_spacing_problem"]
+
+#: The float spacing (rad) the largest angle asked for may have: beyond it (angles past about
+#: 2.6e8°) an angle is not known well enough to locate anything on it (a sweep's or one solve's).
+ANGLE_PRECISION = 1e-9
+
+
+def angle_spacing_problem(degrees: float) -> str | None:
+    """Why an angle (in degrees, as given) is too large to be held in floating point, or None."""
+    spacing = math.radians(math.ulp(abs(degrees)))
+    if spacing <= ANGLE_PRECISION:
+        return None
+    return (
+        f"a crank angle of {degrees:.4g}° is held only to {math.degrees(spacing):.2g}° in floating "
+        "point: nothing on it can be located"
+    )
 
 
 @dataclass(frozen=True, slots=True)

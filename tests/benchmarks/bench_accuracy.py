@@ -51,7 +51,7 @@ def reference(prog, phi: float, w: float, al: float) -> dict[str, np.ndarray]:
     """Positions, velocities, accelerations of every point in 40 digits (returned as floats)."""
     with mpmath.workdps(40):
         clip = lambda x: x if x > 0 else mpmath.mpf(0)  # noqa: E731
-        out = prog._fns[2](
+        out = prog.function(2)(
             mpmath.mpf(phi),
             mpmath.mpf(w),
             mpmath.mpf(al),
@@ -164,7 +164,9 @@ def exact_extreme(prog, key_fn, guess: float, w: float) -> float:
         clip = lambda x: x if x > 0 else mpmath.mpf(0)  # noqa: E731
 
         def q(phi):
-            out = prog._fns[1](phi, mpmath.mpf(w), 0, mpmath.sqrt, mpmath.cos, mpmath.sin, mpmath.atan2, clip)
+            out = prog.function(1)(
+                phi, mpmath.mpf(w), 0, mpmath.sqrt, mpmath.cos, mpmath.sin, mpmath.atan2, clip
+            )
             return key_fn(prog.split(out, 1))
 
         th = mpmath.findroot(lambda t: mpmath.diff(q, t), mpmath.mpf(guess))

@@ -11,6 +11,11 @@ peak resident memory of the largest process (the parent or a worker)::
 
     python tests/benchmarks/bench_check.py                 # 1,000 files ×5, then 10,000 files ×1
     python tests/benchmarks/bench_check.py -n 200 -r 3 --large 0
+    python tests/benchmarks/bench_check.py --mech BEFORE/bin/mech AFTER/bin/mech --large 0
+
+With ``--mech``, each run is made with every given ``mech`` in turn (two trees installed in
+two virtual environments, compared in one interleaved run, so that the load of a shared
+machine hits both alike); the table gives each one's median and its ratio to the first's.
 
 It also checks, from the JUnit file, that every file got exactly the verdicts it
 was built to get.  Targets (issue 10, 2 cores): ≥ 1,500 files/s on 1,000 files,
@@ -121,14 +126,28 @@ def generate(folder: Path, n: int) -> dict[str, dict[str, str]]:
     return expected
 
 
-def run_command(folder: Path, junit: Path, jobs: int | None) -> tuple[float, float]:
+def run_command(folder: Path, junit: Path, jobs: int | None, mech: str | None = None) -> tuple[float, float]:
     """One whole ``mech check`` in a fresh process: (seconds, peak RSS in MB of its largest process).
+
+    :func:`run_cpu` gives its CPU too.
+    """
+    seconds, rss, _ = run_cpu(folder, junit, jobs, mech)
+    return seconds, rss
+
+
+def run_cpu(
+    folder: Path, junit: Path, jobs: int | None, mech: str | None = None
+) -> tuple[float, float, float]:
+    """One whole ``mech check``: (seconds, peak RSS in MB of its largest process, CPU seconds).
+
+    The CPU is every process's (the command and its workers, user + system): steadier than the
+    wall clock on a shared machine, where the other jobs take the cores.
 
     The command runs under a small Python parent of its own, so that the peak
     (RUSAGE_CHILDREN: the largest process waited for, workers included) is this
     run's alone.
     """
-    mech = shutil.which("mech")
+    mech = mech or shutil.which("mech")
     if mech is None:
         sys.exit("the mech command is not installed in this environment (pip install .)")
     args = [mech, "check", str(folder), "--junit", str(junit)] + (["--jobs", str(jobs)] if jobs else [])
@@ -137,11 +156,12 @@ def run_command(folder: Path, junit: Path, jobs: int | None) -> tuple[float, flo
         "t = time.perf_counter()\n"
         f"subprocess.run({args!r}, stdout=subprocess.DEVNULL)\n"
         "dt = time.perf_counter() - t\n"
-        "print(dt, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024)\n"
+        "u = resource.getrusage(resource.RUSAGE_CHILDREN)\n"
+        "print(dt, u.ru_maxrss / 1024, u.ru_utime + u.ru_stime)\n"
     )
     out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True).stdout
-    seconds, rss = out.split()
-    return float(seconds), float(rss)
+    seconds, rss, cpu = out.split()
+    return float(seconds), float(rss), float(cpu)
 
 
 def verdicts_from_junit(junit: Path) -> dict[str, dict[str, str]]:
@@ -167,7 +187,13 @@ def main() -> None:
         "-j", "--jobs", type=int, nargs="+", default=[0], help="0: the default (one per core)"
     )
     parser.add_argument("--large", type=int, default=10000, help="files for the memory run (0: none)")
+    parser.add_argument(
+        "--mech", nargs="+", help="mech commands to compare, interleaved (the first is the reference)"
+    )
     args = parser.parse_args()
+    if args.mech:
+        compare(args)
+        return
 
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -200,6 +226,52 @@ def main() -> None:
         print(f"| {n:,} | {jobs} | {repeats} | {median:.2f} | {rate:,.0f} | {peak:.0f} |")
     print()
     print("verdicts: every file got exactly the verdicts it was built to get")
+
+
+def compare(args: argparse.Namespace) -> None:
+    """Each run made with every ``--mech`` in turn; medians, files/s, CPU and ratios to the first."""
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for n, repeats in ((args.files, args.repeats), (args.large, 1)):
+            if not n:
+                continue
+            folder = Path(tmp) / f"hw{n}"
+            folder.mkdir()
+            expected = generate(folder, n)
+            for jobs in args.jobs:
+                runs: dict[str, list[tuple[float, float, float]]] = {m: [] for m in args.mech}
+                for _ in range(repeats):
+                    for mech in args.mech:
+                        junit = Path(tmp) / f"out{n}.xml"
+                        runs[mech].append(run_cpu(folder, junit, jobs or None, mech))
+                        if verdicts_from_junit(junit) != expected:
+                            sys.exit(f"{mech}: wrong verdicts with {n} files")
+                wall0 = statistics.median(t for t, _, _ in runs[args.mech[0]])
+                cpu0 = statistics.median(c for _, _, c in runs[args.mech[0]])
+                for mech in args.mech:
+                    wall = statistics.median(t for t, _, _ in runs[mech])
+                    cpu = statistics.median(c for _, _, c in runs[mech])
+                    peak = max(m for _, m, _ in runs[mech])
+                    rows.append(
+                        (n, jobs or os.cpu_count(), repeats, mech, wall, wall / wall0, cpu, cpu / cpu0, peak)
+                    )
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    print(
+        f"mech check DIR --junit out.xml, interleaved ({platform.python_implementation()} "
+        f"{platform.python_version()}, {os.cpu_count()} cores, load average {load:.1f} at the end)"
+    )
+    print()
+    print(
+        "| files | jobs | runs | mech | median (s) | files/s | ratio | CPU ms/file | CPU ratio | peak RSS (MB) |"
+    )
+    print("| ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+    for n, jobs, repeats, mech, wall, ratio, cpu, cpu_ratio, peak in rows:
+        print(
+            f"| {n:,} | {jobs} | {repeats} | {mech} | {wall:.2f} | {n / wall:,.0f} | {ratio:.3f} "
+            f"| {cpu * 1e3 / n:.2f} | {cpu_ratio:.3f} | {peak:.0f} |"
+        )
+    print()
+    print("verdicts: every file got exactly the verdicts it was built to get, with every mech")
 
 
 if __name__ == "__main__":

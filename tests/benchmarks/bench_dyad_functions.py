@@ -246,7 +246,7 @@ def main() -> None:
     args = parser.parse_args()
     m = mech.load(ROOT / "mechanisms" / "four_bar.yaml")
     prog = closed_form(m)
-    generated = prog._fns[2]
+    generated = prog.function(2)
     functions = four_bar_functions(m)
     nx = numpy_namespace()
     phi = math.radians(97.0)

@@ -2,6 +2,7 @@
 
     pip install -e '.[bench]'                       # pylinkage, for the one-step reference
     python tests/benchmarks/bench_issue_table.py [--repeat 9] [--venv /tmp/mech-bench-venv]
+        [--before /path/to/venv-of-the-tree-before]
 
 Rows (mech | reference):
 
@@ -11,10 +12,17 @@ Rows (mech | reference):
   with ``pip install .`` as the README's first line does (not editable, so
   bytecode is compiled and no import hook adds its cost).  The venv is made
   once at ``--venv`` and the current tree reinstalled into it on every run
-  (``--no-install`` skips that).
-* one position + velocity + acceleration of the four-bar at the drawn angle +
-  37°: full :func:`~mech.kinematics.solve`, and the lean closed form
-  (``closed_form(m).state``) | pylinkage's one step with derivatives.
+  (``--no-install`` skips that).  With ``--before`` (a venv where an earlier
+  tree is ``pip install``-ed), the same commands from it too, in the same
+  interleaved run, and the ratio now / before.
+* one position + velocity + acceleration of the four-bar (pylinkage's four-bar
+  of tests/benchmarks/bench_peers.py is the reference): :func:`~mech.kinematics.solve`
+  at the file's own drive angle (what ``mech velocity FILE`` and every homework
+  file ask), the same with its whole result read (every point, link and joint
+  packaged: what a command prints), at the drawn angle + 37°, and the lean
+  closed form (``closed_form(m).state``) | pylinkage's one step with derivatives.
+  With ``--before``, the drawn-angle solve (and read) is also timed in the
+  earlier tree, each sample a fresh interpreter of that venv timing 500 calls.
 * Newton (``method="newton"``, 5° from the drawing, tol 1e-12) on generated
   chains of 40, 100 and 200 links | the same on 4 links; linear growth is a
   ratio of n/4 (10, 25, 50) or less.
@@ -40,6 +48,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # a shared 2-core machine: t
 import argparse
 import math
 import platform
+import resource
 import statistics
 import subprocess
 import sys
@@ -78,15 +87,63 @@ def venv(path: Path, install: bool) -> Path:
     return path
 
 
+#: CPU seconds (user + system) of each command line's runs, in the order run (beside the wall times).
+CPU: dict[tuple[str, ...], list[float]] = {}
+
+
 def run_once(argv: list[str]) -> float:
+    """Wall seconds of one run of ``argv``; its CPU time (the child's, by getrusage) goes to :data:`CPU`."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     subprocess.run(argv, check=True, capture_output=True)
-    return time.perf_counter() - start
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    CPU.setdefault(tuple(argv), []).append(cpu)
+    return wall
 
 
 def per_call(fn: Callable[[], object], number: int) -> Callable[[], float]:
     """One sample: seconds per call over ``number`` calls."""
     return lambda: timeit.timeit(fn, number=number) / number
+
+
+#: One sample of one solve of the four-bar in a venv's own interpreter: seconds per call, printed.
+_SOLVE_IN = """
+import timeit, mech
+from mech.kinematics import solve
+from mech.options import SolveOptions
+m, o = mech.load({path!r}), SolveOptions()
+solve(m, "acceleration", o).links
+print(timeit.timeit(lambda: solve(m, "acceleration", o){read}, number=500) / 500)
+"""
+
+
+#: One sample of a command's solving: a fresh mechanism compiled, solved at its drawn angle and read.
+_FIRST_SOLVE_IN = """
+import time, mech
+from mech.kinematics import solve
+m = mech.load({path!r})
+start = time.process_time()  # CPU: a multi-millisecond span on a loaded machine is often descheduled
+solve(m, "velocity").links
+print(time.process_time() - start)
+"""
+
+
+def first_solve_in(python: str) -> Callable[[], float]:
+    """One sample: a fresh ``python`` loads the four-bar and times its first solve (all a command solves), CPU."""
+    code = _FIRST_SOLVE_IN.format(path=str(FOUR_BAR))
+    return lambda: float(
+        subprocess.run([python, "-c", code], check=True, capture_output=True, text=True).stdout
+    )
+
+
+def solve_in(python: str, read: bool) -> Callable[[], float]:
+    """One sample: a fresh ``python`` times 500 solves of the four-bar at its drawn angle (and reads them)."""
+    code = _SOLVE_IN.format(path=str(FOUR_BAR), read=".links" if read else "")
+    return lambda: float(
+        subprocess.run([python, "-c", code], check=True, capture_output=True, text=True).stdout
+    )
 
 
 def fmt(t: float) -> str:
@@ -104,6 +161,12 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=9)
     parser.add_argument("--venv", type=Path, default=Path("/tmp/mech-bench-venv"))
     parser.add_argument("--no-install", action="store_true", help="use the venv as it is")
+    parser.add_argument("--before", type=Path, help="a venv with an earlier tree pip-installed, to compare")
+    parser.add_argument(
+        "--quick",
+        action="store_true",
+        help="the commands and the one solves only (no Newton chains, no sweeps)",
+    )
     parser.add_argument("--links", default="4,40,100,200", help="chain sizes for Newton (first: reference)")
     args = parser.parse_args()
     try:
@@ -124,19 +187,43 @@ def main() -> None:
             [cmd, "velocity", str(FOUR_BAR), "--rpm", "600"]
         ),
     }
+    cpu_pairs: list[tuple[tuple[str, ...], tuple[str, ...]]] = []
+    if args.before is not None:
+        old = str(args.before / "bin" / "mech")
+        for tail in (["dof", "--json", str(FOUR_BAR)], ["velocity", str(FOUR_BAR), "--rpm", "600"]):
+            cpu_pairs.append((tuple([cmd, *tail]), tuple([old, *tail])))
+        cases["before: mech dof --json four_bar.yaml"] = lambda: run_once(
+            [old, "dof", "--json", str(FOUR_BAR)]
+        )
+        cases["before: mech velocity four_bar.yaml --rpm 600"] = lambda: run_once(
+            [old, "velocity", str(FOUR_BAR), "--rpm", "600"]
+        )
     four = mech.load(FOUR_BAR)
     target = math.radians(60.0 + 37.0)
-    moved = SolveOptions(angle=target)
-    solve(four, "acceleration", moved)
+    moved, drawn = SolveOptions(angle=target), SolveOptions()
+    for warm in (moved, drawn):  # compile, build the program and package once, outside the timing
+        assert solve(four, "acceleration", warm).links
     prog = closed_form(four)
     model = pylinkage_models()[0][0]
     cases["pylinkage one step (+ v, a)"] = per_call(
         lambda: next(iter(model.step_with_derivatives(iterations=1))), 500
     )
+    cases["solve() drawn angle, four-bar"] = per_call(lambda: solve(four, "acceleration", drawn), 500)
+    cases["solve() drawn angle, read, four-bar"] = per_call(
+        lambda: solve(four, "acceleration", drawn).links, 500
+    )
+    if args.before is not None:
+        py_old = str(args.before / "bin" / "python")
+        cases["solve() drawn angle, now (fresh interpreter)"] = solve_in(py, False)
+        cases["solve() drawn angle, before (fresh interpreter)"] = solve_in(py_old, False)
+        cases["solve() drawn angle, read, now (fresh interpreter)"] = solve_in(py, True)
+        cases["solve() drawn angle, read, before (fresh interpreter)"] = solve_in(py_old, True)
+        cases["first solve, now (fresh interpreter)"] = first_solve_in(py)
+        cases["first solve, before (fresh interpreter)"] = first_solve_in(py_old)
     cases["solve() full, four-bar"] = per_call(lambda: solve(four, "acceleration", moved), 500)
     cases["closed form lean, four-bar"] = per_call(lambda: prog.state(target, -4 * math.pi, 0.0), 5000)
 
-    sizes = [int(s) for s in args.links.split(",")]
+    sizes = [] if args.quick else [int(s) for s in args.links.split(",")]
     newton = SolveOptions(angle=math.radians(65), method="newton")
     for n in sizes:
         m = chain(n)
@@ -151,7 +238,7 @@ def main() -> None:
         "rolling wheel": mech.load(ROOT / "mechanisms" / "rolling_wheel.yaml"),
         "eccentric cam, roller": mech.load(ROOT / "mechanisms" / "eccentric_cam_roller.yaml"),
     }
-    for label, m in sweeps.items():
+    for label, m in ({} if args.quick else sweeps).items():
         sweep(m, phi[:10], level="acceleration", analyse=False)  # compile outside the timing
         cases[f"sweep series, {label}"] = per_call(
             lambda m=m: sweep(m, phi, level="acceleration", analyse=False), 1
@@ -190,7 +277,21 @@ def main() -> None:
         "≤ 1.5×",
     )
     row(
-        "one position + v + a, full `solve()`",
+        "one position + v + a, `solve()` at the file's drive angle",
+        "solve() drawn angle, four-bar",
+        "pylinkage one step (+ v, a)",
+        "≤ 1×",
+        "pylinkage one step",
+    )
+    row(
+        "the same, its whole result read (every point, link, joint)",
+        "solve() drawn angle, read, four-bar",
+        "pylinkage one step (+ v, a)",
+        "—",
+        "pylinkage one step",
+    )
+    row(
+        "one position + v + a, `solve()` at the drawn angle + 37°",
         "solve() full, four-bar",
         "pylinkage one step (+ v, a)",
         "≤ 1×",
@@ -203,16 +304,15 @@ def main() -> None:
         "≤ 0.3×",
         "pylinkage one step",
     )
-    base = sizes[0]
     for n in sizes[1:]:
         row(
             f"Newton solve, {n}-link chain",
             f"Newton, {n} links",
-            f"Newton, {base} links",
-            f"linear: ≤ {n / base:.0f}×",
-            f"{base}-link Newton",
+            f"Newton, {sizes[0]} links",
+            f"linear: ≤ {n / sizes[0]:.0f}×",
+            f"{sizes[0]}-link Newton",
         )
-    for kind in ("series", "whole"):
+    for kind in () if args.quick else ("series", "whole"):
         for label in ("double parallelogram", "gear pair", "rolling wheel", "eccentric cam, roller"):
             what = "series only" if kind == "series" else "whole sweep (extremes, dead centres)"
             print(
@@ -220,6 +320,55 @@ def main() -> None:
                 f"closed-form {fmt(med[f'sweep {kind}, four-bar (closed form)'])} | "
                 f"{med[f'sweep {kind}, {label}'] / med[f'sweep {kind}, four-bar (closed form)']:.0f}× | ≤ 0.25 s |"
             )
+
+    if args.before is not None:
+        print()
+        print(f"the tree now against the one before ({args.before}), in the same interleaved run:")
+        print()
+        print("| figure | before | now | now / before | paired: median (quartiles) |")
+        print("| --- | ---: | ---: | ---: | ---: |")
+        for label, now, then in (
+            ("`mech dof --json four_bar.yaml`", "mech dof --json four_bar.yaml", None),
+            ("`mech velocity four_bar.yaml --rpm 600`", "mech velocity four_bar.yaml --rpm 600", None),
+            (
+                "`solve()` at the drawn angle (fresh interpreter, 500 calls)",
+                "solve() drawn angle, now (fresh interpreter)",
+                "solve() drawn angle, before (fresh interpreter)",
+            ),
+            (
+                "the same, its result read",
+                "solve() drawn angle, read, now (fresh interpreter)",
+                "solve() drawn angle, read, before (fresh interpreter)",
+            ),
+            (
+                "a command's solving: the first solve of a fresh four-bar, read (CPU)",
+                "first solve, now (fresh interpreter)",
+                "first solve, before (fresh interpreter)",
+            ),
+        ):
+            then = then or f"before: {now}"
+            # each repeat ran both, one after the other: the ratio within a repeat cancels slow load swings
+            paired = statistics.quantiles(
+                [a / b for a, b in zip(samples[now], samples[then], strict=True)], n=4
+            )
+            print(
+                f"| {label} | {fmt(med[then])} | {fmt(med[now])} | {med[now] / med[then]:.3f} | "
+                f"{paired[1]:.3f} ({paired[0]:.3f}–{paired[2]:.3f}) |"
+            )
+        print()
+        print("CPU time of the same runs (user + system, getrusage), before → now:")
+        print()
+        print("| command | before | now | now / before | paired: median (quartiles) |")
+        print("| --- | ---: | ---: | ---: | ---: |")
+        for argv_now, argv_then in cpu_pairs:
+            a, b = CPU[argv_now], CPU[argv_then]
+            q = statistics.quantiles([x / y for x, y in zip(a, b, strict=True)], n=4)
+            ma, mb = statistics.median(a), statistics.median(b)
+            print(
+                f"| `mech {' '.join(argv_now[1:2])}` | {fmt(mb)} | {fmt(ma)} | {ma / mb:.3f} | "
+                f"{q[1]:.3f} ({q[0]:.3f}–{q[2]:.3f}) |"
+            )
+        print()
 
 
 if __name__ == "__main__":

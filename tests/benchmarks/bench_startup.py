@@ -1,6 +1,11 @@
 """Cold start of mech, measured in fresh subprocesses; prints a table of medians.
 
     python tests/benchmarks/bench_startup.py [--repeat 21]
+    python tests/benchmarks/bench_startup.py --python BEFORE/bin/python AFTER/bin/python
+
+With ``--python``, every case runs under each interpreter in turn, run by run (two trees
+installed in two virtual environments, compared in one interleaved run), and each row gives
+each interpreter's median and its ratio to the first one's.
 
 Run it with the interpreter of a fresh virtual environment (``.venv/bin/python``):
 packages with ``.pth`` start-up hooks in a busy system Python add their own cost.
@@ -40,11 +45,11 @@ CASES: list[tuple[str, list[str]]] = [
 ]
 
 
-def measure(args: list[str], repeat: int) -> list[float]:
+def measure(args: list[str], repeat: int, python: str = sys.executable) -> list[float]:
     times = []
     for _ in range(repeat):
         start = time.perf_counter()
-        subprocess.run([sys.executable, *args], check=True, capture_output=True)
+        subprocess.run([python, *args], check=True, capture_output=True)
         times.append(time.perf_counter() - start)
     return times
 
@@ -54,7 +59,13 @@ def main() -> None:
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     parser.add_argument("--repeat", type=int, default=21)
+    parser.add_argument(
+        "--python", nargs="+", help="interpreters to compare, interleaved (the first is the reference)"
+    )
     args = parser.parse_args()
+    if args.python:
+        compare(args.python, args.repeat)
+        return
     print(
         f"cold start, median of {args.repeat} runs; Python {platform.python_version()}, {platform.machine()}"
     )
@@ -71,6 +82,26 @@ def main() -> None:
         t = times[label]
         med = statistics.median(t)
         print(f"{label:48} {med * 1e3:10.1f} {min(t) * 1e3:8.1f} {med / base:14.2f}")
+
+
+def compare(pythons: list[str], repeat: int) -> None:
+    """Every case under every interpreter, interleaved run by run; medians and ratios to the first."""
+    print(f"cold start, median of {repeat} runs, interleaved; {platform.machine()}")
+    for i, python in enumerate(pythons):
+        print(f"  [{i}] {python}")
+    times = {(label, py): [] for label, _ in CASES for py in pythons}
+    for _ in range(repeat):
+        for label, argv in CASES:
+            for python in pythons:
+                times[(label, python)] += measure(argv, 1, python)
+    head = "".join(f" {f'[{i}] ms':>9}" for i in range(len(pythons)))
+    ratios = "".join(f" {f'[{i}]/[0]':>8}" for i in range(1, len(pythons)))
+    print(f"{'case':48}{head}{ratios}")
+    for label, _ in CASES:
+        medians = [statistics.median(times[(label, py)]) for py in pythons]
+        cells = "".join(f" {m * 1e3:9.1f}" for m in medians)
+        cells += "".join(f" {m / medians[0]:8.3f}" for m in medians[1:])
+        print(f"{label:48}{cells}")
 
 
 if __name__ == "__main__":

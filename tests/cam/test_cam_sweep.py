@@ -177,3 +177,89 @@ def test_drawn_instant_is_the_files_turn_in_the_cams_sense():
     m = load(MECHANISMS / "cam_roller_program.yaml")
     assert m.drives[0].angle == pytest.approx(-math.radians(60))
     assert cam_setup(m).angle == pytest.approx(math.radians(60))
+
+
+# -- issue 21: the follower's own point, and programmes that broke sweeps ---------------------------
+ISSUE_21 = """\
+units: {length: mm, angle: deg}
+links: [frame, cam, follower]
+joints:
+  O: {type: revolute, links: [frame, cam], at: [0, 0]}
+  K: {type: cam, links: [cam, follower],
+      program: {base_radius: 30, follower: roller, roller_radius: 10, offset: 10,
+                segments: [{rise: 40, over: 120, law: cycloidal}, {dwell: 60},
+                           {return: 40, over: 90, law: shm}, {dwell: 90}]}}
+  S: {type: prismatic, links: [follower, frame], path: {through: [-10, 0], angle: 90}, point: K}
+drive: {link: cam, angle: 60, rpm: 300, direction: cw}
+"""
+
+
+def test_naming_the_followers_point_on_its_slide_works_and_the_point_is_the_roller_centre():
+    # K is the roller's centre (DESIGN § 1.2): on the follower's line x = −10 mm, at √(40² − 10²)
+    # above the axis through O on the prime circle (r_p = 30 + 10 mm), plus the lift: at 60° into
+    # a 120° cycloidal rise of 40 mm, x = ½: s = 20 mm, v = ω h/β (1 − cos π) = 2hω/β = 1.2 m/s
+    m = loads(ISSUE_21, path="issue21.yaml")
+    kin = solve(m, "velocity")
+    assert kin.positions["K"] == pytest.approx((-0.010, math.sqrt(0.04**2 - 0.01**2) + 0.020), abs=1e-12)
+    w = 300 * 2 * math.pi / 60
+    assert kin.velocity("K") == pytest.approx((0.0, 2 * 0.040 * w / math.radians(120)), abs=1e-12)
+    sw = sweep(m, ANGLES, level="velocity")
+    assert sw.assembled.all()
+
+
+@pytest.mark.parametrize("drawn", [0, 60, 200])
+def test_a_cams_displacement_runs_from_the_paths_through_whatever_angle_it_is_drawn_at(drawn):
+    # cli.md: displacement is measured along the path from its `through` (O here): the roller's
+    # centre runs from the prime circle, 50 mm, to 50 + 30 mm, whatever the drive's drawn angle
+    text = (MECHANISMS / "cam_roller_program.yaml").read_text().replace("angle: 60", f"angle: {drawn}")
+    sw = sweep(loads(text, path="c.yaml"), ANGLES, level="position")
+    disp = sw.displacement[:, 0]
+    assert disp.min() == pytest.approx(0.050, abs=1e-12) and disp.max() == pytest.approx(0.080, abs=1e-12)
+
+
+KNIFE_NO_DWELL = """\
+units: {length: mm, angle: deg}
+links: [frame, cam, follower]
+joints:
+  O: {type: revolute, links: [frame, cam], at: [0, 0]}
+  S: {type: prismatic, links: [follower, frame], path: {through: [0, 0], angle: 90}}
+  K: {type: cam, links: [cam, follower],
+      program: {base_radius: 40, follower: FOLLOWER, EXTRA
+                segments: [{rise: 25, over: 150, law: LAW}, {return: 25, over: 210, law: cycloidal}]}}
+drive: {link: cam, angle: 0, rpm: 200, direction: ccw}
+"""
+
+
+@pytest.mark.parametrize(
+    ("follower", "extra", "law"),
+    [("knife", "", "cycloidal"), ("roller", "roller_radius: 12,", "uniform"), ("flat", "", "uniform")],
+)
+def test_programmes_that_broke_sweeps_sweep_by_their_law(follower, extra, law):
+    # a knife edge with no dwell at 0°/360° crashed the sweep; a roller (and a flat face) on a
+    # uniform-velocity rise stopped at 118° or sat 0.77 mm off the programme: each lift is the law's
+    text = KNIFE_NO_DWELL.replace("FOLLOWER", follower).replace("EXTRA", extra).replace("LAW", law)
+    m = loads(text, path="p.yaml")
+    sw = sweep(m, np.radians(np.linspace(0.0, 360.0, 721)), level="velocity")
+    assert sw.assembled.all()
+    s = oracle(
+        [("rise", 0.025, 150, law), ("return", 0.025, 210, "cycloidal")],
+        np.radians(np.linspace(0, 360, 721)),
+        1.0,
+    )[0]
+    disp = sw.displacement[:, 0]
+    assert np.max(np.abs(disp - disp.min() - s)) <= 1e-9 * 0.025
+
+
+def test_a_flat_faced_followers_acceleration_extremes_are_the_shm_peaks():
+    # SHM rise and return of 20 mm over 120° each at 500 rpm: |a| ≤ π² h ω² / (2β²) = 61.685 m/s²,
+    # reached at each segment's ends (it was reported as 180 and −6,100 m/s² through a fitted profile)
+    text = (
+        (MECHANISMS / "cam_flat_follower.yaml")
+        .read_text()
+        .replace("direction: cw", "rpm: 500, direction: cw")
+    )
+    sw = sweep(loads(text, path="f.yaml"), np.radians(np.linspace(0.0, 360.0, 721)), level="acceleration")
+    w = 500 * 2 * math.pi / 60
+    peak = math.pi**2 * 0.020 * w**2 / (2 * math.radians(120) ** 2)
+    a = sw.accelerations[:, sw.points.index("K"), 1]
+    assert np.max(np.abs(a)) == pytest.approx(peak, rel=1e-9)

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import importlib
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 from builders import four_bar, slider_crank
 
@@ -12,7 +14,7 @@ import mech
 from mech.errors import GeometryError, UnsupportedError
 from mech.kinematics import closed_form, solve
 from mech.options import SolveOptions
-from mechanism_texts import FOLDING_INVERSOR
+from mechanism_texts import FOLDING_INVERSOR, ladder
 from oracles.inversor import inversor_p
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -93,6 +95,73 @@ def test_closed_form_keeps_the_branch_of_the_drawing():
     up = solve(slider_crank(), "velocity", SolveOptions(angle=math.radians(200)))
     assert up.positions["B"][0] > 0  # the slider stays ahead of the crank, as drawn
     assert any("closed form" in n for n in up.notes)
+
+
+# -- the drawn angle: the same closed-form route (issue 20.4) ------------------------------------
+
+
+@pytest.mark.parametrize("name", DECOMPOSE)
+def test_the_drawn_angle_is_solved_in_closed_form_with_the_general_route_s_answer(name, monkeypatch):
+    # the file's own drive angle takes the dyads as any other angle does: the general route's rate
+    # solve is never reached, and every number (and every exact zero) is Newton's to 1e-9
+    m = mech.load(ROOT / "mechanisms" / f"{name}.yaml")
+    ref = solve(m, "acceleration", SolveOptions(method="newton"))
+
+    def general(*args, **kwargs):
+        raise AssertionError("the drawn angle went through the general route")
+
+    monkeypatch.setattr(importlib.import_module("mech.kinematics.solve"), "rates", general)
+    kin = solve(m, "acceleration")
+    size, vs, as_ = _scales(ref)
+    for p in ref.positions:
+        assert math.dist(kin.positions[p], ref.positions[p]) <= 1e-9 * size, p
+        assert math.dist(kin.velocity(p), ref.velocity(p)) <= 1e-9 * vs, p
+        assert math.dist(kin.acceleration(p), ref.acceleration(p)) <= 1e-9 * as_, p
+        assert (kin.velocity(p) == (0.0, 0.0)) == (ref.velocity(p) == (0.0, 0.0)), p
+        assert (kin.acceleration(p) == (0.0, 0.0)) == (ref.acceleration(p) == (0.0, 0.0)), p
+    assert kin.notes == ref.notes  # nothing moved: no note of the route
+
+
+@pytest.mark.parametrize("deg", [60.0, 97.0, 200.0])
+def test_a_ground_pivot_moves_at_exactly_zero_in_closed_form_at_any_angle(deg):
+    # the rocker's pivot D, reached round the loop from C, came out at 1e-16 m/s (a direction
+    # printed for a point at rest); the rates are refined once against Φ_q, as Newton's are
+    kin = solve(
+        four_bar(angle=math.radians(60), omega=-4 * math.pi),
+        "acceleration",
+        SolveOptions(angle=math.radians(deg)),
+    )
+    assert kin.velocity("D") == (0.0, 0.0) and kin.acceleration("D") == (0.0, 0.0)
+    assert kin.links["rocker"].velocity == (0.0, 0.0)
+
+
+def test_the_drawn_configuration_is_judged_once_per_mechanism(monkeypatch):
+    # the toggle test and the SVD the drawn rates are solved and bounded with belong to the
+    # mechanism: after the first solve, no solve at the drawn angle takes another SVD (by either route)
+    m = mech.load(ROOT / "mechanisms" / "four_bar.yaml")
+    for method in ("auto", "newton"):
+        assert solve(m, "acceleration", SolveOptions(method=method)).links
+    calls = []
+    svd = np.linalg.svd
+    monkeypatch.setattr(np.linalg, "svd", lambda *a, **k: calls.append(1) or svd(*a, **k))
+    for _ in range(3):
+        for method in ("auto", "newton"):
+            assert solve(m, "acceleration", SolveOptions(method=method)).links
+    assert calls == []
+
+
+def test_a_large_chain_s_drawn_angle_is_solved_without_generating_its_closed_form(monkeypatch):
+    # 41 moving links: generating and compiling the program would cost far more than the drawn
+    # solve it replaces; a moved angle still takes it
+    m = mech.loads(ladder(20), path="ladder.yaml")
+
+    def no_program(*args, **kwargs):
+        raise AssertionError("the closed form was generated for the drawn angle")
+
+    monkeypatch.setattr(importlib.import_module("mech.kinematics.solve"), "program", no_program)
+    assert solve(m, "velocity").links["crank"].omega == pytest.approx(2 * math.pi)
+    with pytest.raises(AssertionError, match="generated"):
+        solve(m, "velocity", SolveOptions(angle=1.0))
 
 
 # -- change points in single solves --------------------------------------------------------------

@@ -164,15 +164,16 @@ def test_a_large_chain_s_mobility_from_its_blocks_matches_the_whole_svd():
     # move and those that do not are the dense SVD's (the condition number is the blocks').
     import numpy as np
 
+    from mech.kinematics.compiled import compiled
+    from mech.kinematics.linalg import blocks_of
     from mech.kinematics.mobility import numeric_mobility
-    from mech.kinematics.solve import _blocks, compiled
     from mech.loader import loads
 
     mech = loads(ladder(20), path="ladder.yaml")
     comp = compiled(mech, None)
     sys_ = comp.system
     jac = sys_.jacobian(sys_.q0)
-    form = _blocks(sys_)
+    form = blocks_of(sys_)
     assert form is not None
     dense = numeric_mobility(mech, sys_, sys_.q0, jacobian=jac)
     assert comp.mobility.numeric == dense.numeric == 1 and comp.mobility.redundant == dense.redundant == 0

@@ -340,10 +340,10 @@ def test_steps_over_half_a_turn_beyond_the_budget_are_refused():
 def test_steps_too_many_to_resolve_say_events_may_be_missed(monkeypatch):
     import importlib
 
-    sweep_module = importlib.import_module("mech.kinematics.sweep")
+    grid_module = importlib.import_module("mech.kinematics.sweep_grid")
 
     # A budget that holds the 5 angles asked but not the 721 of a 1° grid over 0..720°.
-    monkeypatch.setattr(sweep_module, "MEMORY_BUDGET", 5 * 2000)
+    monkeypatch.setattr(grid_module, "MEMORY_BUDGET", 5 * 2000)
     m = four_bar(0.04, 0.15, 0.08, 0.15, angle=math.radians(60), omega=-4 * math.pi)
     s = sweep(m, np.radians(np.linspace(0.0, 720.0, 5)))
     assert any("may be missed" in n for n in s.notes), s.notes
@@ -433,20 +433,26 @@ def test_two_crank_five_bar_sweep_is_one_dyad_at_each_step():
     regular = ok & np.isfinite(sw.velocities[:, k, 0])
     assert np.allclose(sw.velocities[regular, k, 0], vx[regular], rtol=1e-11, atol=1e-14)
     assert np.allclose(sw.velocities[regular, k, 1], vy[regular], rtol=1e-11, atol=1e-14)
-    # reached from the drawing (90°) until |BD| = BC + CD (the couplers in line), then a gap
-    reach = d <= 0.16
-    first_out = int(np.argmin(reach[45:])) + 45
-    assert ok[45:first_out].all() and not ok[first_out:].any()
-    # the toggle, located between the steps: where |BD| = BC + CD, found here by bisection on the closed form
-    lo, hi = float(phi[first_out - 1]), float(phi[first_out])
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        if _five_bar_closed_form(mid, math.radians(270) - 2 * mid, 10.0, -20.0)[4] <= 0.16:
-            lo = mid
-        else:
-            hi = mid
-    (toggle,) = sw.toggles
-    assert toggle.angle == pytest.approx(lo, abs=1e-8) and sw.gaps[-1].start == toggle.angle
+    # the loop closes while |BD| ≤ BC + CD = 160 mm: for φ in [0, 123.6°] and [169.5°, 360°] (issue 25,
+    # item 3).  Continued from the drawing (90°) both ways and round the turn (0° is 360°: link_5 turns
+    # −2 turns as link_2 turns one), the sweep reaches every such step, and no other
+    assert np.array_equal(ok, d <= 0.16)
+    # the limits, located between the steps: where |BD| = BC + CD, found here by bisection on the closed form
+    edges = []
+    for k in np.flatnonzero(np.diff(d <= 0.16)):
+        lo, hi = float(phi[k]), float(phi[k + 1])
+        inside_lo = bool(d[k] <= 0.16)
+        for _ in range(80):
+            mid = 0.5 * (lo + hi)
+            if (_five_bar_closed_form(mid, math.radians(270) - 2 * mid, 10.0, -20.0)[4] <= 0.16) == inside_lo:
+                lo = mid
+            else:
+                hi = mid
+        edges.append(lo)
+    assert [math.degrees(e) for e in edges] == pytest.approx([123.5957396, 169.5131634], abs=1e-6)
+    assert [t.angle for t in sw.toggles] == pytest.approx(edges, abs=1e-8)
+    (gap,) = sw.gaps  # not reached, never "cannot close": Newton cannot tell another circuit's absence
+    assert (gap.start, gap.end, gap.kind) == (sw.toggles[0].angle, sw.toggles[1].angle, "not reached")
 
 
 def test_five_bar_sweep_led_by_either_crank_or_with_a_relative_drive_is_the_same_motion():
@@ -573,3 +579,25 @@ def test_newton_sweep_of_the_double_parallelogram_says_where_its_jacobian_loses_
     (c,) = s.change_points
     assert math.degrees(c.angle) == pytest.approx(180.0, abs=1e-6)
     assert "loses rank" in c.subject
+
+
+def test_a_rate_that_grows_without_bound_toward_a_toggle_has_an_infinite_extreme(run):
+    # Khurmi's six-link slider: the loop stops closing where the rod stands at right angles to the
+    # slider's path (27.59° and 250.05°).  There the rod cannot drive the slider: with the crank at a
+    # steady speed, ω_rod = (v_B · u)/(l cos β) (u along the path, β the rod's angle from the path's
+    # normal) grows like Δθ^(−1/2) toward β = 0, and its extremes are ±∞ at the toggles, not the last
+    # regular step's 257 rad/s a degree away (issue 25, item 5).  The lever, behind the rod in the
+    # chain, keeps finite extremes.
+    m = mech.load(ROOT / "mechanisms" / "khurmi_six_link_slider.yaml")
+    sw = sweep(m, quantities=["omega.rod", "omega.lever", "angle.rod"])
+    toggles = sorted(t.angle for t in sw.toggles)
+    ext = {e.quantity: e for e in sw.extremes}
+    rod = ext["omega.rod"]
+    assert (rod.max_value, rod.min_value) == (math.inf, -math.inf)
+    assert sorted((rod.max_angle, rod.min_angle)) == pytest.approx(toggles, abs=1e-12)
+    assert all(math.isfinite(v) for v in (ext["omega.lever"].max_value, ext["omega.lever"].min_value))
+    # where the rod is at right angles to the path (the toggle), its angle is 270° exactly to √ε
+    assert math.degrees(ext["angle.rod"].min_value) == pytest.approx(270.0, abs=1e-5)
+    assert any("omega.rod grows without bound toward the toggle" in n for n in sw.notes)
+    table = run("sweep", str(ROOT / "mechanisms" / "khurmi_six_link_slider.yaml"), "--quantity", "omega.rod")
+    assert "∞ (toggle)" in table.output and "−∞ (toggle)" in table.output

@@ -467,3 +467,43 @@ def test_no_range_ends_a_sweep_in_an_exception_or_a_warning():
         assert not runtime, (args, runtime)
 
     one()
+
+
+def test_two_drive_sweep_says_not_reached_never_cannot_close(run):
+    # mechanisms/five_bar_two_cranks.yaml (θ2 = φ, θ5 = 270° − 2φ): the loop closes while |BD| ≤ 160 mm,
+    # φ in [0, 123.596°] and [169.513°, 360°] (the closed form's roots, test_sweep.py); a Newton sweep
+    # reaches both stretches from the drawing, and what lies between it did not reach (issue 25, item 3)
+    result = run("sweep", str(ROOT / "mechanisms" / "five_bar_two_cranks.yaml"), "--steps", "72")
+    assert result.exit_code == 0, result.output
+    said = " ".join(result.output.split())
+    assert "not reached from 123.595740° to 169.513163°" in said
+    assert "cannot be assembled" not in said and "cannot close" not in said
+    gaps = json.loads(
+        run("sweep", str(ROOT / "mechanisms" / "five_bar_two_cranks.yaml"), "--steps", "72", "--json").output
+    )["gaps"]
+    assert [(round(g["from"], 6), round(g["to"], 6), g["kind"]) for g in gaps] == [
+        (123.59574, 169.513163, "not reached")
+    ]
+
+
+def test_a_high_gear_ratio_is_not_called_a_toggle(run, write):
+    # a 1e12 mm pinion driving a 1 mm wheel: ω_wheel = −1e12 ω_pinion at every angle, and the
+    # constraint equations' condition number is 2e12 everywhere; no links come into line (issue 25,
+    # item 13).  The sweep says why the rates are left out, not that a toggle is near.
+    text = """
+units: {length: mm, angle: deg}
+links: [frame, pinion, wheel]
+joints:
+  O1: {type: revolute, links: [frame, pinion], at: [0, 0]}
+  O2: {type: revolute, links: [frame, wheel], at: [1000000000001, 0]}
+  mesh: {type: gear, links: [pinion, wheel], radii: [1000000000000, 1]}
+drive: {link: pinion, rpm: 1200, direction: cw}
+"""
+    result = run("sweep", str(write(text)), "--steps", "36")
+    assert result.exit_code == 0, result.output
+    said = " ".join(result.output.split())  # as printed, lines wrapped at the terminal's width
+    assert "toggle" not in said.replace("no toggle or change point", "")
+    assert (
+        "at every angle, with no toggle or change point (links or gear ratios of very different scales)"
+        in said
+    )

@@ -23,6 +23,7 @@ __all__ = [
     "four_bar",
     "four_bar_clear_of_toggle",
     "rocker_angle",
+    "rocker_swing",
 ]
 
 Point = tuple[float, float]
@@ -148,3 +149,61 @@ def rocker_angle(a: float, b: float, c: float, d: float, th: Any) -> Any:
     cx = bx + t * dx / f - h * dy / f
     cy = by + t * dy / f + h * dx / f
     return mpmath.atan2(cy, cx - d)
+
+
+def rocker_swing(a: float, b: float, c: float, d: float, theta0: float) -> float | None:
+    """The rocker's swing (rad) over one turn of the crank, θ from 0 to 2π, or None when it turns.
+
+    For a crank that turns fully.  C is left of B→D at the drawn angle ``theta0`` and keeps the
+    branch with a continuous tangent: it changes side at each change point between θ0 and θ,
+    where BD touches |b − c| (at θ = 0, when |d − a| = |b − c|) or b + c (at θ = π, when
+    d + a = b + c) and the two positions of C meet.  ψ(θ), the direction D→C, is read on 4,096
+    angles, unwrapped; it turns when it comes back a whole turn on at θ = 2π.  Otherwise each
+    local extreme is refined by golden section on the closed form, and the ends of the turn
+    count too (a branch that changed side need not come back to its start).
+    """
+    flips = [t for t, touch in ((math.pi, d + a == b + c),) if touch]
+
+    def psi(th: np.ndarray) -> np.ndarray:
+        th = np.asarray(th, float)
+        side = np.ones_like(th)
+        for t in flips:  # a change point strictly between the drawn angle and θ
+            side = np.where((th - t) * (theta0 - t) < 0, -side, side)
+        bx, by = a * np.cos(th), a * np.sin(th)
+        fx, fy = d - bx, -by
+        f = np.hypot(fx, fy)
+        x = (b * b - c * c + f * f) / (2 * f)
+        h = np.sqrt(np.maximum(b * b - x * x, 0.0))
+        cx = bx + x * fx / f - side * h * fy / f
+        cy = by + x * fy / f + side * h * fx / f
+        return np.arctan2(cy, cx - d)
+
+    grid = np.linspace(0.0, 2 * math.pi, 4097)
+    v = np.unwrap(psi(grid))
+    if abs(v[-1] - v[0]) > math.pi:
+        return None
+    values = [float(v[0]), float(v[-1])]
+    for k in range(1, grid.size - 1):
+        for sign in (1.0, -1.0):
+            if sign * v[k] >= sign * v[k - 1] and sign * v[k] >= sign * v[k + 1]:
+                lo, hi = grid[k - 1], grid[k + 1]
+                ref = v[k]
+
+                def f(t: float, sign: float = sign, ref: float = float(ref)) -> float:
+                    y = float(psi(np.array([t]))[0])
+                    return -sign * (y + 2 * math.pi * round((ref - y) / (2 * math.pi)))
+
+                g = (math.sqrt(5.0) - 1.0) / 2.0
+                x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
+                f1, f2 = f(x1), f(x2)
+                for _ in range(80):
+                    if f1 < f2:
+                        hi, x2, f2 = x2, x1, f1
+                        x1 = hi - g * (hi - lo)
+                        f1 = f(x1)
+                    else:
+                        lo, x1, f1 = x1, x2, f2
+                        x2 = lo + g * (hi - lo)
+                        f2 = f(x2)
+                values.append(-sign * min(f1, f2))
+    return max(values) - min(values)

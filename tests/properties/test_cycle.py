@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 
 from mech.loader import load, loads
 from mech.properties.cycle import cycle, transmission_angle
-from mech.properties.grashof import FourBarLoop
+from mech.topology.grashof import FourBarLoop
 from oracles.transmission import crank_turns
 from oracles.transmission import diagonal_range as bd_range
 from oracles.transmission import transmission_angle as mu_closed
@@ -192,3 +192,135 @@ def test_properties_of_a_mechanism_that_cannot_be_swept_says_why(run):
     result = run("properties", "mechanisms/cam_follower.yaml")
     assert result.exit_code == 0
     assert "not swept" in result.output
+
+
+def test_every_prismatic_joint_has_a_stroke_on_the_frame_or_along_a_moving_guide():
+    # DESIGN § 1.1: stroke.<joint> is a prismatic joint's travel.  Khurmi's shaper: the ram slides
+    # on the frame (joint `stroke`), the block along the lever (joint `slot`), O1 pivots the lever.
+    from mech.properties.cycle import stroke_joints
+
+    assert sorted(stroke_joints(load("mechanisms/crank_slotted_lever_quick_return.yaml"))) == [
+        "O1",
+        "slot",
+        "stroke",
+    ]
+    # crank_slotted_lever.yaml: O1O2 = 500, O2A = 120 mm; the block's distance O1A runs between
+    # 500 − 120 and 500 + 120 mm as the crank turns (A on the lever's line at both ends), so it
+    # travels 2·O2A = 240 mm along the lever; the lever swings 2·asin(120/500) about O1.
+    result = cycle(load("mechanisms/crank_slotted_lever.yaml"))
+    assert result.strokes["slot"].value == pytest.approx(0.240, rel=1e-9)
+    assert result.strokes["O1"].value == pytest.approx(2 * math.asin(120 / 500), rel=1e-9)
+
+
+# -- every Grashof class, change points included (issue 25, item 2) --------------------------------
+GRASHOF_KINDS = ("crank-rocker", "double-crank", "double-rocker", "non-grashof", "change-point")
+
+
+@st.composite
+def four_bars_of_every_class(draw: st.DrawFn) -> tuple[str, int, int, int, int]:
+    """(class, d, a, b, c) in whole millimetres, so that s + l = p + q holds exactly at a change point.
+
+    s ≤ p ≤ q ≤ l: Grashof (s + l < p + q) with the shortest link as crank (crank-rocker), frame
+    (double-crank) or coupler (double-rocker); non-Grashof (s + l > p + q, l < s + p + q) and
+    change-point (l = p + q − s; with p = s, l = q: two pairs of equal links, a parallelogram when
+    opposite) in any arrangement.  A crank as long as the frame is left out: its pin passes over
+    the output pivot (B = D), where the closed-form dyad is undefined (reported to its owner).
+    """
+    kind = draw(st.sampled_from(GRASHOF_KINDS))
+    s = draw(st.integers(min_value=20, max_value=90))
+    p = draw(st.integers(min_value=s + 1, max_value=170))
+    q = draw(st.integers(min_value=p, max_value=200))
+    if kind == "change-point":
+        if draw(st.booleans()):
+            p = s
+        lengths = draw(st.permutations([s, p, q, p + q - s]))
+        d, a, b, c = lengths
+    elif kind == "non-grashof":
+        d, a, b, c = draw(
+            st.permutations([s, p, q, draw(st.integers(min_value=p + q - s + 1, max_value=s + p + q - 1))])
+        )
+    else:
+        rest = draw(st.permutations([p, q, draw(st.integers(min_value=q, max_value=p + q - s - 1))]))
+        if kind == "crank-rocker":
+            a, (d, b, c) = s, rest
+        elif kind == "double-crank":
+            d, (a, b, c) = s, rest
+        else:
+            b, (d, a, c) = s, rest
+    assume(d != a)
+    return kind, d, a, b, c
+
+
+def drawn_four_bar(d: float, a: float, b: float, c: float, theta: float) -> str:
+    """The four-bar drawn at crank angle ``theta`` (rad) with C left of B→D (near the closed form's C)."""
+    bx, by = a * math.cos(theta), a * math.sin(theta)
+    f = math.hypot(d - bx, by)
+    x = (b * b - c * c + f * f) / (2 * f)
+    h = math.sqrt(b * b - x * x)
+    cx, cy = bx + x * (d - bx) / f + h * by / f, by - x * by / f + h * (d - bx) / f
+    text = four_bar_text(d, a, b, c, math.degrees(theta))
+    return text.replace("links: [coupler, rocker]}", f"links: [coupler, rocker], near: [{cx!r}, {cy!r}]}}")
+
+
+@settings(max_examples=40, deadline=None)
+@given(bar=four_bars_of_every_class(), mirror=st.booleans())
+def test_transmission_angle_extremes_and_strokes_of_every_grashof_class_are_the_closed_forms(bar, mirror):
+    # μ depends on BD alone (cosine rule in triangle BCD): its extremes are at the ends of the
+    # range BD takes while the loop closes, 0° or 180° where coupler and rocker fold into line (a
+    # toggle, a change point).  Drawn where BD is midway, clear of both.  The rocker's swing is
+    # the closed form's along the branch with a continuous tangent (oracles.four_bar.rocker_swing),
+    # none when it turns right round.  Neither may change with the number of steps.
+    from oracles.four_bar import rocker_swing
+
+    kind, d, a, b, c = bar
+    lo, hi = bd_range(d, a, b, c)
+    mid = 0.5 * (lo + hi)
+    theta = math.acos(max(-1.0, min(1.0, (a * a + d * d - mid * mid) / (2 * a * d))))
+    theta = 2 * math.pi - theta if mirror else theta
+    mech = loads(drawn_four_bar(d, a, b, c, theta))
+    coarse, fine = cycle(mech), cycle(mech, steps=3600)
+    for result in (coarse, fine):
+        assert result.mu_min == pytest.approx(mu_of(b, c, lo), abs=1e-9), (kind, result.mu_min)
+        assert result.mu_max == pytest.approx(mu_of(b, c, hi), abs=1e-9), (kind, result.mu_max)
+    assert (coarse.mu_min, coarse.mu_max) == pytest.approx((fine.mu_min, fine.mu_max), abs=1e-12)
+    if coarse.gaps:  # the crank cannot turn: the swing depends on where the circuits lie
+        return
+    swing = rocker_swing(a, b, c, d, theta)
+    # an extreme at a change point (two branches meet) is known to about √ε there, in mech and
+    # in the closed form alike (the discriminant's rounding under a square root)
+    tol = 1e-6 if kind == "change-point" else 1e-9
+    for result in (coarse, fine):
+        if swing is None:
+            assert "D" in result.turning and "D" not in result.strokes, kind
+        else:
+            stroke = result.strokes["D"].value if "D" in result.strokes else 0.0  # a rocker at rest
+            assert stroke == pytest.approx(swing, abs=tol), kind
+
+
+@pytest.mark.parametrize("steps", [36, 360, 3600])
+def test_parallelogram_transmission_angle_is_0_and_180_and_its_rocker_turns(steps, run, write):
+    # AB = CD = 40, BC = AD = 150, C near (190, 10): the rocker stays parallel to the crank on the
+    # drawn branch, passing the change points at 0° and 180° (all four pins in line), where
+    # μ = ∠BCD is 0° and 180° exactly; the rocker turns right round: no stroke.
+    text = four_bar_text(150, 40, 150, 40).replace(
+        "links: [coupler, rocker]}", "links: [coupler, rocker], near: [190, 10]}"
+    )
+    result = cycle(loads(text), steps=steps)
+    assert (result.mu_min, result.mu_max) == (0.0, math.pi)
+    assert math.cos(result.mu_min_angle) == pytest.approx(1.0) and math.cos(
+        result.mu_max_angle
+    ) == pytest.approx(-1.0)
+    assert "D" in result.turning and not result.strokes
+    sweep = run("sweep", str(write(text)), "--steps", str(steps), "--quantity", "included.B.C.D", "--json")
+    (ext,) = json.loads(sweep.output)["extremes"]
+    assert (ext["min"], ext["max"]) == (0.0, 180.0)
+    checked = run(
+        "check",
+        str(
+            write(
+                text + "answers:\n  transmission_angle.min: 0 deg\n  transmission_angle.max: 180 deg\n",
+                "a.yaml",
+            )
+        ),
+    )
+    assert checked.exit_code == 0, checked.output

@@ -1,4 +1,4 @@
-"""Grashof's criterion and slider-crank inversions (mech.properties.grashof, mech dof, mech classify).
+"""Grashof's criterion and slider-crank inversions (mech.topology.grashof, mech dof, mech classify).
 
 The reference for "which link turns fully" is not Grashof's rule but the loop
 itself: a moving link turns fully relative to the frame when the loop closes
@@ -15,8 +15,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from mech.loader import loads
-from mech.properties.grashof import FourBarLoop, SliderCrankLoop, linkage_loops
 from mech.topology import classify
+from mech.topology.grashof import FourBarLoop, SliderCrankLoop, linkage_loops
 from oracles.transmission import turning_by_sampling
 
 

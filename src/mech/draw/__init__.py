@@ -108,7 +108,14 @@ def _state_line(kin: Kinematics) -> str:
 
 
 def save(figure: Figure, path: str | Path) -> None:
-    """Write a figure as SVG or PNG, chosen by the file's extension."""
+    """Write a figure as SVG or PNG, chosen by the file's extension.
+
+    Written atomically by :func:`mech._files.writing`: a full disk or a failed
+    drawing leaves the previous file whole, a link's target is written, a device is
+    written through; a file that cannot be written is an InputError naming it.
+    """
+    from mech._files import write_file, write_with
+
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in (".svg", ".png"):
@@ -116,17 +123,11 @@ def save(figure: Figure, path: str | Path) -> None:
             f"cannot write a drawing as {suffix or 'a file without an extension'}: {path}",
             hint="name the output .svg or .png",
         )
-    try:
-        if suffix == ".svg":
-            from mech.draw.svg import to_svg
+    if suffix == ".svg":
+        from mech.draw.svg import to_svg
 
-            path.write_text(to_svg(figure), encoding="utf-8")
-        else:
-            from mech.draw.raster import to_png
+        write_file(path, to_svg(figure))
+    else:
+        from mech.draw.raster import to_png
 
-            to_png(figure, str(path))
-    except OSError as exc:
-        raise InputError(
-            f"cannot write {path}: {exc.strerror or exc}",
-            hint="check that the folder exists and can be written",
-        ) from None
+        write_with(path, lambda f: to_png(figure, f))

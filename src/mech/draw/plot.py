@@ -18,6 +18,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from mech._files import write_with
 from mech._records import dataclass
 from mech.draw.raster import DPI, use_matplotlib
 
@@ -25,7 +26,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from mech.kinematics.result import Kinematics
     from mech.model import Mechanism
 
-__all__ = ["Series", "animate", "extremes", "sweep_plot"]
+__all__ = ["Series", "animate", "extremes", "sweep_plot", "thin"]
 
 Vec = tuple[float, float]
 
@@ -128,7 +129,34 @@ def sweep_plot(
     if title:
         fig.suptitle(title, fontsize=10, fontweight="bold")
     fig.tight_layout()
-    fig.savefig(str(path), format="png", dpi=DPI, facecolor="white", metadata={"Software": None})
+    write_with(
+        path, lambda f: fig.savefig(f, format="png", dpi=DPI, facecolor="white", metadata={"Software": None})
+    )
+
+
+def thin(points: Sequence[Vec], resolution: float) -> list[Vec]:
+    """``points`` without those closer than ``resolution`` to the last one kept.
+
+    A traced path of 10,000 steps has far more points than a frame has pixels along it; each
+    one would be drawn, and measured against by every label of every frame.  A point is kept
+    when it is at least ``resolution`` from the point kept before it, and always at either
+    end of a run (a NaN breaks a run and is kept): a path already as coarse as the
+    resolution is returned unchanged.
+    """
+    out: list[Vec] = []
+    last: Vec | None = None
+    for i, p in enumerate(points):
+        if not (math.isfinite(p[0]) and math.isfinite(p[1])):
+            out.append(p)
+            last = None
+            continue
+        end = i + 1 == len(points) or not (
+            math.isfinite(points[i + 1][0]) and math.isfinite(points[i + 1][1])
+        )
+        if last is None or end or math.dist(p, last) >= resolution:
+            out.append(p)
+            last = p
+    return out
 
 
 def animate(
@@ -144,7 +172,7 @@ def animate(
     """An animated GIF of the mechanism over a cycle, one frame per set of positions.
 
     ``curves`` (label, points, kind) are traced in every frame (a coupler
-    point's path: the point runs along it).
+    point's path: the point runs along it), thinned to a frame's pixel (:func:`thin`).
 
     ``kin`` is one solve of the mechanism (it tells which points each link
     carries and how the guides lie); ``frames`` are the positions at each
@@ -160,18 +188,24 @@ def animate(
     if not frames:
         raise ValueError("no frames to animate")
     view = fit_view([p for frame in frames for p in frame.values()])
+    pixel = 25.4 / dpi * view.scale / 10  # one pixel of a frame, in metres (scale: m per cm)
+    curves = [(label, thin(points, pixel), kind) for label, points, kind in curves]
     images = []
     for frame in frames:
         fig = configuration(
             mech, kin, positions=frame, view=view, title=getattr(mech, "label", ""), curves=curves
         )
         images.append(Image.fromarray(render_rgb(fig, dpi=dpi)).convert("P", palette=Image.Palette.ADAPTIVE))
-    images[0].save(
-        str(path),
-        save_all=True,
-        append_images=images[1:],
-        duration=round(1000 / fps),
-        loop=0,
-        optimize=False,
-        disposal=2,
+    write_with(
+        path,
+        lambda f: images[0].save(
+            f,
+            format="GIF",
+            save_all=True,
+            append_images=images[1:],
+            duration=round(1000 / fps),
+            loop=0,
+            optimize=False,
+            disposal=2,
+        ),
     )

@@ -10,7 +10,7 @@ the PNG.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import IO, Any
 
 from mech.draw.scene import Circle, Figure, Line, Poly, Style, Text
 from mech.errors import MechError
@@ -164,8 +164,12 @@ def _add_circle(ax: Any, item: Circle, z: float) -> None:
 _HA = {"start": "left", "middle": "center", "end": "right"}
 
 
-def to_png(figure: Figure, path: str, dpi: int = DPI) -> None:
-    """Write ``figure`` as a PNG at ``dpi`` (no metadata, so the file is reproducible)."""
+def to_png(figure: Figure, path: str | IO[bytes], dpi: int = DPI) -> None:
+    """Write ``figure`` as a PNG at ``dpi`` (no metadata, so the file is reproducible).
+
+    ``path``: a file name, or a binary file object (:func:`mech.draw.save` hands one
+    that replaces the file atomically).
+    """
     fig, _ = _canvas(figure, dpi)
     fig.savefig(path, format="png", dpi=dpi, facecolor="white", metadata={"Software": None})
 

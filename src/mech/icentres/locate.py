@@ -25,13 +25,14 @@ velocity analysis, shown beside the solver's relative-velocity result.
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import field
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Protocol
 
 from mech._records import dataclass
-from mech.icentres.homogeneous import Hom, at_infinity, separation, unit
+from mech.icentres.homogeneous import Frame, Hom, at_infinity, separation, unit
 from mech.icentres.inspection import Instant, facts, instant_of
 from mech.icentres.kennedy import Found, kennedy, name
 
@@ -58,6 +59,23 @@ CHECK_TOL = 1e-9
 #: Assumed error of the solved velocities, relative to ω·size: what the field's
 #: homogeneous point is divided by when relative motion is nearly nil.
 VELOCITY_NOISE = 1e-12
+#: Ulps of its largest coordinate that a solved position may be off by: a mechanism 1 mm across
+#: drawn 1e6 m from the origin has its points only to 2e-10 m (1.5e-7 of its size), and every
+#: construction from them (Kennedy's lines, the velocity field) inherits that.
+PLACEMENT_ULPS = 64.0
+
+
+def placement_noise(frame: Frame) -> float:
+    """How finely positions are held where the mechanism is (size units): 64 ulps of its place.
+
+    Coordinates are floats in global metres, so a point far from the origin is known only to
+    the spacing of floats there, however small the mechanism: the cross-check cannot ask
+    Kennedy and the velocity field to agree more closely than the points they are built on.
+    Negligible for a mechanism at the origin (1e-14 of its size for one that is its own size
+    away).
+    """
+    far = math.hypot(*frame.origin) + frame.size
+    return PLACEMENT_ULPS * sys.float_info.epsilon * far / frame.size
 
 
 class ICentreDisagreement(RuntimeError):
@@ -227,6 +245,7 @@ def _field(
     ref = max(max(abs(w), math.hypot(*v) / f.size) for w, v in states.values())
     if ref == 0.0:
         return {}, 0.0
+    noise = VELOCITY_NOISE + placement_noise(f)  # velocities are solved from the placed points
     out: dict[tuple[int, int], tuple[Hom, float]] = {}
     n = len(instant.links)
     for i in range(n):
@@ -237,9 +256,9 @@ def _field(
             uy = (vi[1] - vj[1]) / (ref * f.size)
             h = (-uy, ux, (wi - wj) / ref)
             size = math.hypot(*h)
-            if size <= 100 * VELOCITY_NOISE:
+            if size <= 100 * noise:
                 continue
-            out[(i, j)] = (unit(h), VELOCITY_NOISE / size)
+            out[(i, j)] = (unit(h), noise / size)
     return out, ref
 
 
@@ -304,6 +323,7 @@ def from_instant(
             "every link is at rest (drive speed 0): nothing to cross-check against the velocity field"
         )
     centres: list[ICentre] = []
+    placed = placement_noise(instant.frame)  # Kennedy's lines are drawn through the placed points
     n = len(instant.links)
     for i in range(n):
         for j in range(i + 1, n):
@@ -314,7 +334,7 @@ def from_instant(
                 check = None
                 if fv is not None:
                     check = separation(k.hom, fv[0])
-                    tol = CHECK_TOL + k.err + fv[1]
+                    tol = CHECK_TOL + k.err + fv[1] + placed
                     if not check <= tol:
                         raise ICentreDisagreement(
                             f"{name(*pair)} ({instant.links[i]}, {instant.links[j]}): {k.method} gives "

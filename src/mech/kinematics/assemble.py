@@ -15,6 +15,8 @@ reported in the notes:
 
 Gauss–Newton with least-squares steps then polishes every equation at once,
 so over-determined but consistent files (a double parallelogram) assemble.
+The equations are written by :mod:`.assembly_equations`, the first guess made
+by :mod:`.assembly_guess`; this module polishes, checks and explains.
 Work is done in shifted, scaled coordinates (origin at a drawn ground joint,
 lengths divided by the mechanism's size), so tolerances are relative.
 
@@ -39,9 +41,10 @@ import numpy as np
 
 from mech._records import dataclass
 from mech.errors import GeometryError, InputError, Problem, Where
-from mech.kinematics.geometry import circle_circle, circle_line
+from mech.kinematics.assembly_equations import Dir, Dist, Eq, Spring, equations, placements, where_of
+from mech.kinematics.assembly_guess import construct
 from mech.kinematics.layout import Layout
-from mech.model import Joint, Mechanism, Placement, Point, Ref
+from mech.model import Joint, Mechanism, Placement, Point
 from mech.pairs import kind_of
 from mech.topology import dof
 from mech.units import to_unit
@@ -93,156 +96,8 @@ class Drawn:
 _System = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
 
 
-# -- equations ----------------------------------------------------------------------
-class _Eq:
-    """One equation (1 or 2 rows) on the positions of named locations (scaled)."""
-
-    names: tuple[str, ...] = ()
-    rows = 1
-    text = ""  # what the equation says, in the file's words (set by each kind)
-    where: Where | None = None  # the line of the file that set this equation, for messages
-
-    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
-        """Residual (rows,) and its gradient (rows, 2) for each name."""
-        raise NotImplementedError
-
-
-class _Dist(_Eq):
-    def __init__(self, a: str, b: str, length: float, text: str) -> None:
-        self.names, self.length, self.text = (a, b), length, text
-
-    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
-        w = p[1] - p[0]
-        d = math.hypot(w[0], w[1])
-        e = w / d if d > 0 else np.array([1.0, 0.0])
-        return np.array([d - self.length]), [-e[None, :], e[None, :]]
-
-
-class _Dir(_Eq):
-    """Drive: ``b`` lies on the ray from ``o`` at angle ``phi``."""
-
-    def __init__(self, o: str, b: str, phi: float, text: str) -> None:
-        self.names, self.phi, self.text = (o, b), phi, text
-        self.n = np.array([-math.sin(phi), math.cos(phi)])
-
-    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
-        return np.array([self.n @ (p[1] - p[0])]), [-self.n[None, :], self.n[None, :]]
-
-    def angle(self, p: Sequence[np.ndarray]) -> float:
-        """The ray's global direction (rad) at positions ``p``."""
-        del p
-        return self.phi
-
-    def forward(self, p: Sequence[np.ndarray]) -> bool:
-        """True when ``b`` is on the ray itself, not on its opposite half (angle + 180°)."""
-        w = p[1] - p[0]
-        psi = self.angle(p)
-        return bool(w[0] * math.cos(psi) + w[1] * math.sin(psi) >= 0.0)
-
-
-class _RelDir(_Dir):
-    """Drive relative to a link: ``b`` on the ray from ``o`` at ``phi`` plus the direction ``a0 → a1``.
-
-    ``a0 → a1`` is the reference link's line, so its direction is the angle θ_a
-    ``mech`` reports for that link, and ``phi`` is θ_b − θ_a (DESIGN § 1.1).
-    """
-
-    def __init__(self, o: str, b: str, a0: str, a1: str, phi: float, text: str) -> None:
-        super().__init__(o, b, phi, text)
-        self.names = (o, b, a0, a1)
-
-    def angle(self, p: Sequence[np.ndarray]) -> float:
-        d = p[3] - p[2]
-        return self.phi + math.atan2(d[1], d[0])
-
-    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
-        psi = self.angle(p)
-        n = np.array([-math.sin(psi), math.cos(psi)])
-        e = np.array([math.cos(psi), math.sin(psi)])
-        w = p[1] - p[0]
-        d = p[3] - p[2]
-        dd = float(d @ d) or 1.0
-        dpsi = np.array([-d[1], d[0]]) / dd  # ∂ψ/∂a1 (and −∂ψ/∂a0)
-        g = -float(e @ w) * dpsi
-        return np.array([n @ w]), [-n[None, :], n[None, :], -g[None, :], g[None, :]]
-
-
-class _OnLine(_Eq):
-    """``p`` on the line through ``t`` at fixed direction ``u`` (a path given by angle)."""
-
-    def __init__(self, pt: str, t: str, u: np.ndarray, text: str) -> None:
-        self.names, self.text = (pt, t), text
-        self.n = np.array([-u[1], u[0]])
-
-    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
-        return np.array([self.n @ (p[0] - p[1])]), [self.n[None, :], -self.n[None, :]]
-
-
-class _OnLineToward(_Eq):
-    """``p`` on the line through ``t`` and ``q``: ``(q − t) × (p − t) / |q − t| = 0``."""
-
-    def __init__(self, pt: str, t: str, q: str, text: str) -> None:
-        self.names, self.text = (pt, t, q), text
-
-    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
-        w, z = p[2] - p[1], p[0] - p[1]
-        m = math.hypot(w[0], w[1]) or 1.0
-        c = w[0] * z[1] - w[1] * z[0]
-        gp = np.array([-w[1], w[0]]) / m
-        gq = np.array([z[1], -z[0]]) / m - c * w / m**3
-        return np.array([c / m]), [gp[None, :], (-gp - gq)[None, :], gq[None, :]]
-
-
-class _Same(_Eq):
-    """``p = t``: a slider's synthetic point drawn at its path's ``through``."""
-
-    rows = 2
-
-    def __init__(self, pt: str, t: str, text: str) -> None:
-        self.names, self.text = (pt, t), text
-
-    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
-        return p[0] - p[1], [np.eye(2), -np.eye(2)]
-
-
-class _Drawn(_Eq):
-    """A weak spring ``w·(p − drawn)``: a moving location drawn with ``at`` (precision of a drawing).
-
-    The weight is small enough that exact data (lengths, angles) absorb only w² of any
-    disagreement, and large enough to fix a location nothing else fixes.
-    """
-
-    rows = 2
-    weight = 1e-3
-
-    def __init__(self, pt: str, drawn: np.ndarray) -> None:
-        self.names, self.drawn, self.text = (pt,), drawn, f"{pt} as drawn"
-
-    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
-        return self.weight * (p[0] - self.drawn), [self.weight * np.eye(2)]
-
-
 def _unscale(p: np.ndarray, scale: float, centre: np.ndarray) -> np.ndarray:
     return p * scale + centre
-
-
-class _Rel(_Eq):
-    """``p = o + u·e + v·e⊥`` with ``e`` the unit vector ``o → t`` (a relative placement)."""
-
-    rows = 2
-
-    def __init__(self, pt: str, o: str, t: str, u: float, v: float, text: str) -> None:
-        self.names, self.u, self.v, self.text = (pt, o, t), u, v, text
-
-    def value(self, p: Sequence[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
-        w = p[2] - p[1]
-        m = math.hypot(w[0], w[1]) or 1.0
-        e = w / m
-        perp = np.array([-e[1], e[0]])
-        r = p[0] - p[1] - self.u * e - self.v * perp
-        rot = np.array([[0.0, -1.0], [1.0, 0.0]])
-        dm = (self.u * np.eye(2) + self.v * rot) @ (np.eye(2) - np.outer(e, e)) / m
-        return r, [np.eye(2), -np.eye(2) + dm, -dm]
 
 
 # -- assembly ------------------------------------------------------------------------
@@ -251,10 +106,10 @@ def assemble(
 ) -> Drawn:
     """Positions of every location in the drawn configuration.
 
-    The steps: what the file places (:func:`_placements`), the scale and
-    origin (:func:`_frame`), the equations (:func:`_equations`), drawn data
+    The steps: what the file places (:func:`placements`), the scale and
+    origin (:func:`_frame`), the equations (:func:`equations`), drawn data
     checked against them (:func:`_check_drawn`), a closed-form first guess
-    (:func:`_construct`) polished by Gauss–Newton (:func:`_solve`), the
+    (:func:`construct`) polished by Gauss–Newton (:func:`_solve`), the
     drawing's own drive angles read where the file gives none.
 
     Parameters
@@ -289,9 +144,9 @@ def assemble(
     def fmt(v: float) -> str:
         return f"{to_unit(v, unit):.6g} {unit}"
 
-    known, near, places = _placements(lay)
+    known, near, places = placements(lay)
     scale, centre = _frame(lay, known, near, places)
-    eqs, resolved_angles = _equations(lay, places, scale, drive_angles, fmt)
+    eqs, resolved_angles = equations(lay, places, scale, drive_angles, fmt)
     # Every name an equation uses must be a location.
     problems = [
         Problem(f"{e.text}: {n} is not a joint or point with a position")
@@ -311,7 +166,7 @@ def assemble(
     }
     fixed = {n: v for n, v in scaled_known.items() if n not in soft}
     _check_drawn(mech, eqs, scaled_known, set(soft), (scale, fmt))
-    guess, notes, gaps = _construct(lay, eqs, scaled_known, near, centre, scale)
+    guess, notes, gaps = construct(lay, eqs, scaled_known, near, centre, scale)
     guess.update(soft)
     # Contact points of higher pairs are data of the instant (``at``), never unknowns.
     unknown = [n for n, c in lay.carriers.items() if c and n not in fixed]
@@ -331,7 +186,7 @@ def assemble(
         p = rel + centre
         positions[n] = (float(p[0]), float(p[1]))
     for e in eqs:  # a drive's equation holds on the whole line: the point must be on the ray
-        if isinstance(e, _Dir):
+        if isinstance(e, Dir):
             pts = [(np.asarray(positions[n]) - centre) / scale for n in e.names]
             if not e.forward(pts):
                 raise GeometryError(
@@ -346,37 +201,6 @@ def assemble(
     for n, xy in positions.items():
         relative.setdefault(n, (xy[0] - cx, xy[1] - cy))
     return Drawn(positions, tuple(resolved_angles), scale, tuple(notes), (cx, cy), relative)
-
-
-def _placements(
-    lay: Layout,
-) -> tuple[dict[str, tuple[float, float]], dict[str, tuple[float, float]], dict[str, Placement]]:
-    """Locations drawn with ``at`` (and path coordinates), those with a ``near`` hint, every placement."""
-    mech = lay.mech
-    known: dict[str, tuple[float, float]] = {}
-    near: dict[str, tuple[float, float]] = {}
-    places: dict[str, Placement] = {}
-    for j in mech.joints:
-        places[j.name] = j.place
-    for pt in mech.points:
-        places[pt.name] = pt.place
-    drawn = {j.name: at for j in mech.joints if j.place.at is None and (at := kind_of(j).drawn_at(mech, j))}
-    for name in lay.carriers:
-        pl = places.get(name)
-        if pl is None:
-            continue
-        if pl.at is not None:
-            known[name] = pl.at
-        elif name in drawn:  # drawn by the pair's own data (a follower's point, by its programme)
-            known[name] = drawn[name]
-        elif pl.near is not None:
-            near[name] = pl.near
-    # Path references given as coordinates become synthetic known locations.
-    for ps in lay.paths:
-        for tag, ref in (("through", ps.path.through), ("toward", ps.path.toward)):
-            if ref is not None and ref.xy is not None:
-                known[f"#{ps.joint}.{tag}"] = ref.xy
-    return known, near, places
 
 
 def _frame(
@@ -403,89 +227,9 @@ def _frame(
     return scale, centre
 
 
-def _equations(
-    lay: Layout,
-    places: dict[str, Placement],
-    scale: float,
-    drive_angles: Sequence[float | None] | None,
-    fmt: Callable[[float], str],
-) -> tuple[list[_Eq], list[float | None]]:
-    """Every equation the file's data give (lengths, drive angles, paths, relative placements),
-    and each drive's angle (the file's, else ``drive_angles``', else None: read from the drawing).
-    """
-    mech = lay.mech
-    eqs: list[_Eq] = []
-    for ln in mech.lengths:
-        a, b = lay.resolve(ln.a), lay.resolve(ln.b)
-        eqs.append(_Dist(a, b, ln.value / scale, f"length {ln.a}{ln.b} = {fmt(ln.value)}"))
-        eqs[-1].where = ln.where
-    resolved_angles: list[float | None] = []
-    deg = mech.angle_unit == "deg"
-    for k, spec in enumerate(lay.drives):
-        angle = spec.drive.angle
-        if angle is None and drive_angles is not None and k < len(drive_angles):
-            angle = drive_angles[k]
-        resolved_angles.append(angle)
-        if spec.link is None or angle is None or spec.toward is None:
-            continue
-        shown = f"{math.degrees(angle):.6g}°" if deg else f"{angle:.6g} rad"
-        if spec.reference_line is not None:
-            a0, a1 = spec.reference_line
-            text = f"drive angle {shown} relative to {spec.reference}"
-            eqs.append(_RelDir(spec.pivot, spec.toward, a0, a1, angle, text))  # type: ignore[arg-type]
-        else:
-            eqs.append(_Dir(spec.pivot, spec.toward, angle, f"drive angle {shown}"))  # type: ignore[arg-type]
-        eqs[-1].where = spec.drive.where
-    eqs += _path_equations(lay)
-    for name, pl in places.items():
-        if pl.origin is None or pl.toward is None or name not in lay.carriers:
-            continue
-        if pl.offset is not None:
-            u, v = pl.offset
-        else:
-            u, v = (pl.distance or 0.0), 0.0
-        eqs.append(
-            _Rel(
-                name,
-                lay.resolve(pl.origin),
-                lay.resolve(pl.toward),
-                u / scale,
-                v / scale,
-                f"{name} placed from {pl.origin} toward {pl.toward}",
-            )
-        )
-        eqs[-1].where = _where_of(mech, name)
-    return eqs, resolved_angles
-
-
-def _path_equations(lay: Layout) -> list[_Eq]:
-    """A prismatic or slot joint's point on its path (through a point, toward another or at an angle)."""
-
-    def ref_name(ps_joint: str, tag: str, ref: Ref) -> str:
-        return lay.resolve(ref.name) if ref.name is not None else f"#{ps_joint}.{tag}"
-
-    eqs: list[_Eq] = []
-    for ps in lay.paths:
-        path_where = lay.mech.joint(ps.joint).where
-        t = ref_name(ps.joint, "through", ps.path.through)
-        text = f"{ps.point} on the path of {ps.type} joint {ps.joint}"
-        if ps.point.startswith("#"):
-            eqs.append(_Same(ps.point, t, f"the point of {ps.slider} on the path of {ps.joint}"))
-            eqs[-1].where = path_where
-            continue
-        if ps.path.toward is not None:
-            eqs.append(_OnLineToward(ps.point, t, ref_name(ps.joint, "toward", ps.path.toward), text))
-            eqs[-1].where = path_where
-        elif ps.path.angle is not None:
-            stroke = ps.path.angle
-            eqs.append(_OnLine(ps.point, t, np.array([math.cos(stroke), math.sin(stroke)]), text))
-            eqs[-1].where = path_where
-    return eqs
-
-
 def _check_drawn(
     mech: Mechanism,
-    eqs: list[_Eq],
+    eqs: list[Eq],
     scaled_known: dict[str, np.ndarray],
     soft: set[str],
     frame: tuple[float, Callable[[float], str]],
@@ -509,7 +253,7 @@ def _check_drawn(
             r, grads = e.value(p)
             # how far the residual can go if each drawn moving point moves by drawing precision
             slack = sum(float(np.linalg.norm(g, 2)) for n, g in zip(e.names, grads, strict=True) if n in soft)
-            opposite = isinstance(e, _Dir) and not e.forward(p)
+            opposite = isinstance(e, Dir) and not e.forward(p)
             if float(np.max(np.abs(r))) > _AGREE + _DRAWING * slack or opposite:
                 disagree.append(Problem(_disagreement(e, p, scale, fmt), e.where, agree_hint))
     if disagree:
@@ -518,7 +262,7 @@ def _check_drawn(
 
 def _solve(
     lay: Layout,
-    eqs: list[_Eq],
+    eqs: list[Eq],
     guess: dict[str, np.ndarray],
     fixed: dict[str, np.ndarray],
     soft: dict[str, np.ndarray],
@@ -541,7 +285,7 @@ def _solve(
     col = {n: i for i, n in enumerate(unknown)}
     x = np.concatenate([guess[n] for n in unknown])
     live = [e for e in eqs if any(n in col for n in e.names)]
-    springs: list[_Eq] = [_Drawn(n, v) for n, v in soft.items()]
+    springs: list[Eq] = [Spring(n, v) for n, v in soft.items()]
 
     def system(xv: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         eq_all = live + springs
@@ -579,7 +323,7 @@ def _solve(
                     f"{n} is drawn at ({fmt(_unscale(soft[n], scale, centre)[0])}, "
                     f"{fmt(_unscale(soft[n], scale, centre)[1])}), but the lengths and angles put it "
                     f"{fmt(moved[n] * scale)} away",
-                    _where_of(mech, n),
+                    where_of(mech, n),
                     "make the drawing and the numbers agree, or give only one of them "
                     "(`at` on a moving joint means drawn here)",
                 )
@@ -620,165 +364,7 @@ def _drawn_drive_angles(
             resolved_angles[k] = drawn
 
 
-def _construct(
-    lay: Layout,
-    eqs: list[_Eq],
-    known: dict[str, np.ndarray],
-    near: dict[str, tuple[float, float]],
-    centre: np.ndarray,
-    scale: float,
-) -> tuple[dict[str, np.ndarray], list[str], list[str]]:
-    """First guesses: closed-form dyads in dependency order; notes on default branches.
-
-    Returns guesses for every unknown, the branch notes, and gap messages for
-    dyads that could not close (used if Gauss–Newton cannot close them either).
-    Each round places what it can: directly (:meth:`_Guess.direct`), else as a
-    dyad apex (:meth:`_Guess.dyad`), until a round places nothing.
-    """
-    g = _Guess(lay, known, near, centre, scale)
-    unknown = [n for n, c in lay.carriers.items() if c and n not in g.pos]
-    progress = True
-    while progress:
-        progress = False
-        for n in unknown:
-            if n in g.pos:
-                continue
-            mine = [e for e in eqs if n in e.names]
-            found = g.direct(n, mine)
-            if found is None:
-                found = g.dyad(n, mine)
-            if found is not None:
-                g.pos[n] = np.asarray(found, dtype=float)
-                progress = True
-    # Whatever construction could not reach: near, else a spread-out default.
-    for k, n in enumerate(unknown):
-        if n not in g.pos:
-            if n in g.hint:
-                g.pos[n] = g.hint[n]
-            else:
-                g.pos[n] = np.array([0.3 + 0.1 * k, 0.4 - 0.05 * k])
-                g.notes.append(
-                    f"{n}: position found by least squares from a default guess (give near to choose)"
-                )
-    return g.pos, g.notes, g.gaps
-
-
-class _Guess:
-    """Positions guessed so far (scaled), with the branch notes and gaps met on the way."""
-
-    def __init__(
-        self,
-        lay: Layout,
-        known: dict[str, np.ndarray],
-        near: dict[str, tuple[float, float]],
-        centre: np.ndarray,
-        scale: float,
-    ) -> None:
-        self.order = {n: i for i, n in enumerate(lay.mech.iter_names())}
-        self.pos = dict(known)
-        self.hint = {n: (np.asarray(v, dtype=float) - centre) / scale for n, v in near.items()}
-        self.notes: list[str] = []
-        self.gaps: list[str] = []
-
-    def pick(self, name: str, candidates: list[tuple[float, float] | None], rule: str) -> np.ndarray:
-        """The branch nearest ``near``; without one, the first (the default rule, noted)."""
-        cands = [np.array(c) for c in candidates if c is not None]
-        if name in self.hint:
-            return min(cands, key=lambda c: float(np.hypot(*(c - self.hint[name]))))
-        self.notes.append(f"{name}: {rule} by the default rule (give near to choose the other branch)")
-        return cands[0]
-
-    def direct(self, n: str, mine: list[_Eq]) -> np.ndarray | None:
-        """A placement that gives ``n`` at once: the same point, a relative placement, a guide's
-        far end on its ray, a crank's end along the drive angle."""
-        pos = self.pos
-        for e in mine:
-            others = [m for m in e.names if m != n]
-            if not all(m in pos for m in others):
-                continue
-            if isinstance(e, _Same) and e.names[0] == n:
-                return pos[e.names[1]]
-            if isinstance(e, _Rel) and e.names[0] == n:
-                o, t = pos[e.names[1]], pos[e.names[2]]
-                w = t - o
-                m = float(np.hypot(*w)) or 1.0
-                ev = w / m
-                return o + e.u * ev + e.v * np.array([-ev[1], ev[0]])
-            if isinstance(e, _OnLineToward) and e.names[2] == n:
-                # a guide's far end Q: at its length from T, on the ray T → P (the slider's side)
-                t, p = pos[e.names[1]], pos[e.names[0]]
-                lengths = [d for d in mine if isinstance(d, _Dist) and set(d.names) == {n, e.names[1]}]
-                w = p - t
-                m = float(np.hypot(*w))
-                if lengths and m > 0:
-                    return self.pick(
-                        n,
-                        [tuple(t + lengths[0].length * w / m), tuple(t - lengths[0].length * w / m)],
-                        f"on the ray {e.names[1]}→{e.names[0]}",
-                    )
-            if isinstance(e, _Dir) and e.names[1] == n:
-                lengths = [d for d in mine if isinstance(d, _Dist) and set(d.names) == set(e.names[:2])]
-                if lengths:
-                    psi = e.angle([pos[m] if m != n else pos[e.names[0]] for m in e.names])
-                    return pos[e.names[0]] + lengths[0].length * np.array([math.cos(psi), math.sin(psi)])
-        return None
-
-    def dyad(self, n: str, mine: list[_Eq]) -> np.ndarray | None:
-        """``n`` as a dyad apex: two lengths to known points, or a length and a path."""
-        pos = self.pos
-        circles = [
-            (pos[next(m for m in d.names if m != n)], d.length, next(m for m in d.names if m != n))
-            for d in mine
-            if isinstance(d, _Dist) and all(m in pos for m in d.names if m != n)
-        ]
-        lines = [
-            d
-            for d in mine
-            if isinstance(d, (_OnLine, _OnLineToward))
-            and d.names[0] == n
-            and all(m in pos for m in d.names[1:])
-        ]
-        if len(circles) >= 2:
-            return self._two_circles(n, circles)
-        if circles and lines:
-            return self._circle_and_line(n, circles[0], lines[0])
-        return None
-
-    def _two_circles(self, n: str, circles: list[tuple[np.ndarray, float, str]]) -> np.ndarray:
-        """Circle–circle, left of P → Q (P listed first in the file) unless ``near`` says otherwise."""
-        (c1, r1, n1), (c2, r2, n2) = sorted(circles[:2], key=lambda c: self.order.get(c[2], 0))
-        left, gap = circle_circle(tuple(c1), r1, tuple(c2), r2, left=True)
-        right, _ = circle_circle(tuple(c1), r1, tuple(c2), r2, left=False)
-        if left is None:
-            d = float(np.hypot(*(c2 - c1)))
-            self.gaps.append(
-                f"the loop {n1}–{n}–{n2} cannot close: {n1} and {n2} are "
-                f"{{{d}}} apart but the lengths {n1}{n} and {n}{n2} are {{{r1}}} and "
-                f"{{{r2}}} (gap {{{gap}}})"
-            )
-            return c1 + r1 * (c2 - c1) / (d or 1.0)
-        return self.pick(n, [left, right], f"left of {n1}→{n2}")
-
-    def _circle_and_line(self, n: str, circle: tuple[np.ndarray, float, str], ln: _Eq) -> np.ndarray:
-        """Circle–line, the intersection farther along the path unless ``near`` says otherwise."""
-        pos = self.pos
-        c, r, centre_name = circle
-        if isinstance(ln, _OnLine):
-            t, u = pos[ln.names[1]], np.array([ln.n[1], -ln.n[0]])
-        else:
-            t, q = pos[ln.names[1]], pos[ln.names[2]]
-            u = (q - t) / (float(np.hypot(*(q - t))) or 1.0)
-        fwd, gap = circle_line(tuple(c), r, tuple(t), tuple(u), forward=True)
-        back, _ = circle_line(tuple(c), r, tuple(t), tuple(u), forward=False)
-        if fwd is None:
-            self.gaps.append(
-                f"{n} cannot reach its path: the path passes {{{gap}}} beyond the length {centre_name}{n} = {{{r}}}"
-            )
-            return t + float((c - t) @ u) * u
-        return self.pick(n, [fwd, back], "the intersection farther along the path")
-
-
-def _let_go(system: _System, x: np.ndarray, springs: list[_Eq]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _let_go(system: _System, x: np.ndarray, springs: list[Eq]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Polish with the springs all but let go, so the exact data win (a spring leaks w² of a gap).
 
     Returns x and the residual and Jacobian with the springs at their usual weight again.
@@ -787,7 +373,7 @@ def _let_go(system: _System, x: np.ndarray, springs: list[_Eq]) -> tuple[np.ndar
         spring.weight = _LET_GO  # type: ignore[attr-defined]
     x, _, _ = _gauss_newton(system, x)
     for spring in springs:
-        spring.weight = _Drawn.weight  # type: ignore[attr-defined]
+        spring.weight = Spring.weight  # type: ignore[attr-defined]
     res, jac = system(x)
     return x, res, jac
 
@@ -879,12 +465,12 @@ def _check_determined(
     raise GeometryError(message, where=first.where if first is not None else Where(lay.mech.path), hint=hint)
 
 
-def _disagreement(e: _Eq, p: list[np.ndarray], scale: float, fmt: Callable[[float], str]) -> str:
+def _disagreement(e: Eq, p: list[np.ndarray], scale: float, fmt: Callable[[float], str]) -> str:
     """``length BC = 150 mm but the drawing gives 148.3 mm`` and the like."""
-    if isinstance(e, _Dist):
+    if isinstance(e, Dist):
         d = float(np.hypot(*(p[1] - p[0]))) * scale
         return f"{e.text} but the drawing gives {fmt(d)} (off by {fmt(abs(d - e.length * scale))})"
-    if isinstance(e, _Dir):
+    if isinstance(e, Dir):
         w = p[1] - p[0]
         drawn = math.atan2(w[1], w[0])
         psi = e.angle(p)
@@ -896,7 +482,7 @@ def _disagreement(e: _Eq, p: list[np.ndarray], scale: float, fmt: Callable[[floa
     return f"{e.text}: the drawing is off by {fmt(float(np.hypot(*r)) * scale if r.size == 2 else abs(float(r[0])) * scale)}"
 
 
-def _worst_where(eqs: list[_Eq], res: np.ndarray) -> Where | None:
+def _worst_where(eqs: list[Eq], res: np.ndarray) -> Where | None:
     """Where the equation that misses most was written (for a located message)."""
     row, best, where = 0, -1.0, None
     for e in eqs:
@@ -909,7 +495,7 @@ def _worst_where(eqs: list[_Eq], res: np.ndarray) -> Where | None:
 
 
 def _no_assembly(
-    label: str, eqs: list[_Eq], res: np.ndarray, gaps: list[str], scale: float, fmt: Callable[[float], str]
+    label: str, eqs: list[Eq], res: np.ndarray, gaps: list[str], scale: float, fmt: Callable[[float], str]
 ) -> str:
     """The gap of the closest assembly, in the file's unit."""
     import re
@@ -946,12 +532,6 @@ def _check_drawing(
     ]
     if problems:
         raise InputError(problems=problems, source=lay.mech.source)
-
-
-def _where_of(mech: Mechanism, name: str) -> Where | None:
-    """The line of the file that defines the joint or point ``name`` (None if neither)."""
-    located: list[Joint | Point] = [*mech.joints, *mech.points]
-    return next((x.where for x in located if x.name == name), None)
 
 
 def complete(lay: Layout, positions: dict[str, tuple[float, float]]) -> None:

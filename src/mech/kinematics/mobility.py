@@ -7,7 +7,7 @@ gives the rank with a tolerance scaled to its largest singular value, and
 its null space says which links can move (free) and which cannot (locked).
 
 :func:`mech.kinematics.mobility` (the rank at the drawn configuration of a file)
-is :func:`mech.kinematics.solve.mobility`: it needs the compiled system, and the
+is :func:`mech.kinematics.compiled.mobility`: it needs the compiled system, and the
 solver imports this module, never the other way round.
 """
 

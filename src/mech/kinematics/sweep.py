@@ -43,7 +43,7 @@ Rules the results keep:
   a quantity that comes back to its first value is taken as periodic (a
   2:1 wheel is not); nothing is extrapolated beyond the range swept.
 * **Bounded memory.**  A sweep whose arrays would exceed
-  :data:`MEMORY_BUDGET` (1 GiB, estimated per angle from the chain) is
+  :data:`~.sweep_grid.MEMORY_BUDGET` (1 GiB, estimated per angle from the chain) is
   refused before solving, with the number of angles that fit.
 
 The quick-return time ratio is the crank angle of the slow stroke over that
@@ -57,25 +57,26 @@ The work is split by job: :mod:`.sweep_result` (what is returned),
 :mod:`.quantities` (keys and units), :mod:`.sweep_backends` (closed form,
 Newton), :mod:`.sweep_events` (what is found) and :mod:`.roots` (the
 refinements' root finders); this module is the driver and the limits of the
-grid it analyses (:data:`MEMORY_BUDGET`, :data:`RESOLVE`, :data:`ANGLE_PRECISION`).
+grid it analyses, whose limits (``MEMORY_BUDGET``, ``RESOLVE``, ``ANGLE_PRECISION``) are in
+:mod:`.sweep_grid`.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
 from mech._records import dataclass
 from mech.errors import InputError, UnsupportedError
-from mech.kinematics.dyads import ACCURATE_COND, DyadProgram, numpy_namespace, program
+from mech.kinematics.dyads import ACCURATE_COND, DyadProgram, program
 from mech.kinematics.march import MAX_SPAN, Marcher
 from mech.kinematics.quantities import LEVELS, check_quantity, default_quantities, quantity_unit
 from mech.kinematics.result import Kinematics
 from mech.kinematics.solve import SINGULAR, Compiled, compiled, instant_pairs, refuse_underdriven, solve
-from mech.kinematics.sweep_backends import Closed, Newton, law_series, newton_series
+from mech.kinematics.sweep_backends import Closed, Newton, law_series, newton_series, seam_shifts
 from mech.kinematics.sweep_events import (
     circuits_note,
     find_change_points,
@@ -84,6 +85,14 @@ from mech.kinematics.sweep_events import (
     find_gaps,
     find_time_ratio,
     runs,
+    unbounded_notes,
+)
+from mech.kinematics.sweep_grid import (
+    RESOLVE,
+    analysis_grid,
+    check_memory,
+    check_position_precision,
+    check_precision,
 )
 from mech.kinematics.sweep_result import DriveLaw, Event, Extreme, Gap, Sweep, TimeRatio, frozen
 from mech.model import Mechanism
@@ -179,7 +188,7 @@ def sweep(
         raise InputError(f"no drive of {drive!r} to sweep", hint=f"choose {mech.drives[0].link}")
     plan = (_plan_laws if several else _plan)(mech, angles, level, options, drive)
     backend, data, fine, pick = _evaluate(plan, analyse)
-    ok, cond, singular = _masked(data, plan.prog is not None)
+    ok, cond, singular = _masked(data, plan.prog is not None, fine if plan.parameter == "angle" else None)
     keys = _quantity_keys(backend, plan, quantities)
     found = _Found()
     if analyse:
@@ -190,7 +199,7 @@ def sweep(
             for k, v in data.items()
         }
         ok, cond, singular = ok[pick], cond[pick], singular[pick]
-    _closing_notes(plan, ok, singular, found.ratio)
+    _closing_notes(plan, ok, singular, found)
     return _result(plan, backend, data, ok, cond, found)
 
 
@@ -277,8 +286,8 @@ def _plan(
         raise UnsupportedError(
             f"{mech.label} does not decompose into dyads driven by one crank", hint="use method auto"
         )
-    _check_precision(phi)
-    _check_memory(comp, prog, phi.size, max(lvl, 1))
+    check_precision(phi)
+    check_memory(comp, prog, phi.size, max(lvl, 1))
     return _Plan(
         mech,
         comp,
@@ -300,12 +309,17 @@ def _evaluate(plan: _Plan, analyse: bool) -> tuple[Any, dict[str, np.ndarray], n
     comp, prog, notes = plan.comp, plan.prog, plan.notes
     if plan.lead is not None:
         return _evaluate_laws(plan, analyse)
-    fine, pick = _analysis_grid(plan.phi, comp, prog, plan.lvl_int, notes) if analyse else (plan.phi, None)
+    fine, pick = analysis_grid(plan.phi, comp, prog, plan.lvl_int, notes) if analyse else (plan.phi, None)
     w_int = plan.omega if plan.omega else 1.0  # velocities are needed for dead centres even at position level
     if prog is not None:
         backend: Any = Closed(comp, prog, w_int, plan.alpha, plan.lvl_int)
         backend.ref = _branch_reference(fine, prog.drawn_angle)
         data = backend.evaluate(fine)
+        k0 = int(np.argmin(np.abs(fine - backend.ref)))
+        shift = seam_shifts(fine, data["assembled"], k0)
+        if np.any(shift):  # the drawing's stretch goes on through 0° ≡ 360°: count its branch that way
+            backend.steps, backend.shift = fine, shift
+            data = backend.evaluate(fine)
         notes.append("closed form: " + "; ".join(prog.steps))
     else:
         backend = Newton(plan.mech, comp, plan.options, w_int, plan.alpha, plan.lvl_int)
@@ -325,8 +339,13 @@ def _branch_reference(phi: np.ndarray, drawn: float) -> float:
     return drawn + _TWO_PI * round(float(phi[k0] - drawn) / _TWO_PI)
 
 
-def _masked(data: dict[str, np.ndarray], closed: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """NaN where not assembled (and rates where singular), link angles unwrapped; (ok, condition, singular)."""
+def _masked(
+    data: dict[str, np.ndarray], closed: bool, phi: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """NaN where not assembled (and rates where singular), link angles unwrapped; (ok, condition, singular).
+
+    ``phi``: the drive angles, when they are a crank's (a full turn joins its last run to its first).
+    """
     ok = data["assembled"]
     cond = np.where(ok, data["condition"], np.nan)
     singular = ok & (cond > (ACCURATE_COND if closed else SINGULAR))
@@ -335,7 +354,7 @@ def _masked(data: dict[str, np.ndarray], closed: bool) -> tuple[np.ndarray, np.n
     for key in ("velocities", "omegas", "sliding", "accelerations", "alphas"):
         if key in data:
             data[key] = np.where(_expand(ok & ~singular, data[key]), data[key], np.nan)
-    data["link_angles"] = _unwrap(data["link_angles"], ok)
+    data["link_angles"] = _unwrap(data["link_angles"], ok, phi)
     return ok, cond, singular
 
 
@@ -370,7 +389,9 @@ def _find(
             "continuous tangent"
         )
     dead, outputs = find_dead_centres(backend, plan.comp, fine, data, ok, names)
-    extremes = find_extremes(backend, fine, data, ok & ~singular, names, keys)
+    # an extreme of a position may lie at a toggle or change point, where refinement cannot look
+    extremes = find_extremes(backend, fine, data, ok & ~singular, names, keys, toggles + changes, ok)
+    plan.notes.extend(unbounded_notes(extremes, lambda a: _at_text(plan, a)))  # rates ∞ at a toggle
     ratio = find_time_ratio(fine, ok, dead, outputs) if plan.lead is None else None
     return _Found(gaps, toggles, dead, extremes, ratio, changes)
 
@@ -382,18 +403,11 @@ def _at_text(plan: _Plan, value: float) -> str:
     return f"{to_unit(value, plan.mech.length_unit):.6g} {plan.mech.length_unit}"
 
 
-def _closing_notes(plan: _Plan, ok: np.ndarray, singular: np.ndarray, ratio: TimeRatio | None) -> None:
-    """Notes on the steps asked: rates left out next to a toggle, separate circuits, a quick return."""
-    notes = plan.notes
+def _closing_notes(plan: _Plan, ok: np.ndarray, singular: np.ndarray, found: _Found) -> None:
+    """Notes on the steps asked: rates left out where singular, separate circuits, a quick return."""
+    notes, ratio = plan.notes, found.ratio
     if np.any(singular):
-        where = (
-            "a toggle or change point" if any(n.startswith("change point at") for n in notes) else "a toggle"
-        )
-        notes.append(
-            f"{int(np.sum(singular))} step(s) next to {where} (condition number above "
-            f"{ACCURATE_COND if plan.prog is not None else SINGULAR:.0e}): velocities and accelerations there "
-            "would be good to less than 1e-6 and are not reported"
-        )
+        _singular_note(plan, ok, singular, found)
     circuits = (
         circuits_note(plan.phi, ok, plan.comp.drawn.drive_angles[plan.lead or 0])
         if plan.parameter == "angle"
@@ -405,6 +419,23 @@ def _closing_notes(plan: _Plan, ok: np.ndarray, singular: np.ndarray, ratio: Tim
         notes.append(
             f"quick return: {ratio.output} strokes take {math.degrees(ratio.slow):.4f}° and {math.degrees(ratio.fast):.4f}° of crank (ratio {ratio.ratio:.6g})"
         )
+
+
+def _singular_note(plan: _Plan, ok: np.ndarray, singular: np.ndarray, found: _Found) -> None:
+    """Say where rates are left out, and why: next to a toggle or change point, or — ill-conditioned
+    at every step with none found — because the equations are that badly scaled (a 1e12:1 gear
+    train's condition number is 2e12 at every angle; it is no toggle)."""
+    bound = f"{ACCURATE_COND if plan.prog is not None else SINGULAR:.0e}"
+    lost = "velocities and accelerations there would be good to less than 1e-6 and are not reported"
+    n = int(np.sum(singular))
+    if bool(np.all(singular[ok])) and not found.toggles and not found.changes:
+        plan.notes.append(
+            f"{n} step(s) where the constraint equations' condition number is above {bound} at every "
+            f"angle, with no toggle or change point (links or gear ratios of very different scales): {lost}"
+        )
+        return
+    where = "a toggle or change point" if found.changes else "a toggle"
+    plan.notes.append(f"{n} step(s) next to {where} (condition number above {bound}): {lost}")
 
 
 def _result(
@@ -445,159 +476,28 @@ def _result(
     )
 
 
-MEMORY_BUDGET = 1 << 30
-"""Bytes a sweep's arrays may take (1 GiB); more angles are refused before solving."""
-
-
-def _per_angle(comp: Compiled, prog: DyadProgram | None, lvl: int) -> int:
-    """Bytes a sweep keeps per angle (an estimate, on the safe side; see :func:`_check_memory`)."""
-    if prog is not None:
-        with np.errstate(all="ignore"):
-            outputs = len(prog.raw(np.zeros(1), 1.0, 0.0, level=lvl, xp=numpy_namespace()))
-        return 20 * outputs + 128
-    sys_ = comp.system
-    values = (lvl + 1) * (2 * len(sys_.loc_names) + len(sys_.links)) + 2 * len(comp.layout.paths)
-    return 1200 + 32 * values
-
-
-def _check_memory(comp: Compiled, prog: DyadProgram | None, n: int, lvl: int) -> None:
-    """Refuse a sweep whose arrays would exceed :data:`MEMORY_BUDGET` (an estimate, kept on the safe side).
-
-    Closed form: the generated program's outputs and what is derived from them,
-    about 20 bytes per output per angle (measured: 650 bytes per angle for a
-    four-bar at velocity level, 1,360 for a six-bar at acceleration level).
-    Newton: one small record per step, about 1,200 bytes plus 32 per value kept.
-    """
-    per = _per_angle(comp, prog, lvl)
-    if n * per <= MEMORY_BUDGET:
-        return
-    fit = MEMORY_BUDGET // per
-    raise InputError(
-        f"a sweep of {n:,} angles would need about {n * per / 2**30:.1f} GiB for its arrays "
-        f"({per:,} bytes per angle for {comp.mech.label}), more than the {MEMORY_BUDGET / 2**30:g} GiB "
-        f"a sweep may use",
-        hint=f"give at most {fit:,} angles (--steps {fit - 1}), or sweep the range in parts",
-    )
-
-
-#: The analysis grid's largest step (rad): events (dead centres, extremes, gaps) are looked
-#: for between angles at most this far apart, whatever steps the series is printed at.
-RESOLVE = math.radians(1.0)
-#: The float spacing (rad) the largest angle of a sweep may have: beyond it (angles past
-#: about 2.6e8°) an angle is not known well enough to locate anything on it.
-ANGLE_PRECISION = 1e-9
-
-
-def _check_precision(phi: np.ndarray) -> None:
-    """Refuse angles so large that their float spacing exceeds :data:`ANGLE_PRECISION`."""
-    big = float(np.max(np.abs(phi)))
-    spacing = float(np.spacing(big))
-    if spacing > ANGLE_PRECISION:
-        raise InputError(
-            f"crank angles as large as {math.degrees(big):.4g}° are held only to "
-            f"{math.degrees(spacing):.2g}° in floating point: nothing on them can be located",
-            hint="sweep the same crank positions nearer 0 (subtract whole turns of 360°)",
-        )
-
-
-#: The float spacing, relative to the mechanism's size, the farthest position of a slider's
-#: stroke may have: beyond it the slider's place is not known well enough to locate anything.
-POSITION_PRECISION = 1e-9
-
-
-def _check_position_precision(s: np.ndarray, size: float, fmt: Callable[[float], str]) -> None:
-    """Refuse slider positions so far out that their float spacing exceeds :data:`POSITION_PRECISION` of the size."""
-    big = float(np.max(np.abs(s)))
-    spacing = float(np.spacing(big))
-    if spacing > POSITION_PRECISION * size:
-        raise InputError(
-            f"slider positions as far out as {fmt(big)} are held only to {fmt(spacing)} in floating "
-            f"point, on a mechanism {fmt(size)} across: nothing on them can be located",
-            hint="sweep a stroke within the slider's reach (--from/--to in the file's length unit)",
-        )
-
-
-def _analysis_grid(
-    phi: np.ndarray,
-    comp: Compiled,
-    prog: DyadProgram | None,
-    lvl: int,
-    notes: list[str],
-    resolve: float = RESOLVE,
-    position: Callable[[float], str] | None = None,
-) -> tuple[np.ndarray, np.ndarray | None]:
-    """The angles to analyse: ``phi`` with each step cut into parts of at most :data:`RESOLVE`.
-
-    Returns the grid and the indices of ``phi``'s angles in it (None when no step
-    needed cutting).  Two dead centres between two steps leave no sign change to
-    refine, so a sweep of 3 steps over two turns saw 2 of its 4; on the finer grid
-    it sees them all.  When the finer grid would exceed the memory budget the
-    steps given are analysed: a step of more than half a turn is then refused
-    (the motion between its ends is unknown), a smaller one gets a note that
-    events between steps may be missed.  A slider's stroke (``position`` formats its
-    lengths) is never refused for its steps: it gets the note.
-    """
-    if phi.size < 2:
-        return phi, None
-    widths = np.abs(np.diff(phi))
-    # counted in floats first: a step of 1e30 m (a slider's stroke) has more parts than int64 holds
-    parts_f = np.maximum(1.0, np.ceil(widths / resolve * (1.0 - 1e-12)))
-    if float(parts_f.max()) == 1.0:
-        return phi, None
-    total_f = float(parts_f.sum()) + 1.0
-    per = _per_angle(comp, prog, lvl)
-    if total_f * per > MEMORY_BUDGET:
-        notes.append(_steps_as_given(phi, widths, total_f, per, position))
-        return phi, None
-    parts = parts_f.astype(np.int64)
-    total = int(total_f)
-    starts = np.concatenate(([0], np.cumsum(parts)))
-    offset = np.arange(total - 1) - np.repeat(starts[:-1], parts)
-    fine = np.repeat(phi[:-1], parts) + np.repeat(np.diff(phi) / parts, parts) * offset
-    return np.append(fine, phi[-1]), starts
-
-
-def _steps_as_given(
-    phi: np.ndarray, widths: np.ndarray, total: float, per: int, position: Callable[[float], str] | None
-) -> str:
-    """The note for a sweep analysed at its own steps, or the refusal when a crank's step is too wide.
-
-    A crank's step of more than half a turn leaves its motion between the ends unknown, so it is
-    refused; a narrower one, or any step of a slider's stroke (``position`` formats it), is
-    analysed as given with a note.
-    """
-    widest = float(widths.max())
-    if position is not None:
-        return (
-            f"steps of {position(widest)} analysed as given (a finer grid would exceed the memory "
-            "budget): a dead centre or extreme between two steps may be missed; give more --steps"
-        )
-    span = math.degrees(abs(float(phi[-1] - phi[0])))
-    fit = max(int(MEMORY_BUDGET // per) - 1, 1)
-    if math.degrees(widest) > 180.0:
-        raise InputError(
-            f"steps of {math.degrees(widest):.4g}° are more than half a turn: the crank's motion between "
-            f"them is unknown, and resolving it ({total:,.0f} angles at 1°) exceeds the memory a sweep may use",
-            hint=f"give at least --steps {math.ceil(span / 180.0)} (1° steps: --steps "
-            f"{math.ceil(span * (1 - 1e-12))}), at most {fit:,}; or sweep the range in parts",
-        )
-    return (
-        f"steps of {math.degrees(widest):.4g}° analysed as given (a 1° grid would exceed the memory budget): "
-        "a dead centre or extreme between two steps may be missed; give more --steps to resolve it"
-    )
-
-
 def _expand(mask: np.ndarray, arr: np.ndarray) -> np.ndarray:
     return mask.reshape(mask.shape + (1,) * (arr.ndim - mask.ndim))
 
 
-def _unwrap(a: np.ndarray, ok: np.ndarray) -> np.ndarray:
-    """Link angles continuous along each assembled run (no 2π jumps), first value in [0, 2π)."""
+def _unwrap(a: np.ndarray, ok: np.ndarray, phi: np.ndarray | None = None) -> np.ndarray:
+    """Link angles continuous along each assembled run (no 2π jumps), first value in [0, 2π).
+
+    Over a full turn of a crank (``phi``) whose first and last steps are assembled, the first
+    and last runs are one stretch of the motion, through 360° ≡ 0° (the two-crank five-bar:
+    169.5°–360° then 0°–123.6°): the first run continues the last, so that angles on either
+    side of a gap are on one turn.
+    """
     out = a.copy()
-    for start, end in runs(ok):
+    spans = runs(ok)
+    for start, end in spans:
         run = np.unwrap(out[start:end], axis=0)
         run -= np.floor(run[0] / _TWO_PI) * _TWO_PI
         out[start:end] = run
+    full = phi is not None and phi.size > 2 and abs(abs(float(phi[-1] - phi[0])) - _TWO_PI) < 1e-9
+    if full and len(spans) > 1 and spans[0][0] == 0 and spans[-1][1] == ok.size:
+        (s0, e0), last = spans[0], out[spans[-1][1] - 1]
+        out[s0:e0] += _TWO_PI * np.round((last - out[s0]) / _TWO_PI)
     return out
 
 
@@ -664,11 +564,11 @@ def _plan_laws(
     if phi.size == 0 or not np.all(np.isfinite(phi)):
         raise InputError("the sweep needs at least one finite value of its parameter")
     if parameter == "angle":
-        _check_precision(phi)
+        check_precision(phi)
     else:
         unit = mech.length_unit
-        _check_position_precision(phi, comp.drawn.scale, lambda x: f"{to_unit(x, unit):.4g} {unit}")
-    _check_memory(comp, None, phi.size, max(lvl, 1))
+        check_position_precision(phi, comp.drawn.scale, lambda x: f"{to_unit(x, unit):.4g} {unit}")
+    check_memory(comp, None, phi.size, max(lvl, 1))
     omega = laws[0].rate if parameter == "angle" else None
     alpha = (d.alpha or 0.0) if d.link is not None else (d.accel or 0.0)
     return _Plan(
@@ -752,7 +652,7 @@ def _evaluate_laws(
     resolve = RESOLVE * marcher.law.span / MAX_SPAN  # 1° of the fastest drive (or 1.7% of the size)
     length = plan.mech.length_unit
     fine, pick = (
-        _analysis_grid(
+        analysis_grid(
             plan.phi,
             plan.comp,
             None,

@@ -10,6 +10,7 @@ branch (:class:`~.sweep_backends.Walk`).
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Callable, Collection, Sequence
 from typing import Any
 
@@ -31,6 +32,7 @@ __all__ = [
     "find_gaps",
     "find_time_ratio",
     "runs",
+    "unbounded_notes",
 ]
 
 _TWO_PI = 2.0 * math.pi
@@ -88,17 +90,30 @@ def circuits_note(phi: np.ndarray, ok: np.ndarray, drawn: float | None) -> str |
     return f"the assembled ranges {ranges} are separate circuits, and none holds the drawn angle"
 
 
+#: What a Newton sweep says of a limit it meets, and of the stretch beyond it.
+LIMIT = "a limit: the motion from the drawing goes no further (links in line)"
+UNREACHED = "the continuation from the drawing stops at a limit position (links in line)"
+
+
 def find_gaps(
     backend: Any, phi: np.ndarray, data: dict[str, np.ndarray], ok: np.ndarray
 ) -> tuple[tuple[Gap, ...], tuple[Event, ...]]:
-    """Unassembled runs, their edges located as toggles (closed form: bisection on the discriminant)."""
+    """Unassembled runs, their edges located as toggles.
+
+    Closed form: the loop cannot close there (a dyad's discriminant is negative), and each
+    edge is bisected on the discriminant.  Newton: the stretch was not reached — the
+    continuation from the drawing (round the parameter's period too, where it has one) stops
+    at a limit, located between the steps where the series was marched; the loop may still
+    close there on another circuit, so it is never called unable to (:attr:`Gap.cannot_close`).
+    """
     gaps: list[Gap] = []
     toggles: list[Event] = []
     prog = getattr(backend, "prog", None)
+    marched = getattr(backend, "marcher", None) is not None
     for s, e in runs(~ok):
         miss = data["miss"][s:e]
         worst = int(np.argmax(np.max(miss, axis=0))) if miss.size else 0
-        what = prog.dyads[worst][2] if prog is not None and prog.dyads else "the loop cannot close"
+        what = prog.dyads[worst][2] if prog is not None and prog.dyads else UNREACHED
         start, end = float(phi[s]), float(phi[e - 1])
         if prog is not None:
             if s > 0:
@@ -107,16 +122,14 @@ def find_gaps(
             if e < phi.size:
                 end = _edge(backend, phi[e], phi[e - 1])
                 toggles.append(Event("toggle", end, what))
-        elif getattr(backend, "lead", None) is not None and backend.marcher is not None:
-            # drives on linear laws: the limits the continuation reaches, bisected between the steps
-            what = "a limit: the loop cannot close beyond (links in line)"
+        elif marched:  # the limits the continuation reaches, located between the steps
             if s > 0:
-                start = backend.marcher.edge(s - 1, phi[s])
-                toggles.append(Event("toggle", start, what))
+                start = backend.edge(s - 1, phi[s])
+                toggles.append(Event("toggle", start, LIMIT))
             if e < phi.size:
-                end = backend.marcher.edge(e, phi[e - 1])
-                toggles.append(Event("toggle", end, what))
-        gaps.append(Gap(start, end, float(np.max(miss)) if miss.size else math.nan, what))
+                end = backend.edge(e, phi[e - 1])
+                toggles.append(Event("toggle", end, LIMIT))
+        gaps.append(Gap(start, end, float(np.max(miss)) if miss.size else math.nan, what, prog is not None))
     return tuple(gaps), tuple(sorted(toggles, key=lambda t: t.angle))
 
 
@@ -163,7 +176,7 @@ def _newton_change_points(backend: Any, phi: np.ndarray, ok: np.ndarray) -> tupl
     σ_min/σ_max along the steps, refined by :func:`zoom`) and said.
     """
     marcher = backend.marcher
-    rc = marcher.inverse_condition(marcher.solved[1])
+    rc = marcher.inverse_condition(backend.solved_q())
     rows = []
     for s, e in runs(ok & np.isfinite(rc)):
         for k in range(s + 1, e - 1):
@@ -176,7 +189,7 @@ def _newton_change_points(backend: Any, phi: np.ndarray, ok: np.ndarray) -> tupl
     hi = np.array([phi[k + 1] for k in rows], float)
 
     def fn(grid: np.ndarray) -> np.ndarray:
-        q, conv = marcher.corrected(grid.ravel())
+        q, conv = backend.corrected(grid.ravel())
         val = marcher.inverse_condition(np.where(conv[:, None], q, np.nan))
         return val.reshape(grid.shape)
 
@@ -376,6 +389,32 @@ def find_dead_centres(
     return tuple(_dedupe(events, phi)), outputs
 
 
+#: Quantities of the position level: defined at a toggle or change point, where the rates are not.
+POSITION_KINDS = ("angle", "position", "displacement", "included")
+#: Positions where two branches meet or the loop stops closing are good to about √ε (1.5e-8 of the
+#: size; the discriminant's rounding under a square root): a value read at a toggle or change point
+#: counts as an extreme only when it passes the extreme found elsewhere by more than this (of the
+#: size for a length, in rad for an angle).
+AT_EVENT = 1e-6
+#: An included angle at a toggle or change point of the links in line at its vertex (the event
+#: says so) within this of 0 or π is that exactly: its three points are in line there.
+IN_LINE = 1e-4
+#: A link's unwrapped angle spanning a full turn less this (rad) turns right round: positions next
+#: to a change point are good to about √ε, far inside it, and no rocker swings 359.99994°.
+FULL_TURN = 1e-6
+
+
+def turns_fully(v: np.ndarray, valid: np.ndarray, phi: np.ndarray) -> bool:
+    """A link whose unwrapped angle ``v`` spans a full turn, or ends a whole turn on from where it
+    started over a full turn of the drive, turns right round: it has no swing (a parallelogram's
+    rocker).  A 2:1 wheel's half turn per turn of its pinion is a swing of 180°, not a turn."""
+    if not np.any(valid):
+        return False
+    span = float(np.max(v[valid]) - np.min(v[valid]))
+    turn = phi.size > 2 and abs(abs(phi[-1] - phi[0]) - _TWO_PI) < 1e-9 and bool(np.all(valid))
+    return span >= _TWO_PI - FULL_TURN or (turn and abs(float(v[-1] - v[0])) >= _TWO_PI - FULL_TURN)
+
+
 def find_extremes(
     backend: Any,
     phi: np.ndarray,
@@ -383,6 +422,8 @@ def find_extremes(
     ok: np.ndarray,
     names: dict[str, tuple[str, ...]],
     keys: Sequence[str],
+    events: Sequence[Event] = (),
+    placed: np.ndarray | None = None,
 ) -> tuple[Extreme, ...]:
     """Grid extremes of every quantity, refined between the neighbouring steps.
 
@@ -394,8 +435,18 @@ def find_extremes(
     extrapolated beyond it.  A quantity that does not vary (a piston's angle)
     or a link that turns right round (its unwrapped angle only grows) has no
     extreme worth reporting and is left out.
+
+    ``ok`` marks the regular assembled steps, ``placed`` (default ``ok``) every assembled
+    one, those next to a toggle or change point too, where positions are still defined:
+    a link turns right round if its angle does over them.  ``events`` are the toggles
+    and change points, located to rounding: a position-level quantity may have its
+    extreme there, where refinement cannot look (the configuration is singular) and the
+    grid does not reach — a transmission angle is 0 or 180° where coupler and output
+    fold into line, at a gap's edge or as the branch passes a change point (:func:`_at_events`).
     """
+    placed = ok if placed is None else placed
     turn = phi.size > 2 and abs(abs(phi[-1] - phi[0]) - _TWO_PI) < 1e-9 and bool(np.all(ok))
+    seam_event = any(min(abs(e.angle - phi[0]), abs(e.angle - phi[-1])) < 1e-9 for e in events)
     rows: list[tuple[str, str, int, float, float, float]] = []  # key, mode, k, lo, hi, grid value
     wraps: dict[str, bool] = {}
     for key in keys:
@@ -407,10 +458,14 @@ def find_extremes(
         span = float(np.max(v[valid]) - np.min(v[valid]))
         if span <= 1e-12 * size:
             continue
-        if key.startswith("angle.") and span >= _TWO_PI - 1e-9:
+        if key.startswith("angle.") and turns_fully(v, placed & np.isfinite(v), phi):
             continue
-        # periodic over the range: back to its first value after the turn (to the solver's accuracy)
-        full = wraps[key] = turn and bool(valid[0] and valid[-1] and abs(v[-1] - v[0]) <= 1e-8 * size)
+        # periodic over the range: back to its first value after the turn (to the solver's accuracy),
+        # and not because the turn ends on a change point: the branch continued from the drawing
+        # either way meets there, but crosses the seam on the other side (no neighbours across it)
+        full = wraps[key] = (
+            turn and not seam_event and bool(valid[0] and valid[-1] and abs(v[-1] - v[0]) <= 1e-8 * size)
+        )
         for mode in ("max", "min"):
             vv = np.where(valid, v, -np.inf if mode == "max" else np.inf)
             k = int(np.argmax(vv) if mode == "max" else np.argmin(vv))
@@ -450,6 +505,8 @@ def find_extremes(
         results[(r[0], r[1])] = (
             (float(ang[i]), float(x)) if better and math.isfinite(x) else (float(phi[r[2]]), r[5])
         )
+    _at_events(backend, phi, data, ok, names, results, events)
+    _unbounded(backend, names, results, [e for e in events if e.kind == "toggle"])
     out = []
     for key in dict.fromkeys(r[0] for r in rows):
         (amax, vmax), (amin, vmin) = results[(key, "max")], results[(key, "min")]
@@ -457,6 +514,135 @@ def find_extremes(
             amax, amin = _into(amax, phi), _into(amin, phi)
         out.append(Extreme(key, quantity_unit(key), amax, vmax, amin, vmin))
     return tuple(out)
+
+
+def _at_events(
+    backend: Any,
+    phi: np.ndarray,
+    data: dict[str, np.ndarray],
+    ok: np.ndarray,
+    names: dict[str, tuple[str, ...]],
+    results: dict[tuple[str, str], tuple[float, float]],
+    events: Sequence[Event],
+) -> None:
+    """Each position-level extreme compared with the quantity at every toggle and change point.
+
+    There two branches of the assembly meet, or the loop stops closing: refinement sees a
+    singular configuration and leaves it out, so a quantity that turns there (a V, as the
+    transmission angle of a parallelogram at 0° and 180°) kept the nearest regular step's
+    value (1° off, and 0.1° at ten times the steps).  The quantity is read at the event
+    itself (its angle located to rounding; positions there good to about √ε), and counts
+    when it passes the extreme by more than :data:`AT_EVENT`.  An included angle P–Q–R at
+    an event of the links in line at Q, within :data:`IN_LINE` of 0 or π, is that exactly.
+    ``results`` ((key, "max"|"min") → (angle, value)) is updated in place.
+    """
+    keys = [k for k in dict.fromkeys(key for key, _mode in results) if k.split(".")[0] in POSITION_KINDS]
+    if not keys or not events:
+        return
+    rows = [(key, e) for key in keys for e in events]
+    refs = np.empty(len(rows))
+    for i, (key, e) in enumerate(rows):  # a link's angle on the turn of the step nearest the event
+        v = pick(data, names, key)
+        valid = np.flatnonzero(ok & np.isfinite(v))
+        refs[i] = v[valid[np.argmin(np.abs(phi[valid] - e.angle))]] if valid.size else math.nan
+    # Newton does not converge on a limit itself (its Jacobian is singular there): the nearest
+    # angles either side that it does, 1e-12 … 1e-8 rad away (a position there is √δ off)
+    nudges = np.array([0.0, -1e-12, 1e-12, -1e-10, 1e-10, -1e-8, 1e-8])
+    if backend.vectorised:
+        at = np.array([e.angle for _key, e in rows])
+        grid = at[:, None] + nudges[None, :] * np.maximum(1.0, np.abs(at))[:, None]
+        tries = _refiner(backend, names, [key for key, _e in rows], refs)(grid)
+        vals = tries[np.arange(len(rows)), np.argmax(np.isfinite(tries), axis=1)]
+    else:
+        walk = Walk(backend, phi[0])
+        vals = np.full(len(rows), np.nan)
+        for i in sorted(range(len(rows)), key=lambda i: abs(rows[i][1].angle - phi[0])):  # along the sweep
+            for nudge in nudges * max(1.0, abs(rows[i][1].angle)):
+                vals[i] = _probe(walk, names, rows[i][0], float(refs[i]))(rows[i][1].angle + nudge)
+                if math.isfinite(float(vals[i])):
+                    break
+    size = _extent(data, ok)
+    for (key, e), x in zip(rows, vals, strict=True):
+        if not math.isfinite(float(x)):
+            continue
+        x = float(x)
+        kind = key.split(".")[0]
+        if kind == "included" and re.search(rf"in line at {re.escape(key.split('.')[2])}(?!\w)", e.subject):
+            x = 0.0 if x <= IN_LINE else math.pi if x >= math.pi - IN_LINE else x
+        margin = AT_EVENT * (1.0 if kind in ("angle", "included") else size)
+        if x > results[(key, "max")][1] + margin:
+            results[(key, "max")] = (e.angle, x)
+        if x < results[(key, "min")][1] - margin:
+            results[(key, "min")] = (e.angle, x)
+
+
+#: Rates: undefined at a toggle, and most grow without bound toward one.
+RATE_KINDS = ("omega", "alpha", "velocity", "acceleration", "sliding")
+#: How near a toggle (rad, or of the parameter's size) a rate is read to see whether it grows
+#: without bound: there the configuration is still regular (condition about 1e3 to 1e4).
+TOWARD = (1e-6, 1e-7)
+
+
+def _unbounded(
+    backend: Any,
+    names: dict[str, tuple[str, ...]],
+    results: dict[tuple[str, str], tuple[float, float]],
+    toggles: Sequence[Event],
+) -> None:
+    """A rate that grows without bound toward a toggle has an infinite extreme there.
+
+    At a toggle the links in line cannot pass the motion on: velocities there grow like
+    Δθ^(−1/2), accelerations like Δθ^(−3/2), and the largest value over the sweep is ∞,
+    not the last regular step's (the rod of Khurmi's six-link slider: 257 rad/s a degree
+    away).  Each rate is read 1e-6 and 1e-7 rad from each toggle, on the side that closes:
+    where it is larger than its extreme and grew more than twice as the distance shrank
+    tenfold (√10 for a velocity; a rate that stays finite barely moves), the extreme is
+    ±∞ at the toggle.  ``results`` is updated in place.
+    """
+    keys = [k for k in dict.fromkeys(key for key, _mode in results) if k.split(".")[0] in RATE_KINDS]
+    if not keys or not toggles or not backend.vectorised:
+        return
+    rows = [(key, t) for key in keys for t in toggles]
+    at = np.array([t.angle for _key, t in rows])
+    scale = np.maximum(1.0, np.abs(at))
+    steps = np.array([-TOWARD[0], -TOWARD[1], TOWARD[0], TOWARD[1]])
+    grid = at[:, None] + steps[None, :] * scale[:, None]
+    vals = _refiner(backend, names, [key for key, _t in rows], np.full(len(rows), np.nan), regular=True)(grid)
+    for (key, t), (far_l, near_l, far_r, near_r) in zip(rows, vals, strict=True):
+        for far, near in ((far_l, near_l), (far_r, near_r)):
+            if not (math.isfinite(far) and math.isfinite(near)) or abs(near) <= 2.0 * abs(far):
+                continue
+            mode = "max" if near > 0 else "min"
+            if abs(near) > abs(results[(key, mode)][1]):
+                results[(key, mode)] = (t.angle, math.copysign(math.inf, near))
+
+
+def unbounded_notes(extremes: Sequence[Extreme], at: Callable[[float], str]) -> list[str]:
+    """A note for each infinite extreme (:func:`_unbounded`), ``at`` writing the parameter."""
+    out = []
+    for ex in extremes:
+        for word, angle, value in (
+            ("largest", ex.max_angle, ex.max_value),
+            ("least", ex.min_angle, ex.min_value),
+        ):
+            if math.isinf(value):
+                sign = "" if value > 0 else "−"
+                out.append(
+                    f"{ex.quantity} grows without bound toward the toggle at {at(angle)}: its {word} value is {sign}∞"
+                )
+    return out
+
+
+def _extent(data: dict[str, np.ndarray], ok: np.ndarray) -> float:
+    """The largest distance of a point from the points' centre at the first assembled step (m)."""
+    k = np.flatnonzero(ok)
+    if not k.size:
+        return 1.0
+    pos = data["positions"][k[0]]
+    pos = pos[np.all(np.isfinite(pos), axis=-1)]
+    if not pos.size:
+        return 1.0
+    return float(np.max(np.hypot(*(pos - pos.mean(axis=0)).T))) or 1.0
 
 
 def _into(a: float, phi: np.ndarray) -> float:

@@ -14,16 +14,25 @@ __all__ = ["DriveLaw", "Event", "Extreme", "Gap", "Sweep", "TimeRatio", "frozen"
 
 @dataclass(frozen=True, slots=True)
 class Gap:
-    """Drive angles ``start``–``end`` (rad) where the mechanism cannot be assembled.
+    """Drive angles ``start``–``end`` (rad) the sweep has no configuration for.
 
-    ``miss`` is how far the loop is from closing at worst (m), ``what`` the
-    dyad that fails (which links cannot reach).
+    ``cannot_close`` True: the loop cannot close there — the closed form's dyad
+    ``what`` cannot reach, ``miss`` (m) from closing at worst.  False: the stretch was
+    not reached — Newton continuation from the drawing stops at a limit on the way
+    (``what`` says so); the loop may still close there on another circuit, so it is
+    not called unable to.
     """
 
     start: float
     end: float
     miss: float
     what: str
+    cannot_close: bool = True
+
+    @property
+    def kind(self) -> str:
+        """``cannot close`` (the loop does not close there) or ``not reached`` (from the drawing)."""
+        return "cannot close" if self.cannot_close else "not reached"
 
 
 @dataclass(frozen=True, slots=True)

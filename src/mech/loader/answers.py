@@ -9,7 +9,9 @@ right quantity, a point, a count or a label, optionally with its own
 from __future__ import annotations
 
 import contextlib
+import math
 import re
+import sys
 from collections.abc import Set as AbstractSet
 
 import yaml
@@ -109,15 +111,24 @@ def read_claim(r: NodeReader, key: str, knode: yaml.Node, vnode: yaml.Node, kind
     if akey.compare is Compare.COUNT:
         raw = r.scalar(value_node, f"answer {key}")
         if not re.fullmatch(r"[+-]?\d+", raw.strip()):
-            raise r.problem(value_node, f"answer {key} is a count: a whole number, not {raw!r}")
+            raise r.problem(value_node, f"answer {key} is a count: a whole number, not {_shown(raw)}")
+        digits = len(raw.strip().lstrip("+-"))
+        if digits > _MAX_DIGITS:
+            raise r.problem(
+                value_node,
+                f"answer {key} is a whole number of {digits:,} digits: mech reads counts of at most "
+                f"{_MAX_DIGITS:,} digits",
+                "a count of links, joints or freedoms is a small whole number",
+            )
         return Claim(key, int(raw), Dimension.NUMBER.value, None, tolerance, text, where)
+    if (
+        akey.kind.infinity
+        and isinstance(value_node, yaml.ScalarNode)
+        and value_node.value.strip().lower() in ("infinity", "inf", "at infinity", "∞")
+    ):
+        unit = (akey.dimension or Dimension.LENGTH).value
+        return Claim(key, "infinity", unit, None, tolerance, text, where)
     if akey.compare is Compare.POINT:
-        if (
-            akey.kind.infinity
-            and isinstance(value_node, yaml.ScalarNode)
-            and value_node.value.strip().lower() in ("infinity", "inf", "at infinity")
-        ):
-            return Claim(key, "infinity", Dimension.LENGTH.value, None, tolerance, text, where)
         pt = _claim_point(r, value_node, key)
         return Claim(key, pt, Dimension.LENGTH.value, None, tolerance, text, where)
     value, sense = _claim_quantity(r, key, akey, value_node)
@@ -142,7 +153,9 @@ def _claim_quantity(
         ) from None
     except ValueError:
         raise r.problem(
-            value_node, f"answer {key} must be a number with an optional unit, not {raw!r}"
+            value_node,
+            _too_large(raw, f"answer {key}")
+            or f"answer {key} must be a number with an optional unit, not {_shown(raw)}",
         ) from None
     if q.dimension is not None and q.dimension not in akey.dimensions:
         raise r.problem(
@@ -167,11 +180,42 @@ def _claim_point(r: NodeReader, node: yaml.Node, key: str) -> Vec:
         try:
             q = parse_quantity(raw)
         except (KeyError, ValueError):
-            raise r.problem(item, f"a coordinate of answer {key} must be a length, not {raw!r}") from None
+            raise r.problem(
+                item,
+                _too_large(raw, f"a coordinate of answer {key}")
+                or f"a coordinate of answer {key} must be a length, not {_shown(raw)}",
+            ) from None
         if q.dimension not in (None, Dimension.LENGTH):
             raise r.problem(item, f"a coordinate of answer {key} must be a length")
         out.append(q.value)
     return (out[0], out[1])
+
+
+#: The longest whole number Python reads (``sys.get_int_max_str_digits``; 4,300 by default, 0 for
+#: no limit, and no limit before Python 3.11 and its patch releases of 3.10).
+_MAX_DIGITS = getattr(sys, "get_int_max_str_digits", lambda: 0)() or 10**9
+
+_DIGITS = re.compile(r"[+-]?(?=[\d_]*\d)[\d_]*\.?[\d_]*(?:[eE][+-]?\d+)?")
+
+
+def _too_large(raw: str, what: str) -> str | None:
+    """Why a number is refused when it is one, but beyond the largest float (1.8e308), else None."""
+    number = raw.strip().split(" ", 1)[0]
+    if not _DIGITS.fullmatch(number):
+        return None
+    try:
+        value = float(number.replace("_", ""))
+    except ValueError:
+        return None
+    if math.isfinite(value):
+        return None
+    digits = sum(c.isdigit() for c in number)
+    return f"{what} is too large ({digits:,} digits): mech reads numbers up to about 1.8e308"
+
+
+def _shown(raw: str) -> str:
+    """A value as written, for a message: quoted, and cut short past 60 characters."""
+    return repr(raw) if len(raw) <= 60 else repr(raw[:57]) + f"… ({len(raw):,} characters)"
 
 
 def _tolerance(r: NodeReader, node: yaml.Node, dimension: Dimension | None, *, file_level: bool) -> Tolerance:

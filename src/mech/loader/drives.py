@@ -168,6 +168,13 @@ def _angular(r: NodeReader, node: yaml.Node, key: str, bare_factor: float) -> tu
         raise r.problem(node, f'{key} must be a speed such as 600 or "62.8 rad/s", not {raw!r}') from None
     if q.dimension is None:
         value = q.value * bare_factor
+    elif q.dimension is Dimension.ANGULAR_VELOCITY and key == "rpm" and q.unit != "rpm":
+        # `rpm` names its unit: another one would be read silently as something the key does not say
+        raise r.problem(
+            node,
+            f"rpm is in revolutions per minute, but {raw!r} is in {q.unit}",
+            f"write `omega: {raw}` for a speed in {q.unit}, or give rpm in rev/min",
+        )
     elif q.dimension is Dimension.ANGULAR_VELOCITY:
         value = q.value
     else:

@@ -180,7 +180,7 @@ def compose(text: str, path: str, *, what: str = "this") -> yaml.Node | None:
     except yaml.YAMLError as exc:
         raise InputError(f"{what} is not valid YAML: {exc}", where=Where(path)) from None
     if root is not None:
-        _check_size(root, path)
+        _check_size(root, path, what)
         if deep:
             _check_tree_depth(root, path)
     return root
@@ -302,20 +302,37 @@ def _check_depth(text: str, path: str) -> None:
             depth -= 1
 
 
-def _check_size(root: yaml.Node, path: str) -> None:
-    """Refuse a file that expands to more than MAX_NODES values (aliases counted each time used)."""
+def _check_size(root: yaml.Node, path: str, what: str = "this") -> None:
+    """Refuse a file that expands to more than MAX_NODES values (aliases counted each time used).
+
+    The message says which it is: a file that expands through its aliases (an alias bomb), or
+    one that simply holds that many values (a large answer sheet is not a bomb).
+    """
     scalar = yaml.ScalarNode
     seen = 1
     stack = [root]
+    collections: set[yaml.Node] = set()
+    aliased = False
     while stack:
-        children = _children(stack.pop())
+        node = stack.pop()
+        if node in collections:
+            aliased = True  # a collection met twice: an alias repeats it
+        collections.add(node)
+        children = _children(node)
         seen += len(children)
         if seen > MAX_NODES:
-            raise InputError(
-                "the file expands to too many values (an alias bomb?)",
-                where=where_of(root, path),
-                hint="a mechanism file needs a few hundred values, not millions",
-            )
+            subject = "the file" if what == "this" else what.replace("this ", "the ", 1)
+            if aliased:
+                message = f"{subject} expands to more than {MAX_NODES:,} values through its aliases (an alias bomb?)"
+                hint = "write the values out, or alias fewer of them"
+            else:
+                message = f"{subject} holds more than {MAX_NODES:,} values: more than mech reads in one file"
+                hint = (
+                    "an answer sheet needs a few values per problem"
+                    if "sheet" in what
+                    else "a mechanism file needs a few hundred values, not millions"
+                )
+            raise InputError(message, where=where_of(root, path), hint=hint)
         stack.extend([n for n in children if n.__class__ is not scalar])
 
 

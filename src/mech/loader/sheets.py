@@ -2,18 +2,26 @@
 
 A sheet is read with the same decoding, YAML limits and ``file:line:col``
 messages as a mechanism file (:mod:`mech.loader.nodes`).  Its entries keep
-their answers as nodes, not values: each is later validated against its
-problem's mechanism by :func:`mech.loader.parse_answer_entries`, with the
-same grammar and messages as a file's own ``answers``.
+where their answers are written, not the answers themselves: each is composed
+again from the sheet's text when its problem is checked
+(:func:`entry_node`), then validated against the problem's mechanism by
+:func:`parse_answer_entries`, with the same grammar and messages as a file's
+own ``answers``.
+
+Why not keep the nodes: a composed value costs about 2.6 KB (a node, two marks,
+a tag), so a class of 2,000 sheets held 1.8 GB of nodes while it was checked
+(issue 25).  The text of a sheet is a few hundred bytes per answer, and it is
+kept anyway, to quote the line of a message.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from collections.abc import Set as AbstractSet
-from typing import Any
 
 import yaml
 
+from mech._records import dataclass
 from mech.answers import names_by_kind
 from mech.errors import InputError, Problem, Where
 from mech.loader.answers import DEFAULT_TOLERANCE, read_answers, read_claim
@@ -22,23 +30,40 @@ from mech.loader.reader import NodeReader, Skip
 from mech.model import Claim, Mechanism, Tolerance
 
 __all__ = [
-    "RawEntry",
+    "SheetEntry",
     "answer_keys",
+    "entry_node",
     "own_tolerances",
     "parse_answer_entries",
     "parse_answers",
     "sheet_entries",
 ]
 
-#: One top-level entry: (problem key, where, its answers mapping node or None, why it is no answers).
-RawEntry = tuple[str, Where, Any, str | None]
+
+@dataclass(frozen=True, slots=True)
+class SheetEntry:
+    """One top-level entry of a sheet: a problem key, where it is written, and where its answers are.
+
+    ``span`` locates the answers mapping in the sheet's text: ``(start, end)``
+    character offsets and the ``line`` and ``column`` (from 0) it starts at;
+    None for an empty entry (``four_bar:``), which answers nothing, or one whose
+    value is not a mapping (``problem`` then says why it is no answers).
+    ``answers`` counts the keys of the mapping.
+    """
+
+    key: str
+    where: Where
+    span: tuple[int, int, int, int] | None = None
+    answers: int = 0
+    problem: str | None = None
+
+    @property
+    def empty(self) -> bool:
+        return self.problem is None and self.answers == 0
 
 
-def sheet_entries(text: str, path: str) -> tuple[list[RawEntry], list[tuple[str, str, Where]]]:
+def sheet_entries(text: str, path: str) -> tuple[list[SheetEntry], list[tuple[str, str, Where]]]:
     """The entries of a sheet's text, and its keys that are not text ``(as written, what, where)``.
-
-    An empty entry (``four_bar:``) has no node; an entry whose value is not a
-    mapping carries the reason instead.
 
     Raises
     ------
@@ -52,7 +77,7 @@ def sheet_entries(text: str, path: str) -> tuple[list[RawEntry], list[tuple[str,
             where=Where(path, 1, 1),
             hint="each top-level key is a problem's file name, stem or name",
         )
-    entries: list[RawEntry] = []
+    entries: list[SheetEntry] = []
     bad_keys: list[tuple[str, str, Where]] = []
     for knode, vnode in root.value:
         where = where_of(knode, path)
@@ -62,13 +87,44 @@ def sheet_entries(text: str, path: str) -> tuple[list[RawEntry], list[tuple[str,
             continue
         key = str(knode.value)
         if isinstance(vnode, yaml.MappingNode):
-            entries.append((key, where, vnode, None))
+            start, end = vnode.start_mark, vnode.end_mark
+            span = (start.index, end.index, start.line, start.column) if vnode.value else None
+            entries.append(SheetEntry(key, where, span, len(vnode.value)))
         elif is_null(vnode):
-            entries.append((key, where, None, None))
+            entries.append(SheetEntry(key, where))
         else:
             message = f"the answers to {key} must be a mapping (`dof: 1` lines), not {node_kind(vnode)}"
-            entries.append((key, where, None, message))
+            entries.append(SheetEntry(key, where, problem=message))
     return entries, bad_keys
+
+
+def entry_node(source: str, entry: SheetEntry, path: str) -> yaml.MappingNode | None:
+    """The answers mapping of a sheet entry, composed again from the sheet's text ``source``.
+
+    Only the entry's own text is composed, after as many line breaks and spaces
+    as put it at its line and column, so every node keeps the location it has in
+    the sheet.  When that text does not stand alone (an alias to an anchor written
+    elsewhere, a ``%TAG`` directive), the whole sheet is composed and the entry
+    taken from it.
+    """
+    if entry.span is None:
+        return None
+    start, end, line, column = entry.span
+    try:
+        node = compose("\n" * line + " " * column + source[start:end], path, what="this answer sheet")
+    except InputError:
+        node = None
+    if (
+        isinstance(node, yaml.MappingNode)
+        and len(node.value) == entry.answers
+        and (node.start_mark.line, node.start_mark.column) == (line, column)
+    ):
+        return node
+    root = compose(source, path, what="this answer sheet")
+    for knode, vnode in root.value if isinstance(root, yaml.MappingNode) else ():
+        if (knode.start_mark.line + 1, knode.start_mark.column + 1) == (entry.where.line, entry.where.column):
+            return vnode if isinstance(vnode, yaml.MappingNode) else None
+    return None  # pragma: no cover - the sheet changed under us: nothing to grade
 
 
 def answer_keys(node: yaml.MappingNode, path: str) -> list[tuple[str, Where]]:
@@ -124,22 +180,32 @@ def parse_answers(
 
 
 def parse_answer_entries(
-    node: yaml.MappingNode, mechanism: Mechanism, *, path: str, source: str | None = None
-) -> list[tuple[str, Where, Claim | InputError]]:
+    node: yaml.MappingNode,
+    mechanism: Mechanism,
+    *,
+    path: str,
+    source: str | None = None,
+    wanted: Callable[[str], bool] | None = None,
+) -> list[tuple[str, Where, Claim | InputError | None]]:
     """Each entry of an answers mapping read on its own: ``(key, where, claim or its error)``.
 
     For answer sheets, where one bad key must cost only that key: every entry
     is validated as :func:`parse_answers` would (same grammar, names, units),
     but a problem becomes that entry's :class:`InputError` instead of failing
     the mapping.  Keys are returned as written, repeats and ``tolerance``
-    included (the caller decides what they mean on a sheet).
+    included (the caller decides what they mean on a sheet).  A key for which
+    ``wanted(key)`` is false is not read at all (its value is None): the keys of
+    a sheet beyond what is graded or listed cost nothing.
     """
     reader = NodeReader(source or "", path)
     kinds = _kinds(mechanism)
-    out: list[tuple[str, Where, Claim | InputError]] = []
+    out: list[tuple[str, Where, Claim | InputError | None]] = []
     for knode, vnode in node.value:
         reader.problems = []
         key = str(knode.value) if isinstance(knode, yaml.ScalarNode) else text_of(knode)
+        if wanted is not None and not wanted(key):
+            out.append((key, reader.where(knode), None))
+            continue
         claim: Claim | None = None
         try:
             if not isinstance(knode, yaml.ScalarNode):

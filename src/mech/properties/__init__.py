@@ -1,8 +1,9 @@
 """Properties of a linkage beyond its motion at one instant, as a course asks for them.
 
-* :mod:`.grashof` — Grashof's criterion for every four-bar loop, the class
-  (crank-rocker …), which links turn fully; the inversion of a slider-crank
-  loop.  Pure Python: ``mech dof`` and ``mech classify`` use it.
+* Grashof's criterion for every four-bar loop, the class (crank-rocker …),
+  which links turn fully, and the inversion of a slider-crank loop, are in
+  :mod:`mech.topology.grashof` (pure Python, below this room: ``mech dof`` and
+  ``mech classify`` report them); :mod:`.grashof` re-exports them.
 * :mod:`.cycle` — transmission angle (at the instant, least and greatest over
   the cycle), limit positions, strokes and the quick-return time ratio.
 * :mod:`.advantage` — velocity ratio and mechanical advantage by I-centres,

@@ -13,7 +13,10 @@ extreme of a sweep gets.
 Limit positions (dead centres of the output: where a rocker or a slider
 reverses) and the quick-return time ratio are the sweep's own; the stroke of
 a slider is the range of its displacement, the swing of a rocker the range of
-its angle.
+its angle; a link whose angle comes round a whole turn (a parallelogram's rocker) has
+none.  Where coupler and output fold into line — at a toggle, the edge of a gap, or at a
+change point the branch passes — the transmission angle is exactly 0 or 180°: the sweep
+reads it at those events, located to rounding, as it does every extreme of a position.
 """
 
 from __future__ import annotations
@@ -27,7 +30,7 @@ from mech.errors import UnsupportedError
 from mech.model import Mechanism
 from mech.options import SolveOptions
 from mech.pairs import kind_of
-from mech.properties.grashof import FourBarLoop, linkage_loops
+from mech.topology.grashof import FourBarLoop, linkage_loops
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.kinematics import Kinematics, Sweep
@@ -187,11 +190,17 @@ class Cycle:
 
 
 def _stroke_subjects(mech: Mechanism) -> list[tuple[str, str, str]]:
-    """(joint, kind, subject): prismatic joints on the frame, and revolute joints on the frame."""
+    """(joint, kind, subject): every prismatic joint, and the revolute joints on the frame.
+
+    A prismatic joint's stroke is its travel along its path (DESIGN § 1.1, ``stroke.<joint>``):
+    a slider's on the frame, and equally a block's along a moving guide (the block in a
+    slotted lever travels 2·O₂A along the lever).  A revolute joint on the frame gives the
+    swing of the link it carries, the crank's own pivot excepted.
+    """
     drive = next((d.link for d in mech.drives if d.link is not None), None)
     out = []
     for j in mech.joints:
-        if (kind_of(j).keeps_angle and mech.ground in j.links) or kind_of(j).keeps_angle:
+        if kind_of(j).keeps_angle:
             out.append((j.name, "displacement", j.name))
         elif kind_of(j).role == "pin" and mech.ground in j.links and j.order == 2:
             other = next(lk for lk in j.links if lk != mech.ground)
@@ -221,6 +230,7 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
     import numpy as np
 
     from mech.kinematics import solve, sweep
+    from mech.kinematics.sweep_events import turns_fully
 
     options = (options or SolveOptions()).with_(angle=None)
     base = solve(mech, "position", options.with_(omega=None, direction=None, alpha=None))
@@ -236,11 +246,9 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
     angles = np.linspace(0.0, 2.0 * math.pi, steps + 1)
     sw = sweep(mech, angles, level="position", options=options, quantities=quantities or None)
     ext = {e.quantity: e for e in sw.extremes}
-    mu = ext.get(trans.quantity) if trans else None
+    mu = ext.get(trans.quantity) if trans else None  # 0 or 180° where coupler and output fold in line
     mu_min = (mu.min_value, mu.min_angle) if mu else None
     mu_max = (mu.max_value, mu.max_angle) if mu else None
-    if trans is not None:
-        mu_min, mu_max = _toggle_extremes(sw, trans, mu_min, mu_max)
     strokes: dict[str, Stroke] = {}
     turning: list[str] = []
     for (joint, kind, subject), key in zip(subjects, slides_and_links, strict=True):
@@ -248,7 +256,7 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
         if e is None:
             series = sw.series(key)
             ok = np.isfinite(series)
-            if kind == "angle" and np.any(ok) and float(np.ptp(series[ok])) >= 2 * math.pi - 1e-9:
+            if kind == "angle" and turns_fully(series, ok, sw.angles):
                 turning.append(joint)
             elif np.any(ok):  # does not move at all over the cycle
                 v = float(series[ok][0])
@@ -288,39 +296,6 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
         time_ratio_output=sw.time_ratio.output if sw.time_ratio else None,
         gaps=tuple((g.start, g.end) for g in sw.gaps),
     )
-
-
-def _toggle_extremes(
-    sw: Sweep,
-    trans: Transmission,
-    mu_min: tuple[float, float] | None,
-    mu_max: tuple[float, float] | None,
-) -> tuple[tuple[float, float] | None, tuple[float, float] | None]:
-    """Where the crank cannot turn, μ reaches 0 or 180° at the toggles of coupler and output.
-
-    A sweep's extreme next to a gap is its last assembled step; but at the
-    gap's edge (located to rounding) the coupler and the output lie in one
-    line, so the transmission angle there is exactly 0 (folded) or π
-    (extended): the side is read from the nearest assembled step.
-    """
-    import numpy as np
-
-    series = sw.series(trans.quantity)
-    ok = np.isfinite(series)
-    if not np.any(ok):
-        return mu_min, mu_max
-    links = {trans.coupler, trans.output}
-    for event in sw.toggles:
-        words = event.subject.split(" in line at ")
-        if len(words) != 2 or words[1] != trans.joint or set(words[0].split(" and ")) != links:
-            continue
-        nearest = int(np.argmin(np.where(ok, np.abs(sw.angles - event.angle), np.inf)))
-        value = math.pi if series[nearest] > math.pi / 2 else 0.0
-        if value == 0.0 and (mu_min is None or value < mu_min[0]):
-            mu_min = (value, event.angle)
-        if value == math.pi and (mu_max is None or value > mu_max[0]):
-            mu_max = (value, event.angle)
-    return mu_min, mu_max
 
 
 def stroke_joints(mech: Mechanism) -> Sequence[str]:

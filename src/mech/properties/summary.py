@@ -17,7 +17,7 @@ from mech.model import Mechanism
 from mech.options import SolveOptions
 from mech.pairs import located_on
 from mech.properties.cycle import Cycle, Transmission, cycle, included_angle, transmission_loop
-from mech.properties.grashof import linkage_loops
+from mech.topology.grashof import linkage_loops
 
 __all__ = ["LinkageProperties", "linkage_properties"]
 

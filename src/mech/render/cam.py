@@ -160,9 +160,8 @@ def _fmt(x: float | None, digits: int = 5) -> str:
 
 def cam_table(setup: CamSetup, a: CamAnalysis, console: ReportConsole, *, name: str, step_deg: float) -> None:
     """The human report: set-up, segments, follower motion every ``step_deg``, the profile's checks."""
-    from rich.text import Text
-
     from mech.render.console import table_box
+    from mech.render.table import Text
 
     box = table_box(console)
     console.print(Text(name, style="bold"))
@@ -221,7 +220,7 @@ def _setup_lines(setup: CamSetup, a: CamAnalysis) -> list[str]:
 
 def _programme_table(a: CamAnalysis, box: Any) -> Any:
     """One row per segment of the programme: span, lift, law, largest |v| and |a|."""
-    from rich.table import Table
+    from mech.render.table import Table
 
     units = _units(a)
     seg = Table(box=box, title="Programme")
@@ -250,7 +249,7 @@ def _programme_table(a: CamAnalysis, box: Any) -> Any:
 
 def _motion_table(a: CamAnalysis, box: Any, step_deg: float) -> Any:
     """The follower's motion every ``step_deg``: s (v, a, j with a speed), pressure angle, ρ."""
-    from rich.table import Table
+    from mech.render.table import Table
 
     units = _units(a)
     ang = a.follower_angular
@@ -279,7 +278,7 @@ def _motion_table(a: CamAnalysis, box: Any, step_deg: float) -> Any:
 
 def _results_table(a: CamAnalysis, box: Any) -> Any:
     """The extremes and where they fall, the jumps, and the profile's verdict (cusp or undercut)."""
-    from rich.table import Table
+    from mech.render.table import Table
 
     units = _units(a)
     res = Table(box=box, title="Results")

@@ -28,9 +28,9 @@ from mech.render.safe import printable, xml_safe
 
 if TYPE_CHECKING:  # pragma: no cover
     from rich.console import Console
-    from rich.text import Text
 
     from mech.render.console import ReportConsole
+    from mech.render.table import Text
 
 __all__ = [
     "LARGE_BATCH",
@@ -206,7 +206,7 @@ def check_table(
 
     ``quiet`` lists only what did not pass.
     """
-    from rich.text import Text
+    from mech.render.table import Text
 
     if report.teacher:
         _teacher_table(report, console)
@@ -227,9 +227,8 @@ def _box(console: ReportConsole) -> Any:
 
 
 def _status(status: str, console: ReportConsole) -> Text:
-    from rich.text import Text
-
     from mech.render.console import is_plain
+    from mech.render.table import Text
 
     if is_plain(console):
         return Text(_PLAIN[status])
@@ -238,7 +237,7 @@ def _status(status: str, console: ReportConsole) -> Text:
 
 
 def _teacher_table(report: Report, console: ReportConsole) -> None:
-    from rich.table import Table
+    from mech.render.table import Table
 
     table = Table(box=_box(console), title="excluded from every score (the problem file cannot be graded)")
     table.add_column("problem file", overflow="fold")
@@ -249,7 +248,7 @@ def _teacher_table(report: Report, console: ReportConsole) -> None:
 
 
 def _files_table(report: Report, console: ReportConsole, *, quiet: bool) -> None:
-    from rich.table import Table
+    from mech.render.table import Table
 
     table = Table(box=_box(console))
     table.add_column("file", overflow="fold")
@@ -273,8 +272,7 @@ def _files_table(report: Report, console: ReportConsole, *, quiet: bool) -> None
 
 def _answers_table(report: Report, console: ReportConsole, *, quiet: bool) -> None:
     """One row per answer under a row naming its file (a file column would squeeze the reasons)."""
-    from rich.table import Table
-    from rich.text import Text
+    from mech.render.table import Table, Text
 
     table = Table(box=_box(console))
     table.add_column("answer", overflow="fold")
@@ -304,7 +302,7 @@ def _answers_table(report: Report, console: ReportConsole, *, quiet: bool) -> No
 
 
 def _class_table(report: Report, console: ReportConsole, *, quiet: bool) -> None:
-    from rich.table import Table
+    from mech.render.table import Table
 
     table = Table(box=_box(console))
     for name, justify in (

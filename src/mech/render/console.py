@@ -1,24 +1,17 @@
 """The one place that decides colour and width (rich honours NO_COLOR and non-tty).
 
 Piped output is written by :class:`~mech.render.plain.PlainConsole`, which
-prints rich's bytes without importing rich where it can; renderers take
-their ``Table`` and ``Text`` from :func:`kit` so that it can.
+prints rich's bytes without importing rich where it can; on a terminal rich's own
+console prints.  Renderers build every table once, with :mod:`mech.render.table`'s
+``Table`` and ``Text``, and print it on whichever :func:`stdout` gives.
 """
 
 from __future__ import annotations
 
 import os
 import sys
-from collections.abc import Iterable
 from functools import lru_cache
-from typing import TYPE_CHECKING, Any, Protocol
-
-from mech._text import visible
-
-if TYPE_CHECKING:  # pragma: no cover
-    from rich.box import Box
-    from rich.console import Console
-    from rich.segment import Segment
+from typing import Any, Protocol
 
 
 class ReportConsole(Protocol):
@@ -26,7 +19,7 @@ class ReportConsole(Protocol):
     :class:`~mech.render.plain.PlainConsole`.
 
     A renderer prints tables, ``Text`` and strings with :meth:`print` and asks
-    :func:`kit` or :func:`table_box` (which read the three attributes) what
+    :func:`table_box` (which reads the three attributes) what
     kind of table to build.  Typed against this protocol, a renderer that
     reaches for more of rich's console (which the plain one hands on to rich,
     the slow way) must say so here first.
@@ -51,6 +44,8 @@ def stdout() -> ReportConsole:
         from mech.render.plain import PlainConsole
 
         return PlainConsole(int(os.environ.get("COLUMNS", 120)))
+    from mech.render.richconsole import rich_console_class
+
     console_class = rich_console_class()
 
     # markup=False: names, claims and messages come from users' files, and "[/b]" in a
@@ -66,60 +61,16 @@ def stdout() -> ReportConsole:
     return console
 
 
-@lru_cache(maxsize=1)
-def rich_console_class() -> type[Console]:
-    """rich's Console, except that a reader who closed the pipe is not a failed run,
-    and that text from users' files cannot drive the terminal.
-
-    rich answers EPIPE by exiting with status 1, which in mech means "a check
-    failed"; this one stops writing and lets :func:`mech.entry.guarded` give the
-    pipe's own status (141).  Every rich console mech prints reports with is one.
-    """
-    from rich.console import Console as RichConsole
-    from rich.segment import Segment
-
-    class Console(RichConsole):
-        def on_broken_pipe(self) -> None:
-            self.quiet = True
-            raise BrokenPipeError
-
-        def _render_buffer(self, buffer: Iterable[Segment]) -> str:
-            # the one gate every report's text passes on its way out: a title, a path or a
-            # claim from a user's file may hold a terminal escape or a direction override,
-            # shown here as \x1b / \u202e (the rule of mech._text.visible); rich's own
-            # colour codes are added after this, from the segments' styles
-            return super()._render_buffer(
-                s if s.control else Segment(visible(s.text), s.style) for s in buffer
-            )
-
-    return Console
-
-
 def is_plain(console: ReportConsole) -> bool:
     """True when the console writes plain text (not a terminal, or NO_COLOR set)."""
     return not console.is_terminal or console.no_color or console.color_system is None
 
 
-def table_box(console: ReportConsole) -> Box:
-    """Rounded boxes on a terminal, simple ruled text otherwise."""
-    from rich import box
+def table_box(console: ReportConsole) -> str:
+    """Rounded boxes on a terminal, simple ruled text otherwise (:mod:`mech.render.table`'s names)."""
+    from mech.render.table import ROUNDED, SIMPLE
 
-    return box.SIMPLE if is_plain(console) else box.ROUNDED
-
-
-def kit(console: ReportConsole) -> tuple[Any, Any, Any]:
-    """``(Table, Text, box)`` for ``console``: mech's plain ones for a plain console, rich's otherwise.
-
-    ``box`` is :func:`table_box`'s choice, for tables made with this ``Table``.
-    """
-    if getattr(console, "is_plain", False):
-        from mech.render.plain import SIMPLE, Table, Text
-
-        return Table, Text, SIMPLE
-    from rich.table import Table as RichTable
-    from rich.text import Text as RichText
-
-    return RichTable, RichText, table_box(console)
+    return SIMPLE if is_plain(console) else ROUNDED
 
 
 def _isatty() -> bool:

@@ -19,7 +19,10 @@ __all__ = ["check_output", "draw_file"]
 
 
 def check_output(output: str) -> None:
-    """Refuse an output that is not .svg or .png, and a PNG without matplotlib, before any solving."""
+    """Refuse an output that is not .svg or .png, a PNG without matplotlib, and a path that cannot
+    be written (:func:`mech._files.check_writable`), before any solving."""
+    from mech._files import check_writable
+
     suffix = Path(output).suffix.lower()
     if suffix not in (".svg", ".png"):
         raise InputError(
@@ -30,6 +33,7 @@ def check_output(output: str) -> None:
         from mech.draw.raster import use_matplotlib
 
         use_matplotlib()
+    check_writable(output)
 
 
 def draw_file(

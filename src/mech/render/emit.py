@@ -179,7 +179,7 @@ def kinematics_table(
     console = _console()
     tables(result.kinematics, console, units=units)
     if construction is not None:
-        from rich.text import Text
+        from mech.render.table import Text
 
         console.print()
         console.print(Text(construction.text()), soft_wrap=True)
@@ -212,9 +212,8 @@ def icentres_table(
     console = _console()
     table(result.icentres, console, units=units)
     if explain:
-        from rich.text import Text
-
         from mech.explain import explain_icentres
+        from mech.render.table import Text
 
         console.print()
         for line in explain_icentres(result.icentres, unit=units.length):

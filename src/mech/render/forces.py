@@ -289,9 +289,10 @@ def _g(x: float | None, digits: int = 6) -> str:
 
 def _tables(data: dict[str, Any], console: ReportConsole, units: OutputUnits) -> None:
     """The report for people, from the JSON record: pairs, input effort, inertia, shaking."""
-    from mech.render.console import kit
+    from mech.render.console import table_box
+    from mech.render.table import Table, Text
 
-    Table, Text, box = kit(console)
+    box = table_box(console)
     console.print(Text(data["mechanism"], style="bold") + Text(" — forces"))
     if data["drive_angle"] is not None:
         static = "; static (no drive speed: no inertia)" if data["static"] else ""

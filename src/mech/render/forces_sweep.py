@@ -256,9 +256,10 @@ def _g(x: float | None) -> str:
 
 
 def _table(d: dict[str, Any], console: ReportConsole) -> None:
-    from mech.render.console import kit
+    from mech.render.console import table_box
+    from mech.render.table import Table, Text
 
-    Table, Text, box = kit(console)
+    box = table_box(console)
     deg = d["kind"] == "torque"
     unit = "N·m" if deg else "N"
 

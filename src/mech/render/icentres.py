@@ -84,10 +84,8 @@ def _omega(w: float | None) -> str:
 
 def icentres_table(ic: ICentres, console: ReportConsole, *, units: OutputUnits | None = None) -> None:
     """``mech icentres``: the count worked, every centre with how it was found, ω by I-centres."""
-    from rich.table import Table
-    from rich.text import Text
-
     from mech.render.console import table_box
+    from mech.render.table import Table, Text
 
     unit = _length_unit(units)
     shown = format_unit(unit)
@@ -168,9 +166,10 @@ def order_dict(order: TopologyCentres) -> dict[str, Any]:
 
 def order_table(order: TopologyCentres, console: ReportConsole) -> None:
     """``mech icentres`` on a file that places nothing: the count, the primary centres, Kennedy's order."""
-    from mech.render.console import kit
+    from mech.render.console import table_box
+    from mech.render.table import Table, Text
 
-    Table, Text, box = kit(console)
+    box = table_box(console)
     n = len(order.numbered)
     console.print(Text(order.name, style="bold"))
     numbering = ", ".join(f"{k + 1} {name}" for k, name in enumerate(order.numbered))

@@ -465,9 +465,10 @@ _LEVEL_TITLES = {"position": "positions", "velocity": "velocities", "acceleratio
 
 def kinematics_table(kin: Kinematics, console: ReportConsole, *, units: OutputUnits) -> None:
     """Print the solve as rich tables on ``console`` (numbers in ``units``)."""
-    from mech.render.console import kit
+    from mech.render.console import table_box
+    from mech.render.table import Table, Text
 
-    Table, Text, box = kit(console)
+    box = table_box(console)
     data = kinematics_json(kin, units=units)
     u = {k: format_unit(v) for k, v in data["units"].items()}
 

@@ -13,9 +13,9 @@ from mech.units import to_unit
 if TYPE_CHECKING:  # pragma: no cover
     from mech.options import OutputUnits
     from mech.properties.cycle import Cycle
-    from mech.properties.grashof import FourBarLoop, SliderCrankLoop
     from mech.properties.summary import LinkageProperties
     from mech.render.console import ReportConsole
+    from mech.topology.grashof import FourBarLoop, SliderCrankLoop
 
 
 def _len(value: float, unit: str) -> str:
@@ -24,7 +24,7 @@ def _len(value: float, unit: str) -> str:
 
 def loop_dict(loop: FourBarLoop | SliderCrankLoop) -> dict[str, Any]:
     """One loop for ``--json`` (lengths in m)."""
-    from mech.properties.grashof import FourBarLoop
+    from mech.topology.grashof import FourBarLoop
 
     if isinstance(loop, FourBarLoop):
         sl, pq = loop.sums
@@ -60,7 +60,7 @@ def loop_dict(loop: FourBarLoop | SliderCrankLoop) -> dict[str, Any]:
 
 def loop_lines(loop: FourBarLoop | SliderCrankLoop, unit: str) -> list[str]:
     """Grashof's criterion worked for one loop, as a student writes it (lengths in ``unit``)."""
-    from mech.properties.grashof import FourBarLoop
+    from mech.topology.grashof import FourBarLoop
 
     if isinstance(loop, FourBarLoop):
         ring = "–".join(loop.links)
@@ -117,8 +117,7 @@ def properties_dict(
     props: LinkageProperties, *, units: OutputUnits, file: str | None = None
 ) -> dict[str, Any]:
     """``mech properties --json``: keys named as the answer keys (angles in degrees, lengths in ``units``)."""
-    from mech.properties.grashof import FourBarLoop
-    from mech.properties.keys import main_loop
+    from mech.topology.grashof import FourBarLoop, main_loop
 
     length = units.length
     out: dict[str, Any] = {
@@ -204,6 +203,8 @@ def _advantage_dict(props: LinkageProperties) -> dict[str, Any]:
                 "by_icentres": a.by_icentres,
                 "by_virtual_work": a.by_virtual_work,
                 "construction": a.construction,
+                "dead_centre": a.dead_centre,  # the output at rest: every value ∞, written null
+                "notes": list(a.notes),
             }
             for a in props.advantages
         },
@@ -223,10 +224,8 @@ def _advantage_dict(props: LinkageProperties) -> dict[str, Any]:
 
 def properties_table(props: LinkageProperties, console: ReportConsole, *, units: OutputUnits) -> None:
     """``mech properties``: Grashof worked, transmission angle, limit positions, strokes, time ratio."""
-    from rich.table import Table
-    from rich.text import Text
-
     from mech.render.console import table_box
+    from mech.render.table import Table, Text
 
     d = properties_dict(props, units=units)
     console.print(Text(props.mechanism, style="bold"))
@@ -284,10 +283,8 @@ def properties_table(props: LinkageProperties, console: ReportConsole, *, units:
 
 def _advantage_tables(props: LinkageProperties, d: dict[str, Any], console: ReportConsole) -> None:
     """Mechanical advantage three ways, the I-centre ratio written out, and the input effort."""
-    from rich.table import Table
-    from rich.text import Text
-
     from mech.render.console import table_box
+    from mech.render.table import Table, Text
 
     if props.advantage_error:
         console.print(Text(f"  mechanical advantage: not computed ({props.advantage_error})"), soft_wrap=True)
@@ -299,13 +296,15 @@ def _advantage_tables(props: LinkageProperties, d: dict[str, Any], console: Repo
             table.add_column(col, justify="left" if col in ("output", "unit") else "right")
 
         def fmt(v: float | None) -> str:
-            return "—" if v is None else f"{v:.6g}"
+            return "—" if v is None else "∞ (dead centre)" if v == math.inf else f"{v:.6g}"
 
         for a in props.advantages:
             table.add_row(a.output, fmt(a.by_icentres), fmt(a.by_virtual_work), fmt(a.value), a.unit)
         console.print(table)
         for a in props.advantages:
             console.print(Text(f"  {a.output}: {a.construction}"), soft_wrap=True)
+            for note in a.notes:
+                console.print(Text(f"    {note}"), soft_wrap=True)
     e = props.effort
     if e is not None:
         unit = "N·m, ccw +" if e.kind == "torque" else "N, along the drive's path"

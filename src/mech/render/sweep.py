@@ -50,6 +50,13 @@ def _deg(a: float) -> float:
     return math.degrees(a)
 
 
+def _cell(shown: float | None, value: float) -> str:
+    """An extreme in the table: its number, or ∞ where a rate grows without bound toward a toggle."""
+    if math.isinf(value):
+        return "∞ (toggle)" if value > 0 else "−∞ (toggle)"
+    return f"{shown:.6g}" if shown is not None else "–"
+
+
 def _par(sw: Sweep, units: OutputUnits) -> Any:
     """The sweep's parameter in output units: a crank's angle in degrees, a slider's position in --units."""
     if sw.parameter == "angle":
@@ -114,7 +121,7 @@ def sweep_json(
         {"file", "mechanism", "level", "method", "drive", "steps",
          "range": [from°, to°], "omega": rad/s | null, "alpha",
          "units": {...},
-         "gaps": [{"from", "to", "miss" [length], "what"}],
+         "gaps": [{"from", "to", "kind": "cannot close" | "not reached", "miss" [length], "what"}],
          "toggles": [{"angle", "what"}],
          "change_points": [{"angle", "what", "continued"}],   # only when one is passed
          "dead_centres": [{"angle", "output", "position" [length or angle]}],
@@ -146,7 +153,13 @@ def sweep_json(
             "angular_acceleration": units.angular_acceleration,
         },
         "gaps": [
-            {"from": at(g.start), "to": at(g.end), "miss": _conv(g.miss, "m", units), "what": g.what}
+            {
+                "from": at(g.start),
+                "to": at(g.end),
+                "kind": g.kind,
+                "miss": _conv(g.miss, "m", units),
+                "what": g.what,
+            }
             for g in sw.gaps
         ],
         "toggles": [{"angle": at(t.angle), "what": t.subject} for t in sw.toggles],
@@ -215,10 +228,8 @@ def sweep_csv(sw: Sweep, *, units: OutputUnits, quantities: tuple[str, ...] = ()
 
 def sweep_table(sw: Sweep, console: ReportConsole, *, units: OutputUnits) -> None:
     """The summary for people: gaps, toggles, dead centres, time ratio, extremes, notes."""
-    from rich.table import Table
-    from rich.text import Text
-
     from mech.render.console import table_box
+    from mech.render.table import Table, Text
 
     console.print(Text(sw.mechanism, style="bold"))
     speed = "" if sw.omega is None else f", ω = {sw.omega:.6g} rad/s"
@@ -237,9 +248,9 @@ def sweep_table(sw: Sweep, console: ReportConsole, *, units: OutputUnits) -> Non
         for g in sw.gaps:
             miss = _conv(g.miss, "m", units)
             gap = f", misses by {miss:.4g} {format_unit(units.length)}" if miss is not None else ""
+            said = "cannot be assembled" if g.cannot_close else "not reached"
             console.print(
-                f"  cannot be assembled from {_par_text(sw, units, g.start, 6)} to "
-                f"{_par_text(sw, units, g.end, 6)}: {g.what}{gap}"
+                f"  {said} from {_par_text(sw, units, g.start, 6)} to {_par_text(sw, units, g.end, 6)}: {g.what}{gap}"
             )
     else:
         console.print("  assembled at every step")
@@ -284,9 +295,9 @@ def sweep_table(sw: Sweep, console: ReportConsole, *, units: OutputUnits) -> Non
             mx, mn = _conv(ex.max_value, ex.unit, units), _conv(ex.min_value, ex.unit, units)
             table.add_row(
                 ex.quantity,
-                f"{mx:.6g}" if mx is not None else "–",
+                _cell(mx, ex.max_value),
                 _par_text(sw, units, ex.max_angle, 4),
-                f"{mn:.6g}" if mn is not None else "–",
+                _cell(mn, ex.min_value),
                 _par_text(sw, units, ex.min_angle, 4),
                 format_unit(unit),
             )

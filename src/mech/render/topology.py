@@ -1,6 +1,7 @@
 """Tables and JSON for ``mech dof`` and ``mech classify``.
 
-rich is imported inside the table functions only, so ``--json`` does not pay for it.
+No rich here: the tables are :mod:`mech.render.table`'s, printed by whichever console stands
+on stdout (piped, :mod:`mech.render.plain` lays them out without rich).
 """
 
 from __future__ import annotations
@@ -8,8 +9,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
-from mech.render.console import kit
+from mech.render.console import table_box
 from mech.render.properties import loop_dict, loop_lines
+from mech.render.table import Table, Text
 from mech.topology import Topology
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -80,7 +82,7 @@ def _classes(classes: dict[str, tuple[str, ...]]) -> str:
 
 def dof_table(results: Sequence[Topology], console: ReportConsole) -> None:
     """One table for one or many files: l, j, h, n worked, Grübler, verdict."""
-    Table, Text, box = kit(console)
+    box = table_box(console)
 
     table = Table(box=box, title="Degrees of freedom (Kutzbach)" if len(results) > 1 else None)
     if len(results) > 1:
@@ -119,7 +121,7 @@ def dof_table(results: Sequence[Topology], console: ReportConsole) -> None:
 
 def classify_tables(t: Topology, console: ReportConsole) -> None:
     """``mech classify``: links by class, pairs three ways, then the count."""
-    Table, Text, box = kit(console)
+    box = table_box(console)
 
     console.print(Text(t.name, style="bold"))
     links = Table(box=box, title="Links")
@@ -161,8 +163,6 @@ def classify_tables(t: Topology, console: ReportConsole) -> None:
 
 def _print_loops(t: Topology, console: ReportConsole, indent: str = "  ") -> None:
     """Grashof's criterion for each four-bar loop, the inversion of each slider-crank loop."""
-    _, Text, _ = kit(console)
-
     for loop in t.loops:
         for line in loop_lines(loop, t.length_unit):
             console.print(Text(indent + line), soft_wrap=True)

@@ -15,12 +15,13 @@ from __future__ import annotations
 import contextlib
 import math
 import sys
-from collections.abc import Callable, Iterable, Sequence
-from enum import IntEnum
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from functools import wraps
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from mech._records import dataclass
+from mech.commands.exits import ExitStatus, is_utf8
+from mech.commands.params import COMMANDS, DEFAULT_FILE, KINEMATIC, Param, validate
 from mech.errors import InputError, MechError
 from mech.options import OutputUnits, SolveOptions
 
@@ -41,31 +42,12 @@ __all__ = [
     "handles_errors",
     "kinematics",
     "report_error",
-    "solve_options",
+    "request_of",
+    "run_command",
     "write_report",
 ]
 
 F = TypeVar("F", bound=Callable[..., Any])
-
-DEFAULT_FILE = "mechanism.yaml"
-
-
-class ExitStatus(IntEnum):
-    """What ``mech`` returns to the shell (cli.md, "Exit statuses"); no other status is returned."""
-
-    OK = 0
-    CHECK_FAILED = 1
-    BAD_INPUT = 2
-    # sysexits.h's EX_SOFTWARE: a bug in mech, never confused with a failed check or bad input
-    INTERNAL_ERROR = 70
-    # what a shell reports for a process SIGINT or SIGPIPE stopped (128 + the signal's number)
-    INTERRUPTED = 130
-    PIPE_CLOSED = 141
-
-
-def _utf8(stream: Any) -> bool:
-    encoding = (getattr(stream, "encoding", None) or "").lower().replace("-", "").replace("_", "")
-    return encoding == "utf8"
 
 
 def echo(message: str, *, err: bool = False) -> None:
@@ -78,7 +60,7 @@ def echo(message: str, *, err: bool = False) -> None:
     stream = sys.stderr if err else sys.stdout
     if stream is None:
         return
-    if not _utf8(stream):
+    if not is_utf8(stream):
         import click
 
         click.echo(message, err=err)
@@ -199,40 +181,55 @@ class Request:
         return self.options.omega is not None or self.options.speed is not None
 
 
-def solve_options(
-    rpm: float | None,
-    omega: float | None,
-    angle: float | None,
-    direction: str | None,
-    tol: float,
-    alpha: float | None = None,
-    speed: float | None = None,
-) -> SolveOptions:
-    """Command-line speeds and angles (rpm, degrees) → one validated :class:`SolveOptions`."""
+def request_of(values: Mapping[str, Any], params: Sequence[Param] = KINEMATIC) -> Request:
+    """A solving command's values (as :mod:`mech.commands.params` declares them) folded into one
+    validated :class:`Request`: speeds and angles (rpm, degrees) become one :class:`SolveOptions`.
+
+    Each option's own check runs here (:func:`mech.commands.params.validate`), after the
+    rules that tie two options together, on whichever path read the command line.
+    """
+    rpm, omega, angle = values.get("rpm"), values.get("omega"), values.get("angle")
     if rpm is not None and omega is not None:
         raise InputError("give --rpm or --omega, not both")
-    turning = None
-    for name, value, factor in (("--rpm", rpm, 2 * math.pi / 60), ("--omega", omega, 1.0)):
-        if value is not None:
-            if not math.isfinite(value) or value < 0:
-                raise InputError(
-                    f"{name} must be a finite speed ≥ 0", hint="give the sense with --direction cw|ccw"
-                )
-            turning = value * factor
-    if angle is not None and not math.isfinite(angle):
-        raise InputError("--angle must be a finite number of degrees")
+    validate(params, values)
+    turning = None if rpm is None else rpm * 2 * math.pi / 60
+    turning = omega if omega is not None else turning
     try:
-        return SolveOptions(
+        options = SolveOptions(
             # reduce in degrees, where it is exact, before converting (1e300° is 0°)
             angle=None if angle is None else math.radians(math.fmod(angle, 360.0)),
             omega=turning,
-            speed=speed,
-            direction=direction,
-            alpha=alpha,
-            tol=tol,
+            speed=values.get("speed"),
+            direction=values.get("direction"),
+            alpha=values.get("alpha"),
+            tol=values.get("tol", 1e-12),
         )
     except ValueError as exc:
         raise InputError(f"{exc}") from None
+    units = OutputUnits.named(values.get("unit_system", "si"))
+    return Request(values.get("file", DEFAULT_FILE), options, units, bool(values.get("as_json")))
+
+
+def solve_command(command: str, values: Mapping[str, Any]) -> None:
+    """``mech position|velocity|acceleration`` from its values: fold, solve, report (exit 2 on bad input)."""
+
+    @handles_errors(command=command)
+    def run(*, file: str, as_json: bool) -> None:
+        kinematics(request_of(values, COMMANDS[command]), command, bool(values.get("explain")))
+
+    run(file=values["file"], as_json=values["as_json"])
+
+
+def run_command(command: str, values: Mapping[str, Any]) -> None:
+    """Run one of :data:`mech.commands.params.FAST` with the values its declarations read."""
+    if command == "dof":
+        count_dof(values["files"], values["mobility"], values["as_json"])
+    elif command == "classify":
+        classify_files(file=values["file"], as_json=values["as_json"])
+    elif command == "check":
+        check_command(values)
+    else:
+        solve_command(command, values)
 
 
 def kinematics(request: Request, level: str, explain: bool = False) -> None:
@@ -272,24 +269,52 @@ CHECK_UNITS = {
 }
 
 
-def check_targets(junit: str | None, gradescope: str | None, csv_path: str | None) -> list[tuple[str, str]]:
+def check_targets(values: Mapping[str, Any]) -> list[tuple[str, str]]:
     """The report files asked for, as (option, path) in the order they are written."""
-    return [(o, p) for o, p in (("--junit", junit), ("--gradescope", gradescope), ("--csv", csv_path)) if p]
+    pairs = (("--junit", "junit"), ("--gradescope", "gradescope"), ("--csv", "csv_path"))
+    return [(option, values[dest]) for option, dest in pairs if values.get(dest)]
 
 
-def check_usage(answers: str | None, targets: Sequence[tuple[str, str]]) -> str | None:
-    """What is wrong with a ``mech check`` command line that click alone cannot see (None: nothing)."""
+def check_usage(values: Mapping[str, Any]) -> str | None:
+    """What is wrong with a ``mech check`` command line that click alone cannot see (None: nothing).
+
+    Two reports may share a device (``/dev/null``): it is written through, one after the other.
+    """
     import os
+    import stat
 
+    answers, targets = values.get("answers"), check_targets(values)
     if answers and os.path.isdir(answers) and any(o == "--gradescope" for o, _ in targets):
         return "--gradescope writes one submission's results.json; for a folder of sheets use --csv or --json"
     seen: dict[str, str] = {}
     for option, path in targets:
+        with contextlib.suppress(OSError):
+            if not stat.S_ISREG(os.stat(path).st_mode):
+                continue
         key = os.path.normcase(os.path.realpath(path))
         if key in seen:
             return f"{seen[key]} and {option} both write {path}: give each report its own file"
         seen[key] = option
     return None
+
+
+def check_command(values: Mapping[str, Any]) -> None:
+    """``mech check`` from its values (:data:`mech.commands.params.CHECK`), usage already checked."""
+    from mech.batch import CheckOptions
+
+    options = CheckOptions(
+        paths=tuple(values["paths"]),
+        answers=values["answers"],
+        jobs=values["jobs"],
+        timeout=values["timeout"],
+    )
+    check_paths(
+        options,
+        check_targets(values),
+        quiet=values["quiet"],
+        verbose=values["verbose"],
+        as_json=values["as_json"],
+    )
 
 
 @handles_errors(command="check")
@@ -298,17 +323,19 @@ def check_paths(
 ) -> None:
     """``mech check`` once its command line is read (``options``: a :class:`mech.batch.CheckOptions`).
 
-    Ctrl-C leaves no report file behind (an old or partial one must not pass
-    for this run's) and exits 130.
+    Every report path is tried before the first file is checked (a folder that does not
+    exist is said at once, not after the batch).  Ctrl-C leaves no report file behind
+    (an old one must not pass for this run's; a device or a link stays) and exits 130.
     """
-    import os
+    from mech._files import check_writable, discard
 
+    for _, path in targets:
+        check_writable(path)
     try:
         _check(options, targets, quiet=quiet, verbose=verbose, as_json=as_json)
     except KeyboardInterrupt:
         for _, path in targets:
-            with contextlib.suppress(OSError):
-                os.unlink(path)
+            discard(path)
         echo("mech check: interrupted; no report written", err=True)
         sys.exit(ExitStatus.INTERRUPTED)
 
@@ -375,32 +402,11 @@ def _check(
 
 
 def write_report(path: str, text: str | Iterable[str]) -> None:
-    """Write a report file atomically (a temporary file renamed into place); exit 2 if it cannot be.
+    """Write a report file (:func:`mech._files.write_file`: atomic, links followed, devices written
+    through); exit 2 naming the path if it cannot be.
 
     ``text`` may come in pieces (a large JUnit report), written as they come.
     """
-    import os
-    import tempfile
+    from mech._files import write_file
 
-    from mech.errors import Where
-
-    folder = os.path.dirname(os.path.abspath(path))
-    tmp = None
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=".mech-", suffix=".tmp", dir=folder)
-        with os.fdopen(fd, "w", encoding="utf-8", newline="") as f:
-            if isinstance(text, str):
-                f.write(text)
-            else:
-                f.writelines(text)
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)  # mkstemp makes it private; a report is an ordinary file
-        os.replace(tmp, path)
-        tmp = None
-    except OSError as exc:
-        raise InputError(f"cannot write {path}: {exc.strerror}", where=Where(path)) from None
-    finally:
-        if tmp is not None:
-            with contextlib.suppress(OSError):
-                os.unlink(tmp)
+    write_file(path, text)

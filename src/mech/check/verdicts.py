@@ -1,70 +1,37 @@
-"""Claimed answers → verdicts: the library behind ``mech check``.
+"""Verdicts on claimed answers: one mechanism's claims held against its computed values.
 
-Each claim (a :class:`~mech.model.Claim`, from a file's ``answers`` or from an
-answer sheet) gets one :class:`Verdict`:
-
-* **pass** — the computed value agrees within the tolerance;
-* **fail** — it does not (the verdict carries the computed value, the error
-  and the tolerance it was held to);
-* **error** — the value could not be computed (the mechanism cannot be solved
-  as asked, a ratio's denominator is zero …), with the reason.
-
-Only what the claims ask is computed.  Counts (``dof``, ``links.*``,
-``joints.*``, ``higher_pairs``, ``icentres.count``, ``chain``) use
-:mod:`mech.topology` alone, so checking a folder of DOF exercises never imports
-numpy; ``mobility`` needs the constraint Jacobian's rank; kinematic keys solve
-the mechanism once, at the highest level any claim needs; I-centre keys locate
-the I-centres from that solution.
-
-Tolerances (the textbook convention: an answer is judged against the true
-value, not the other way round):
-
-* relative ``t``: pass when ``|computed − claimed| ≤ t·|computed|``;
-* absolute ``t`` (SI units of the answer): pass when ``|computed − claimed| ≤ t``;
-* a point (``icentre``): the distance between the claimed and the computed
-  point, against ``t·size`` (``size``: the mechanism's largest distance between
-  two joints) or an absolute length;
-* counts and chain names are exact.
-
-A claim of exactly zero cannot meet a relative tolerance of a value that is
-zero only to rounding, so every comparison also passes when the error is below
-1e-6 of the mechanism's own scale for that quantity (its size, its fastest
-link's ω, and their products).
-
-Nothing here prints or imports rich; :mod:`mech.render.check` makes tables,
-JSON, JUnit XML, Gradescope and CSV from the same :class:`Verdict` objects.
+See :mod:`mech.check` for what a verdict means and how tolerances are applied.
+The values come from :mod:`mech.grading` (one :class:`~mech.grading.Analysis`
+per problem, shared by every student's claims); a failed answer is explained by
+:mod:`mech.diagnose` when it matches a usual mistake.
 """
 
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Callable, Sequence
 from dataclasses import field
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
+from mech import grading
 from mech._records import dataclass
-from mech.answers import LEVELS, AnswerKey, AtInfinity, Compare, Undefined, parse_key
+from mech.answers import AnswerKey, AtInfinity, Compare, Undefined, parse_key
+from mech.diagnose import diagnose
 from mech.errors import MechError, Problem, Where
+from mech.grading import NOISE, Analysis, InternalError
 from mech.model import Claim, Mechanism, Tolerance
 from mech.options import SolveOptions
-from mech.pairs import located_on
 from mech.units import Dimension, format_unit, parse_quantity, to_unit
-
-if TYPE_CHECKING:  # pragma: no cover
-    from mech.kinematics import Kinematics
-    from mech.topology import Topology
 
 __all__ = [
     "ERROR",
     "FAIL",
     "IGNORED",
     "PASS",
-    "Analysis",
     "FileResult",
-    "InternalError",
     "Verdict",
     "check",
-    "check_file",
     "error_result",
 ]
 
@@ -74,11 +41,6 @@ ERROR = "error"
 #: A sheet key that is not a question of its problem (or a sheet entry naming no problem):
 #: reported, never scored.
 IGNORED = "ignored"
-
-#: Errors below this fraction of the mechanism's own scale are rounding, not a wrong answer.
-NOISE = 1e-6
-
-_SOLVED = ("position", "velocity", "acceleration")
 
 
 @dataclass(frozen=True, slots=True)
@@ -137,6 +99,41 @@ class Verdict:
     def scored(self) -> bool:
         """Counted in a score (pass, fail, error); an ignored sheet key is not."""
         return self.status != IGNORED
+
+    def __reduce__(self) -> tuple[Any, tuple[Any, ...]]:
+        # Pickled as its fields, and read back with the words every row repeats (its key, status,
+        # unit, tolerance, diagnosis) shared: the process gathering a batch of 20,000 files from
+        # its workers holds one "2%" and one "velocity.B", not one per row.
+        return _unpickled, tuple(getattr(self, name) for name in Verdict.__match_args__)
+
+
+def _unpickled(
+    key: str,
+    status: str,
+    claimed: str,
+    computed: Any,
+    unit: str | None,
+    error: float | None,
+    allowed: float | None,
+    tolerance: str | None,
+    message: str,
+    where: Where | None,
+    diagnosis: str | None,
+) -> Verdict:
+    """A pickled verdict read back (:meth:`Verdict.__reduce__`)."""
+    return Verdict(
+        sys.intern(key),
+        sys.intern(status),
+        claimed,
+        computed,
+        None if unit is None else sys.intern(unit),
+        error,
+        allowed,
+        None if tolerance is None else sys.intern(tolerance),
+        message,
+        where,
+        None if diagnosis is None else sys.intern(diagnosis),
+    )
 
 
 @dataclass(frozen=True, slots=True)
@@ -214,29 +211,6 @@ def error_result(
     )
 
 
-def check_file(path: str, *, options: SolveOptions | None = None) -> FileResult:
-    """Load one problem file and check the answers it carries.
-
-    The function to map over many machines (Dask ``client.map``, Ray): it
-    takes a path and returns a picklable, frozen result; a file that cannot
-    be read becomes its error row instead of an exception, and a file with no
-    answers a ``skipped`` row (``mech check`` runs the same function).
-    """
-    from mech.batch import probe, special_result
-    from mech.loader import load
-
-    why = probe(path)  # a FIFO or a device is never opened; a dangling link is named
-    if why is not None:
-        return special_result(path, why)
-    try:
-        mech = load(path)
-    except MechError as error:
-        return error_result(path, error)
-    if not mech.answers:
-        return FileResult(path=path, name=mech.name, skipped=True)
-    return FileResult(path=path, name=mech.name, verdicts=check(mech, options=options))
-
-
 def check(
     mech: Mechanism,
     claims: Sequence[Claim] | None = None,
@@ -278,138 +252,19 @@ def check(
     claims = mech.answers if claims is None else tuple(claims)
     tolerance = tolerance or mech.tolerance
     analysis = analysis or Analysis(mech, options=options)
-    analysis.need(claims)
-    return tuple(_verdict(claim, analysis, tolerance) for claim in claims)
-
-
-# -- what is computed, once and only when asked ------------------------------------------
-class Analysis:
-    """The computed side of a check, each piece made on first use and kept.
-
-    A solve that fails is kept as its error, so that every claim needing it
-    gets the same reason without solving again.
-    """
-
-    #: Errors below this fraction of the mechanism's own scale are rounding (see the module doc).
-    noise = NOISE
-
-    def __init__(self, mech: Mechanism, *, options: SolveOptions | None = None) -> None:
-        self.mech = mech
-        self.options = options or SolveOptions()
-        self.level = "topology"
-        self._cache: dict[str, Any] = {}
-
-    def need(self, claims: Sequence[Claim] | Sequence[str]) -> None:
-        """Raise the solve level to the highest any claim (or key) needs, before anything is solved."""
-        for claim in claims:
-            level = parse_key(claim if isinstance(claim, str) else claim.key).level
-            if level in _SOLVED and LEVELS.index(level) > LEVELS.index(self.level):
-                self.level = level
-                # a solve made for a lower level is not enough any more
-                for name in [n for n in self._cache if n not in ("topology", "mobility")]:
-                    del self._cache[name]
-
-    def cached(self, name: str, make: Callable[[], Any]) -> Any:
-        """``make()`` once per analysis (a solve's error is kept and raised again): for answer keys
-        whose reference value costs (a sweep for ``transmission_angle.min``)."""
-        return self._get(name, make)
-
-    def _get(self, name: str, make: Callable[[], Any]) -> Any:
-        if name not in self._cache:
-            try:
-                self._cache[name] = make()
-            except MechError as error:
-                self._cache[name] = error
-            except Exception as exc:  # a bug in an analysis: one file's rows say so, the batch goes on
-                self._cache[name] = InternalError.of(exc)
-        value = self._cache[name]
-        if isinstance(value, (MechError, InternalError)):
-            raise value
-        return value
-
-    @property
-    def topology(self) -> Topology:
-        from mech.topology import classify
-
-        return self._get("topology", lambda: classify(self.mech))
-
-    @property
-    def mobility(self) -> int | None:
-        def make() -> int | None:
-            if "kin" in self._cache and not isinstance(self._cache["kin"], MechError):
-                return self._cache["kin"].mobility.numeric
-            from mech.kinematics import mobility
-
-            return mobility(self.mech).numeric
-
-        return self._get("mobility", make)
-
-    @property
-    def kin(self) -> Kinematics:
-        def make() -> Kinematics:
-            from mech.analysis import solve_at
-
-            level = self.level if self.level in _SOLVED else "position"
-            return solve_at(self.mech, level, self.options)
-
-        return self._get("kin", make)
-
-    @property
-    def icentres(self) -> Any:
-        def make() -> Any:
-            try:
-                from mech.analysis import locate_icentres
-            except ImportError as exc:  # the module, or its locate(), is not there
-                if exc.name != "mech.icentres":
-                    raise
-                from mech.errors import UnsupportedError
-
-                raise UnsupportedError("I-centres are not available in this version of mech") from None
-            return locate_icentres(self.mech, self.kin)
-
-        return self._get("icentres", make)
-
-    # -- the mechanism's own scales, for the rounding floor ---------------------------------
-    @property
-    def omega_ref(self) -> float:
-        """The fastest link's |ω| (rad/s); for a pure translation, the fastest point's speed / size."""
-        kin = self.kin
-        w = max((abs(s.omega or 0.0) for s in kin.links.values()), default=0.0)
-        if w > 0.0:
-            return w
-        speeds = [math.hypot(*s.velocity) for s in kin.links.values() if s.velocity is not None]
-        return max(speeds, default=0.0) / kin.size if kin.size > 0 else 0.0
-
-    def scale(self, dimension: Dimension | None) -> float:
-        """The mechanism's natural unit of a quantity: size, ω, ω·size, ω²·size, ω².
-
-        Angles need no solve (their unit is the radian).  A key answered without the
-        linkage solver (a cam's programme, which the instant solver cannot place) gets
-        no rounding floor when that solve fails: its tolerance alone decides.
-        """
-        if dimension in (None, Dimension.NUMBER, Dimension.ANGLE):
-            return 1.0
-        try:
-            size = self.kin.size
-            w = self.omega_ref
-        except MechError:
-            return 0.0
-        return {
-            Dimension.LENGTH: size,
-            Dimension.ANGULAR_VELOCITY: w,
-            Dimension.VELOCITY: w * size,
-            Dimension.ACCELERATION: w * w * size,
-            Dimension.ANGULAR_ACCELERATION: w * w,
-        }.get(dimension, 1.0)
+    akeys = [parse_key(claim.key) for claim in claims]
+    analysis.need(akeys)
+    return tuple(
+        _verdict(claim, akey, analysis, tolerance) for claim, akey in zip(claims, akeys, strict=True)
+    )
 
 
 # -- one claim -------------------------------------------------------------------------------
-def _verdict(claim: Claim, analysis: Analysis, default: Tolerance) -> Verdict:
-    akey = parse_key(claim.key)
+def _verdict(claim: Claim, akey: AnswerKey, analysis: Analysis, default: Tolerance) -> Verdict:
     base = Verdict(claim.key, ERROR, claimed=claim.text or str(claim.value), where=claim.where)
     tolerance = claim.tolerance or default
     try:
-        value = akey.kind.compute(analysis, akey.names)
+        value = grading.value(akey, analysis)
         verdict = _COMPARE[akey.compare](claim, akey, value, analysis, tolerance, base)
     except MechError as error:
         return _replace(base, status=ERROR, message=f"cannot be computed: {_reason(error)}")
@@ -418,8 +273,6 @@ def _verdict(claim: Claim, analysis: Analysis, default: Tolerance) -> Verdict:
     except Exception as exc:  # a bug in a key's computation: this row says so, the others stand
         return _replace(base, status=ERROR, message=str(InternalError.of(exc)))
     if verdict.status == FAIL:
-        from mech.diagnose import diagnose
-
         try:
             found = diagnose(claim, akey, value, analysis, tolerance)
         except Exception:  # a diagnosis is a bonus: it never costs the verdict
@@ -427,27 +280,6 @@ def _verdict(claim: Claim, analysis: Analysis, default: Tolerance) -> Verdict:
         if found:
             verdict = _replace(verdict, diagnosis=found)
     return verdict
-
-
-class InternalError(Exception):
-    """A bug in mech met while checking: reported as an error row that says it is a bug.
-
-    Not a :class:`MechError` (the input is not at fault) and not swallowed:
-    the row names the exception and where it was raised, the exit status is 1.
-    """
-
-    @classmethod
-    def of(cls, exc: BaseException) -> InternalError:
-        import traceback
-
-        frames = traceback.extract_tb(exc.__traceback__)
-        ours = [f for f in frames if "/mech/" in f.filename.replace("\\", "/")] or frames
-        at = (
-            f" at {'/'.join(ours[-1].filename.replace(chr(92), '/').split('/')[-2:])}:{ours[-1].lineno}"
-            if ours
-            else ""
-        )
-        return cls(f"internal error in mech (a bug, please report it): {type(exc).__name__}: {exc}{at}")
 
 
 def _reason(error: MechError) -> str:
@@ -467,16 +299,20 @@ _VERDICT_FIELDS = Verdict.__match_args__
 
 
 # -- comparisons, one per Compare mode ----------------------------------------------------------
+_FLOAT_MAX = 2**1024  # the first whole number a float cannot hold
+
+
 def _cmp_count(
     claim: Claim, akey: AnswerKey, computed: Any, an: Analysis, tol: Tolerance, base: Verdict
 ) -> Verdict:
     key = akey.key
     ok = computed == claim.value
+    off = abs(computed - int(claim.value))  # type: ignore[arg-type]
     return _replace(
         base,
         status=PASS if ok else FAIL,
         computed=computed,
-        error=float(abs(computed - int(claim.value))),  # type: ignore[arg-type]
+        error=float(off) if off < _FLOAT_MAX else math.inf,  # a claim of 4,000 digits is off by "infinity"
         allowed=0.0,
         message=f"{key} = {computed}" if ok else f"{key} is {computed}, not {claim.value}",
     )
@@ -600,16 +436,25 @@ def _cmp_sense(
 def _cmp_magnitude(
     claim: Claim, akey: AnswerKey, value: Any, an: Analysis, tol: Tolerance, base: Verdict
 ) -> Verdict:
-    """Vectors and speeds by magnitude; a value at infinity (a distance to it) fails as infinite."""
-    if isinstance(value, AtInfinity):
-        return _replace(
-            base,
-            status=FAIL,
-            computed=math.inf,
-            unit=(akey.dimension or Dimension.NUMBER).value,
-            message=f"{value.label} is at infinity{_direction(value)}: the {akey.family} is infinite",
+    """Vectors and speeds by magnitude.  An infinite value (a distance to a point at infinity, a
+    mechanical advantage at a dead centre) passes a claim of ``infinity`` and fails any number;
+    a claim of ``infinity`` fails any finite value."""
+    unit = (akey.dimension or Dimension.NUMBER).value
+    infinite = isinstance(value, AtInfinity) or (isinstance(value, float) and math.isinf(value))
+    if infinite:
+        what = (
+            f"{value.label} is at infinity{_direction(value)}: the {akey.family} is infinite"
+            if isinstance(value, AtInfinity)
+            else f"∞ (dead centre): the {akey.family} is infinite"
         )
+        ok = claim.value == "infinity"
+        return _replace(base, status=PASS if ok else FAIL, computed="infinity", unit=unit, message=what)
     magnitude = _mag(value) if isinstance(value, tuple) else abs(value)
+    if claim.value == "infinity":
+        shown = _show(magnitude, claim, akey.dimension or Dimension.NUMBER, sense=False)
+        return _replace(
+            base, status=FAIL, computed=magnitude, unit=unit, message=f"{shown}, finite: not infinity"
+        )
     return _compare(
         claim,
         base,
@@ -645,51 +490,6 @@ def _number(claim: Claim) -> float:
     if isinstance(claim.value, tuple):
         raise TypeError(f"{claim.key}: a point claimed for a scalar answer")
     return float(claim.value)
-
-
-def least_speed(mech: Mechanism, kin: Kinematics, link: str) -> float:
-    """The least speed (m/s) of any point on the line through a link's joints.
-
-    For a point ``P(s) = A + s·u`` on the line (``u`` a unit vector along it),
-    ``v(s) = v_A + ω k × (s u) = v_A + ω s u⊥``: the component along the line,
-    ``v_A · u``, is the same for every point (the line is rigid), and the
-    component across it, ``v_A · u⊥ + ω s``, vanishes at ``s = −(v_A · u⊥)/ω``
-    (the foot of the perpendicular from the link's I-centre).  So the least
-    speed is ``|v_A · u|`` for a turning link and ``|v_A|`` for a translating one.
-
-    Raises
-    ------
-    InputError
-        When the link has fewer than two joints with a point, or its joints are
-        not on one line.
-    """
-    from mech.errors import InputError
-
-    names = [j.name for j in mech.joints if link in located_on(j) and j.name in kin.positions]
-    if len(names) < 2:
-        raise InputError(
-            f"least_speed needs two joints on {link} to draw its line; it has {len(names)}"
-            + (f" ({', '.join(names)})" if names else "")
-        )
-    a = kin.positions[names[0]]
-    far = max(names[1:], key=lambda n: math.dist(a, kin.positions[n]))
-    b = kin.positions[far]
-    length = math.dist(a, b)
-    if length <= 0.0:
-        raise InputError(f"the joints of {link} coincide: no line through them")
-    u = ((b[0] - a[0]) / length, (b[1] - a[1]) / length)
-    for n in names[1:]:
-        p = kin.positions[n]
-        off = abs((p[0] - a[0]) * u[1] - (p[1] - a[1]) * u[0])
-        if off > 1e-9 * max(kin.size, length):
-            raise InputError(
-                f"the joints of {link} ({', '.join(names)}) are not on one line: least_speed is for a link's line of joints"
-            )
-    va = kin.velocity(names[0], link)
-    omega = kin.links[link].omega or 0.0
-    if abs(omega) * length <= NOISE * max(_mag(va), 1e-300):
-        return _mag(va)
-    return abs(va[0] * u[0] + va[1] * u[1])
 
 
 # -- points (I-centres, positions) -------------------------------------------------------------

@@ -1,21 +1,24 @@
 """Reference values of the force answer keys, for ``mech check`` (DESIGN § 1.4).
 
-Each function is ``compute(an, names)`` of the answer-key registry
-(:mod:`mech.answers`): ``an`` is the check's analysis of one file (it gives the
-mechanism ``an.mech``, the drive's overrides ``an.options`` and a cache
+Each function is ``compute(an, names)`` of :data:`mech.grading.COMPUTE` (the keys'
+forms are in :mod:`mech.answers`): ``an`` is the check's analysis of one file (it
+gives the mechanism ``an.mech``, the drive's overrides ``an.options`` and a cache
 ``an.cached(name, make)``), ``names`` the names the key's placeholders matched.
 They solve the forces themselves, once per file: the instant's analysis
 (:func:`mech.forces.analyse`) for the pair forces, the input effort and the
 shaking, the cycle's (:func:`mech.forces.cycle.force_cycle`) for the mean
-torque, the fluctuation of energy and the flywheel.  The registry imports this
-module only when a claim asks for one of these keys.
+torque, the fluctuation of energy and the flywheel.  numpy is imported only
+inside the functions, when a claim asks for one of these keys.
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from mech.answers import Undefined
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.grading.lazy import Analysis
 
 __all__ = [
     "energy_fluctuation",
@@ -35,19 +38,19 @@ __all__ = [
 CYCLE_STEPS = 360
 
 
-def _instant(an: Any) -> Any:
+def _instant(an: Analysis) -> Any:
     from mech.forces import analyse
 
     return an.cached("forces.instant", lambda: analyse(an.mech, an.options))
 
 
-def _cycle(an: Any) -> Any:
+def _cycle(an: Analysis) -> Any:
     from mech.forces.cycle import force_cycle
 
     return an.cached("forces.cycle", lambda: force_cycle(an.mech, an.options, steps=CYCLE_STEPS))
 
 
-def _pair(an: Any, joint: str) -> Any:
+def _pair(an: Analysis, joint: str) -> Any:
     fa = _instant(an)
     if not fa.determinate:
         raise Undefined(f"cannot be computed: {fa.note}")
@@ -59,28 +62,28 @@ def _pair(an: Any, joint: str) -> Any:
         ) from None
 
 
-def force(an: Any, names: tuple[str, ...]) -> tuple[float, float]:
+def force(an: Analysis, names: tuple[str, ...]) -> tuple[float, float]:
     """The force the pair carries (N): its vector on the second link named in its ``links``."""
     return _pair(an, names[0]).force  # type: ignore[no-any-return]
 
 
-def force_x(an: Any, names: tuple[str, ...]) -> float:
+def force_x(an: Analysis, names: tuple[str, ...]) -> float:
     """The x component (N) of the pair's force on its second link."""
     return float(_pair(an, names[0]).force[0])
 
 
-def force_y(an: Any, names: tuple[str, ...]) -> float:
+def force_y(an: Analysis, names: tuple[str, ...]) -> float:
     """The y component (N) of the pair's force on its second link."""
     return float(_pair(an, names[0]).force[1])
 
 
-def _effort(an: Any, kind: str) -> float:
+def _effort(an: Analysis, kind: str) -> float:
     """The input effort with the links' inertia and weight when the file gives masses; the loads
-    alone otherwise (the mechanical-advantage key's value, :func:`mech.properties.keys.input_torque`)."""
+    alone otherwise, by virtual work (:func:`mech.grading.properties.input_torque`)."""
     if not an.mech.masses:
-        from mech.properties import keys
+        from mech.grading import properties
 
-        return float(keys.input_torque(an, ()) if kind == "torque" else keys.input_force(an, ()))
+        return float(properties.input_torque(an, ()) if kind == "torque" else properties.input_force(an, ()))
     effort = _instant(an).effort
     if effort is None:
         raise Undefined("cannot be computed: the mechanism has no moving drive")
@@ -93,27 +96,27 @@ def _effort(an: Any, kind: str) -> float:
     return float(effort.value)
 
 
-def input_torque(an: Any, names: tuple[str, ...]) -> float:
+def input_torque(an: Analysis, names: tuple[str, ...]) -> float:
     """The torque on the input link (N·m, ccw +): the loads', and the links' inertia and weight."""
     return _effort(an, "torque")
 
 
-def input_force(an: Any, names: tuple[str, ...]) -> float:
+def input_force(an: Analysis, names: tuple[str, ...]) -> float:
     """The force along a slider drive's path (N): the loads', and the links' inertia and weight."""
     return _effort(an, "force")
 
 
-def shaking_force(an: Any, names: tuple[str, ...]) -> tuple[float, float]:
+def shaking_force(an: Analysis, names: tuple[str, ...]) -> tuple[float, float]:
     """−Σ m a_G (N): what the moving links' inertia puts on the frame."""
     return _instant(an).shaking_force  # type: ignore[no-any-return]
 
 
-def shaking_moment(an: Any, names: tuple[str, ...]) -> float:
+def shaking_moment(an: Analysis, names: tuple[str, ...]) -> float:
     """−Σ (r_G × m a_G + I_G α) about the drive's pivot (N·m, ccw +)."""
     return float(_instant(an).shaking_moment)
 
 
-def _torque_cycle(an: Any) -> Any:
+def _torque_cycle(an: Analysis) -> Any:
     cycle = _cycle(an)
     if cycle.kind != "torque":
         raise Undefined("cannot be computed: the drive is a slider, not a turning crank")
@@ -122,17 +125,17 @@ def _torque_cycle(an: Any) -> Any:
     return cycle
 
 
-def torque_mean(an: Any, names: tuple[str, ...]) -> float:
+def torque_mean(an: Analysis, names: tuple[str, ...]) -> float:
     """The mean input torque over the loads' cycle (N·m, ccw +), at the drive's constant speed."""
     return float(_torque_cycle(an).mean)
 
 
-def energy_fluctuation(an: Any, names: tuple[str, ...]) -> float:
+def energy_fluctuation(an: Analysis, names: tuple[str, ...]) -> float:
     """ΔE (J): the greatest minus the least of ∫ (T − T_mean) dθ over the cycle."""
     return float(_torque_cycle(an).fluctuation)
 
 
-def flywheel_inertia(an: Any, names: tuple[str, ...]) -> float:
+def flywheel_inertia(an: Analysis, names: tuple[str, ...]) -> float:
     """The flywheel's moment of inertia (kg·m²) that holds the speed within ``flywheel: {fluctuation}``."""
     cycle = _torque_cycle(an)
     if cycle.coefficient is None:

@@ -1,24 +1,38 @@
 """Reference values of the cam answer keys (``pressure_angle.K``, ``pressure_angle.K.max``,
-``displacement.K``) for ``mech check``, registered in :mod:`mech.answers`.
+``displacement.K``) for ``mech check`` (:mod:`mech.grading`).
 
 They come from the cam's own analysis (:func:`mech.cam.analysis.analyse`), made
-once per file and shared by every claim about that cam.
+once per file and shared by every claim about that cam; the linkage solver is
+never started for them.
 """
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
-__all__ = ["cam_value"]
+from mech.answers import Undefined
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.grading.lazy import Analysis
+
+__all__ = ["cam_key", "cam_value"]
 
 
-def cam_value(an: Any, quantity: str, name: str) -> float:
+def cam_key(quantity: str) -> Callable[[Analysis, tuple[str, ...]], float]:
+    """The compute function of a cam key: ``quantity`` of the cam joint its name names."""
+
+    def compute(an: Analysis, names: tuple[str, ...]) -> float:
+        return cam_value(an, quantity, names[0])
+
+    return compute
+
+
+def cam_value(an: Analysis, quantity: str, name: str) -> float:
     """The value of ``quantity`` for the cam joint ``name`` (SI: rad, m).
 
-    ``an`` is :class:`mech.check.Analysis`; a name that is not a cam joint with
-    a programme is :class:`mech.answers.Undefined`.
+    A name that is not a cam joint with a programme is :class:`mech.answers.Undefined`.
     """
-    from mech.answers import Undefined
     from mech.cam.analysis import analyse
     from mech.cam.profile import evaluate
     from mech.pairs.cam.setup import cam_joints, cam_setup

@@ -13,6 +13,11 @@
 
 Reference: the lecture slides in the project's seeds (Kutzbach criterion,
 Grübler's condition, types of joints); e.g. l = 4, j = 4 gives n = 1.
+
+:mod:`.grashof` finds the four-bar and slider-crank loops from the file's
+lengths and works Grashof's criterion for them (pure geometry, no numpy):
+``mech dof`` and ``mech classify`` show it, and :mod:`mech.properties`, above
+this room, reads the same loops.
 """
 
 from __future__ import annotations
@@ -149,7 +154,7 @@ class Topology:
     pairs: tuple[PairClass, ...]
     count: DofCount
     chain: str | None
-    #: Four-bar and slider-crank loops whose lengths the file gives (:mod:`mech.properties.grashof`).
+    #: Four-bar and slider-crank loops whose lengths the file gives (:mod:`mech.topology.grashof`).
     loops: tuple[Any, ...] = ()
     length_unit: str = "m"
 
@@ -199,7 +204,7 @@ def classify(mechanism: Mechanism) -> Topology:
     """Classify links, joints and pairs and count the degrees of freedom.
 
     Where the file gives a four-bar loop's lengths, Grashof's criterion for it
-    comes too (:func:`mech.properties.grashof.linkage_loops`, pure Python).
+    comes too (:func:`mech.topology.grashof.linkage_loops`, pure Python).
     """
     links = tuple(
         LinkClass(
@@ -242,7 +247,7 @@ def _loops(mechanism: Mechanism) -> tuple[Any, ...]:
     """Grashof loops, when the file gives any geometry (a DOF exercise does not even import them)."""
     if not mechanism.lengths and not any(j.place.at is not None for j in mechanism.joints):
         return ()
-    from mech.properties.grashof import linkage_loops
+    from mech.topology.grashof import linkage_loops
 
     return linkage_loops(mechanism)
 

@@ -1,25 +1,26 @@
 """Reference values of the linkage-property answer keys, for ``mech check`` (DESIGN § 1.1).
 
-Each function is ``compute(an, names)`` of the answer-key registry
-(:mod:`mech.answers`): ``an`` is a :class:`mech.check.Analysis`, ``names`` the
-names the key's placeholders matched.  The registry imports this module only
-when a claim asks for one of these keys, so counting DOF never loads it.
+Each function is ``compute(an, names)`` (:mod:`mech.grading`): ``an`` is the
+problem's :class:`~mech.grading.lazy.Analysis`, ``names`` the names the key's
+placeholders matched.  The analyses of :mod:`mech.properties` are imported
+inside the functions that use them, so counting DOF never loads them.
 """
 
 from __future__ import annotations
 
-import re
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from mech.answers import Undefined
-from mech.properties.grashof import FourBarLoop, linkage_loops
+from mech.topology.grashof import linkage_loops, main_loop
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.grading.lazy import Analysis
 
 __all__ = [
     "grashof",
     "input_force",
     "input_torque",
     "mechanical_advantage",
-    "normal_grashof",
     "stroke",
     "time_ratio",
     "transmission_angle",
@@ -28,29 +29,7 @@ __all__ = [
 ]
 
 
-def normal_grashof(name: str) -> str:
-    """``Crank Rocker``, ``crank_rocker`` → ``crank-rocker``; ``triple rocker`` → ``non-grashof``."""
-    s = re.sub(r"[\s_–—]+", "-", name.strip().lower())
-    return {
-        "triple-rocker": "non-grashof",
-        "nongrashof": "non-grashof",
-        "drag-link": "double-crank",
-        "rocker-crank": "crank-rocker",
-        "changepoint": "change-point",
-    }.get(s, s)
-
-
-def main_loop(loops: tuple[Any, ...], drive: str | None) -> FourBarLoop | None:
-    """The four-bar loop of the driven crank (beside the frame), else the first with a frame."""
-    framed = [lp for lp in loops if isinstance(lp, FourBarLoop) and lp.frame is not None]
-    for lp in framed:
-        f = lp.links.index(lp.frame)  # type: ignore[arg-type]
-        if drive in (lp.links[(f + 1) % 4], lp.links[(f + 3) % 4]):
-            return lp
-    return framed[0] if framed else None
-
-
-def grashof(an: Any, names: tuple[str, ...]) -> str:
+def grashof(an: Analysis, names: tuple[str, ...]) -> str:
     """The Grashof class of the driven four-bar loop (lengths from the file, else from the solve)."""
     drive = next((d.link for d in an.mech.drives if d.link is not None), None)
     loop = main_loop(an.topology.loops, drive)
@@ -63,20 +42,20 @@ def grashof(an: Any, names: tuple[str, ...]) -> str:
     return str(loop.kind)
 
 
-def _cycle(an: Any) -> Any:
+def _cycle(an: Analysis) -> Any:
     from mech.properties.cycle import cycle
 
     return an.cached("properties.cycle", lambda: cycle(an.mech, options=an.options.with_(angle=None)))
 
 
-def transmission_angle(an: Any, names: tuple[str, ...]) -> float:
+def transmission_angle(an: Analysis, names: tuple[str, ...]) -> float:
     """∠(crank pin, coupler–output joint, output pivot) at the instant, rad (0 to π)."""
     from mech.properties.cycle import transmission_angle as at_instant
 
     return at_instant(an.mech, an.kin)[1]
 
 
-def _mu(an: Any, which: str) -> float:
+def _mu(an: Analysis, which: str) -> float:
     c = _cycle(an)
     if c.transmission is None:
         from mech.properties.cycle import transmission_loop
@@ -88,17 +67,17 @@ def _mu(an: Any, which: str) -> float:
     return float(value)
 
 
-def transmission_angle_min(an: Any, names: tuple[str, ...]) -> float:
+def transmission_angle_min(an: Analysis, names: tuple[str, ...]) -> float:
     """Least transmission angle over the crank's cycle, rad."""
     return _mu(an, "min")
 
 
-def transmission_angle_max(an: Any, names: tuple[str, ...]) -> float:
+def transmission_angle_max(an: Analysis, names: tuple[str, ...]) -> float:
     """Greatest transmission angle over the crank's cycle, rad."""
     return _mu(an, "max")
 
 
-def time_ratio(an: Any, names: tuple[str, ...]) -> float:
+def time_ratio(an: Analysis, names: tuple[str, ...]) -> float:
     """Slow stroke over fast stroke of the output (≥ 1), over a full turn of the crank."""
     c = _cycle(an)
     if c.time_ratio is None:
@@ -108,7 +87,7 @@ def time_ratio(an: Any, names: tuple[str, ...]) -> float:
     return float(c.time_ratio)
 
 
-def stroke(an: Any, names: tuple[str, ...]) -> float:
+def stroke(an: Analysis, names: tuple[str, ...]) -> float:
     """A prismatic joint's travel (m), or the swing of the link a frame pivot carries (rad)."""
     c = _cycle(an)
     joint = names[0]
@@ -122,7 +101,7 @@ def stroke(an: Any, names: tuple[str, ...]) -> float:
     )
 
 
-def mechanical_advantage(an: Any, names: tuple[str, ...]) -> float:
+def mechanical_advantage(an: Analysis, names: tuple[str, ...]) -> float:
     """Output load over input effort (velocity solution; the I-centre route agrees to rounding)."""
     from mech.properties.advantage import mechanical_advantage as ma
 
@@ -135,7 +114,7 @@ def mechanical_advantage(an: Any, names: tuple[str, ...]) -> float:
     )
 
 
-def _effort(an: Any, kind: str) -> float:
+def _effort(an: Analysis, kind: str) -> float:
     from mech.properties.advantage import input_effort
 
     effort = an.cached("properties.effort", lambda: input_effort(an.mech, an.kin, virtual_work=False))
@@ -148,11 +127,11 @@ def _effort(an: Any, kind: str) -> float:
     return float(effort.value)
 
 
-def input_torque(an: Any, names: tuple[str, ...]) -> float:
+def input_torque(an: Analysis, names: tuple[str, ...]) -> float:
     """The torque on the input link that balances the file's loads (N·m, ccw +), no friction."""
     return _effort(an, "torque")
 
 
-def input_force(an: Any, names: tuple[str, ...]) -> float:
+def input_force(an: Analysis, names: tuple[str, ...]) -> float:
     """The force along a slider drive's path that balances the file's loads (N), no friction."""
     return _effort(an, "force")

@@ -1,0 +1,129 @@
+"""Velocity and acceleration at a solved configuration: Φ_q q̇ = −Φ_t and Φ_q q̈ = γ.
+
+In scaled units (lengths / size, time × |ω|).  One SVD of Φ_q per configuration
+solves both linear systems and measures its condition: above
+:data:`~mech.kinematics.linalg.SINGULAR` the configuration is singular (a
+toggle) and the links the null vector moves are named; velocities there are
+never printed.  A slider crank at dead centre is *not* singular for a crank
+drive (the slider stops, the rod's ω is finite) and solves normally.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from mech.errors import GeometryError, UnsupportedError
+from mech.kinematics.compiled import Compiled
+from mech.kinematics.drives import angle_text
+from mech.kinematics.linalg import SINGULAR, blocks_of, lin_solve, padded_svd, pinv, refined, snap_to_error
+from mech.model import Drive
+
+__all__ = ["accel_rhs", "rate_rhs", "rates"]
+
+
+def rates(
+    comp: Compiled, q: np.ndarray, drives: tuple[Drive, ...], lvl: int, omega_ref: float
+) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """q̇ and q̈ (scaled) at ``q`` by the linear solves Φ_q q̇ = −Φ_t, Φ_q q̈ = γ (None above ``lvl``).
+
+    Each solve is refined once and each component below its own error bound
+    set to zero (:func:`snap_to_error`): a 1e-12 m crank on 1 m links keeps its
+    4.4e-12 m/s, a pivot's 1e-17 m/s of round-off does not show.
+    """
+    sys_ = comp.system
+    qd = qdd = None
+    if lvl >= 1:
+        jac = comp.jacobian if q is sys_.q0 else sys_.jacobian(q)  # not moved: Φ_q as compiled
+        lin = _checked(comp, jac, drives)
+        rhs = rate_rhs(comp, drives, omega_ref)
+        qd = lin(rhs)
+        if lvl >= 2:
+            if sys_.velocity_only:
+                raise UnsupportedError(
+                    f"accelerations need the curvature of the profiles at "
+                    f"{', '.join(sys_.velocity_only)}: the file gives only the instant's contact "
+                    "point and normal (velocities are available)",
+                    hint="ask for velocities (mech velocity; level='velocity' from Python)",
+                )
+            qdd = lin(accel_rhs(comp, q, qd, drives, omega_ref))
+    return qd, qdd
+
+
+def rate_rhs(comp: Compiled, drives: tuple[Drive, ...], omega_ref: float) -> np.ndarray:
+    """−Φ_t: the drives' rates (scaled) in their rows, zero elsewhere."""
+    sys_, drawn = comp.system, comp.drawn
+    rhs = np.zeros(sys_.m)
+    rates = [(d.omega if d.link is not None else d.speed / drawn.scale) / omega_ref for d in drives]  # type: ignore[operator]
+    rhs[sys_.drive_rows] = rates
+    return rhs
+
+
+def accel_rhs(
+    comp: Compiled, q: np.ndarray, qd: np.ndarray, drives: tuple[Drive, ...], omega_ref: float
+) -> np.ndarray:
+    """γ with the drives' angular (or linear) accelerations (scaled) in their rows."""
+    sys_, drawn = comp.system, comp.drawn
+    gamma = sys_.gamma(q, qd)
+    acc = [
+        (d.alpha if d.link is not None else (d.accel or 0.0) / drawn.scale) / omega_ref**2  # type: ignore[operator]
+        for d in drives
+    ]
+    gamma[sys_.drive_rows] += acc
+    return gamma
+
+
+def _checked(
+    comp: Compiled, jac: np.ndarray, drives: tuple[Drive, ...]
+) -> Callable[[np.ndarray], np.ndarray]:
+    """A solver of Φ_q x = b at a converged configuration, after refusing a singular one.
+
+    Rank and conditioning are judged here: by one SVD (small systems), or block by
+    block for a large chain (:mod:`.blocks`); at the drawn configuration (``jac`` is
+    the compiled Φ_q) by the compiled mechanism's own, made once.  The solver refines
+    its answer once and zeroes what is below its error bound (:func:`snap_to_error`).
+    """
+    drawn = jac is comp.jacobian
+    form = blocks_of(comp.system)
+    if form is None:
+        svd = comp.drawn_svd() if drawn else padded_svd(jac)
+        n = jac.shape[1]
+        if n:
+            s = svd[1]
+            cond = float(s[0] / s[n - 1]) if s[n - 1] > 0 else math.inf
+            if cond > SINGULAR:
+                raise GeometryError(
+                    _singular_message(comp, svd[2][n - 1], cond, drives),
+                    hint="analyse a slightly different angle: velocities here are undetermined",
+                )
+        inverse = (comp.drawn_inverse() if drawn else pinv(svd)) if n else None
+        return lambda rhs: snap_to_error(jac, inverse, refined(jac, lambda b: lin_solve(svd, b), rhs), rhs)
+    cond, null = comp.drawn_blocks(form) if drawn else form.condition(jac)
+    if cond > SINGULAR:
+        raise GeometryError(
+            _singular_message(comp, null, cond, drives),  # type: ignore[arg-type]
+            hint="analyse a slightly different angle: velocities here are undetermined",
+        )
+    return lambda rhs: snap_to_error(jac, None, refined(jac, lambda b: form.solve(jac, b), rhs), rhs)
+
+
+def _singular_message(comp: Compiled, v: np.ndarray, cond: float, drives: tuple[Drive, ...]) -> str:
+    sys_ = comp.system
+    weight = np.abs(v).reshape(-1, 3).max(axis=1)
+    moving = [sys_.links[i] for i in np.argsort(-weight) if weight[i] > 0.2 * weight.max()]
+    where = ", ".join(
+        f"{d.link} at {angle_text(d.angle)}" for d in drives if d.link is not None and d.angle is not None
+    )
+    at = f" ({where})" if where else ""
+    if len(moving) == 2:
+        what = f"{moving[0]} and {moving[1]} are in line"
+    elif len(moving) == 1:
+        what = f"{moving[0]} is not held by its joints"
+    else:
+        what = f"{', '.join(moving)} can move with the drive held (links in line)"
+    return (
+        f"singular configuration of {comp.mech.label}{at}: {what} — a toggle or dead-centre "
+        f"position (condition number {cond:.2g})"
+    )
