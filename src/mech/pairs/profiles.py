@@ -85,7 +85,7 @@ def drawn_profiles(
         return dict(j.profiles)
     if radii is None:
         return {}
-    from mech.pairs.gear import gear_centre
+    from mech.pairs.gearing import gear_centre
 
     out: dict[str, Profile] = {}
     for link, r in zip(j.links, radii, strict=True):
@@ -323,7 +323,7 @@ def _circle_contact(
     sa, sb = b.to_local(ga.link, ga.p), b.to_local(gb.link, gb.p)
     ca, cb = _at(b, ga.link, sa), _at(b, gb.link, sb)
     if how.rolls:
-        from mech.pairs.gear import gear_row
+        from mech.pairs.gearing import gear_row
 
         holo = gear_row(b, j)
         if holo is None:
