@@ -158,6 +158,40 @@ def test_the_batched_series_is_the_instant_analysis_at_every_step():
         assert series.moment[k] == pytest.approx(fa.shaking_moment, rel=1e-12)
 
 
+def test_the_series_names_the_pair_forces_as_the_kinds_hook_names_them(monkeypatch):
+    # a revolute kind whose hook gives the force on its FIRST link (from the second): the sweep must
+    # follow the hook, not a rule of its own.  Newton–Euler (tests/oracles/newton_euler.py) gives
+    # F_A on the crank from the frame, F_B on the coupler from the crank, F_C on the rocker from the
+    # coupler, F_D on the rocker from the frame; on the first link named it is their reaction
+    from mech.pairs import kind_of
+    from mech.pairs.base import PairForce
+
+    mech = loads(FOUR_BAR, path="fourbar.yaml")
+    kind = type(kind_of(next(j for j in mech.joints if j.type == "revolute")))
+
+    def on_first(self, j, wrenches, at, direction):
+        first, second = j.links[0], j.links[1]
+        return [PairForce(j.name, first, second, wrenches[first][:2], at)] if first in wrenches else []
+
+    monkeypatch.setattr(kind, "forces", on_first)
+    angles = np.radians([33.0, 181.0])
+    series = Evaluator(mech)(angles)
+    assert series.pairs == (
+        ("A", "frame", "crank"),
+        ("B", "crank", "coupler"),
+        ("C", "coupler", "rocker"),
+        ("D", "rocker", "frame"),
+    )
+    sign = {"A": -1.0, "B": -1.0, "C": -1.0, "D": 1.0}
+    for k, theta in enumerate(angles):
+        ne = four_bar_forces((0.040, 0.150, 0.170, 0.150), float(theta), 10 * math.pi, MASSES, (0.0, -9.81))
+        for i, (joint, _, _) in enumerate(series.pairs):
+            expected = sign[joint] * np.asarray(ne[joint])
+            assert series.forces[k, i] == pytest.approx(
+                expected, rel=1e-9, abs=1e-9 * np.linalg.norm(expected)
+            )
+
+
 LIFT = """\
 units: {length: mm, angle: deg}
 links: [frame, crank, rod, platform]

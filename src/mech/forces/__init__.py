@@ -26,20 +26,14 @@ def analyse(mech: Mechanism, options: SolveOptions | None = None) -> ForceAnalys
     With masses and a drive speed the links' inertia counts (d'Alembert: the
     mechanism is solved to accelerations; without masses to velocities); a drive
     without a speed (or at a speed of zero) is a static problem: the rates are taken
-    at unit speed for the power balance only, and no inertia acts.
+    at unit speed for the power balance only, and no inertia acts.  The work is
+    :func:`mech.forces.instant.analyse` (imported here on first call: numpy).
 
     Raises
     ------
     InputError
         A load at a pin two moving links share without ``on``; a file that cannot be solved.
     """
-    from mech.forces.instant import at_instant
-    from mech.forces.series import drive_options
-    from mech.kinematics.solve import compiled, solve
-    from mech.options import SolveOptions as _Options
+    from mech.forces.instant import analyse as at_drive_angle
 
-    options, static = drive_options(mech, options or _Options())
-    comp = compiled(mech, None)
-    # accelerations only where they act: a massless mechanism (a cam known at its instant) needs rates alone
-    kin = solve(mech, "acceleration" if mech.masses and not static else "velocity", options)
-    return at_instant(mech, kin, comp, static=static)
+    return at_drive_angle(mech, options)

@@ -22,11 +22,55 @@ import numpy as np
 from mech.forces.core import Motion, Solved, reactions, solve
 from mech.forces.result import Effort, ForceAnalysis, Inertia, PairForce
 from mech.model import Mechanism
+from mech.options import SolveOptions
 from mech.pairs import kind_of
 
-__all__ = ["at_instant", "drive_pivot", "motion_of"]
+__all__ = ["analyse", "at_instant", "drive_options", "drive_pivot", "has_speed", "motion_of"]
 
 Vec = tuple[float, float]
+
+
+def analyse(mech: Mechanism, options: SolveOptions | None = None) -> ForceAnalysis:
+    """The forces of ``mech`` at its drive's angle (``options`` as for :func:`mech.kinematics.solve`).
+
+    With masses and a drive speed the links' inertia counts (d'Alembert: the
+    mechanism is solved to accelerations; without masses to velocities); a drive
+    without a speed (or at a speed of zero) is a static problem: the rates are taken
+    at unit speed for the power balance only, and no inertia acts.
+
+    Raises
+    ------
+    InputError
+        A load at a pin two moving links share without ``on``; a file that cannot be solved.
+    """
+    from mech.kinematics.solve import compiled, solve
+
+    options, static = drive_options(mech, options or SolveOptions())
+    comp = compiled(mech, None)
+    # accelerations only where they act: a massless mechanism (a cam known at its instant) needs rates alone
+    kin = solve(mech, "acceleration" if mech.masses and not static else "velocity", options)
+    return at_instant(mech, kin, comp, static=static)
+
+
+def has_speed(mech: Mechanism, options: SolveOptions) -> bool:
+    """True when the drive turns (or slides) at a speed other than zero: inertia acts."""
+    if options.omega is not None or options.speed is not None:
+        return bool(options.omega or options.speed)
+    return any(d.omega or d.speed for d in mech.drives)
+
+
+def drive_options(mech: Mechanism, options: SolveOptions) -> tuple[SolveOptions, bool]:
+    """The options a force solve runs with, and whether it is static (no drive speed).
+
+    A static problem (loads and gravity on a mechanism at rest, or turning at a
+    speed of zero) is solved at unit speed for the power balance only; no inertia acts.
+    """
+    if has_speed(mech, options):
+        return options, False
+    driven = mech.drives[0] if mech.drives else None
+    if driven is not None and driven.link is not None:
+        return options.with_(omega=1.0), True
+    return options.with_(speed=1.0), True
 
 
 def at_instant(mech: Mechanism, kin: Any, comp: Any, *, static: bool = False) -> ForceAnalysis:

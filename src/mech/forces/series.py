@@ -28,12 +28,13 @@ import numpy as np
 from mech._records import dataclass
 from mech.errors import MechError
 from mech.forces.core import Motion, reactions, solve
+from mech.forces.instant import drive_options
 from mech.model import Mechanism
 from mech.options import SolveOptions
 from mech.pairs import kind_of
 from mech.pairs.base import PairKind
 
-__all__ = ["Evaluator", "ForceSeries", "PairKey", "drive_options", "has_speed"]
+__all__ = ["Evaluator", "ForceSeries", "PairKey", "pair_keys"]
 
 #: Most Jacobian entries one batched solve holds (16 MB of them): a longer sweep is solved in chunks.
 CHUNK = 2_000_000
@@ -70,27 +71,6 @@ class ForceSeries:
         return np.hypot(self.forces[:, index, 0], self.forces[:, index, 1])
 
 
-def has_speed(mech: Mechanism, options: SolveOptions) -> bool:
-    """True when the drive turns (or slides) at a speed other than zero: inertia acts."""
-    if options.omega is not None or options.speed is not None:
-        return bool(options.omega or options.speed)
-    return any(d.omega or d.speed for d in mech.drives)
-
-
-def drive_options(mech: Mechanism, options: SolveOptions) -> tuple[SolveOptions, bool]:
-    """The options a force solve runs with, and whether it is static (no drive speed).
-
-    A static problem (loads and gravity on a mechanism at rest, or turning at a
-    speed of zero) is solved at unit speed for the power balance only; no inertia acts.
-    """
-    if has_speed(mech, options):
-        return options, False
-    driven = mech.drives[0] if mech.drives else None
-    if driven is not None and driven.link is not None:
-        return options.with_(omega=1.0), True
-    return options.with_(speed=1.0), True
-
-
 class Evaluator:
     """θ ↦ the forces at every angle of an array (see the module's docstring).
 
@@ -105,10 +85,7 @@ class Evaluator:
         self.options, self.static = drive_options(mech, (options or SolveOptions()).with_(angle=None))
         self.level = "acceleration" if mech.masses and not self.static else "velocity"
         self.sys = compiled(mech, None).system
-        rows = set(self.sys.row_names)
-        self.pairs: tuple[PairKey, ...] = tuple(
-            (j.name, link, j.links[0]) for j in mech.joints if j.name in rows for link in j.links[1:]
-        )
+        self.pairs = pair_keys(mech, set(self.sys.row_names))
         d = mech.drives[0]
         self.lead = d.link or d.joint
         self.several = len(mech.drives) != 1 or d.link is None
@@ -170,7 +147,7 @@ class Evaluator:
 
     # -- angle by angle -----------------------------------------------------------------------
     def _one_by_one(self, angles: np.ndarray) -> ForceSeries:
-        from mech.forces import analyse
+        from mech.forces.instant import analyse
 
         out = _empty(angles, self.pairs)
         where = {key: i for i, key in enumerate(self.pairs)}
@@ -255,6 +232,19 @@ def _rate(mech: Mechanism, sw: Any, column: dict[str, int]) -> np.ndarray:
             w = w - sw.omegas[:, column[d.relative_to]]
         return w
     return np.asarray(sw.sliding[:, sw.slides.index(d.joint)], float)
+
+
+def pair_keys(mech: Mechanism, rows: set[str]) -> tuple[PairKey, ...]:
+    """The pair forces a sweep reports, named as each pair kind's forces hook names them
+    (:meth:`mech.pairs.base.PairKind.forces`, asked once with a unit force on each of the
+    pair's links), so that the sweep and the instant letter the same forces whatever the
+    kind; joints without constraint rows of their own carry none."""
+    keys: list[PairKey] = []
+    for j in mech.joints:
+        if j.name in rows:
+            probe = {link: (1.0, 0.0, 0.0) for link in j.links}
+            keys.extend((f.joint, f.on, f.by) for f in kind_of(j).forces(j, probe, None, None))
+    return tuple(keys)
 
 
 def _pivot(mech: Mechanism, sys_: Any, motion: Motion) -> np.ndarray:
