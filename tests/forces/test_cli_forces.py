@@ -1,6 +1,6 @@
 """``mech forces``, ``mech sweep --level forces`` and ``mech draw --forces`` as a user runs them.
 
-The numbers are checked against independent derivations in test_instant.py, test_cycle.py and
+The numbers are checked against independent derivations in test_instant.py, test_force_cycle.py and
 test_freebody.py; here: what each command prints and writes, the JSON structure cli.md
 documents, the exit statuses of bad input, and hostile files through every force command
 (exit 0 or 2, never a traceback).

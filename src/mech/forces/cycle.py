@@ -344,9 +344,9 @@ def _over_range(
         return _Totals(np.full(grid.size, math.nan)), _peaks(peak_jobs)
     cum = np.concatenate(([0.0], np.cumsum(pieces)))
     total = float(cum[-1])
+    mean = total / (hi - lo)  # E below takes this one: E(hi) = E(lo), exactly, over a cycle
     if abs(total) <= 1e-12 * float(np.nanmax(np.abs(dense.effort))) * (hi - lo):
-        total = 0.0  # rounding: a cycle of inertia and gravity alone does no work
-    mean = total / (hi - lo)
+        total = 0.0  # reported as rounding: a cycle of inertia and gravity alone does no work
     at_breaks = mean * (breaks - lo) - cum  # E(θ) = ∫ (T_mean − T) dθ from lo, exact at the breaks
     above = dense.effort > mean
     crossings = np.flatnonzero(above[:-1] != above[1:])
@@ -363,7 +363,7 @@ def _over_range(
     sign = 1.0 if grid[-1] >= grid[0] else -1.0
     totals = _Totals(
         _on_grid(grid, dense.angles, dense.effort, mean, breaks, at_breaks) - origin,
-        mean,
+        total / (hi - lo),
         sign * total,
         float(energy[j] - energy[k]),
         (float(where[j]), float(energy[j] - origin)),
