@@ -10,6 +10,7 @@ connected components are the import circles.
 from __future__ import annotations
 
 import ast
+import functools
 import subprocess
 import sys
 from pathlib import Path
@@ -148,6 +149,7 @@ def test_model_and_analysis_load_no_rich_or_click():
     assert result.stdout.strip() == "[]"
 
 
+@functools.cache
 def _sources() -> list[tuple[str, ast.Module]]:
     src = ROOT / "src" / "mech"
     return [

@@ -412,6 +412,14 @@ def _curve_contact(
         gap_problem(gap, f"curve and {other.kind}")
         return True
     b.curves.append(row)
+    from mech.units import to_unit
+
+    unit = b.mech.length_unit
+    b.notes.append(
+        f"the profile of joint {j.name} on {curve.link} is the periodic cubic spline through its "
+        f"{spline.n} points: within about {to_unit(spline.departure() * b.scale, unit):.2g} {unit} "
+        "of the smooth curve through them (more points, closer: as the fourth power of their spacing)"
+    )
 
     def full(q: np.ndarray) -> np.ndarray:
         return np.append(q, (0.0, 0.0, 0.0))[None]
