@@ -475,15 +475,37 @@ KINDS: tuple[AnswerKind, ...] = (
         Compare.SIGNED,
         "velocity",
         _D.TORQUE,
-        "torque on the input link balancing the loads (ccw +)",
+        "torque on the input link balancing the loads, and the links' inertia and weight (ccw +)",
     ),
     AnswerKind(
         "input_force",
         Compare.SIGNED,
         "velocity",
         _D.FORCE,
-        "force on a slider drive balancing the loads",
+        "force on a slider drive balancing the loads, and the links' inertia and weight",
     ),
+    # forces (issue 24, DESIGN § 1.4): solved by mech.forces from the position up (level position:
+    # the force solve takes the rates and accelerations it needs itself)
+    AnswerKind("force.<joint>", Compare.MAGNITUDE, "position", _D.FORCE, "force a pair carries"),
+    AnswerKind("force.<joint>.x", Compare.SIGNED, "position", _D.FORCE, "on its second link, x"),
+    AnswerKind("force.<joint>.y", Compare.SIGNED, "position", _D.FORCE, "on its second link, y"),
+    AnswerKind("shaking_force", Compare.MAGNITUDE, "position", _D.FORCE, "|−Σ m a_G|"),
+    AnswerKind(
+        "shaking_moment",
+        Compare.SENSE,
+        "position",
+        _D.TORQUE,
+        "−Σ (r_G × m a_G + I_G α) about the drive's pivot (ccw +)",
+    ),
+    AnswerKind("torque.mean", Compare.SENSE, "position", _D.TORQUE, "mean input torque, cycle"),
+    AnswerKind(
+        "energy.fluctuation",
+        Compare.MAGNITUDE,
+        "position",
+        _D.ENERGY,
+        "greatest minus least of ∫(T − T_mean) dθ",
+    ),
+    AnswerKind("flywheel.inertia", Compare.MAGNITUDE, "position", _D.MOMENT_OF_INERTIA, "ΔE / (ω² C_s)"),
     # cams given by their follower's programme (DESIGN § 1.1): the cam's own analysis answers these
     # (level topology: the linkage solver is never started for them)
     AnswerKind(

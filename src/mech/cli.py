@@ -204,6 +204,20 @@ def acceleration(**values: Any) -> None:
     run_command("acceleration", values)
 
 
+@cli.command(name="forces")
+@kinematic_command("forces")
+def forces_command(request: Request, explain: bool) -> None:
+    """Forces at the crank angle: what each pair carries, the input torque and its parts, the shaking.
+
+    Without friction, from the masses, gravity and loads the file gives
+    (d'Alembert's inertia forces when the drive has a speed).  The body is
+    mech.render.forces.run.
+    """
+    from mech.render.forces import run
+
+    run(request, explain=explain, echo=click.echo)
+
+
 @cli.command()
 @kinematic_command("icentres")
 def icentres(request: Request, explain: bool, circle_path: str | None) -> None:
@@ -311,6 +325,15 @@ def sweep_command(
             hint="write the CSV to a file (--csv series.csv), or leave out --json",
         )
     _writable(None if csv_path == "-" else csv_path, plot_path, gif_path, svg_path)
+    if level == "forces":  # issue 24: the force sweep's body is mech.render.forces_sweep.run
+        from mech._files import write_file
+        from mech.render.forces_sweep import Asked as ForcesAsked
+        from mech.render.forces_sweep import run as force_sweep
+
+        wanted = ForcesAsked(start, stop, steps, lead, method, quantities, csv_path, plot_path)
+        refused = (("--animate", gif_path), ("--path", paths), ("--svg", svg_path))
+        force_sweep(request, wanted, refused=refused, echo=click.echo, write=write_file)
+        return
     quantities = tuple(quantities) + tuple(f"position.{p}.{c}" for p in paths for c in ("x", "y"))
     if plot_path or gif_path:
         from mech.draw.raster import use_matplotlib
@@ -453,6 +476,8 @@ def draw_command(
     with_icentres: bool,
     paths: tuple[str, ...],
     centrodes: tuple[str, ...],
+    with_forces: bool = False,
+    free_bodies: tuple[str, ...] = (),
 ) -> None:
     """Draw the configuration diagram to scale, with polygons and I-centres on request.
 
@@ -465,6 +490,14 @@ def draw_command(
     from mech.render.emit import choose, emit
 
     check_output(output)
+    if with_forces or free_bodies:  # issue 24: drawn by mech.render.forces.draw_forces
+        from mech.render.forces import draw_forces
+
+        others = {"--velocity": velocity, "--acceleration": acceleration, "--icentres": with_icentres}
+        refused = {**others, "--path": paths, "--centrodes": centrodes}
+        summary = draw_forces(request, output, free_bodies=free_bodies, refused=refused)
+        emit("draw", choose(request.as_json), summary, echo=click.echo, name=summary["name"])
+        return
     mechanism = load_mechanism(request.file)
     if paths or centrodes:
         _one_turn(mechanism, "--path" if paths else "--centrodes", paths)

@@ -289,8 +289,9 @@ SWEEP = (
         ("--level",),
         "level",
         "choice",
-        "How far to solve (default: velocity with a drive speed, else position).",
-        choices=("position", "velocity", "acceleration"),
+        "How far to solve (default: velocity with a drive speed, else position); forces: the "
+        "turning-moment diagram, the fluctuation of energy and the flywheel, the greatest pair forces.",
+        choices=("position", "velocity", "acceleration", "forces"),
     ),
     _many(
         ("--quantity",),
@@ -365,6 +366,8 @@ DRAW = (
     _many(
         ("--centrodes",), "centrodes", "Draw a link's fixed and moving centrodes over the cycle (repeatable)."
     ),
+    _flag(("--forces",), "with_forces", "Draw the force vectors (F₂₃ …) on the configuration."),
+    _many(("--free-body",), "free_bodies", "Add LINK's free-body diagram (repeatable)."),
 )
 
 #: ``mech view``: the live page (DESIGN § 1.5).
@@ -450,6 +453,13 @@ COMMANDS: dict[str, tuple[Param, ...]] = {
             "A link or point whose mechanical advantage to give (repeatable; default: every moving link).",
         ),
         *KINEMATIC,
+    ),
+    "forces": (
+        _flag(
+            ("--explain",), "explain", "Write each link's free body: its forces and ΣF = m a_G, ΣM_G = I_G α."
+        ),
+        *KINEMATIC,
+        ALPHA,
     ),
     "sweep": (*SWEEP, *KINEMATIC),
     "check": CHECK,

@@ -23,35 +23,17 @@ __all__ = ["analyse"]
 def analyse(mech: Mechanism, options: SolveOptions | None = None) -> ForceAnalysis:
     """The forces of ``mech`` at its drive's angle (``options`` as for :func:`mech.kinematics.solve`).
 
-    With masses and a drive speed the links' inertia counts (d'Alembert); a drive
-    without a speed is a static problem: the rates are taken at unit speed for the
-    power balance only, and no inertia acts.
+    With masses and a drive speed the links' inertia counts (d'Alembert: the
+    mechanism is solved to accelerations; without masses to velocities); a drive
+    without a speed (or at a speed of zero) is a static problem: the rates are taken
+    at unit speed for the power balance only, and no inertia acts.  The work is
+    :func:`mech.forces.instant.analyse` (imported here on first call: numpy).
 
     Raises
     ------
     InputError
         A load at a pin two moving links share without ``on``; a file that cannot be solved.
     """
-    from mech.forces.instant import at_instant
-    from mech.kinematics.solve import compiled, solve
-    from mech.options import SolveOptions as _Options
+    from mech.forces.instant import analyse as at_drive_angle
 
-    options = options or _Options()
-    comp = compiled(mech, None)
-    static = not _has_speed(mech, options)
-    if static:
-        driven = mech.drives[0] if mech.drives else None
-        options = (
-            options.with_(omega=1.0)
-            if driven is not None and driven.link is not None
-            else options.with_(speed=1.0)
-        )
-    level = "velocity" if static else "acceleration"
-    kin = solve(mech, level, options)
-    return at_instant(mech, kin, comp, static=static)
-
-
-def _has_speed(mech: Mechanism, options: SolveOptions) -> bool:
-    if options.omega is not None or options.speed is not None:
-        return True
-    return any(d.omega is not None or d.speed is not None for d in mech.drives)
+    return at_drive_angle(mech, options)

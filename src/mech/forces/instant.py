@@ -1,42 +1,76 @@
-"""The forces at one instant, from the constraint Jacobian: Φ_qᵀ λ = Q − M q̈, one linear solve.
+"""The forces at one instant: the batched solve of :mod:`mech.forces.core` on a stack of one.
 
-Reference-point coordinates (:mod:`mech.kinematics.constraints`): link i has
-q_i = (x, y, θ), the position of its frame's origin R_i and its angle.  A force F
-at a point P of link i is the generalised force [F, (P − R_i) × F]; a couple T is
-[0, 0, T].  d'Alembert's principle puts each massive link's inertia in as loads:
-−m a_G at its centre G and the couple −I_G α (the accelerations are the
-kinematics' own), and gravity as m g at G.  With Q the sum of them all,
-
-    Φ_qᵀ λ = Q          (Haug, *Computer-Aided Kinematics and Dynamics*, § 6.3)
-
-and the pairs' reactions on the links are −Φ_qᵀ λ, row by row: the rows of a
-joint give the force it carries, which its kind interprets
-(:meth:`mech.pairs.base.PairKind.forces`: a pin's force, a slider's normal force
-and where it acts, a tooth load along the line of action).  The drive's row gives
-the input torque (or force).  The Jacobian is the solver's, scaled by the
-mechanism's size; its columns are taken back to SI here, so λ and every force
-are in newtons whatever the rows' own scaling.
+The kinematics' own solution gives the pose, rates and accelerations
+(:func:`motion_of`); the solve gives the multipliers, and each joint's kind
+reads the force it carries from what its rows put on its links
+(:meth:`mech.pairs.base.PairKind.forces`: a pin's force, a slider's normal
+force and where it acts, a tooth load along the line of action).  The drive's
+row gives the input torque (or force), which the power balance also gives.
 
 Where the rows are redundant (a double parallelogram: more rows than their
 rank) statics cannot split the load between them: the pairs' forces are not
-given, and the input effort comes from the power balance instead, which needs
-no split: T ω + Q·q̇ = 0, the constraints doing no work.
+given, and the input effort comes from the power balance, which needs no
+split: T ω + Q·q̇ = 0, the constraints doing no work.
 """
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
 
+from mech.forces.core import Motion, Solved, reactions, solve
 from mech.forces.result import Effort, ForceAnalysis, Inertia, PairForce
 from mech.model import Mechanism
+from mech.options import SolveOptions
 from mech.pairs import kind_of
 
-__all__ = ["at_instant"]
+__all__ = ["analyse", "at_instant", "drive_options", "drive_pivot", "has_speed", "motion_of"]
 
 Vec = tuple[float, float]
+
+
+def analyse(mech: Mechanism, options: SolveOptions | None = None) -> ForceAnalysis:
+    """The forces of ``mech`` at its drive's angle (``options`` as for :func:`mech.kinematics.solve`).
+
+    With masses and a drive speed the links' inertia counts (d'Alembert: the
+    mechanism is solved to accelerations; without masses to velocities); a drive
+    without a speed (or at a speed of zero) is a static problem: the rates are taken
+    at unit speed for the power balance only, and no inertia acts.
+
+    Raises
+    ------
+    InputError
+        A load at a pin two moving links share without ``on``; a file that cannot be solved.
+    """
+    from mech.kinematics.solve import compiled, solve
+
+    options, static = drive_options(mech, options or SolveOptions())
+    comp = compiled(mech, None)
+    # accelerations only where they act: a massless mechanism (a cam known at its instant) needs rates alone
+    kin = solve(mech, "acceleration" if mech.masses and not static else "velocity", options)
+    return at_instant(mech, kin, comp, static=static)
+
+
+def has_speed(mech: Mechanism, options: SolveOptions) -> bool:
+    """True when the drive turns (or slides) at a speed other than zero: inertia acts."""
+    if options.omega is not None or options.speed is not None:
+        return bool(options.omega or options.speed)
+    return any(d.omega or d.speed for d in mech.drives)
+
+
+def drive_options(mech: Mechanism, options: SolveOptions) -> tuple[SolveOptions, bool]:
+    """The options a force solve runs with, and whether it is static (no drive speed).
+
+    A static problem (loads and gravity on a mechanism at rest, or turning at a
+    speed of zero) is solved at unit speed for the power balance only; no inertia acts.
+    """
+    if has_speed(mech, options):
+        return options, False
+    driven = mech.drives[0] if mech.drives else None
+    if driven is not None and driven.link is not None:
+        return options.with_(omega=1.0), True
+    return options.with_(speed=1.0), True
 
 
 def at_instant(mech: Mechanism, kin: Any, comp: Any, *, static: bool = False) -> ForceAnalysis:
@@ -46,64 +80,82 @@ def at_instant(mech: Mechanism, kin: Any, comp: Any, *, static: bool = False) ->
     ``comp`` is the compiled mechanism (:func:`mech.kinematics.solve.compiled`).
     """
     sys_ = comp.system
-    n = sys_.n
-    loads = _loads(mech, kin, sys_, n)
-    inertia, weights, links_inertia = _inertia(mech, kin, sys_, n, static)
-    total = loads + inertia + weights
-    jac = _jacobian_si(mech, kin, sys_)
-    moving = jac[:, : 3 * n]
-    lam, rank = _multipliers(moving, total[: 3 * n])
-    determinate = rank == jac.shape[0]
+    about = drive_pivot(mech, kin)
+    solved = solve(
+        mech,
+        sys_,
+        motion_of(kin, sys_, static=static),
+        about=np.array([about]),
+        rows=lambda jac: _reaction_rows(mech, kin, sys_, jac),
+    )
+    determinate = bool(solved.determinate[0])
     pairs: tuple[PairForce, ...] = ()
     note = ""
     if determinate:
-        pairs = _pair_forces(mech, kin, sys_, jac, lam)
+        pairs = _pair_forces(mech, kin, sys_, solved)
     else:
+        m = solved.jac.shape[1]
         note = (
-            f"the pairs' forces are indeterminate: {jac.shape[0]} constraint rows have rank {rank} "
+            f"the pairs' forces are indeterminate: {m} constraint rows have rank {int(solved.rank[0])} "
             "(a redundant constraint: statics cannot split the load); the input effort is from the power balance"
         )
-    effort = _effort(mech, kin, sys_, n, (loads, inertia, weights))
-    about = _drive_pivot(mech, kin)
-    shake, moment = _shaking(links_inertia, about)
     angle = kin.drives[0].angle if kin.drives else None
     return ForceAnalysis(
         mechanism=mech.label,
         drive_angle=angle,
         pairs=pairs,
-        effort=effort,
-        inertia=tuple(links_inertia),
-        shaking_force=shake,
-        shaking_moment=moment,
+        effort=_effort(mech, kin, solved),
+        inertia=_records(mech, solved),
+        shaking_force=(float(solved.shaking[0, 0]), float(solved.shaking[0, 1])),
+        shaking_moment=float(solved.moment[0]),
         about=about,
         determinate=determinate,
         note=note,
+        static=static,
+        kinematics=kin,
     )
 
 
-def _q(kin: Any, sys_: Any) -> np.ndarray:
-    """The solved configuration in the system's scaled coordinates, read back from the links."""
-    q = np.zeros(3 * sys_.n)
-    cx, cy = float(sys_.centre[0]), float(sys_.centre[1])
+def motion_of(kin: Any, sys_: Any, *, static: bool = False) -> Motion:
+    """The solved instant ``kin`` as a stack of one (:class:`mech.forces.core.Motion`)."""
+    n = sys_.n
+    pose, rates, accels = np.zeros((1, n, 3)), np.zeros((1, n, 3)), np.zeros((1, n, 3))
     for name, i in sys_.link_index.items():
         st = kin.links[name]
-        q[3 * i : 3 * i + 3] = ((st.origin[0] - cx) / sys_.scale, (st.origin[1] - cy) / sys_.scale, st.angle)
-    return q
+        pose[0, i] = (st.origin[0], st.origin[1], st.angle)
+        if st.velocity is not None:
+            rates[0, i] = (st.velocity[0], st.velocity[1], st.omega or 0.0)
+        if not static and st.acceleration is not None:
+            accels[0, i] = (st.acceleration[0], st.acceleration[1], st.alpha or 0.0)
+    angle = float(kin.drives[0].angle) if kin.drives and kin.drives[0].angle is not None else 0.0
+    named = {name: np.array([p], float) for name, p in kin.positions.items()}
+    return Motion(pose, rates, None if static else accels, np.array([angle]), np.array([_rate(kin)]), named)
 
 
-def _jacobian_si(mech: Mechanism, kin: Any, sys_: Any) -> np.ndarray:
-    """Φ_q at the instant with the ground's columns, its x and y columns per metre (SI), the rows
-    of a pair that carries its force otherwise (a gear on fixed centres) replaced by its kind's."""
-    jac = sys_.jacobian(_q(kin, sys_), ground=True)
-    cols = np.tile([1.0 / sys_.scale, 1.0 / sys_.scale, 1.0], sys_.n + 1)
-    jac = jac * cols
+def _rate(kin: Any) -> float:
+    """The drive's rate: ω of the driven link relative to what it turns on, or a slider's speed."""
+    if not kin.drives:
+        return 0.0
+    d = kin.drives[0]
+    if d.link is not None:
+        return float(
+            (kin.links[d.link].omega or 0.0)
+            - (kin.links[d.relative_to].omega or 0.0 if d.relative_to else 0.0)
+        )
+    return float(kin.sliding(d.joint))
+
+
+def _reaction_rows(mech: Mechanism, kin: Any, sys_: Any, jac: np.ndarray) -> np.ndarray:
+    """The Jacobian with the rows of a pair that carries its force otherwise (a gear on fixed
+    centres) replaced by its kind's."""
     names = np.array(sys_.row_names)
+    view = _View(mech, kin, sys_)
     for j in mech.joints:
-        rows = kind_of(j).reaction_rows(j, _View(mech, kin, sys_))
+        rows = kind_of(j).reaction_rows(j, view)
         if rows is None:
             continue
         idx = np.flatnonzero(names == j.name)
-        jac[idx[: len(rows)]] = rows
+        jac[0, idx[: len(rows)]] = rows
     return jac
 
 
@@ -125,100 +177,19 @@ class _View:
         return tuple(self.kin.links[link].origin)  # type: ignore[return-value]
 
 
-def _wrench(q: np.ndarray, col: int, force: Vec, moment: float) -> None:
-    q[col] += force[0]
-    q[col + 1] += force[1]
-    q[col + 2] += moment
-
-
-def _apply(q: np.ndarray, sys_: Any, kin: Any, link: str, force: Vec, at: Vec) -> None:
-    """A force ``force`` at ``at`` on ``link`` as a generalised force on its q block (ground: none)."""
-    i = sys_.link_index.get(link)
-    if i is None:
-        return
-    ox, oy = kin.links[link].origin
-    _wrench(q, 3 * i, force, (at[0] - ox) * force[1] - (at[1] - oy) * force[0])
-
-
-def _drive_value(load: Any, kin: Any) -> Any:
-    """A load's value now: constant, or read linearly off its table at the drive's angle (periodic)."""
-    if load.table is None:
-        return load.force if load.force is not None else load.torque
-    table = np.array(load.table)
-    theta = float(kin.drives[0].angle)
-    start, span = table[0, 0], table[-1, 0] - table[0, 0]
-    t = start + math.fmod(theta - start, span) % span if span > 0 else theta
-    vals = [float(np.interp(t, table[:, 0], table[:, k])) for k in range(1, table.shape[1])]
-    return tuple(vals) if len(vals) == 2 else vals[0]
-
-
-def _loads(mech: Mechanism, kin: Any, sys_: Any, n: int) -> np.ndarray:
-    """The file's loads as generalised forces (3n + 3, SI)."""
-    q = np.zeros(3 * (n + 1))
-    for load in mech.loads:
-        value = _drive_value(load, kin)
-        if load.is_force:
-            link = load.on or next(lk for lk in kin.carriers.get(load.target, ()) if lk != mech.ground)
-            _apply(q, sys_, kin, link, value, kin.positions[load.target])
-        else:
-            i = sys_.link_index.get(load.target)
-            if i is not None:
-                q[3 * i + 2] += value
-    return q
-
-
-def _inertia(
-    mech: Mechanism, kin: Any, sys_: Any, n: int, static: bool
-) -> tuple[np.ndarray, np.ndarray, list[Inertia]]:
-    """d'Alembert's inertia loads and the weights, as generalised forces, and each link's record."""
-    inertia = np.zeros(3 * (n + 1))
-    weights = np.zeros(3 * (n + 1))
-    records = []
-    g = mech.gravity or (0.0, 0.0)
-    for ms in mech.masses:
-        at = kin.positions[ms.centre]
-        if static:
-            a, alpha = (0.0, 0.0), 0.0
-        else:
-            a = kin.acceleration(ms.centre, ms.link)
-            alpha = kin.links[ms.link].alpha or 0.0
-        force = (-ms.mass * a[0], -ms.mass * a[1])
-        weight = (ms.mass * g[0], ms.mass * g[1])
-        _apply(inertia, sys_, kin, ms.link, force, at)
-        inertia[3 * sys_.link_index[ms.link] + 2] += -ms.inertia * alpha
-        _apply(weights, sys_, kin, ms.link, weight, at)
-        records.append(Inertia(ms.link, ms.mass, at, a, alpha, force, -ms.inertia * alpha, weight))
-    return inertia, weights, records
-
-
-def _multipliers(moving: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, int]:
-    """λ of Φ_qᵀ λ = Q (least squares where the rows are redundant) and the rows' rank."""
-    u, s, vt = np.linalg.svd(moving.T, full_matrices=False)
-    tol = max(moving.shape) * np.finfo(float).eps * (s[0] if s.size else 0.0)
-    rank = int(np.sum(s > tol))
-    inv = np.where(s > tol, 1.0 / np.where(s > tol, s, 1.0), 0.0)
-    lam = vt.T @ (inv * (u.T @ q))
-    return lam, rank
-
-
-def _pair_forces(
-    mech: Mechanism, kin: Any, sys_: Any, jac: np.ndarray, lam: np.ndarray
-) -> tuple[PairForce, ...]:
+def _pair_forces(mech: Mechanism, kin: Any, sys_: Any, solved: Solved) -> tuple[PairForce, ...]:
     """Each joint's force, as its kind reads it from what its rows put on its links."""
-    names = list(sys_.row_names)
     out: list[PairForce] = []
     for j in mech.joints:
-        rows = [r for r, name in enumerate(names) if name == j.name]
-        if not rows:
+        on_links = reactions(solved, sys_, j.name, j.links)
+        if not on_links:
             continue
-        reaction = -(jac[rows].T @ lam[rows])  # on every link, about each link's origin
         geom = kin.joints.get(j.name)
         at = geom.at if geom is not None else None
         direction = geom.direction if geom is not None else None
         wrenches = {}
-        for link in j.links:
-            col = 3 * sys_.link_index.get(link, sys_.n)
-            fx, fy, m = (float(v) for v in reaction[col : col + 3])
+        for link, w in on_links.items():
+            fx, fy, m = (float(v) for v in w[0])
             if at is not None:  # the moment about the pair's point
                 ox, oy = kin.links[link].origin
                 m -= (at[0] - ox) * fy - (at[1] - oy) * fx
@@ -227,35 +198,42 @@ def _pair_forces(
     return tuple(out)
 
 
-def _rates(kin: Any, sys_: Any, n: int) -> np.ndarray:
-    """q̇ in SI (3n + 3; the ground's zero)."""
-    qd = np.zeros(3 * (n + 1))
-    for name, i in sys_.link_index.items():
-        st = kin.links[name]
-        qd[3 * i : 3 * i + 3] = (st.velocity[0], st.velocity[1], st.omega)
-    return qd
-
-
-def _effort(mech: Mechanism, kin: Any, sys_: Any, n: int, parts: tuple[np.ndarray, ...]) -> Effort | None:
+def _effort(mech: Mechanism, kin: Any, solved: Solved) -> Effort | None:
     """The input torque (or force) and its parts from the power balance, T ω_in + Q·q̇ = 0."""
     if not kin.drives:
         return None
     d = kin.drives[0]
-    qd = _rates(kin, sys_, n)
-    if d.link is not None:
-        rate = (kin.links[d.link].omega or 0.0) - (
-            kin.links[d.relative_to].omega or 0.0 if d.relative_to else 0.0
-        )
-        kind, driver = "torque", d.link
-    else:
-        rate, kind, driver = float(kin.sliding(d.joint)), "force", str(d.joint)
-    if rate == 0.0:
+    loads, inertia, gravity = (float(v) for v in solved.effort[0])
+    if not np.isfinite(loads):  # the drive does not move: no rate to divide the power by
         return None
-    loads, inertia, gravity = (-float(p @ qd) / rate for p in parts)
+    kind, driver = ("torque", d.link) if d.link is not None else ("force", str(d.joint))
     return Effort(kind, driver, loads + inertia + gravity, loads, inertia, gravity)
 
 
-def _drive_pivot(mech: Mechanism, kin: Any) -> Vec:
+def _records(mech: Mechanism, solved: Solved) -> tuple[Inertia, ...]:
+    """Each massive link's inertia load, weight and the accelerations they come from."""
+    out = []
+    for c, ms in enumerate(mech.masses):
+        out.append(
+            Inertia(
+                ms.link,
+                ms.mass,
+                _vec(solved.centres[0, c]),
+                _vec(solved.accel[0, c]),
+                float(solved.alpha[0, c]),
+                _vec(solved.force[0, c]),
+                float(solved.couple[0, c]),
+                _vec(solved.weight[c]),
+            )
+        )
+    return tuple(out)
+
+
+def _vec(a: np.ndarray) -> Vec:
+    return (float(a[0]), float(a[1]))
+
+
+def drive_pivot(mech: Mechanism, kin: Any) -> Vec:
     """The drive's pivot (the shaking moment is taken about it), else the ground's first located point."""
     for d in kin.drives:
         if d.about is not None and d.about in kin.positions:
@@ -265,14 +243,3 @@ def _drive_pivot(mech: Mechanism, kin: Any) -> Vec:
                 if mech.ground in j.links and j.name in kin.positions:
                     return tuple(kin.positions[j.name])  # type: ignore[return-value]
     return tuple(kin.links[mech.ground].origin)  # type: ignore[return-value]
-
-
-def _shaking(records: list[Inertia], about: Vec) -> tuple[Vec, float]:
-    """The shaking force −Σ m a_G and moment −Σ (r_G × m a_G + I_G α) about ``about`` (DESIGN § 1.4)."""
-    fx = sum(r.force[0] for r in records)
-    fy = sum(r.force[1] for r in records)
-    m = 0.0
-    for r in records:
-        rx, ry = r.centre[0] - about[0], r.centre[1] - about[1]
-        m += rx * r.force[1] - ry * r.force[0] + r.couple
-    return (fx, fy), m

@@ -3,6 +3,9 @@ its parts, the shaking force and moment on the frame.  Plain records, SI; render
 
 from __future__ import annotations
 
+from dataclasses import field
+from typing import Any
+
 from mech._records import dataclass
 from mech.pairs.base import PairForce  # a pair kind's forces hook gives these: defined with the kinds
 
@@ -58,6 +61,11 @@ class ForceAnalysis:
     about: Vec
     determinate: bool
     note: str = ""
+    #: True for a static problem (no drive speed: no inertia, the rates only for the power balance).
+    static: bool = False
+    #: The solved instant the forces are of (a :class:`mech.kinematics.Kinematics`), for the free
+    #: bodies and the drawings; not part of the result's value.
+    kinematics: Any = field(default=None, compare=False, repr=False)
 
     def pair(self, joint: str) -> PairForce:
         """The force of ``joint`` on its second link (the first row found for a joint of more links)."""

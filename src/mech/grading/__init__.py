@@ -33,7 +33,7 @@ from collections.abc import Callable
 from typing import Any
 
 from mech.answers import JOINT_CLASSES, LINK_CLASSES, AnswerKey
-from mech.grading import cam, keys, properties
+from mech.grading import cam, forces, keys, properties
 from mech.grading.cam import cam_key
 from mech.grading.lazy import NOISE, Analysis, InternalError
 
@@ -75,8 +75,16 @@ COMPUTE: dict[str, Compute] = {
     "time_ratio": properties.time_ratio,
     "stroke.<joint>": properties.stroke,
     "mechanical_advantage.<out>": properties.mechanical_advantage,
-    "input_torque": properties.input_torque,
-    "input_force": properties.input_force,
+    "input_torque": forces.input_torque,  # with masses, their inertia and weight count (issue 24)
+    "input_force": forces.input_force,
+    "force.<joint>": forces.force,
+    "force.<joint>.x": forces.force_x,
+    "force.<joint>.y": forces.force_y,
+    "shaking_force": forces.shaking_force,
+    "shaking_moment": forces.shaking_moment,
+    "torque.mean": forces.torque_mean,
+    "energy.fluctuation": forces.energy_fluctuation,
+    "flywheel.inertia": forces.flywheel_inertia,
     "pressure_angle.<joint>": cam_key("pressure_angle"),
     "pressure_angle.<joint>.max": cam_key("pressure_angle.max"),
     "displacement.<point>": cam.displacement,

@@ -80,7 +80,7 @@ def _cam_of(mech: Any, name: str) -> Any:
     """The cam joint ``name`` names, or whose follower (its second link) carries the point ``name``."""
     from mech.pairs import kind_of, located_on
 
-    cams = [j for j in mech.joints if j.type == "cam" or (kind_of(j).higher and not kind_of(j).rolls)]
+    cams = [j for j in mech.joints if kind_of(j).higher and not kind_of(j).rolls]  # cams and contacts
     for j in cams:
         if j.name == name:
             return j

@@ -365,3 +365,9 @@ register("icentre-order", "table", f"{_HERE}:icentre_order_table")
 register("icentre-order", "json", f"{_HERE}:icentre_order_json")
 register("draw", "table", nothing)
 register("draw", "json", summary_json)
+
+# `mech forces` (issue 24): its report lives with its command's body
+register("forces", "table", "mech.render.forces:forces_table")
+register("forces", "json", "mech.render.forces:forces_json")
+register("force-sweep", "table", "mech.render.forces_sweep:cycle_table")
+register("force-sweep", "json", "mech.render.forces_sweep:cycle_json")
