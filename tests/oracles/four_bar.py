@@ -180,7 +180,10 @@ def rocker_swing(a: float, b: float, c: float, d: float, theta0: float) -> float
 
     grid = np.linspace(0.0, 2 * math.pi, 4097)
     v = np.unwrap(psi(grid))
-    if abs(v[-1] - v[0]) > math.pi:
+    # it turns when it comes back a whole turn on; past a change point it need not come back at
+    # all (a change-point four-bar's rocker runs 211° on over one turn, between 35° and 325°:
+    # a swing of 290°, not a turn), so a net run over half a turn is not enough
+    if abs(v[-1] - v[0]) > math.pi and float(np.ptp(v)) >= 2 * math.pi - 1e-9:
         return None
     values = [float(v[0]), float(v[-1])]
     for k in range(1, grid.size - 1):

@@ -286,7 +286,7 @@ def _closed_form(
     ``method="closed"`` the first of these is an error instead, and a moved
     angle next to a toggle is refused.
     """
-    prog = program(comp, lvl)
+    prog = program(comp, lvl, whole_turn=moved)
     if prog is None:
         if options.method == "closed":
             raise UnsupportedError(

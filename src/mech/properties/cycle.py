@@ -247,9 +247,17 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
     quantities = ([trans.quantity] if trans else []) + slides_and_links
     angles = np.linspace(0.0, 2.0 * math.pi, steps + 1)
     sw = sweep(mech, angles, level="position", options=options, quantities=quantities or None)
-    window = _drawn_circuit(sw.angles, sw.assembled, base.drives[0].angle if base.drives else None)
+    # separate circuits are parted by gaps where the loop cannot close; steps that are not assembled
+    # only because they sit on a change point (where the circuits meet) part nothing
+    drawn = base.drives[0].angle if base.drives else None
+    window = _drawn_circuit(sw.angles, sw.assembled, drawn) if sw.gaps else None
     if window is not None:  # the turn met other circuits: read the drawn one's alone
         angles = np.linspace(window[0], window[1], steps + 1)
+        sw = sweep(mech, angles, level="position", options=options, quantities=quantities or None)
+    elif sw.change_points and not _comes_back(sw, slides_and_links):
+        # past a change point the loop may come back only after a second turn of the crank (a
+        # change-point four-bar's rocker): its swing, or its turning, is read over that period
+        angles = np.linspace(0.0, 4.0 * math.pi, 2 * steps + 1)
         sw = sweep(mech, angles, level="position", options=options, quantities=quantities or None)
     ext = {e.quantity: e for e in sw.extremes}
     mu = ext.get(trans.quantity) if trans else None  # 0 or 180° where coupler and output fold in line
@@ -302,6 +310,22 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
         time_ratio_output=sw.time_ratio.output if sw.time_ratio else None,
         gaps=tuple((g.start, g.end) for g in sw.gaps),
     )
+
+
+def _comes_back(sw: Sweep, quantities: Sequence[str]) -> bool:
+    """Each output is where it started after the turn (angles modulo a turn, to 1e-9 of one)."""
+    import numpy as np
+
+    for key in quantities:
+        v = sw.series(key)
+        if v.size < 2 or not (np.isfinite(v[0]) and np.isfinite(v[-1])):
+            continue
+        gap = float(v[-1] - v[0])
+        if key.startswith("angle."):
+            gap = math.remainder(gap, 2.0 * math.pi)  # rad: a link back where it was, turns apart
+        if abs(gap) > 1e-9 * max(1.0, float(np.nanmax(np.abs(v)))):
+            return False
+    return True
 
 
 def _drawn_circuit(angles: np.ndarray, ok: np.ndarray, drawn: float | None) -> tuple[float, float] | None:

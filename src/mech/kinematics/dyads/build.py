@@ -23,18 +23,19 @@ generation stays; :class:`_Builder` names its steps.
 from __future__ import annotations
 
 import math
+from functools import partial
 from typing import Any
 
 from mech.kinematics.constraints import System
 from mech.kinematics.dyads.program import MATH, SLACK, DyadProgram
-from mech.kinematics.dyads.templates import fmt, rpr, rrp, rrr
+from mech.kinematics.dyads.templates import constants, fmt, rpr, rrp, rrr
 from mech.kinematics.layout import Layout
 from mech.pairs import kind_of
 
 __all__ = ["program"]
 
 
-def program(comp: Any, level: int = 0) -> DyadProgram | None:
+def program(comp: Any, level: int = 0, *, whole_turn: bool = True) -> DyadProgram | None:
     """The closed-form program of a compiled mechanism, or None when it does not decompose.
 
     Kept in the memo of the :class:`~mech.kinematics.compiled.Compiled` (itself
@@ -44,8 +45,16 @@ def program(comp: Any, level: int = 0) -> DyadProgram | None:
     few angles round the cycle; otherwise None, and Newton is used.  ``level``
     is the level the caller evaluates next: when the program is first made, that
     level's function is the one compiled and checked (one compilation, not two).
+
+    A program is made checked at the drawn angle only; ``whole_turn`` (every caller but a
+    solve at the file's own angle) asks for the seven other angles too, checked once when
+    first asked.  A homework file solved at its drawn instant pays for one angle's check,
+    not eight (issue 22's throughput: most of a file's first solve was the program's making).
     """
-    return comp.memo.get("program", lambda: _checked_program(comp, level))  # type: ignore[no-any-return]
+    prog: DyadProgram | None = comp.memo.get("program", lambda: _checked_program(comp, level))
+    if prog is None or not whole_turn:
+        return prog
+    return prog if prog.memo("whole turn", lambda: _verified(prog, comp.system, 8)) else None
 
 
 def _checked_program(comp: Any, level: int) -> DyadProgram | None:
@@ -55,7 +64,7 @@ def _checked_program(comp: Any, level: int) -> DyadProgram | None:
     except _NoDecomposition:
         return None
     prog.function(level)
-    return prog if _verified(prog, comp.system) else None
+    return prog if _verified(prog, comp.system, 1) else None
 
 
 class _NoDecomposition(Exception):
@@ -77,15 +86,16 @@ def _build(lay: Layout, sys_: System, drive_angles: tuple[float | None, ...]) ->
     if spec.link is None or spec.reference != lay.mech.ground or drive_angles[0] is None:
         raise _NoDecomposition
     b = _Builder(lay, sys_)
-    b.ground_constants()
-    b.crank(spec.link, spec.pivot, drive_angles[0])
-    rules = (b.pose_rigid, b.rrr, b.rrp, b.rpr)
-    while len(b.known_links) < b.n + 1 and any(rule() for rule in rules):
-        pass
-    if len(b.known_links) < b.n + 1:
-        raise _NoDecomposition
-    for name in b.pos:
-        b.emit_point(name)
+    with constants() as values:
+        b.ground_constants()
+        b.crank(spec.link, spec.pivot, drive_angles[0])
+        rules = (b.pose_rigid, b.rrr, b.rrp, b.rpr)
+        while len(b.known_links) < b.n + 1 and any(rule() for rule in rules):
+            pass
+        if len(b.known_links) < b.n + 1:
+            raise _NoDecomposition
+        for name in b.pos:
+            b.emit_point(name)
     return DyadProgram(
         steps=tuple(b.steps),
         links=sys_.links,
@@ -93,7 +103,8 @@ def _build(lay: Layout, sys_: System, drive_angles: tuple[float | None, ...]) ->
         dyads=tuple(b.dyads),
         centre=(float(sys_.centre[0]), float(sys_.centre[1])),
         drawn_angle=float(drive_angles[0]),
-        sources=b.sources(),
+        writer=partial(b.source, len(values)),
+        constants=tuple(values),
         label=lay.mech.label,
         _sizes=(len(b.dyads), b.n, len(b.pos)),
     )
@@ -390,8 +401,8 @@ class _Builder:
         return False
 
     # -- the functions --------------------------------------------------------------------
-    def sources(self) -> tuple[str, str, str]:
-        """The code of the generated function of each level (0, 1, 2)."""
+    def source(self, count: int, level: int) -> str:
+        """The code of one level's function (0, 1, 2), inside a maker taking the ``count`` constants."""
         n, pv, names, nd = self.n, self.pv, self._names, len(self.dyads)
         outs = [f"{w}{k}" for w in ("d", "sn", "ms") for k in range(nd)]
         outs += [f"l{i}_{w}" for w in ("x", "y", "t") for i in range(n)]
@@ -404,36 +415,35 @@ class _Builder:
         ]
         # b0, b1 …: each dyad's branch, flipped (−1) past a change point (see :func:`branches`)
         branch = "".join(f", b{k}=1.0" for k in range(nd))
-        sources = []
-        for level in range(3):
-            lines = []
-            for line in self.code:
-                stripped = line.lstrip()
-                if stripped.startswith("#V "):
-                    if level >= 1:
-                        lines.append("    " + stripped[3:])
-                elif stripped.startswith("#A "):
-                    if level >= 2:
-                        lines.append("    " + stripped[3:])
-                else:
-                    lines.append(line)
-            ret = outs + (vel if level >= 1 else []) + (acc if level >= 2 else [])
-            sources.append(
-                f"def run(phi, omega, alpha, sqrt, cos, sin, atan2, clip{branch}):\n"
-                + "\n".join(lines)
-                + "\n    return ("
-                + ", ".join(ret)
-                + ",)\n"
-            )
-        return (sources[0], sources[1], sources[2])
+        lines = []
+        for line in self.code:
+            stripped = line.lstrip()
+            if stripped.startswith("#V "):
+                if level >= 1:
+                    lines.append("    " + stripped[3:])
+            elif stripped.startswith("#A "):
+                if level >= 2:
+                    lines.append("    " + stripped[3:])
+            else:
+                lines.append(line)
+        ret = outs + (vel if level >= 1 else []) + (acc if level >= 2 else [])
+        # run() inside make(_k0, _k1 …): the source names the constants, make binds this mechanism's
+        return (
+            f"def make({''.join(f'_k{i}, ' for i in range(count))}):\n"
+            f"  def run(phi, omega, alpha, sqrt, cos, sin, atan2, clip{branch}):\n"
+            + "\n".join("  " + line for line in lines)
+            + "\n      return ("
+            + ", ".join(ret)
+            + ",)\n  return run\n"
+        )
 
 
 def _name(sys_: System, i: int) -> str:
     return sys_.links[i] if i < sys_.n else sys_.ground
 
 
-def _verified(prog: DyadProgram, sys_: System) -> bool:
-    """The program satisfies every constraint row at the drawn angle and at seven others round the cycle.
+def _verified(prog: DyadProgram, sys_: System, angles: int) -> bool:
+    """The program satisfies every constraint row at the drawn angle (and ``angles`` − 1 others round the cycle).
 
     Evaluated by the level already compiled, the rows of all eight configurations at once.
     """
@@ -443,7 +453,7 @@ def _verified(prog: DyadProgram, sys_: System) -> bool:
     level = prog.positions_level()
     qs: list[np.ndarray] = []
     turned: list[float] = []
-    for k in range(8):
+    for k in range(angles):
         phi = prog.drawn_angle + k * math.pi / 4
         try:
             out = prog.raw(phi, level=level, xp=MATH)

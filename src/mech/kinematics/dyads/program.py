@@ -10,6 +10,7 @@ floats (:data:`MATH`) and on numpy arrays (:func:`numpy_namespace`).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import field
 from typing import Any
 
@@ -102,26 +103,43 @@ class DyadProgram:
     dyads: tuple[tuple[str, str, str], ...]
     centre: tuple[float, float]
     drawn_angle: float
-    sources: tuple[str, str, str] = field(repr=False)
+    writer: Callable[[int], str] = field(repr=False)  # the source of a level, written when first asked
     label: str = field(repr=False)
     _sizes: tuple[int, int, int] = field(repr=False)  # dyads, links, points
+    #: The numbers the sources name ``_k0``, ``_k1`` …: this mechanism's lengths, offsets, branch signs.
+    constants: tuple[float, ...] = field(default=(), repr=False)
     #: The compiled functions (keys 0, 1, 2) and what is found once round the cycle (gaps, change points).
     _memo: dict[Any, Any] = field(default_factory=dict, repr=False)
 
     @property
+    def sources(self) -> tuple[str, str, str]:
+        """The generated code of each level's function (positions; and velocities; and accelerations)."""
+        return (self.source_of(0), self.source_of(1), self.source_of(2))
+
+    @property
     def source(self) -> str:
         """The generated code of the acceleration-level function (for reading)."""
-        return self.sources[2]
+        return self.source_of(2)
+
+    def memo(self, key: str, make: Callable[[], Any]) -> Any:
+        """A value derived from the program, made once (the whole turn's check)."""
+        if key not in self._memo:
+            self._memo[key] = make()
+        return self._memo[key]
+
+    def source_of(self, level: int) -> str:
+        """The code of one level's function, written when first asked (one command needs one level)."""
+        src = self._memo.get(("source", level))
+        if src is None:
+            src = self._memo[("source", level)] = self.writer(level)
+        return src  # type: ignore[no-any-return]
 
     # -- evaluation -------------------------------------------------------------------
     def function(self, level: int) -> Any:
         """The generated function of ``level`` (0, 1 or 2), compiled when first asked."""
         fn = self._memo.get(level)
         if fn is None:
-            env: dict[str, Any] = {}
-            code = compile(self.sources[level], f"<dyad program of {self.label}>", "exec")
-            exec(code, env)  # our own generated code
-            fn = self._memo[level] = env["run"]
+            fn = self._memo[level] = _maker(self.source_of(level))(*self.constants)
         return fn
 
     def positions_level(self) -> int:
@@ -283,3 +301,21 @@ def numpy_namespace() -> _Numpy:
     if _NUMPY is None:
         _NUMPY = _Numpy()
     return _NUMPY
+
+
+#: Compiled makers by their source: mechanisms of one structure (a class's four-bars, a folder of
+#: slider cranks) generate the same source with their own constants, and compile it once per process.
+_MAKERS: dict[str, Any] = {}
+_MAKERS_KEPT = 256
+
+
+def _maker(source: str) -> Any:
+    """``make(_k0, …)`` of a generated source, compiled once per process (compiling costs more than a solve)."""
+    make = _MAKERS.get(source)
+    if make is None:
+        env: dict[str, Any] = {}
+        exec(compile(source, "<dyad program>", "exec"), env)  # our own generated code
+        if len(_MAKERS) >= _MAKERS_KEPT:
+            _MAKERS.pop(next(iter(_MAKERS)))
+        make = _MAKERS[source] = env["make"]
+    return make

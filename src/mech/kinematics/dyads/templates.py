@@ -30,13 +30,41 @@ configuration, so the closed form stays on the assembly the file drew:
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from typing import Any
 
-__all__ = ["fmt", "rpr", "rrp", "rrr"]
+__all__ = ["constants", "fmt", "rpr", "rrp", "rrr"]
+
+
+#: The constants of the program being generated, when one is (see :func:`constants`).
+_COLLECTED: ContextVar[list[float] | None] = ContextVar("dyad_constants", default=None)
 
 
 def fmt(x: float) -> str:
-    return repr(float(x))
+    """A number of the generated code: a named constant while a program is generated, else its literal.
+
+    Named, the source depends on the mechanism's structure only (which dyads, in which order),
+    not on its lengths: mechanisms of one structure — a class's four-bars — share one compiled
+    function (:meth:`mech.kinematics.dyads.program.DyadProgram.function`), each with its own values.
+    """
+    collected = _COLLECTED.get()
+    if collected is None:
+        return repr(float(x))
+    collected.append(float(x))
+    return f"_k{len(collected) - 1}"
+
+
+@contextmanager
+def constants() -> Iterator[list[float]]:
+    """Collect the numbers :func:`fmt` writes while generating one program, in order (``_k0``, ``_k1`` …)."""
+    values: list[float] = []
+    token = _COLLECTED.set(values)
+    try:
+        yield values
+    finally:
+        _COLLECTED.reset(token)
 
 
 def rrr(k: int, j: str, p: str, q: str, lp: float, lq: float, sign: float, pv: Any) -> list[str]:
