@@ -737,3 +737,29 @@ def test_an_entry_using_an_anchor_written_in_another_entry_is_graded(problems, t
     assert four["dof"]["status"] == PASS
     assert four["omega.rocker"]["status"] == ERROR and four["omega.rocker"]["line"] == 4
     assert rows["slider_crank.yaml"]["answers"][0]["status"] == PASS
+
+
+@pytest.mark.parametrize("table", [False, True], ids=["plain", "table"])
+def test_quiet_lists_each_students_failing_answers_and_not_the_passing_ones(
+    classroom: Path, table: bool
+) -> None:
+    if table:
+        from rich.console import Console
+
+        from mech.render.check import check_table
+
+        buffer = io.StringIO()
+        console = Console(file=buffer, force_terminal=True, width=200, color_system=None, markup=False)
+        check_table(grade(classroom), console, quiet=True)
+        out = buffer.getvalue()
+    else:
+        p = mech(
+            "check", str(classroom / "problems"), "--answers", str(classroom / "sheets"), "-q", "-j", "1"
+        )
+        assert p.returncode == 1
+        out = p.stdout
+    # erin's wrong speed (2 m/s for the 1.0 m/s of ω r) and bob's unanswered p1 are listed with their keys
+    erin = out[out.index("erin") :]
+    assert "velocity.B" in erin and "2 m/s" in erin
+    assert "not answered" in out[out.index("bob") :]
+    assert "alice" not in out  # every answer right: not listed

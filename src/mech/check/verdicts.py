@@ -267,6 +267,9 @@ def _verdict(claim: Claim, akey: AnswerKey, analysis: Analysis, default: Toleran
         value = grading.value(akey, analysis)
         verdict = _COMPARE[akey.compare](claim, akey, value, analysis, tolerance, base)
     except MechError as error:
+        lower = analysis.below(akey.level)  # the whole solve failed: this key may need less of it
+        if lower is not None:
+            return _verdict(claim, akey, lower, default)
         return _replace(base, status=ERROR, message=f"cannot be computed: {_reason(error)}")
     except (Undefined, InternalError) as why:
         return _replace(base, status=ERROR, message=str(why))
@@ -381,12 +384,25 @@ def _compare(
     if ok:
         return _replace(base, status=PASS, message=f"{what}{shown}", **common)
     slip = (
-        "" if dimension in (Dimension.NUMBER,) or sense else _unit_slip(computed, claimed, claim, tolerance)
+        ""
+        if dimension in (Dimension.NUMBER,) or sense
+        else _unit_slip(computed, claimed, claim, tolerance, dimension)
     )
     if slip:
         message = f"{what}{shown}{slip}"
-    elif sense and computed * claimed < 0 and abs(computed) > floor:
+    elif (
+        sense
+        and computed * claimed < 0
+        and abs(computed) > floor
+        and abs(abs(computed) - abs(claimed)) <= allowed
+    ):
         message = f"wrong sense: {what}{shown}, claimed {claim.sense or ('ccw' if claimed > 0 else 'cw')}"
+    elif sense and computed * claimed < 0 and abs(computed) > floor:
+        # the magnitude is wrong too: the larger error is named first (issue 22)
+        off = abs(abs(computed) - abs(claimed)) / abs(computed)
+        message = (
+            f"{what}{shown}: the magnitude is off by {off:.1%} (allowed {tolerance}), and the sense is wrong"
+        )
     elif tolerance.relative and computed != 0.0:
         message = f"{what}{shown}: off by {err / abs(computed):.1%} (allowed {tolerance})"
     else:
@@ -395,10 +411,25 @@ def _compare(
 
 
 _SLIPS = {1e3: "mm", 1e2: "cm"}
+#: What a length unit becomes in the unit of each quantity a slip hint may name (mm → mm/s …).
+_SLIP_SUFFIX = {Dimension.LENGTH: "", Dimension.VELOCITY: "/s", Dimension.ACCELERATION: "/s^2"}
 
 
-def _unit_slip(computed: float, claimed: float, claim: Claim, tolerance: Tolerance) -> str:
-    """A hint when a bare claim is the computed value in mm or cm: bare numbers are SI."""
+def _unit_slip(
+    computed: float,
+    claimed: float,
+    claim: Claim,
+    tolerance: Tolerance,
+    dimension: Dimension = Dimension.LENGTH,
+) -> str:
+    """A hint when a bare claim is the computed value in mm or cm: bare numbers are SI.
+
+    The unit it suggests measures the claim's own quantity (``mm/s`` for a speed):
+    a student who follows the hint must get a pass, not an error (issue 22).
+    """
+    suffix = _SLIP_SUFFIX.get(dimension)
+    if suffix is None:
+        return ""
     if computed == 0.0 or not claim.text or not claim.text.lstrip("[-+ ").replace(".", "", 1)[:1].isdigit():
         return ""
     try:
@@ -410,6 +441,7 @@ def _unit_slip(computed: float, claimed: float, claim: Claim, tolerance: Toleran
         if abs(claimed - computed * factor) <= max(
             tolerance.value if tolerance.relative else 0.02, 0.02
         ) * abs(computed * factor):
+            unit += suffix
             return f'; the claim looks like {unit}: a bare number is SI (write e.g. "{claimed:g} {unit}")'
     return ""
 

@@ -155,9 +155,9 @@ class Stream:
         if self.verbose:
             self._answers(r)
 
-    def _answers(self, r: FileResult) -> None:
+    def _answers(self, r: FileResult, *, failing_only: bool = False) -> None:
         for v in r.verdicts:
-            if self.quiet and v.status == PASS:
+            if (self.quiet and v.status == PASS) or (failing_only and v.status not in (FAIL, ERROR)):
                 continue
             claimed = f" {v.claimed}" if v.claimed else ""
             self._write(f"    {_PLAIN[v.status]:<7} {v.key}{claimed}: {_message(v)}")
@@ -166,15 +166,22 @@ class Stream:
         """The teacher's excluded files, every student (with sheets), the closing line."""
         if report.students:
             self._teacher(report)
+            by_student: dict[str, list[FileResult]] = {}
+            if self.verbose or self.quiet:  # -q lists each student's failing answers (issue 22)
+                for r in report.results:
+                    if r.student is not None and (r.verdicts or r.sheet):
+                        by_student.setdefault(r.student, []).append(r)
             for s in report.scores():
                 if self.quiet and s.passed == s.asked:
                     continue
                 self._write(_student_line(s))
-                if self.verbose:
-                    for r in report.results:
-                        if r.student == s.student and (r.verdicts or r.sheet):
-                            self._write(f"  {r.path}" + ("  (sheet)" if r.sheet else ""))
-                            self._answers(r)
+                for r in by_student.get(s.student, ()):
+                    if self.verbose:
+                        self._write(f"  {r.path}" + ("  (sheet)" if r.sheet else ""))
+                        self._answers(r)
+                    elif r.failed or r.errors:
+                        self._write(f"  {r.path}" + ("  (sheet)" if r.sheet else ""))
+                        self._answers(r, failing_only=True)
         self._write(summary_line(report))
         self.out.flush()
 
@@ -216,6 +223,8 @@ def check_table(
         _files_table(report, console, quiet=quiet)
     if verbose:
         _answers_table(report, console, quiet=quiet)
+    elif quiet and report.students:  # -q: each student's failing answers (issue 22)
+        _answers_table(report, console, quiet=True, failing_only=True)
     style = "green" if report.exit_status == 0 else "red"
     console.print(Text(summary_line(report), style="bold " + style))
 
@@ -270,8 +279,13 @@ def _files_table(report: Report, console: ReportConsole, *, quiet: bool) -> None
         console.print(table)
 
 
-def _answers_table(report: Report, console: ReportConsole, *, quiet: bool) -> None:
-    """One row per answer under a row naming its file (a file column would squeeze the reasons)."""
+def _answers_table(
+    report: Report, console: ReportConsole, *, quiet: bool, failing_only: bool = False
+) -> None:
+    """One row per answer under a row naming its file (a file column would squeeze the reasons).
+
+    ``failing_only``: the failed and errored answers alone (``-q`` with a class).
+    """
     from mech.render.table import Table, Text
 
     table = Table(box=_box(console))
@@ -281,7 +295,10 @@ def _answers_table(report: Report, console: ReportConsole, *, quiet: bool) -> No
     table.add_column("computed / reason", overflow="fold")
     rows = 0
     for r in report.results:
-        shown = [v for v in r.verdicts if not (quiet and v.passed)]
+        if failing_only:
+            shown = [v for v in r.verdicts if v.status in (FAIL, ERROR)]
+        else:
+            shown = [v for v in r.verdicts if not (quiet and v.passed)]
         if not shown:
             continue
         if rows:
