@@ -52,7 +52,7 @@ import contextlib
 import os
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import field, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from mech._records import dataclass
 from mech.batchpool import Pool, cpu_count, run_jobs
@@ -152,6 +152,8 @@ class StudentScore:
     failed: int
     errors: int
     ignored: int = 0
+    earned: float = 0.0  # marks earned (DESIGN § 1.3: a question is worth 1 unless the file says)
+    out_of: float = 0.0  # marks asked: the same for every student
 
     @property
     def total(self) -> int:
@@ -159,8 +161,8 @@ class StudentScore:
 
     @property
     def score(self) -> float:
-        """Passed questions over asked questions (0 when nothing is asked)."""
-        return self.passed / self.asked if self.asked else 0.0
+        """Marks earned over marks asked (0 when nothing is asked); with no marks given, passed over asked."""
+        return self.earned / self.out_of if self.out_of else 0.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -230,9 +232,9 @@ class Report:
 
     def scores(self) -> tuple[StudentScore, ...]:
         """Per-student totals, sorted by student (empty without answer sheets)."""
-        acc = {
-            s: [0, 0, 0, 0, 0, 0] for s in self.students
-        }  # problems, asked, passed, failed, errors, ignored
+        acc: dict[str, list[Any]] = {
+            s: [0, 0, 0, 0, 0, 0, 0.0, 0.0] for s in self.students
+        }  # problems, asked, passed, failed, errors, ignored, earned, out_of
         for r in self.results:
             if r.student is None or r.student not in acc:
                 continue
@@ -245,6 +247,8 @@ class Report:
             a[2] += r.passed
             a[3] += r.failed
             a[4] += r.errors
+            a[6] += r.earned
+            a[7] += r.out_of
         return tuple(StudentScore(s, *acc[s]) for s in self.students)
 
 

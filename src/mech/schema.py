@@ -236,9 +236,12 @@ _SECTIONS: dict[str, Any] = {
         ),
     },
     "asks": {
-        "type": "array",
-        "items": {"type": "string"},
-        "description": "Answer keys a student must answer (mech check --answers), when `answers` gives no values.",
+        "oneOf": [
+            {"type": "array", "items": {"type": "string"}},
+            {"type": "object", "additionalProperties": {"type": "number", "exclusiveMinimum": 0}},
+        ],
+        "description": "Answer keys a student must answer (mech check --answers), when `answers` gives no "
+        "values: a list (1 mark each) or a mapping of key to marks.",
     },
     "answers": {
         "type": "object",
@@ -252,7 +255,12 @@ _SECTIONS: dict[str, Any] = {
                     "required": ["value"],
                     "additionalProperties": False,
                     "properties": _only(
-                        ANSWER_KEYS, {"value": {}, "tolerance": {"type": ["string", "number"]}}
+                        ANSWER_KEYS,
+                        {
+                            "value": {},
+                            "tolerance": {"type": ["string", "number"]},
+                            "marks": {"type": "number", "exclusiveMinimum": 0},
+                        },
                     ),
                 },
             ]

@@ -77,6 +77,10 @@ class Verdict:
         For a failed answer, the usual mistake the claim matches, computed
         (``"the opposite sense"``, ``"the other assembly branch (C below AD)"``);
         None when it matches none of them.
+    marks
+        What the question is worth (DESIGN § 1.3: ``asks`` as a mapping, or
+        ``marks`` on an answer; 1 by default): a pass earns them all, anything
+        else none.  An ignored sheet key is worth 0.
     """
 
     key: str
@@ -90,10 +94,21 @@ class Verdict:
     message: str = ""
     where: Where | None = field(default=None, compare=False)
     diagnosis: str | None = None
+    marks: float = 1.0
 
     @property
     def passed(self) -> bool:
         return self.status == PASS
+
+    @property
+    def earned(self) -> float:
+        """The marks this answer earns: all of them for a pass, none otherwise."""
+        return self.marks if self.status == PASS else 0.0
+
+    @property
+    def out_of(self) -> float:
+        """The marks it is scored out of (0 for an ignored sheet key)."""
+        return self.marks if self.status != IGNORED else 0.0
 
     @property
     def scored(self) -> bool:
@@ -119,6 +134,7 @@ def _unpickled(
     message: str,
     where: Where | None,
     diagnosis: str | None,
+    marks: float = 1.0,
 ) -> Verdict:
     """A pickled verdict read back (:meth:`Verdict.__reduce__`)."""
     return Verdict(
@@ -133,6 +149,7 @@ def _unpickled(
         message,
         where,
         None if diagnosis is None else sys.intern(diagnosis),
+        marks,
     )
 
 
@@ -180,6 +197,16 @@ class FileResult:
     def total(self) -> int:
         """Scored verdicts (ignored sheet keys are not counted)."""
         return sum(v.status != IGNORED for v in self.verdicts)
+
+    @property
+    def earned(self) -> float:
+        """Marks earned over the scored answers (DESIGN § 1.3)."""
+        return sum(v.earned for v in self.verdicts)
+
+    @property
+    def out_of(self) -> float:
+        """Marks asked: what the scored answers are worth, the same for every student."""
+        return sum(v.out_of for v in self.verdicts)
 
     @property
     def ok(self) -> bool:
@@ -403,7 +430,7 @@ def _compare(
         message = (
             f"{what}{shown}: the magnitude is off by {off:.1%} (allowed {tolerance}), and the sense is wrong"
         )
-    elif tolerance.relative and computed != 0.0:
+    elif tolerance.relative and abs(computed) > floor:  # a value at rest (2e-16) has no relative error
         message = f"{what}{shown}: off by {err / abs(computed):.1%} (allowed {tolerance})"
     else:
         message = f"{what}{shown}: off by {_show(err, claim, dimension, sense=False)} (allowed {tolerance})"

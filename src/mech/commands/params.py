@@ -341,6 +341,11 @@ CHECK = (
     _out(("--junit",), "junit", "Also write JUnit XML (one testcase per answer)."),
     _out(("--gradescope",), "gradescope", "Also write a Gradescope autograder results.json."),
     _out(("--csv",), "csv_path", "Also write a CSV gradebook (student, problem …)."),
+    _out(
+        ("--gradebook",),
+        "gradebook",
+        "With --answers: write one row per student (a column per problem, total, out_of, percent).",
+    ),
     _flag(("-q", "--quiet"), "quiet", "List only files, students and answers that did not pass."),
     _flag(("-v", "--verbose"), "verbose", "List every answer (default: one line per file, or per student)."),
     Param(

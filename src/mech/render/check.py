@@ -39,6 +39,7 @@ __all__ = [
     "check_table",
     "csv_text",
     "dumps",
+    "gradebook_text",
     "gradescope_dict",
     "junit_chunks",
     "junit_xml",
@@ -410,6 +411,8 @@ def verdict_dict(v: Verdict) -> dict[str, Any]:
         "tolerance": v.tolerance,
         "message": v.message,
         "diagnosis": v.diagnosis,
+        "marks": v.marks,
+        "earned": v.earned,
         "line": v.where.line if v.where and v.where.line else None,
         "column": v.where.column if v.where and v.where.line else None,
         "source": v.where.path if v.where else None,
@@ -427,6 +430,8 @@ def _file_dict(r: FileResult) -> dict[str, Any]:
         "errors": r.errors,
         "ignored": r.ignored,
         "total": r.total,
+        "earned": r.earned,
+        "out_of": r.out_of,
         "skipped": r.skipped,
         "excluded": r.excluded,
         "sheet": r.sheet,
@@ -464,6 +469,8 @@ def report_dict(report: Report) -> dict[str, Any]:
                 "errors": s.errors,
                 "ignored": s.ignored,
                 "total": s.asked,
+                "earned": s.earned,
+                "out_of": s.out_of,
                 "score": round(s.score, 6),
             }
             for s in report.scores()
@@ -530,8 +537,16 @@ def _suite(r: FileResult) -> str:
             child = f"<skipped message={_attr(v.message)} />"
             skipped += 1
         cases.append(_case(classname, v.key, child))
+    tests = len(cases)
+    if r.verdicts and not (r.excluded or r.sheet or r.skipped):
+        # the score in marks (DESIGN § 1.3): JUnit has no score, so it rides as suite properties
+        cases.insert(
+            0,
+            f'    <properties>\n      <property name="earned" value="{r.earned:g}" />\n'
+            f'      <property name="out_of" value="{r.out_of:g}" />\n    </properties>\n',
+        )
     return (
-        f'  <testsuite name={_attr(_label(r))} tests="{len(cases)}" failures="{r.failed}" '
+        f'  <testsuite name={_attr(_label(r))} tests="{tests}" failures="{r.failed}" '
         f'errors="{r.errors}" skipped="{skipped}"'
         + (">\n" + "".join(cases) + "  </testsuite>\n" if cases else " />\n")
     )
@@ -589,7 +604,7 @@ def _problem_lines(r: FileResult) -> list[str]:
 
 # -- Gradescope -----------------------------------------------------------------------------
 def gradescope_dict(report: Report) -> dict[str, Any]:
-    """Gradescope autograder ``results.json``: one test per answer, one point each.
+    """Gradescope autograder ``results.json``: one test per answer, worth its marks (1 by default).
 
     Follows the autograder specification (gradescope-autograders.readthedocs.io,
     "Output format"): a top-level ``score`` and ``output``, and ``tests`` with
@@ -612,7 +627,7 @@ def gradescope_dict(report: Report) -> dict[str, Any]:
             )
             tests.append(_gs(f"{title}", f"{i}", 0.0, 0.0, "passed", why))
         for k, v in enumerate(r.verdicts, 1):
-            points = 1.0 if v.scored and not r.excluded and not r.sheet else 0.0
+            points = v.marks if v.scored and not r.excluded and not r.sheet else 0.0
             tests.append(
                 _gs(
                     f"{title}: {v.key}",
@@ -646,15 +661,17 @@ def _gradescope_output(v: Verdict) -> str:
 
 
 # -- CSV ------------------------------------------------------------------------------------
-CSV_COLUMNS = ("student", "problem", "passed", "total", "score", "status")
+CSV_COLUMNS = ("student", "problem", "passed", "total", "score", "status", "earned", "out_of")
 
 
 def csv_text(report: Report) -> str:
-    """One row per student and problem for a gradebook (Moodle, Canvas): ``score`` is a percentage.
+    """One row per student and problem: ``score`` is a percentage of the marks (earned over out_of).
 
-    ``status`` says what the row is: ``graded``, ``nothing to check``,
-    ``excluded`` (the problem file is the teacher's error: no score, not a 0)
-    or ``sheet`` (a row about the sheet itself: ignored keys, unreadable sheet).
+    (``--gradebook`` writes the one row per student that gradebooks import.)
+
+        ``status`` says what the row is: ``graded``, ``nothing to check``,
+        ``excluded`` (the problem file is the teacher's error: no score, not a 0)
+        or ``sheet`` (a row about the sheet itself: ignored keys, unreadable sheet).
     """
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
@@ -673,6 +690,48 @@ def csv_text(report: Report) -> str:
             notes = "; ".join(f"{v.key}: {v.message}" for v in r.verdicts)
             writer.writerow([r.student or "", r.path, "", "", "", f"sheet: {notes}"])
         else:
-            score = 100.0 * r.passed / r.total if r.total else 0.0
-            writer.writerow([r.student or "", r.path, r.passed, r.total, f"{score:.1f}", "graded"])
+            score = 100.0 * r.earned / r.out_of if r.out_of else 0.0
+            row = [r.student or "", r.path, r.passed, r.total, f"{score:.1f}", "graded"]
+            writer.writerow([*row, f"{r.earned:g}", f"{r.out_of:g}"])
+    return buffer.getvalue()
+
+
+# -- the gradebook: one row per student --------------------------------------------------------
+def _marks(x: float) -> str:
+    """Marks as a gradebook cell: a plain decimal number (no exponent, no thousands separator)."""
+    return f"{x:.4f}".rstrip("0").rstrip(".") if x != int(x) else str(int(x))
+
+
+def problem_label(r: FileResult) -> str:
+    """A problem's column in the gradebook: its file name when it lies in a folder named after the
+    student (``class/s17/four_bar.yaml``: every student's own variant of one problem, one column),
+    else its path as found."""
+    parts = r.path.replace(os.sep, "/").split("/")
+    if r.student is not None and len(parts) >= 2 and parts[-2] == r.student:
+        return parts[-1]
+    return r.path
+
+
+def gradebook_text(report: Report) -> str:
+    """``--gradebook``: one row per student, ``student``, a column per problem (marks earned),
+    ``total``, ``out_of`` and ``percent`` (DESIGN § 1.3): the shape Moodle's and Canvas's CSV grade
+    imports read (a header row, one identifying column, numeric cells, one row per student).
+
+    A problem left out of every score (the teacher's error) has no column: it counts for no one.
+    """
+    columns: dict[str, None] = {}
+    earned: dict[tuple[str, str], float] = {}
+    for r in report.results:
+        if r.student is None or r.sheet or r.excluded or r.skipped:
+            continue
+        label = problem_label(r)
+        columns.setdefault(label)
+        earned[(r.student, label)] = earned.get((r.student, label), 0.0) + r.earned
+    problems = sorted(columns)
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(["student", *problems, "total", "out_of", "percent"])
+    for s in report.scores():
+        cells = [_marks(earned.get((s.student, p), 0.0)) for p in problems]
+        writer.writerow([s.student, *cells, _marks(s.earned), _marks(s.out_of), f"{100 * s.score:.1f}"])
     return buffer.getvalue()
