@@ -415,6 +415,21 @@ def check_command(**values: Any) -> None:
     run_command("check", values)
 
 
+@cli.command(name="key")
+@params_of("key")
+def key_command(**values: Any) -> None:
+    """Every problem's answers to its questions: the teacher's key.
+
+    For each problem file under PATHS, the computed answer to each of its
+    questions (its answers' keys, else its asks), with its marks; --json or
+    --csv FILE for tools. Exit 1 when a question cannot be computed, 2 when
+    a file cannot be read.
+    """
+    from mech.commands.classroom import key_command as run
+
+    run(values)
+
+
 # -- drawings -------------------------------------------------------------------------
 @cli.command(name="draw")
 @kinematic_command("draw")

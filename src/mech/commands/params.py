@@ -361,6 +361,12 @@ CHECK = (
     JSON,
 )
 
+KEY = (
+    Param(("paths",), "paths", "path", nargs=-1, required=True, exists=True),
+    _out(("--csv",), "csv_path", "Also write the key as CSV (problem, key, value, unit)."),
+    JSON,
+)
+
 DRAW = (
     _out(("-o", "--output"), "output", "The drawing to write: .svg or .png.", required=True),
     _flag(("--velocity",), "velocity", "Add the velocity polygon (o, a, b …) beside the configuration."),
@@ -441,6 +447,7 @@ COMMANDS: dict[str, tuple[Param, ...]] = {
     ),
     "sweep": (*SWEEP, *KINEMATIC),
     "check": CHECK,
+    "key": KEY,
     "draw": (*DRAW, *KINEMATIC, ALPHA),
     "cam": CAM,
 }
