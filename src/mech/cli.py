@@ -430,6 +430,21 @@ def key_command(**values: Any) -> None:
     run(values)
 
 
+@cli.command(name="variants")
+@params_of("variants")
+def variants_command(**values: Any) -> None:
+    """A problem for each student: its numbers drawn from the file's vary:, kept by its keep:.
+
+    Writes OUTPUT/<student>/<file> (the student's problem, drawn positions
+    recomputed), a drawing to scale beside it, and OUTPUT/key.csv and
+    OUTPUT/key.json. A student's variant depends only on the seed, the file
+    and the student's id.
+    """
+    from mech.commands.classroom import variants_command as run
+
+    run(values)
+
+
 # -- drawings -------------------------------------------------------------------------
 @cli.command(name="draw")
 @kinematic_command("draw")

@@ -243,6 +243,14 @@ _SECTIONS: dict[str, Any] = {
         "description": "Answer keys a student must answer (mech check --answers), when `answers` gives no "
         "values: a list (1 mark each) or a mapping of key to marks.",
     },
+    "vary": {
+        "type": "object",
+        "description": "mech variants: dotted paths of scalars to {from, to, step} ranges or lists of values.",
+    },
+    "keep": {
+        "type": "object",
+        "description": "mech variants: answer keys each variant must keep: a label, or {at_least, at_most}.",
+    },
     "answers": {
         "type": "object",
         "properties": {"tolerance": {"type": "string", "pattern": r"^\s*\d+(\.\d*)?\s*%\s*$"}},

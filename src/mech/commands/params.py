@@ -367,6 +367,35 @@ KEY = (
     JSON,
 )
 
+VARIANTS = (
+    Param(("file",), "file", "path", required=True, exists=True, dir_okay=False),
+    Param(
+        ("--roster",),
+        "roster",
+        "path",
+        "The class: a CSV with a `student` column.",
+        required=True,
+        exists=True,
+        dir_okay=False,
+    ),
+    Param(
+        ("--seed",),
+        "seed",
+        "int",
+        "The class's seed: the same seed gives the same variants.",
+        default=0,
+        show_default=True,
+    ),
+    Param(
+        ("-o", "--output"),
+        "output",
+        "path",
+        "The folder to write (class/<student>/…, key.csv, key.json).",
+        required=True,
+    ),
+    _flag(("--explain",), "explain", "Also write each student's worked construction beside their problem."),
+)
+
 DRAW = (
     _out(("-o", "--output"), "output", "The drawing to write: .svg or .png.", required=True),
     _flag(("--velocity",), "velocity", "Add the velocity polygon (o, a, b …) beside the configuration."),
@@ -448,6 +477,7 @@ COMMANDS: dict[str, tuple[Param, ...]] = {
     "sweep": (*SWEEP, *KINEMATIC),
     "check": CHECK,
     "key": KEY,
+    "variants": VARIANTS,
     "draw": (*DRAW, *KINEMATIC, ALPHA),
     "cam": CAM,
 }

@@ -57,6 +57,8 @@ TOP_KEYS = (
     "points",
     "answers",
     "asks",
+    "vary",  # how the given values vary from student to student (mech variants; DESIGN § 1.3)
+    "keep",  # what every variant must keep (read by mech.variants, ignored here)
     "loads",
     "masses",
     "gravity",
