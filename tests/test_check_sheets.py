@@ -886,3 +886,33 @@ def test_gradebook_without_answer_sheets_is_a_usage_error(tmp_path: Path) -> Non
     (tmp_path / "p.yaml").write_text(SLIDER)
     p = mech("check", str(tmp_path / "p.yaml"), "--gradebook", str(tmp_path / "g.csv"))
     assert p.returncode == 2 and "--answers" in p.stderr and not (tmp_path / "g.csv").exists()
+
+
+def test_class_statistics_give_each_question_its_right_count_and_commonest_mistake(tmp_path: Path) -> None:
+    from test_check_diagnose import FB
+    from test_check_diagnose import FOUR_BAR as DRAWN
+
+    (tmp_path / "problems").mkdir()
+    (tmp_path / "sheets").mkdir()
+    (tmp_path / "problems" / "fb.yaml").write_text(DRAWN.replace("answers:\n", "asks: [omega.rocker]\n"))
+    w4, w3 = FB["w4"], FB["w3"]  # the rocker's and the coupler's ω by the vector loop
+    sense = "cw" if w4 < 0 else "ccw"
+    flipped = "ccw" if w4 < 0 else "cw"
+    claims = {
+        "a": f"{abs(w4):.6f} rad/s {sense}", "b": f"{abs(w4):.6f} rad/s {sense}", "c": f"{abs(w4):.6f}",
+        "d": f"{abs(w4):.6f} rad/s {flipped}", "e": f"{abs(w4):.6f} rad/s {flipped}", "f": f"{abs(w3):.6f}",
+    }  # fmt: skip
+    for student, claim in claims.items():
+        (tmp_path / "sheets" / f"{student}.yaml").write_text(f"fb: {{omega.rocker: {claim}}}\n")
+    p = mech("check", str(tmp_path / "problems"), "--answers", str(tmp_path / "sheets"), "--json", "-j", "1",
+             "--gradebook", str(tmp_path / "g.csv"))  # fmt: skip
+    (stat,) = strict_json(p.stdout)["statistics"]
+    assert (stat["key"], stat["asked"], stat["right"], stat["wrong"]) == ("omega.rocker", 6, 3, 3)
+    assert stat["commonest_mistake"].startswith("the opposite sense") and stat["mistaken"] == 2
+    svg = (tmp_path / "g.svg").read_text(encoding="utf-8")  # the histogram beside the gradebook
+    ET.fromstring(svg)  # well-formed
+    assert "6 students" in svg and ">3<" in svg  # three at 0 % and three at 100 %
+    listing = mech(
+        "check", str(tmp_path / "problems"), "--answers", str(tmp_path / "sheets"), "-j", "1"
+    ).stdout
+    assert "omega.rocker: 3/6 right; 2 × the opposite sense" in listing

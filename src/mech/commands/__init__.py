@@ -394,6 +394,12 @@ def _check(
     }
     for option, path in targets:
         write_report(path, outputs[option](report))
+        if option == "--gradebook":  # the scores' histogram beside it (issue 22 item 5)
+            from mech.batchstats import histogram
+
+            svg = os.path.splitext(path)[0] + ".svg"
+            if svg != path and os.path.isfile(path):  # a device (/dev/stdout) has no "beside"
+                write_report(svg, histogram([s.score for s in report.scores()], title="scores"))
     if as_json:
         from mech.render.jsonout import stamp
 

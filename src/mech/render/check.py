@@ -21,6 +21,7 @@ from contextlib import contextmanager
 from typing import IO, TYPE_CHECKING, Any
 
 from mech.batch import Report, StudentScore
+from mech.batchstats import key_statistics, problem_label
 from mech.check import ERROR, FAIL, IGNORED, PASS, FileResult, Verdict
 from mech.errors import InputError
 from mech.render.jsonout import dumps, error_dict
@@ -45,6 +46,7 @@ __all__ = [
     "junit_xml",
     "progress",
     "report_dict",
+    "statistics_lines",
     "summary_line",
 ]
 
@@ -183,6 +185,8 @@ class Stream:
                     elif r.failed or r.errors:
                         self._write(f"  {r.path}" + ("  (sheet)" if r.sheet else ""))
                         self._answers(r, failing_only=True)
+            for line in statistics_lines(report):
+                self._write(line)
         self._write(summary_line(report))
         self.out.flush()
 
@@ -192,6 +196,18 @@ class Stream:
         self._write("excluded from every score (the problem file cannot be graded):")
         for r in report.teacher:
             self._write(f"  EXCLUDED {r.path}: {r.verdicts[0].message if r.verdicts else ''}")
+
+
+def statistics_lines(report: Report) -> list[str]:
+    """Per question: how many got it right, and the commonest diagnosed mistake (what to re-teach)."""
+    stats = key_statistics(report.results)
+    if not stats:
+        return []
+    lines = ["per question (right / asked; the commonest diagnosed mistake):"]
+    for k in stats:
+        mistake = f"; {k.mistaken} × {k.mistake}" if k.mistake else ""
+        lines.append(f"  {k.problem} {k.key}: {k.right}/{k.asked} right{mistake}")
+    return lines
 
 
 def _student_line(s: StudentScore) -> str:
@@ -226,6 +242,9 @@ def check_table(
         _answers_table(report, console, quiet=quiet)
     elif quiet and report.students:  # -q: each student's failing answers (issue 22)
         _answers_table(report, console, quiet=True, failing_only=True)
+    if report.students:
+        for line in statistics_lines(report):
+            console.print(Text(printable(line)))
     style = "green" if report.exit_status == 0 else "red"
     console.print(Text(summary_line(report), style="bold " + style))
 
@@ -475,6 +494,18 @@ def report_dict(report: Report) -> dict[str, Any]:
             }
             for s in report.scores()
         ]
+        out["statistics"] = [
+            {
+                "problem": k.problem,
+                "key": k.key,
+                "asked": k.asked,
+                "right": k.right,
+                "wrong": k.wrong,
+                "commonest_mistake": k.mistake,
+                "mistaken": k.mistaken,
+            }
+            for k in key_statistics(report.results)
+        ]
     out["results"] = [_file_dict(r) for r in report.results]
     return out
 
@@ -700,16 +731,6 @@ def csv_text(report: Report) -> str:
 def _marks(x: float) -> str:
     """Marks as a gradebook cell: a plain decimal number (no exponent, no thousands separator)."""
     return f"{x:.4f}".rstrip("0").rstrip(".") if x != int(x) else str(int(x))
-
-
-def problem_label(r: FileResult) -> str:
-    """A problem's column in the gradebook: its file name when it lies in a folder named after the
-    student (``class/s17/four_bar.yaml``: every student's own variant of one problem, one column),
-    else its path as found."""
-    parts = r.path.replace(os.sep, "/").split("/")
-    if r.student is not None and len(parts) >= 2 and parts[-2] == r.student:
-        return parts[-1]
-    return r.path
 
 
 def gradebook_text(report: Report) -> str:
