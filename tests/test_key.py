@@ -82,3 +82,17 @@ def test_key_of_an_unreadable_file_is_located_and_exit_2(tmp_path: Path) -> None
     (tmp_path / "count.yaml").write_text(COUNT)
     p = mech("key", str(tmp_path))
     assert p.returncode == 2 and "bad.yaml:" in p.stderr and "links.binary" in p.stdout
+
+
+def test_key_gives_a_pivoted_links_stroke_as_an_angle(tmp_path: Path) -> None:
+    # the rocker's swing between its dead centres, where A, B, C are in line (AC = BC ± AB):
+    # the angle ADC by the law of cosines in triangle ADC, its change between the two
+    ab, bc, cd, ad = 40.0, 150.0, 80.0, 150.0
+
+    def adc(ac: float) -> float:
+        return math.acos((ad**2 + cd**2 - ac**2) / (2 * ad * cd))
+
+    swing = abs(adc(bc + ab) - adc(bc - ab))
+    (tmp_path / "fb.yaml").write_text(FOUR_BAR.replace("answers:\n", "asks: [stroke.D]\n"))
+    (row,) = strict_json(mech("key", str(tmp_path / "fb.yaml"), "--json").stdout)["answers"]
+    assert row["unit"] == "rad" and row["value"] == pytest.approx(swing, rel=1e-6)

@@ -79,8 +79,17 @@ def _row(akey: AnswerKey, an: Analysis, marks: float) -> KeyRow:
         return KeyRow(akey.key, None, unit, "", f"cannot be computed: {why}", marks)
     except (Undefined, InternalError) as why:
         return KeyRow(akey.key, None, unit, "", str(why), marks)
+    if akey.family == "stroke":  # a slider's travel (m) or a pivoted link's swing (rad)
+        unit = _stroke_unit(an, akey.names[0], unit)
     value, text = _shown(akey, raw, unit, _floor(akey, an))
     return KeyRow(akey.key, value, unit, text, None, marks)
+
+
+def _stroke_unit(an: Analysis, joint: str, default: str | None) -> str | None:
+    from mech.grading.properties import cycle_of
+
+    stroke = cycle_of(an).strokes.get(joint)
+    return stroke.unit if stroke is not None else default
 
 
 def _floor(akey: AnswerKey, an: Analysis) -> float:
