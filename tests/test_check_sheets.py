@@ -916,3 +916,16 @@ def test_class_statistics_give_each_question_its_right_count_and_commonest_mista
         "check", str(tmp_path / "problems"), "--answers", str(tmp_path / "sheets"), "-j", "1"
     ).stdout
     assert "omega.rocker: 3/6 right; 2 × the opposite sense" in listing
+
+
+def test_a_sheet_cannot_give_itself_marks(marked_class: Path) -> None:
+    (marked_class / "sheets" / "ann.yaml").write_text(
+        "slider: {velocity.B: {value: 1 m/s, marks: 100}, omega.rod: 0}\ncount: {dof: 1, links.binary: 4}\n"
+    )
+    report = run(
+        CheckOptions((str(marked_class / "problems"),), answers=str(marked_class / "sheets"), jobs=1)
+    )
+    (ann,) = [s for s in report.scores() if s.student == "ann"]
+    assert (ann.earned, ann.out_of) == (6, 10)  # the 4 marks of velocity.B are not earned: not graded
+    (row,) = [v for r in report.results if r.student == "ann" for v in r.verdicts if v.key == "velocity.B"]
+    assert row.status == ERROR and "cannot set a tolerance or marks" in row.message

@@ -395,7 +395,7 @@ def _read_entry(
                 key,
                 ERROR,
                 claimed=got.text,
-                message="not graded: an answer sheet cannot set a tolerance (the problem file sets it)",
+                message="not graded: an answer sheet cannot set a tolerance or marks (the problem file sets them)",
                 where=own_tolerance[key],
             )
         elif got is not None:
