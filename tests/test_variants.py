@@ -245,3 +245,27 @@ def test_a_wrong_vary_is_a_located_input_error(tmp_path: Path, vary: str, words:
     assert (
         p.returncode == 2 and words in p.stderr and "slider.yaml:" in p.stderr and "Traceback" not in p.stderr
     )
+
+
+@pytest.mark.parametrize(
+    ("roster", "words"),
+    [
+        ("name\nann\n", "has no `student` column"),
+        ("student\ns01\ns02\ns01\n", "student s01 is listed twice (first on line 2)"),
+        ("student\n../up\n", "cannot name a folder"),
+    ],
+)
+def test_a_bad_roster_is_a_located_input_error(tmp_path: Path, roster: str, words: str) -> None:
+    (tmp_path / "slider.yaml").write_text(SLIDER, encoding="utf-8")
+    (tmp_path / "roster.csv").write_text(roster, encoding="utf-8")
+    p = mech(
+        "variants",
+        str(tmp_path / "slider.yaml"),
+        "--roster",
+        str(tmp_path / "roster.csv"),
+        "-o",
+        str(tmp_path / "c"),
+    )
+    assert (
+        p.returncode == 2 and words in p.stderr and "roster.csv" in p.stderr and not (tmp_path / "c").exists()
+    )
