@@ -395,7 +395,7 @@ def _check(
     for option, path in targets:
         write_report(path, outputs[option](report))
         if option == "--gradebook":  # the scores' histogram beside it (issue 22 item 5)
-            from mech.batchstats import histogram
+            from mech.render.stats import histogram
 
             svg = os.path.splitext(path)[0] + ".svg"
             if svg != path and os.path.isfile(path):  # a device (/dev/stdout) has no "beside"

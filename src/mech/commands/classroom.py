@@ -2,7 +2,7 @@
 
 Thin: reading the command line's values, calling the library, writing what it
 returns.  The library parts are :mod:`mech.grading.key` (a problem's answers) and
-:mod:`mech.variants` (a problem for each student).
+:mod:`mech.check.variants` (a problem for each student).
 """
 
 from __future__ import annotations
@@ -106,7 +106,7 @@ def variants_command(values: Mapping[str, Any]) -> None:
     from mech.draw import draw, save
     from mech.render.jsonout import dumps
     from mech.render.key import key_csv, key_records
-    from mech.variants import plan, variant_for
+    from mech.check.variants import plan, variant_for
 
     p = plan(values["file"])
     students = read_roster(values["roster"])

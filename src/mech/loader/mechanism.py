@@ -58,7 +58,7 @@ TOP_KEYS = (
     "answers",
     "asks",
     "vary",  # how the given values vary from student to student (mech variants; DESIGN § 1.3)
-    "keep",  # what every variant must keep (read by mech.variants, ignored here)
+    "keep",  # what every variant must keep (read by mech.check.variants, ignored here)
     "loads",
     "masses",
     "gravity",

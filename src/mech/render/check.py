@@ -21,7 +21,7 @@ from contextlib import contextmanager
 from typing import IO, TYPE_CHECKING, Any
 
 from mech.batch import Report, StudentScore
-from mech.batchstats import key_statistics, problem_label
+from mech.render.stats import key_statistics, problem_label
 from mech.check import ERROR, FAIL, IGNORED, PASS, FileResult, Verdict
 from mech.errors import InputError
 from mech.render.jsonout import dumps, error_dict
