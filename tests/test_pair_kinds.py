@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+import ast
 import json
 import math
 import textwrap
 from dataclasses import dataclass
+from pathlib import Path
 from types import MappingProxyType
 
 import pytest
 
+import mech
 from mech.errors import InputError
 from mech.fields import NUMBER, REF, read_ref
 from mech.icentres.order import kennedy_order
@@ -353,3 +356,39 @@ def test_a_plug_in_kind_registered_from_outside_reads_solves_inspects_and_draws(
     assert (b[0] * i13[1] - b[1] * i13[0]) == pytest.approx(0.0, abs=1e-9)
     assert ((c[0] - 0.15) * (i13[1] - c[1]) - c[1] * (i13[0] - c[0])) == pytest.approx(0.0, abs=1e-9)
     assert 'data-name="C"' in to_svg(draw(m, kin))
+
+
+def _kind_names_compared(tree: ast.AST) -> list[int]:
+    """Lines that compare a joint's ``type`` or a kind's ``name`` with a kind's name written out."""
+    names = set(KINDS)
+
+    def literal(node: ast.AST) -> bool:
+        if isinstance(node, ast.Constant):
+            return node.value in names
+        if isinstance(node, (ast.Tuple, ast.List, ast.Set)):
+            return any(literal(e) for e in node.elts)
+        return False
+
+    def asks_type(node: ast.AST) -> bool:
+        return isinstance(node, ast.Attribute) and node.attr in ("type", "name")
+
+    return [
+        node.lineno
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Compare)
+        and any(asks_type(side) for side in (node.left, *node.comparators))
+        and any(literal(side) for side in (node.left, *node.comparators))
+    ]
+
+
+def test_nothing_outside_the_pair_kinds_branches_on_a_kind_by_name():
+    # issue 20 item 1: a layer asks the kind for a property (kind_of(j).meshes), never
+    # `j.type == "gear"` or `kind_of(j).name in ("slot", "prismatic")`
+    src = Path(mech.__file__).parent
+    found = [
+        f"{path.relative_to(src)}:{line}"
+        for path in sorted(src.rglob("*.py"))
+        if "pairs" not in path.relative_to(src).parts
+        for line in _kind_names_compared(ast.parse(path.read_text(encoding="utf-8")))
+    ]
+    assert found == []

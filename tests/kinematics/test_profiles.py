@@ -301,3 +301,34 @@ def test_roller_on_any_eccentric_cam_follows_its_equivalent_slider_crank(e, extr
     assert kin.positions["C"][1] == pytest.approx(s, abs=1e-12 * size)
     assert kin.velocity("C")[1] == pytest.approx(v, abs=1e-10 * size * w)
     assert kin.acceleration("C")[1] == pytest.approx(a, abs=1e-9 * size * w**2)
+
+
+@pytest.mark.parametrize("n", [12, 36, 144])
+def test_a_curve_profiles_stated_departure_bounds_the_splines_distance_from_the_circle(n):
+    # The spline through n points of a circle of radius r strays from it by about r (2π/n)⁴ / 400
+    # (measured on a fine grid below, against the circle itself); de Boor's bound that
+    # departure() states, (5/384) h⁴ max|f⁗| with f⁗ = r (2π/n)⁴ for the circle's coordinates
+    # in the index parameter, is about five times that: above it, and of its order.
+    from mech.pairs.curves import Spline
+
+    r = 40.0
+    th = 2 * math.pi * np.arange(n) / n
+    spline = Spline(np.c_[r * np.cos(th), r * np.sin(th)])
+    c, _, _ = spline.eval(np.linspace(0.0, n, 40 * n, endpoint=False))
+    true = float(np.abs(np.hypot(c[:, 0], c[:, 1]) - r).max())
+    bound = 5 / 384 * r * (2 * math.pi / n) ** 4
+    assert true < spline.departure() < 10 * true
+    assert spline.departure() == pytest.approx(bound, rel=0.05)
+
+
+def test_a_solve_on_a_curve_profile_says_how_close_its_spline_is():
+    doc = _cam("{line: {through: F, angle: 0}}", "F", 47.5).replace(
+        "cam: {circle: {centre: E, radius: 40}}", "cam: {curve: [" + _circle_as_curve(36) + "]}"
+    )
+    mech = loads(doc, path="cam.yaml")
+    bound = 5 / 384 * 40 * (2 * math.pi / 36) ** 4  # mm, as the test above derives it
+    for notes in (solve(mech, "velocity").notes, sweep(mech, ANGLES, analyse=False).notes):
+        (note,) = [n for n in notes if "spline" in n]
+        assert "36 points" in note
+        stated = float(note.split("within about ")[1].split(" mm")[0])
+        assert stated == pytest.approx(bound, rel=0.05)

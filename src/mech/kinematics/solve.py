@@ -159,7 +159,7 @@ def _plan(comp: Compiled, options: SolveOptions, lvl: int) -> _Plan:
         targets,
         moved,
         omega_ref_of(drives, comp.drawn.scale),
-        (*comp.drawn.notes, *comp.mobility.notes),
+        (*comp.drawn.notes, *comp.system.notes, *comp.mobility.notes),
         _closed_route(comp, options, lvl, moved),
     )
 

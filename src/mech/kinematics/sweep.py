@@ -300,7 +300,7 @@ def _plan(
         alpha,
         options,
         phi,
-        list(comp.drawn.notes),
+        [*comp.drawn.notes, *comp.system.notes],
     )
 
 

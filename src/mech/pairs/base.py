@@ -32,12 +32,12 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, ClassVar, Protocol
 
+from mech._records import dataclass
 from mech.errors import Problem, UnsupportedError
 from mech.specs import BareSpec, JointSpec, Profile
 
 if TYPE_CHECKING:
     from mech.fields import Fields, Reader
-    from mech.forces.result import PairForce
     from mech.model import Joint, Mechanism
     from mech.pairs.rows import RowBuilder
 
@@ -45,6 +45,29 @@ if TYPE_CHECKING:
 Wrench = tuple[float, float, float]
 
 Vec = tuple[float, float]
+
+
+@dataclass(frozen=True, slots=True)
+class PairForce:
+    """The force a pair carries at the instant: ``force`` (N, global) acting on link ``on`` from ``by``.
+
+    ``at`` is where it acts (m): a pin's centre, a contact point, or for a sliding
+    pair the point of the guide where the normal force acts, ``offset`` (m) along
+    the path from the slider's point.  ``normal`` is the signed component along the
+    pair's normal (a slider's side thrust, a cam's or a gear's tooth load), None for a pin.
+    """
+
+    joint: str
+    on: str
+    by: str
+    force: Vec
+    at: Vec | None
+    normal: float | None = None
+    offset: float | None = None
+
+    @property
+    def magnitude(self) -> float:
+        return float((self.force[0] ** 2 + self.force[1] ** 2) ** 0.5)
 
 
 class Carriers(Protocol):
@@ -127,6 +150,9 @@ class PairKind:
         the block turns with its guide); a pin in a slot does not.
     rolls
         Its profiles roll on each other without slip (rolling, gears); a cam slides.
+    meshes
+        Teeth keep its links' speed ratio: a stage of a gear train (``--explain`` writes
+        the train's value stage by stage).
     dyad
         How the closed-form dyads use it (``pin`` of an RRR or RRP dyad or a crank's
         pivot, ``path`` of an RRP or RPR dyad), or None: a mechanism with such a
@@ -156,6 +182,7 @@ class PairKind:
     role: ClassVar[str] = "contact"
     keeps_angle: ClassVar[bool] = False
     rolls: ClassVar[bool] = False
+    meshes: ClassVar[bool] = False
     dyad: ClassVar[str | None] = None
     icentre: ClassVar[tuple[str, str]] = ("none", "")
     glyph: ClassVar[str] = "none"
@@ -250,7 +277,6 @@ class PairKind:
         after the first, from the first (a binary joint: on its second link, as DESIGN
         § 1.4's ``force.<joint>.x`` reads it).
         """
-        from mech.forces.result import PairForce
 
         first = j.links[0]
         return [
@@ -292,7 +318,6 @@ def contact_forces(
 ) -> list[PairForce]:
     """A higher pair's force on its second link at the contact, with its component along the
     common normal (the tangent ``direction`` turned −90°): a cam's or a gear's tooth load."""
-    from mech.forces.result import PairForce
 
     on, by = j.links[1], j.links[0]
     if on not in wrenches:

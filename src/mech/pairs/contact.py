@@ -8,13 +8,12 @@ from typing import TYPE_CHECKING
 
 from mech.fields import NUMBER, PROFILES, Fields, Reader
 from mech.pairs.base import PairKind, contact_forces
-from mech.pairs.cam import read_contact, see_contact
+from mech.pairs.higher import read_contact, see_contact
 from mech.specs import ContactSpec
 
 if TYPE_CHECKING:
-    from mech.forces.result import PairForce
     from mech.model import Joint
-    from mech.pairs.base import InstantView, Wrench
+    from mech.pairs.base import InstantView, PairForce, Wrench
     from mech.pairs.rows import RowBuilder
 
 

@@ -19,9 +19,8 @@ Vec = tuple[float, float]
 
 if TYPE_CHECKING:
     from mech.errors import Problem
-    from mech.forces.result import PairForce
     from mech.model import Joint, Mechanism
-    from mech.pairs.base import InstantView, Wrench
+    from mech.pairs.base import InstantView, PairForce, Wrench
     from mech.pairs.rows import RowBuilder
     from mech.specs import Profile
 
@@ -56,7 +55,7 @@ class Rolling(PairKind):
 
     def drawn_profiles(self, mech: Mechanism, j: Joint, contact: Vec | None) -> list[tuple[str, Profile]]:
         """The profiles, or ``radii``: circles about each link's pin, a straight line through the contact."""
-        from mech.pairs.registry import kind_of
+        from mech.pairs.table import kind_of
         from mech.specs import Circle, Line, Ref
 
         if j.profiles or j.radii is None:
