@@ -103,10 +103,10 @@ def variants_command(values: Mapping[str, Any]) -> None:
     """Write each student's problem, its drawing, and the class's key (DESIGN § 1.3)."""
     import os
 
+    from mech.check.variants import plan, variant_for
     from mech.draw import draw, save
     from mech.render.jsonout import dumps
     from mech.render.key import key_csv, key_records
-    from mech.check.variants import plan, variant_for
 
     p = plan(values["file"])
     students = read_roster(values["roster"])

@@ -135,7 +135,7 @@ def answer_keys(node: yaml.MappingNode, path: str) -> list[tuple[str, Where]]:
 def own_tolerances(node: yaml.MappingNode, path: str) -> dict[str, Where]:
     """Keys of a sheet entry written ``{value: …, tolerance: …}`` (or ``marks: …``): where the
     student's own tolerance or marks are (the problem file alone sets them)."""
-    out = {}
+    out: dict[str, Where] = {}
     for knode, vnode in node.value:
         if isinstance(vnode, yaml.MappingNode):
             for k, _ in vnode.value:

@@ -21,11 +21,11 @@ from contextlib import contextmanager
 from typing import IO, TYPE_CHECKING, Any
 
 from mech.batch import Report, StudentScore
-from mech.render.stats import key_statistics, problem_label
 from mech.check import ERROR, FAIL, IGNORED, PASS, FileResult, Verdict
 from mech.errors import InputError
 from mech.render.jsonout import dumps, error_dict
 from mech.render.safe import printable, xml_safe
+from mech.render.stats import key_statistics, problem_label
 
 if TYPE_CHECKING:  # pragma: no cover
     from rich.console import Console
