@@ -511,3 +511,54 @@ def test_a_count_claim_of_4000_digits_is_read_and_fails(write):
     text = EXAMPLE_FOUR_BAR.read_text(encoding="utf-8").split("answers:")[0]
     (v,) = check(loads(text + "answers:\n  dof: " + "9" * 4000 + "\n"))
     assert v.status == FAIL and v.computed == 1 and v.message.startswith("dof is 1, not 999")
+
+
+# A wheel rolling on the ground, the contact given only as the instant's point (no profile, so no
+# curvature: its accelerations cannot be had, its velocities can).  The axle B is the piston of an
+# in-line slider crank (crank a = 20 mm, rod l = 80 mm, θ = 60°, ω = 120 rpm ccw):
+# x_B = a cos θ + √(l² − a² sin² θ); v_B = −a ω sin θ (1 + a cos θ / √(l² − a² sin² θ)).
+_A, _L, _TH, _W = 0.020, 0.080, math.radians(60), 120 * 2 * math.pi / 60
+_ROOT = math.sqrt(_L**2 - (_A * math.sin(_TH)) ** 2)
+_XB = _A * math.cos(_TH) + _ROOT
+_VB = abs(-_A * _W * math.sin(_TH) * (1 + _A * math.cos(_TH) / _ROOT))
+ROLLING_AT_AN_INSTANT = f"""\
+units: {{length: mm, angle: deg}}
+links: [frame, crank, rod, wheel]
+joints:
+  O: {{type: revolute, links: [frame, crank], at: [0, 30]}}
+  A: {{type: revolute, links: [crank, rod]}}
+  B: {{type: revolute, links: [rod, wheel], at: [{_XB * 1000:.9f}, 30]}}
+  W: {{type: rolling, links: [wheel, frame], at: [{_XB * 1000:.9f}, 0]}}
+lengths: {{OA: 20, AB: 80}}
+drive: {{link: crank, angle: 60, rpm: 120, direction: ccw}}
+answers:
+  dof: 1
+  velocity.B: {_VB:.6f} m/s
+  omega.wheel: {_VB / 0.030:.6f} rad/s ccw
+  acceleration.B: 1.1847 m/s^2
+"""
+
+
+def test_an_uncomputable_acceleration_errors_only_itself_and_the_velocities_pass() -> None:
+    got = {v.key: v for v in check(loads(ROLLING_AT_AN_INSTANT))}
+    assert got["acceleration.B"].status == ERROR and "curvature" in got["acceleration.B"].message
+    # ω_wheel = v_B / r rolling without slip (r = 30 mm), turning ccw as the axle moves left
+    assert [got[k].status for k in ("dof", "velocity.B", "omega.wheel")] == [PASS, PASS, PASS]
+
+
+@pytest.mark.parametrize(
+    ("key", "si", "unit"),
+    [
+        ("velocity.B", _VB, "mm/s"),  # the axle's speed, worked above
+        ("distance.O.B", math.hypot(_XB, 0.0), "mm"),  # O and B on one horizontal line
+    ],
+)
+def test_a_unit_slip_hint_names_a_unit_of_the_claims_quantity_and_following_it_passes(
+    key: str, si: float, unit: str
+) -> None:
+    text = ROLLING_AT_AN_INSTANT.split("answers:")[0] + "answers:\n"
+    bare = f"{si * 1000:g}"  # the value in mm (or mm/s), written bare: SI says metres
+    (v,) = check(loads(text + f"  {key}: {bare}\n"))
+    assert v.status == FAIL and f'"{bare} {unit}"' in v.message, v.message
+    (followed,) = check(loads(text + f'  {key}: "{bare} {unit}"\n'))
+    assert followed.status == PASS, followed.message

@@ -198,7 +198,7 @@ def test_cli_reports_replace_an_old_report_whole(run, tmp_path: Path) -> None:
     out.write_text("old report\n" * 1000)
     result = run("check", str(tmp_path / "a.yaml"), "--csv", str(out))
     assert result.exit_code == 0
-    assert out.read_text().splitlines()[0] == "student,problem,passed,total,score,status"
+    assert out.read_text().splitlines()[0] == "student,problem,passed,total,score,status,earned,out_of"
     assert "old report" not in out.read_text()
     assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".mech-")] == []
 

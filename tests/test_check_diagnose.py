@@ -23,6 +23,7 @@ import pytest
 
 from mech.check import FAIL, PASS, check
 from mech.loader import loads
+from mechanism_texts import slider_crank
 
 MM = 1e-3
 AB, BC, CD, AD = 40 * MM, 150 * MM, 80 * MM, 150 * MM
@@ -246,3 +247,44 @@ def test_the_diagnosis_reaches_json_junit_gradescope_and_the_listing(tmp_path, r
     assert words in json.loads(gs.read_text())["tests"][0]["output"]
     data = json.loads(run("check", str(f), "--json").stdout)
     assert data["results"][0]["answers"][0]["diagnosis"] == "ω of the wrong link (coupler's)"
+
+
+def test_omega_of_the_wrong_link_with_the_wrong_sense() -> None:
+    # the coupler's ω (1.309 rad/s ccw by the vector loop) given as the rocker's, turned cw
+    sense = "cw" if FB["w3"] > 0 else "ccw"
+    assert_diagnosed(
+        f"omega.rocker: {abs(FB['w3']):.6f} rad/s {sense}",
+        "ω of the wrong link (coupler's), with the wrong sense",
+    )
+
+
+def test_the_other_branch_with_a_wrong_magnitude_names_the_magnitude_before_the_sense() -> None:
+    # the other branch turns the rocker the other way and 1.4× as fast: the magnitude is the larger error
+    sense = "ccw" if OTHER["w4"] > 0 else "cw"
+    v = verdict(f"omega.rocker: {abs(OTHER['w4']):.6f} rad/s {sense}")
+    assert v.status == FAIL and not v.message.startswith("wrong sense"), v.message
+    off = abs(abs(OTHER["w4"]) - abs(FB["w4"])) / abs(FB["w4"])
+    assert f"off by {off:.1%}" in v.message and v.message.endswith("the sense is wrong")
+    assert v.diagnosis is not None and v.diagnosis.startswith("the other assembly branch")
+
+
+def _time_ratio() -> float:
+    """Slow stroke over fast for the crank-rocker, from its two dead centres (law of cosines):
+    crank and coupler in line (AC = BC + AB, crank along AC) and folded (AC = BC − AB, crank
+    opposite AC); the crank turns 180° + (φ_folded − φ_extended) between them one way."""
+    ext = math.acos((AD**2 + (BC + AB) ** 2 - CD**2) / (2 * AD * (BC + AB)))
+    fold = math.acos((AD**2 + (BC - AB) ** 2 - CD**2) / (2 * AD * (BC - AB)))
+    one = math.pi + fold - ext
+    return max(one, 2 * math.pi - one) / min(one, 2 * math.pi - one)
+
+
+def test_the_reciprocal_time_ratio() -> None:
+    assert verdict(f"time_ratio: {_time_ratio():.6f}").status == PASS  # guard: the closed form is mech's
+    assert_diagnosed(f"time_ratio: {1 / _time_ratio():.6f}", "the reciprocal")
+
+
+def test_half_the_stroke() -> None:
+    # an in-line slider crank's stroke is twice the crank (r = 0.1 m): 0.2 m; half of it is r
+    body = slider_crank(0.1, 0.4) + "answers:\n"
+    assert verdict("stroke.P: 0.2", body).status == PASS
+    assert_diagnosed("stroke.P: 0.1", "half the stroke", body)

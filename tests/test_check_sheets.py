@@ -215,7 +215,7 @@ def test_csv_has_a_row_per_student_and_problem_and_says_excluded(classroom: Path
     from mech.render.check import csv_text
 
     rows = list(csv.DictReader(io.StringIO(csv_text(grade(classroom)))))
-    assert list(rows[0]) == ["student", "problem", "passed", "total", "score", "status"]
+    assert list(rows[0]) == ["student", "problem", "passed", "total", "score", "status", "earned", "out_of"]
     alice = {Path(r["problem"]).name: r for r in rows if r["student"] == "alice"}
     assert (alice["p1.yaml"]["passed"], alice["p1.yaml"]["total"], alice["p1.yaml"]["score"]) == (
         "2",
@@ -737,3 +737,195 @@ def test_an_entry_using_an_anchor_written_in_another_entry_is_graded(problems, t
     assert four["dof"]["status"] == PASS
     assert four["omega.rocker"]["status"] == ERROR and four["omega.rocker"]["line"] == 4
     assert rows["slider_crank.yaml"]["answers"][0]["status"] == PASS
+
+
+@pytest.mark.parametrize("table", [False, True], ids=["plain", "table"])
+def test_quiet_lists_each_students_failing_answers_and_not_the_passing_ones(
+    classroom: Path, table: bool
+) -> None:
+    if table:
+        from rich.console import Console
+
+        from mech.render.check import check_table
+
+        buffer = io.StringIO()
+        console = Console(file=buffer, force_terminal=True, width=200, color_system=None, markup=False)
+        check_table(grade(classroom), console, quiet=True)
+        out = buffer.getvalue()
+    else:
+        p = mech(
+            "check", str(classroom / "problems"), "--answers", str(classroom / "sheets"), "-q", "-j", "1"
+        )
+        assert p.returncode == 1
+        out = p.stdout
+    # erin's wrong speed (2 m/s for the 1.0 m/s of ω r) and bob's unanswered p1 are listed with their keys
+    erin = out[out.index("erin") :]
+    assert "velocity.B" in erin and "2 m/s" in erin
+    assert "not answered" in out[out.index("bob") :]
+    assert "alice" not in out  # every answer right: not listed
+
+
+# -- marks and the gradebook (DESIGN § 1.3) ------------------------------------------------------
+MARKED = {
+    # the slider crank above: |v_B| = ω r = 1.0 m/s (4 marks), ω_rod = 0 (1 mark)
+    "slider.yaml": SLIDER.replace(
+        "answers: {velocity.B: 0, omega.rod: 5}", "answers: {velocity.B: {value: 0, marks: 4}, omega.rod: 5}"
+    ),
+    # Kutzbach n = 1 (2 marks), four binary links (3 marks)
+    "count.yaml": FOUR_BAR + "asks: {dof: 2, links.binary: 3}\n",
+}
+MARKED_SHEETS = {
+    "ann": "slider: {velocity.B: 1 m/s, omega.rod: 1}\ncount: {dof: 1, links.binary: 4}\n",  # 4 + 2 + 3 = 9
+    "ben": "slider: {velocity.B: 2 m/s, omega.rod: 0}\ncount: {dof: 2}\n",  # 1
+    'cy,"the" third': "slider: {omega.rod: 0}\n",  # 1 (a name a CSV must quote)
+}
+MARKED_EARNED = {
+    "ann": {"count.yaml": 5, "slider.yaml": 4},
+    "ben": {"count.yaml": 0, "slider.yaml": 1},
+    'cy,"the" third': {"count.yaml": 0, "slider.yaml": 1},
+}
+
+
+@pytest.fixture
+def marked_class(tmp_path: Path) -> Path:
+    (tmp_path / "problems").mkdir()
+    (tmp_path / "sheets").mkdir()
+    for name, text in MARKED.items():
+        (tmp_path / "problems" / name).write_text(text)
+    for student, text in MARKED_SHEETS.items():
+        (tmp_path / "sheets" / f"{student}.yaml").write_text(text)
+    return tmp_path
+
+
+def test_a_score_is_marks_earned_over_marks_asked_in_every_report(marked_class: Path) -> None:
+    out = marked_class
+    p = mech(
+        "check", str(out / "problems"), "--answers", str(out / "sheets"), "-j", "1",
+        "--junit", str(out / "r.xml"), "--csv", str(out / "r.csv"), "--json",
+    )  # fmt: skip
+    report = strict_json(p.stdout)
+    scores = {s["student"]: (s["earned"], s["out_of"], s["score"]) for s in report["students"]}
+    for student, per_problem in MARKED_EARNED.items():
+        earned = sum(per_problem.values())
+        assert scores[student] == (earned, 10, pytest.approx(earned / 10))
+    rows = list(csv.DictReader(io.StringIO((out / "r.csv").read_text())))
+    for row in rows:
+        want = MARKED_EARNED[row["student"]][Path(row["problem"]).name]
+        assert (float(row["earned"]), float(row["out_of"])) == (want, 5)
+        assert float(row["score"]) == pytest.approx(100 * want / 5, abs=0.05)
+    for suite in ET.parse(out / "r.xml").getroot():
+        props = {p.get("name"): float(p.get("value")) for p in suite.iter("property")}
+        student, _, path = suite.get("name").partition(": ")
+        assert props == {"earned": MARKED_EARNED[student][Path(path).name], "out_of": 5}
+
+
+def test_gradescope_scores_each_answer_by_its_marks(marked_class: Path) -> None:
+    out = marked_class
+    p = mech(
+        "check", str(out / "problems"), "--answers", str(out / "sheets" / "ann.yaml"), "-j", "1",
+        "--gradescope", str(out / "gs.json"),
+    )  # fmt: skip
+    assert p.returncode == 1
+    gs = json.loads((out / "gs.json").read_text())
+    worth = {t["name"].rsplit(": ", 1)[1]: (t["score"], t["max_score"]) for t in gs["tests"]}
+    assert worth == {"dof": (2, 2), "links.binary": (3, 3), "velocity.B": (4, 4), "omega.rod": (0, 1)}
+    assert gs["score"] == 9
+
+
+def test_the_gradebook_has_one_row_per_student_and_follows_the_import_rules(marked_class: Path) -> None:
+    """The rules of the two gradebooks' CSV grade imports that a file can break, as documented:
+
+    * Moodle, "Grade import" (docs.moodle.org/311/en/Grade_import, "CSV grade import"): a header
+      row names the columns; one column identifies the user ("Map from" a column "Map to" a user
+      field such as the ID number or email), every other column is mapped to one grade item, so
+      the column names must be told apart; grades are plain numbers (no "%").
+    * Canvas, "How do I import grades in the Gradebook?" (community.canvaslms.com, Instructor
+      Guide; its CSV rules are those of the SIS CSV format page, canvas.instructure.com/doc/api/
+      file.sis_csv.html): "the first row will be interpreted as a header … mandatory", fields with
+      a comma or a double quote are quoted with inner quotes doubled, UTF-8; one row per student
+      identified by a student column; a score is a number of points, an unknown column header
+      becomes a new assignment.  (Canvas's own export adds `ID`, `SIS Login ID` and `Section`;
+      they are matched on the student column when merged, and are not ours to invent.)
+    Checked here: those, and that the marks add up (problems → total; total / out_of → percent).
+    """
+    out = marked_class
+    p = mech(
+        "check",
+        str(out / "problems"),
+        "--answers",
+        str(out / "sheets"),
+        "-j",
+        "1",
+        "--gradebook",
+        str(out / "g.csv"),
+    )
+    assert p.returncode == 1
+    raw = (out / "g.csv").read_bytes()
+    raw.decode("utf-8")  # UTF-8 (it raises if not)
+    rows = list(csv.reader(io.StringIO(raw.decode("utf-8")), strict=True))
+    header, body = rows[0], rows[1:]
+    problems = [str(out / "problems" / "count.yaml"), str(out / "problems" / "slider.yaml")]
+    assert header == ["student", *problems, "total", "out_of", "percent"]
+    assert len({h.strip().lower() for h in header}) == len(header)  # every column told apart
+    assert all(len(r) == len(header) for r in body)  # a rectangle: every row has every field
+    students = [r[0] for r in body]
+    assert sorted(students) == sorted(MARKED_EARNED) and len(set(students)) == len(students)
+    assert all(s.strip() for s in students)  # the identifying column is never empty
+    for r in body:
+        cells = [float(c) for c in r[1:]]  # numbers only: no "%", no thousands separator
+        assert all("%" not in c and "," not in c for c in r[1:])
+        *problems, total, out_of, percent = cells
+        want = MARKED_EARNED[r[0]]
+        assert problems == [want["count.yaml"], want["slider.yaml"]]
+        assert total == sum(problems) and out_of == 10
+        assert percent == pytest.approx(100 * total / out_of, abs=0.05)
+    assert b'"cy,""the"" third"' in raw  # a comma and quotes in a name: quoted, quotes doubled
+
+
+def test_gradebook_without_answer_sheets_is_a_usage_error(tmp_path: Path) -> None:
+    (tmp_path / "p.yaml").write_text(SLIDER)
+    p = mech("check", str(tmp_path / "p.yaml"), "--gradebook", str(tmp_path / "g.csv"))
+    assert p.returncode == 2 and "--answers" in p.stderr and not (tmp_path / "g.csv").exists()
+
+
+def test_class_statistics_give_each_question_its_right_count_and_commonest_mistake(tmp_path: Path) -> None:
+    from test_check_diagnose import FB
+    from test_check_diagnose import FOUR_BAR as DRAWN
+
+    (tmp_path / "problems").mkdir()
+    (tmp_path / "sheets").mkdir()
+    (tmp_path / "problems" / "fb.yaml").write_text(DRAWN.replace("answers:\n", "asks: [omega.rocker]\n"))
+    w4, w3 = FB["w4"], FB["w3"]  # the rocker's and the coupler's ω by the vector loop
+    sense = "cw" if w4 < 0 else "ccw"
+    flipped = "ccw" if w4 < 0 else "cw"
+    claims = {
+        "a": f"{abs(w4):.6f} rad/s {sense}", "b": f"{abs(w4):.6f} rad/s {sense}", "c": f"{abs(w4):.6f}",
+        "d": f"{abs(w4):.6f} rad/s {flipped}", "e": f"{abs(w4):.6f} rad/s {flipped}", "f": f"{abs(w3):.6f}",
+    }  # fmt: skip
+    for student, claim in claims.items():
+        (tmp_path / "sheets" / f"{student}.yaml").write_text(f"fb: {{omega.rocker: {claim}}}\n")
+    p = mech("check", str(tmp_path / "problems"), "--answers", str(tmp_path / "sheets"), "--json", "-j", "1",
+             "--gradebook", str(tmp_path / "g.csv"))  # fmt: skip
+    (stat,) = strict_json(p.stdout)["statistics"]
+    assert (stat["key"], stat["asked"], stat["right"], stat["wrong"]) == ("omega.rocker", 6, 3, 3)
+    assert stat["commonest_mistake"].startswith("the opposite sense") and stat["mistaken"] == 2
+    svg = (tmp_path / "g.svg").read_text(encoding="utf-8")  # the histogram beside the gradebook
+    ET.fromstring(svg)  # well-formed
+    assert "6 students" in svg and ">3<" in svg  # three at 0 % and three at 100 %
+    listing = mech(
+        "check", str(tmp_path / "problems"), "--answers", str(tmp_path / "sheets"), "-j", "1"
+    ).stdout
+    assert "omega.rocker: 3/6 right; 2 × the opposite sense" in listing
+
+
+def test_a_sheet_cannot_give_itself_marks(marked_class: Path) -> None:
+    (marked_class / "sheets" / "ann.yaml").write_text(
+        "slider: {velocity.B: {value: 1 m/s, marks: 100}, omega.rod: 0}\ncount: {dof: 1, links.binary: 4}\n"
+    )
+    report = run(
+        CheckOptions((str(marked_class / "problems"),), answers=str(marked_class / "sheets"), jobs=1)
+    )
+    (ann,) = [s for s in report.scores() if s.student == "ann"]
+    assert (ann.earned, ann.out_of) == (6, 10)  # the 4 marks of velocity.B are not earned: not graded
+    (row,) = [v for r in report.results if r.student == "ann" for v in r.verdicts if v.key == "velocity.B"]
+    assert row.status == ERROR and "cannot set a tolerance or marks" in row.message

@@ -32,6 +32,7 @@ def test_schema_top_level_keys_are_the_keys_the_loader_accepts() -> None:
     expected = {
         "name", "description", "source", "units", "ground", "links", "joints",
         "lengths", "drive", "points", "answers", "asks", "loads", "masses", "gravity", "flywheel",
+        "vary", "keep",  # DESIGN § 1.3
     }  # fmt: skip
     assert set(SCHEMA["properties"]) == expected
 

@@ -52,10 +52,11 @@ import contextlib
 import os
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import field, replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from mech._records import dataclass
 from mech.batchpool import Pool, cpu_count, run_jobs
+from mech.check.classes import copied, owners, read_class_keys
 from mech.check.problem import (
     MAX_LISTED,
     Done,
@@ -152,6 +153,8 @@ class StudentScore:
     failed: int
     errors: int
     ignored: int = 0
+    earned: float = 0.0  # marks earned (DESIGN § 1.3: a question is worth 1 unless the file says)
+    out_of: float = 0.0  # marks asked: the same for every student
 
     @property
     def total(self) -> int:
@@ -159,8 +162,8 @@ class StudentScore:
 
     @property
     def score(self) -> float:
-        """Passed questions over asked questions (0 when nothing is asked)."""
-        return self.passed / self.asked if self.asked else 0.0
+        """Marks earned over marks asked (0 when nothing is asked); with no marks given, passed over asked."""
+        return self.earned / self.out_of if self.out_of else 0.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -230,9 +233,9 @@ class Report:
 
     def scores(self) -> tuple[StudentScore, ...]:
         """Per-student totals, sorted by student (empty without answer sheets)."""
-        acc = {
-            s: [0, 0, 0, 0, 0, 0] for s in self.students
-        }  # problems, asked, passed, failed, errors, ignored
+        acc: dict[str, list[Any]] = {
+            s: [0, 0, 0, 0, 0, 0, 0.0, 0.0] for s in self.students
+        }  # problems, asked, passed, failed, errors, ignored, earned, out_of
         for r in self.results:
             if r.student is None or r.student not in acc:
                 continue
@@ -245,6 +248,8 @@ class Report:
             a[2] += r.passed
             a[3] += r.failed
             a[4] += r.errors
+            a[6] += r.earned
+            a[7] += r.out_of
         return tuple(StudentScore(s, *acc[s]) for s in self.students)
 
 
@@ -483,7 +488,9 @@ def run(
     with pool or contextlib.nullcontext():
         sheets = read_sheets(options.answers) if options.answers else None
         index = _Index.of(files, options.paths) if sheets is not None else _Index({}, {})  # keys name files
-        tasks, extra = _plan(files, sheets, options.solve, index)
+        # a class of variants (mech variants' folder): each student's own problem files, and their keys
+        folders, class_key = read_class_keys(options.paths) if sheets is not None else ({}, {})
+        tasks, extra = _plan(files, sheets, options.solve, index, owners(files, folders))
         if sheets is not None:  # the tasks carry the texts and entries now, each let go once done;
             # what is left to report is the entries naming no problem file by path
             sheets = tuple(
@@ -515,7 +522,7 @@ def run(
                     on_file(tuple(landed))
                 landed = []
     if sheets is not None:
-        results = _exclude_lost(results, lost)
+        results = copied(_exclude_lost(results, lost), class_key)
         results = _shared_names(results, sheets, index, used)
         results += _unmatched(sheets, index, {(student, key) for student, key, _ in used})
     report = Report.of(results, students=[s.student for s in sheets] if sheets is not None else ())
@@ -528,9 +535,18 @@ def run(
 
 
 def _plan(
-    files: Sequence[str], sheets: Sequence[Sheet] | None, solve: SolveOptions, index: _Index
+    files: Sequence[str],
+    sheets: Sequence[Sheet] | None,
+    solve: SolveOptions,
+    index: _Index,
+    owner: dict[str, str] | None = None,
 ) -> tuple[list[Task], list[FileResult]]:
-    """One task per problem file; with sheets, each task carries every student's answers to it."""
+    """One task per problem file; with sheets, each task carries every student's answers to it.
+
+    A file ``owner`` gives to a student (their own variant) is graded for that student alone,
+    and their sheet's keys name it and no other student's.
+    """
+    owner = owner or {}
     if sheets is None:
         return [Task(f, None, solve) for f in files], []
     extra = [s.error for s in sheets if s.error is not None]
@@ -542,7 +558,7 @@ def _plan(
         one: dict[str, list[SheetEntry]] = {}
         several: dict[str, list[tuple[SheetEntry, tuple[str, ...]]]] = {}
         for e in s.entries:
-            named = index.files.get(e.key, ())
+            named = tuple(f for f in index.files.get(e.key, ()) if owner.get(f, s.student) == s.student)
             if len(named) == 1:
                 one.setdefault(named[0], []).append(e)
             for f in named if len(named) > 1 else ():
@@ -563,6 +579,7 @@ def _plan(
                 unreadable=s.error is not None,
             )
             for s, one, several, loose in zip(sheets, alone, shared, unresolved, strict=True)
+            if owner.get(f, s.student) == s.student
         )
         # a class's problem in parts of STUDENTS students: a worker holds (and sends back) one part
         # at a time, and each part loads and solves the problem again (milliseconds)

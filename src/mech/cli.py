@@ -465,6 +465,36 @@ def view_command(request: Request, output: str, steps: int, start: float | None,
     )
 
 
+@cli.command(name="key")
+@params_of("key")
+def key_command(**values: Any) -> None:
+    """Every problem's answers to its questions: the teacher's key.
+
+    For each problem file under PATHS, the computed answer to each of its
+    questions (its answers' keys, else its asks), with its marks; --json or
+    --csv FILE for tools. Exit 1 when a question cannot be computed, 2 when
+    a file cannot be read.
+    """
+    from mech.commands.classroom import key_command as run
+
+    run(values)
+
+
+@cli.command(name="variants")
+@params_of("variants")
+def variants_command(**values: Any) -> None:
+    """A problem for each student: its numbers drawn from the file's vary:, kept by its keep:.
+
+    Writes OUTPUT/<student>/<file> (the student's problem, drawn positions
+    recomputed), a drawing to scale beside it, and OUTPUT/key.csv and
+    OUTPUT/key.json. A student's variant depends only on the seed, the file
+    and the student's id.
+    """
+    from mech.commands.classroom import variants_command as run
+
+    run(values)
+
+
 # -- drawings -------------------------------------------------------------------------
 @cli.command(name="draw")
 @kinematic_command("draw")

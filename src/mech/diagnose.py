@@ -16,7 +16,8 @@ the claim matches within the answer's own tolerance:
   other term of ``a_B = a_A + a_BA`` is left out;
 * **a relative velocity for an absolute one, or the reverse** — ``v_BA`` for
   ``v_B`` (A another point of B's link), ``v_B`` or ``v_A`` for ``v_BA``;
-* **ω (or α) of the wrong link** — another link's value;
+* **ω (or α) of the wrong link** — another link's value, or that value with its sense turned;
+* **the reciprocal time ratio** (fast over slow) and **half the stroke** (the amplitude);
 * **the other assembly branch** — the mechanism solved again with one dyad
   closed the other way (a ``near`` hint mirrored across the line of its two
   neighbours, or to the other intersection with a slider's path), and the
@@ -140,9 +141,9 @@ def _unit_slips(dimension: Dimension | None) -> Iterator[tuple[float, str]]:
     """(factor, words) for the unit slips of a quantity: claimed = right value × factor."""
     if dimension in (None, Dimension.NUMBER):
         return
-    metric = dimension in (Dimension.LENGTH, Dimension.VELOCITY, Dimension.ACCELERATION)
+    suffix = {Dimension.LENGTH: "", Dimension.VELOCITY: "/s", Dimension.ACCELERATION: "/s²"}.get(dimension)
     for f, unit in ((10.0, "dm"), (100.0, "cm"), (1000.0, "mm")):
-        why = f": {unit} written as a bare number in m" if metric else ""
+        why = f": {unit}{suffix} written as a bare number in m{suffix}" if suffix is not None else ""
         yield f, f"a unit slip (×{f:g}{why})"
         yield 1.0 / f, f"a unit slip (÷{f:g})"
     rpm = 60.0 / (2.0 * math.pi)
@@ -180,6 +181,13 @@ def _cheap(
         yield "the opposite sense" + _turns(akey, right), -right
     for factor, text in _unit_slips(akey.dimension):
         yield text, right * factor
+    if family == "time_ratio" and right:
+        yield (
+            "the reciprocal (fast stroke over slow; the time ratio is the slow stroke's time over the fast)",
+            (1.0 / right),
+        )
+    elif family == "stroke":
+        yield "half the stroke (the amplitude, not the travel from one end to the other)", right / 2.0
     for text, raw in _physics(family, names, an):
         yield text, to_space(raw)
 
@@ -198,6 +206,8 @@ def _physics(family: str, names: tuple[str, ...], an: Analysis) -> Iterator[tupl
         for other, state in an.kin.links.items():
             if other != names[0] and other != an.mech.ground and getattr(state, attr) is not None:
                 yield f"{symbol} of the wrong link ({other}'s)", getattr(state, attr)
+                # …and written with the wrong sense (a signed claim: the other link's value, negated)
+                yield f"{symbol} of the wrong link ({other}'s), with the wrong sense", -getattr(state, attr)
     elif family == "velocity":
         yield from _velocity_mixups(names, an)
     elif family == "acceleration":

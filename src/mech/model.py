@@ -289,6 +289,7 @@ class Claim:
     tolerance: Tolerance | None = None
     text: str = ""
     where: Where | None = field(default=None, compare=False)
+    marks: float | None = None  # ``{value: …, marks: 2}`` in a problem's answers (None: 1 mark)
 
 
 @dataclass(frozen=True, slots=True)
@@ -312,6 +313,9 @@ class Mechanism:
     length_unit: str = "m"
     angle_unit: str = "deg"
     asks: tuple[str, ...] = ()  # answer keys a student must answer (when `answers` carries no values)
+    #: Each question's marks where the file gives them (``asks`` as a mapping, ``marks`` on an
+    #: answer); a question not listed is worth 1 (DESIGN § 1.3).
+    marks: tuple[tuple[str, float], ...] = ()
     loads: tuple[Load, ...] = ()  # forces at points, torques on links (DESIGN § 1.1 "Loads")
     masses: tuple[Mass, ...] = ()  # links with mass (DESIGN § 1.4); the others are massless
     gravity: Vec | None = None  # m/s², in the file's frame; None: no gravity
@@ -322,6 +326,13 @@ class Mechanism:
     memo: Memo = field(default_factory=Memo, init=False, repr=False, compare=False, hash=False)
 
     # -- lookups -----------------------------------------------------------------
+    def marks_of(self, key: str) -> float:
+        """What a question is worth: its marks from ``asks`` or ``answers``, else 1."""
+        for k, m in self.marks:
+            if k == key:
+                return m
+        return 1.0
+
     def link(self, name: str) -> Link:
         for link in self.links:
             if link.name == name:

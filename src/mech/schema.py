@@ -236,9 +236,20 @@ _SECTIONS: dict[str, Any] = {
         ),
     },
     "asks": {
-        "type": "array",
-        "items": {"type": "string"},
-        "description": "Answer keys a student must answer (mech check --answers), when `answers` gives no values.",
+        "oneOf": [
+            {"type": "array", "items": {"type": "string"}},
+            {"type": "object", "additionalProperties": {"type": "number", "exclusiveMinimum": 0}},
+        ],
+        "description": "Answer keys a student must answer (mech check --answers), when `answers` gives no "
+        "values: a list (1 mark each) or a mapping of key to marks.",
+    },
+    "vary": {
+        "type": "object",
+        "description": "mech variants: dotted paths of scalars to {from, to, step} ranges or lists of values.",
+    },
+    "keep": {
+        "type": "object",
+        "description": "mech variants: answer keys each variant must keep: a label, or {at_least, at_most}.",
     },
     "answers": {
         "type": "object",
@@ -252,7 +263,12 @@ _SECTIONS: dict[str, Any] = {
                     "required": ["value"],
                     "additionalProperties": False,
                     "properties": _only(
-                        ANSWER_KEYS, {"value": {}, "tolerance": {"type": ["string", "number"]}}
+                        ANSWER_KEYS,
+                        {
+                            "value": {},
+                            "tolerance": {"type": ["string", "number"]},
+                            "marks": {"type": "number", "exclusiveMinimum": 0},
+                        },
                     ),
                 },
             ]

@@ -44,6 +44,7 @@ __all__ = [
     "ambiguous",
     "check_file",
     "lost_task",
+    "marked",
     "probe",
     "questions_of",
     "run_task",
@@ -116,7 +117,17 @@ def check_file(path: str, *, options: SolveOptions | None = None) -> FileResult:
         return error_result(path, error)
     if not mech.answers:
         return FileResult(path=path, name=mech.name, skipped=True)
-    return FileResult(path=path, name=mech.name, verdicts=check(mech, options=options))
+    return FileResult(path=path, name=mech.name, verdicts=marked(check(mech, options=options), mech))
+
+
+def marked(verdicts: tuple[Verdict, ...], mech: Mechanism) -> tuple[Verdict, ...]:
+    """The verdicts with each question's marks (DESIGN § 1.3); a question worth 1 is left as it is."""
+    if not mech.marks:
+        return verdicts
+    marks = dict(mech.marks)
+    return tuple(
+        replace(v, marks=marks[v.key]) if v.status != IGNORED and v.key in marks else v for v in verdicts
+    )
 
 
 # -- one problem file of a batch ------------------------------------------------------------------
@@ -247,7 +258,7 @@ def _check_sheets(task: Task, mech: Mechanism, questions: tuple[str, ...]) -> Do
             if mech.name is not None and e.key == mech.name:
                 entries.append(e)
                 used.append((sub.student, e.key, task.path))
-        verdicts = _grade(sub, entries, task.path, mech, questions, teacher_tol, analysis)
+        verdicts = marked(_grade(sub, entries, task.path, mech, questions, teacher_tol, analysis), mech)
         results.append(FileResult(task.path, mech.name, _share(verdicts, shared), student=sub.student))
     return Done(tuple(results), tuple(used))
 
@@ -384,7 +395,7 @@ def _read_entry(
                 key,
                 ERROR,
                 claimed=got.text,
-                message="not graded: an answer sheet cannot set a tolerance (the problem file sets it)",
+                message="not graded: an answer sheet cannot set a tolerance or marks (the problem file sets them)",
                 where=own_tolerance[key],
             )
         elif got is not None:

@@ -77,6 +77,10 @@ class Verdict:
         For a failed answer, the usual mistake the claim matches, computed
         (``"the opposite sense"``, ``"the other assembly branch (C below AD)"``);
         None when it matches none of them.
+    marks
+        What the question is worth (DESIGN § 1.3: ``asks`` as a mapping, or
+        ``marks`` on an answer; 1 by default): a pass earns them all, anything
+        else none.  An ignored sheet key is worth 0.
     """
 
     key: str
@@ -90,10 +94,21 @@ class Verdict:
     message: str = ""
     where: Where | None = field(default=None, compare=False)
     diagnosis: str | None = None
+    marks: float = 1.0
 
     @property
     def passed(self) -> bool:
         return self.status == PASS
+
+    @property
+    def earned(self) -> float:
+        """The marks this answer earns: all of them for a pass, none otherwise."""
+        return self.marks if self.status == PASS else 0.0
+
+    @property
+    def out_of(self) -> float:
+        """The marks it is scored out of (0 for an ignored sheet key)."""
+        return self.marks if self.status != IGNORED else 0.0
 
     @property
     def scored(self) -> bool:
@@ -119,6 +134,7 @@ def _unpickled(
     message: str,
     where: Where | None,
     diagnosis: str | None,
+    marks: float = 1.0,
 ) -> Verdict:
     """A pickled verdict read back (:meth:`Verdict.__reduce__`)."""
     return Verdict(
@@ -133,6 +149,7 @@ def _unpickled(
         message,
         where,
         None if diagnosis is None else sys.intern(diagnosis),
+        marks,
     )
 
 
@@ -180,6 +197,16 @@ class FileResult:
     def total(self) -> int:
         """Scored verdicts (ignored sheet keys are not counted)."""
         return sum(v.status != IGNORED for v in self.verdicts)
+
+    @property
+    def earned(self) -> float:
+        """Marks earned over the scored answers (DESIGN § 1.3)."""
+        return sum(v.earned for v in self.verdicts)
+
+    @property
+    def out_of(self) -> float:
+        """Marks asked: what the scored answers are worth, the same for every student."""
+        return sum(v.out_of for v in self.verdicts)
 
     @property
     def ok(self) -> bool:
@@ -267,6 +294,9 @@ def _verdict(claim: Claim, akey: AnswerKey, analysis: Analysis, default: Toleran
         value = grading.value(akey, analysis)
         verdict = _COMPARE[akey.compare](claim, akey, value, analysis, tolerance, base)
     except MechError as error:
+        lower = analysis.below(akey.level)  # the whole solve failed: this key may need less of it
+        if lower is not None:
+            return _verdict(claim, akey, lower, default)
         return _replace(base, status=ERROR, message=f"cannot be computed: {_reason(error)}")
     except (Undefined, InternalError) as why:
         return _replace(base, status=ERROR, message=str(why))
@@ -381,13 +411,26 @@ def _compare(
     if ok:
         return _replace(base, status=PASS, message=f"{what}{shown}", **common)
     slip = (
-        "" if dimension in (Dimension.NUMBER,) or sense else _unit_slip(computed, claimed, claim, tolerance)
+        ""
+        if dimension in (Dimension.NUMBER,) or sense
+        else _unit_slip(computed, claimed, claim, tolerance, dimension)
     )
     if slip:
         message = f"{what}{shown}{slip}"
-    elif sense and computed * claimed < 0 and abs(computed) > floor:
+    elif (
+        sense
+        and computed * claimed < 0
+        and abs(computed) > floor
+        and abs(abs(computed) - abs(claimed)) <= allowed
+    ):
         message = f"wrong sense: {what}{shown}, claimed {claim.sense or ('ccw' if claimed > 0 else 'cw')}"
-    elif tolerance.relative and computed != 0.0:
+    elif sense and computed * claimed < 0 and abs(computed) > floor:
+        # the magnitude is wrong too: the larger error is named first (issue 22)
+        off = abs(abs(computed) - abs(claimed)) / abs(computed)
+        message = (
+            f"{what}{shown}: the magnitude is off by {off:.1%} (allowed {tolerance}), and the sense is wrong"
+        )
+    elif tolerance.relative and abs(computed) > floor:  # a value at rest (2e-16) has no relative error
         message = f"{what}{shown}: off by {err / abs(computed):.1%} (allowed {tolerance})"
     else:
         message = f"{what}{shown}: off by {_show(err, claim, dimension, sense=False)} (allowed {tolerance})"
@@ -395,10 +438,25 @@ def _compare(
 
 
 _SLIPS = {1e3: "mm", 1e2: "cm"}
+#: What a length unit becomes in the unit of each quantity a slip hint may name (mm → mm/s …).
+_SLIP_SUFFIX = {Dimension.LENGTH: "", Dimension.VELOCITY: "/s", Dimension.ACCELERATION: "/s^2"}
 
 
-def _unit_slip(computed: float, claimed: float, claim: Claim, tolerance: Tolerance) -> str:
-    """A hint when a bare claim is the computed value in mm or cm: bare numbers are SI."""
+def _unit_slip(
+    computed: float,
+    claimed: float,
+    claim: Claim,
+    tolerance: Tolerance,
+    dimension: Dimension = Dimension.LENGTH,
+) -> str:
+    """A hint when a bare claim is the computed value in mm or cm: bare numbers are SI.
+
+    The unit it suggests measures the claim's own quantity (``mm/s`` for a speed):
+    a student who follows the hint must get a pass, not an error (issue 22).
+    """
+    suffix = _SLIP_SUFFIX.get(dimension)
+    if suffix is None:
+        return ""
     if computed == 0.0 or not claim.text or not claim.text.lstrip("[-+ ").replace(".", "", 1)[:1].isdigit():
         return ""
     try:
@@ -410,6 +468,7 @@ def _unit_slip(computed: float, claimed: float, claim: Claim, tolerance: Toleran
         if abs(claimed - computed * factor) <= max(
             tolerance.value if tolerance.relative else 0.02, 0.02
         ) * abs(computed * factor):
+            unit += suffix
             return f'; the claim looks like {unit}: a bare number is SI (write e.g. "{claimed:g} {unit}")'
     return ""
 

@@ -271,7 +271,12 @@ CHECK_UNITS = {
 
 def check_targets(values: Mapping[str, Any]) -> list[tuple[str, str]]:
     """The report files asked for, as (option, path) in the order they are written."""
-    pairs = (("--junit", "junit"), ("--gradescope", "gradescope"), ("--csv", "csv_path"))
+    pairs = (
+        ("--junit", "junit"),
+        ("--gradescope", "gradescope"),
+        ("--csv", "csv_path"),
+        ("--gradebook", "gradebook"),
+    )
     return [(option, values[dest]) for option, dest in pairs if values.get(dest)]
 
 
@@ -286,6 +291,8 @@ def check_usage(values: Mapping[str, Any]) -> str | None:
     answers, targets = values.get("answers"), check_targets(values)
     if answers and os.path.isdir(answers) and any(o == "--gradescope" for o, _ in targets):
         return "--gradescope writes one submission's results.json; for a folder of sheets use --csv or --json"
+    if not answers and any(o == "--gradebook" for o, _ in targets):
+        return "--gradebook writes one row per student: give the students' answer sheets with --answers"
     seen: dict[str, str] = {}
     for option, path in targets:
         with contextlib.suppress(OSError):
@@ -383,9 +390,16 @@ def _check(
         "--junit": render.junit_chunks,
         "--gradescope": lambda r: render.dumps(render.gradescope_dict(r)) + "\n",
         "--csv": render.csv_text,
+        "--gradebook": render.gradebook_text,
     }
     for option, path in targets:
         write_report(path, outputs[option](report))
+        if option == "--gradebook":  # the scores' histogram beside it (issue 22 item 5)
+            from mech.render.stats import histogram
+
+            svg = os.path.splitext(path)[0] + ".svg"
+            if svg != path and os.path.isfile(path):  # a device (/dev/stdout) has no "beside"
+                write_report(svg, histogram([s.score for s in report.scores()], title="scores"))
     if as_json:
         from mech.render.jsonout import stamp
 

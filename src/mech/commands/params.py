@@ -342,6 +342,11 @@ CHECK = (
     _out(("--junit",), "junit", "Also write JUnit XML (one testcase per answer)."),
     _out(("--gradescope",), "gradescope", "Also write a Gradescope autograder results.json."),
     _out(("--csv",), "csv_path", "Also write a CSV gradebook (student, problem …)."),
+    _out(
+        ("--gradebook",),
+        "gradebook",
+        "With --answers: write one row per student (a column per problem, total, out_of, percent).",
+    ),
     _flag(("-q", "--quiet"), "quiet", "List only files, students and answers that did not pass."),
     _flag(("-v", "--verbose"), "verbose", "List every answer (default: one line per file, or per student)."),
     Param(
@@ -355,6 +360,41 @@ CHECK = (
         low_open=True,
     ),
     JSON,
+)
+
+KEY = (
+    Param(("paths",), "paths", "path", nargs=-1, required=True, exists=True),
+    _out(("--csv",), "csv_path", "Also write the key as CSV (problem, key, value, unit)."),
+    JSON,
+)
+
+VARIANTS = (
+    Param(("file",), "file", "path", required=True, exists=True, dir_okay=False),
+    Param(
+        ("--roster",),
+        "roster",
+        "path",
+        "The class: a CSV with a `student` column.",
+        required=True,
+        exists=True,
+        dir_okay=False,
+    ),
+    Param(
+        ("--seed",),
+        "seed",
+        "int",
+        "The class's seed: the same seed gives the same variants.",
+        default=0,
+        show_default=True,
+    ),
+    Param(
+        ("-o", "--output"),
+        "output",
+        "path",
+        "The folder to write (class/<student>/…, key.csv, key.json).",
+        required=True,
+    ),
+    _flag(("--explain",), "explain", "Also write each student's worked construction beside their problem."),
 )
 
 DRAW = (
@@ -463,6 +503,8 @@ COMMANDS: dict[str, tuple[Param, ...]] = {
     ),
     "sweep": (*SWEEP, *KINEMATIC),
     "check": CHECK,
+    "key": KEY,
+    "variants": VARIANTS,
     "draw": (*DRAW, *KINEMATIC, ALPHA),
     "cam": CAM,
     "view": (*VIEW, *KINEMATIC),

@@ -101,6 +101,27 @@ class Analysis:
             raise value
         return value
 
+    def below(self, level: str) -> Analysis | None:
+        """This problem solved only to ``level`` (made once, kept), or None when ``level`` is not below.
+
+        The whole file is solved once at the highest level its claims need; when that
+        solve fails (an acceleration without the profiles' curvature), a key that needs
+        less — a velocity — is computed again from a solve of its own level, so that an
+        uncomputable acceleration costs only itself (issue 22).
+        """
+        if level not in _SOLVED or LEVELS.index(level) >= LEVELS.index(self.level):
+            return None
+
+        def make() -> Analysis:
+            sub = Analysis(self.mech, options=self.options)
+            sub.level = level
+            for name in ("topology", "mobility"):
+                if name in self._cache:
+                    sub._cache[name] = self._cache[name]
+            return sub
+
+        return self.cached(f"below:{level}", make)  # type: ignore[no-any-return]
+
     @property
     def topology(self) -> Topology:
         from mech.topology import classify

@@ -48,6 +48,11 @@ def _cycle(an: Analysis) -> Any:
     return an.cached("properties.cycle", lambda: cycle(an.mech, options=an.options.with_(angle=None)))
 
 
+def cycle_of(an: Analysis) -> Any:
+    """The cycle's properties (made once per analysis): ``mech key`` reads a stroke's unit from it."""
+    return _cycle(an)
+
+
 def transmission_angle(an: Analysis, names: tuple[str, ...]) -> float:
     """∠(crank pin, coupler–output joint, output pivot) at the instant, rad (0 to π)."""
     from mech.properties.cycle import transmission_angle as at_instant

@@ -13,19 +13,21 @@ import math
 import re
 import sys
 from collections.abc import Set as AbstractSet
+from dataclasses import replace
 
 import yaml
 
 from mech.answers import KIND_LABELS, AnswerKey, Compare, ICentreNames, key_forms, parse_key
+from mech.errors import Where
 from mech.loader.nodes import article, did_you_mean, text_of
 from mech.loader.reader import NodeReader, Skip
 from mech.model import Claim, Tolerance, Vec
 from mech.units import Dimension, known_units, parse_number, parse_quantity
 
-__all__ = ["ANSWER_KEYS", "DEFAULT_TOLERANCE", "read_answers", "read_asks", "read_claim"]
+__all__ = ["ANSWER_KEYS", "DEFAULT_TOLERANCE", "read_answers", "read_asks", "read_claim", "read_marks"]
 
-#: The keys of an answer written as a mapping (``{value: …, tolerance: …}``).
-ANSWER_KEYS = ("value", "tolerance")
+#: The keys of an answer written as a mapping (``{value: …, tolerance: …, marks: …}``).
+ANSWER_KEYS = ("value", "tolerance", "marks")
 #: The file's tolerance when ``answers`` sets none.
 DEFAULT_TOLERANCE = Tolerance(0.02)
 
@@ -50,10 +52,23 @@ def read_answers(r: NodeReader, node: yaml.Node, kinds: Kinds) -> tuple[list[Cla
     return claims, tolerance
 
 
-def read_asks(r: NodeReader, node: yaml.Node, kinds: Kinds) -> tuple[str, ...]:
-    """``asks: [omega.rocker, velocity.C]``: the questions of a problem file without values."""
+def read_asks(r: NodeReader, node: yaml.Node, kinds: Kinds) -> tuple[tuple[str, ...], dict[str, float]]:
+    """The questions of a problem file without values, and their marks.
+
+    ``asks: [omega.rocker, velocity.C]`` (1 mark each), or a mapping of key to
+    marks ``asks: {omega.rocker: 2, velocity.C: 3}`` (DESIGN § 1.3).
+    """
+    if isinstance(node, yaml.MappingNode):
+        marks: dict[str, float] = {}
+        for key, (knode, vnode) in r.mapping(node, "asks (answer keys and their marks)").items():
+            try:
+                _answer_key(r, key, knode, kinds)
+                marks[key] = read_marks(r, vnode, key)
+            except Skip:
+                continue
+        return tuple(marks), marks
     out: dict[str, yaml.Node] = {}
-    for item in r.sequence(node, "asks (a list of answer keys)"):
+    for item in r.sequence(node, "asks (a list of answer keys, or a mapping of key to marks)"):
         try:
             key = r.scalar(item, "an answer key")
             _answer_key(r, key, item, kinds)
@@ -63,7 +78,23 @@ def read_asks(r: NodeReader, node: yaml.Node, kinds: Kinds) -> tuple[str, ...]:
             r.problem(item, f"asks lists {key} twice", f"first at line {out[key].start_mark.line + 1}")
             continue
         out[key] = item
-    return tuple(out)
+    return tuple(out), {}
+
+
+def read_marks(r: NodeReader, node: yaml.Node, key: str) -> float:
+    """A question's marks: a number above zero (whole or not: 0.5 marks is a mark scheme too)."""
+    raw = r.scalar(node, f"the marks of {key}")
+    try:
+        value = parse_number(raw)
+    except ValueError:
+        raise r.problem(node, f"the marks of {key} must be a number, not {_shown(raw)}") from None
+    if not math.isfinite(value) or value <= 0:
+        raise r.problem(
+            node,
+            f"the marks of {key} must be above 0, not {_shown(raw)}",
+            "leave the key out to ask nothing of it",
+        )
+    return value
 
 
 def _answer_key(r: NodeReader, key: str, knode: yaml.Node, kinds: Kinds) -> AnswerKey:
@@ -96,6 +127,7 @@ def read_claim(r: NodeReader, key: str, knode: yaml.Node, vnode: yaml.Node, kind
     """One answer: its key checked, its value read as the key's quantity compares."""
     akey = _answer_key(r, key, knode, kinds)
     tolerance = None
+    marks: float | None = None
     value_node = vnode
     if isinstance(vnode, yaml.MappingNode):
         f = r.mapping(vnode, f"answer {key}", allowed=ANSWER_KEYS)
@@ -104,8 +136,24 @@ def read_claim(r: NodeReader, key: str, knode: yaml.Node, vnode: yaml.Node, kind
         value_node = f["value"][1]
         if "tolerance" in f:
             tolerance = _tolerance(r, f["tolerance"][1], akey.dimension, file_level=False)
+        if "marks" in f:
+            marks = read_marks(r, f["marks"][1], key)
     text = text_of(value_node)
     where = r.where(knode)
+    claim = _read_value(r, key, akey, value_node, tolerance, text, where)
+    return claim if marks is None else replace(claim, marks=marks)
+
+
+def _read_value(
+    r: NodeReader,
+    key: str,
+    akey: AnswerKey,
+    value_node: yaml.Node,
+    tolerance: Tolerance | None,
+    text: str,
+    where: Where,
+) -> Claim:
+    """A claim's value read as its key's quantity compares."""
     if akey.compare is Compare.LABEL:
         return Claim(key, r.scalar(value_node, "the chain"), None, None, tolerance, text, where)
     if akey.compare is Compare.COUNT:

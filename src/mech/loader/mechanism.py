@@ -58,6 +58,8 @@ TOP_KEYS = (
     "points",
     "answers",
     "asks",
+    "vary",  # how the given values vary from student to student (mech variants; DESIGN § 1.3)
+    "keep",  # what every variant must keep (read by mech.check.variants, ignored here)
     "loads",
     "masses",
     "gravity",
@@ -145,7 +147,7 @@ def _mechanism(r: NodeReader, root: yaml.MappingNode, top: Top) -> Mechanism:
     drives: list[Drive] = []
     if "drive" in top:
         drives = r.guard(lambda: read_drives(r, top["drive"][1], set(link_names), ground, joints), [])
-    answers, tolerance, asks = _questions(r, top, links, joints, points)
+    answers, tolerance, asks, marks = _questions(r, top, links, joints, points)
     loads: tuple[Load, ...] = ()
     if "loads" in top:
         loads = r.guard(lambda: read_loads(r, top["loads"][1], link_names, joints, points), ())
@@ -162,6 +164,7 @@ def _mechanism(r: NodeReader, root: yaml.MappingNode, top: Top) -> Mechanism:
         drives=tuple(drives),
         answers=tuple(answers),
         asks=asks,
+        marks=marks,
         loads=loads,
         masses=masses,
         gravity=gravity,
@@ -192,13 +195,15 @@ def _links_and_ground(r: NodeReader, root: yaml.MappingNode, top: Top) -> tuple[
 
 def _questions(
     r: NodeReader, top: Top, links: tuple[Link, ...], joints: list[Joint], points: list[Point]
-) -> tuple[list[Claim], Tolerance, tuple[str, ...]]:
-    """``answers`` (claims and the file's tolerance) and ``asks``, keys checked against the names."""
+) -> tuple[list[Claim], Tolerance, tuple[str, ...], tuple[tuple[str, float], ...]]:
+    """``answers`` (claims and the file's tolerance), ``asks``, and the questions' marks, keys
+    checked against the names."""
     answers: list[Claim] = []
     tolerance = DEFAULT_TOLERANCE
     asks: tuple[str, ...] = ()
+    marks: dict[str, float] = {}
     if "answers" not in top and "asks" not in top:
-        return answers, tolerance, asks  # the names' kinds (I-centres too) cost more than the rest
+        return answers, tolerance, asks, ()  # the names' kinds (I-centres too) cost more than the rest
     kinds = names_by_kind(
         (link.name for link in links),
         (j.name for j in joints),
@@ -206,11 +211,12 @@ def _questions(
         len(links),
         higher_pairs(joints),
     )
+    if "asks" in top:
+        asks, marks = r.guard(lambda: read_asks(r, top["asks"][1], kinds), ((), {}))
     if "answers" in top:
         answers, tolerance = r.guard(lambda: read_answers(r, top["answers"][1], kinds), ([], tolerance))
-    if "asks" in top:
-        asks = r.guard(lambda: read_asks(r, top["asks"][1], kinds), ())
-    return answers, tolerance, asks
+        marks.update({c.key: c.marks for c in answers if c.marks is not None})
+    return answers, tolerance, asks, tuple(marks.items())
 
 
 def _dynamics(

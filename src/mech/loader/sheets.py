@@ -134,13 +134,14 @@ def answer_keys(node: yaml.MappingNode, path: str) -> list[tuple[str, Where]]:
 
 
 def own_tolerances(node: yaml.MappingNode, path: str) -> dict[str, Where]:
-    """Keys of a sheet entry written ``{value: …, tolerance: …}``: where their tolerance is."""
-    out = {}
+    """Keys of a sheet entry written ``{value: …, tolerance: …}`` (or ``marks: …``): where the
+    student's own tolerance or marks are (the problem file alone sets them)."""
+    out: dict[str, Where] = {}
     for knode, vnode in node.value:
         if isinstance(vnode, yaml.MappingNode):
             for k, _ in vnode.value:
-                if getattr(k, "value", None) == "tolerance":
-                    out[str(knode.value)] = where_of(k, path)
+                if getattr(k, "value", None) in ("tolerance", "marks"):
+                    out.setdefault(str(knode.value), where_of(k, path))
     return out
 
 

@@ -231,7 +231,7 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
     """
     import numpy as np
 
-    from mech.kinematics import solve, sweep
+    from mech.kinematics import solve
     from mech.kinematics.sweep_events import turns_fully
 
     options = (options or SolveOptions()).with_(angle=None)
@@ -245,20 +245,7 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
         f"displacement.{s}" if kind == "displacement" else f"angle.{s}" for _j, kind, s in subjects
     ]
     quantities = ([trans.quantity] if trans else []) + slides_and_links
-    angles = np.linspace(0.0, 2.0 * math.pi, steps + 1)
-    sw = sweep(mech, angles, level="position", options=options, quantities=quantities or None)
-    # separate circuits are parted by gaps where the loop cannot close; steps that are not assembled
-    # only because they sit on a change point (where the circuits meet) part nothing
-    drawn = base.drives[0].angle if base.drives else None
-    window = _drawn_circuit(sw.angles, sw.assembled, drawn) if sw.gaps else None
-    if window is not None:  # the turn met other circuits: read the drawn one's alone
-        angles = np.linspace(window[0], window[1], steps + 1)
-        sw = sweep(mech, angles, level="position", options=options, quantities=quantities or None)
-    elif sw.change_points and not _comes_back(sw, slides_and_links):
-        # past a change point the loop may come back only after a second turn of the crank (a
-        # change-point four-bar's rocker): its swing, or its turning, is read over that period
-        angles = np.linspace(0.0, 4.0 * math.pi, 2 * steps + 1)
-        sw = sweep(mech, angles, level="position", options=options, quantities=quantities or None)
+    sw = _cycle_sweep(mech, base, options, steps, quantities, slides_and_links)
     ext = {e.quantity: e for e in sw.extremes}
     mu = ext.get(trans.quantity) if trans else None  # 0 or 180° where coupler and output fold in line
     mu_min = (mu.min_value, mu.min_angle) if mu else None
@@ -310,6 +297,36 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
         time_ratio_output=sw.time_ratio.output if sw.time_ratio else None,
         gaps=tuple((g.start, g.end) for g in sw.gaps),
     )
+
+
+def _cycle_sweep(
+    mech: Mechanism,
+    base: Kinematics,
+    options: SolveOptions,
+    steps: int,
+    quantities: list[str],
+    outputs: list[str],
+) -> Sweep:
+    """The sweep the properties are read on: a turn of the crank, the drawn circuit's part of it, or two turns."""
+    import numpy as np
+
+    from mech.kinematics import sweep
+
+    def over(angles: np.ndarray) -> Sweep:
+        return sweep(mech, angles, level="position", options=options, quantities=quantities or None)
+
+    sw = over(np.linspace(0.0, 2.0 * math.pi, steps + 1))
+    # separate circuits are parted by gaps where the loop cannot close; steps that are not assembled
+    # only because they sit on a change point (where the circuits meet) part nothing
+    drawn = base.drives[0].angle if base.drives else None
+    window = _drawn_circuit(sw.angles, sw.assembled, drawn) if sw.gaps else None
+    if window is not None:  # the turn met other circuits: read the drawn one's alone
+        return over(np.linspace(window[0], window[1], steps + 1))
+    if sw.change_points and not _comes_back(sw, outputs):
+        # past a change point the loop may come back only after a second turn of the crank (a
+        # change-point four-bar's rocker): its swing, or its turning, is read over that period
+        return over(np.linspace(0.0, 4.0 * math.pi, 2 * steps + 1))
+    return sw
 
 
 def _comes_back(sw: Sweep, quantities: Sequence[str]) -> bool:

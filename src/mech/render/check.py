@@ -25,6 +25,7 @@ from mech.check import ERROR, FAIL, IGNORED, PASS, FileResult, Verdict
 from mech.errors import InputError
 from mech.render.jsonout import dumps, error_dict
 from mech.render.safe import printable, xml_safe
+from mech.render.stats import key_statistics, problem_label
 
 if TYPE_CHECKING:  # pragma: no cover
     from rich.console import Console
@@ -39,11 +40,13 @@ __all__ = [
     "check_table",
     "csv_text",
     "dumps",
+    "gradebook_text",
     "gradescope_dict",
     "junit_chunks",
     "junit_xml",
     "progress",
     "report_dict",
+    "statistics_lines",
     "summary_line",
 ]
 
@@ -155,9 +158,9 @@ class Stream:
         if self.verbose:
             self._answers(r)
 
-    def _answers(self, r: FileResult) -> None:
+    def _answers(self, r: FileResult, *, failing_only: bool = False) -> None:
         for v in r.verdicts:
-            if self.quiet and v.status == PASS:
+            if (self.quiet and v.status == PASS) or (failing_only and v.status not in (FAIL, ERROR)):
                 continue
             claimed = f" {v.claimed}" if v.claimed else ""
             self._write(f"    {_PLAIN[v.status]:<7} {v.key}{claimed}: {_message(v)}")
@@ -166,15 +169,24 @@ class Stream:
         """The teacher's excluded files, every student (with sheets), the closing line."""
         if report.students:
             self._teacher(report)
+            by_student: dict[str, list[FileResult]] = {}
+            if self.verbose or self.quiet:  # -q lists each student's failing answers (issue 22)
+                for r in report.results:
+                    if r.student is not None and (r.verdicts or r.sheet):
+                        by_student.setdefault(r.student, []).append(r)
             for s in report.scores():
                 if self.quiet and s.passed == s.asked:
                     continue
                 self._write(_student_line(s))
-                if self.verbose:
-                    for r in report.results:
-                        if r.student == s.student and (r.verdicts or r.sheet):
-                            self._write(f"  {r.path}" + ("  (sheet)" if r.sheet else ""))
-                            self._answers(r)
+                for r in by_student.get(s.student, ()):
+                    if self.verbose:
+                        self._write(f"  {r.path}" + ("  (sheet)" if r.sheet else ""))
+                        self._answers(r)
+                    elif r.failed or r.errors:
+                        self._write(f"  {r.path}" + ("  (sheet)" if r.sheet else ""))
+                        self._answers(r, failing_only=True)
+            for line in statistics_lines(report):
+                self._write(line)
         self._write(summary_line(report))
         self.out.flush()
 
@@ -184,6 +196,18 @@ class Stream:
         self._write("excluded from every score (the problem file cannot be graded):")
         for r in report.teacher:
             self._write(f"  EXCLUDED {r.path}: {r.verdicts[0].message if r.verdicts else ''}")
+
+
+def statistics_lines(report: Report) -> list[str]:
+    """Per question: how many got it right, and the commonest diagnosed mistake (what to re-teach)."""
+    stats = key_statistics(report.results)
+    if not stats:
+        return []
+    lines = ["per question (right / asked; the commonest diagnosed mistake):"]
+    for k in stats:
+        mistake = f"; {k.mistaken} × {k.mistake}" if k.mistake else ""
+        lines.append(f"  {k.problem} {k.key}: {k.right}/{k.asked} right{mistake}")
+    return lines
 
 
 def _student_line(s: StudentScore) -> str:
@@ -216,6 +240,11 @@ def check_table(
         _files_table(report, console, quiet=quiet)
     if verbose:
         _answers_table(report, console, quiet=quiet)
+    elif quiet and report.students:  # -q: each student's failing answers (issue 22)
+        _answers_table(report, console, quiet=True, failing_only=True)
+    if report.students:
+        for line in statistics_lines(report):
+            console.print(Text(printable(line)))
     style = "green" if report.exit_status == 0 else "red"
     console.print(Text(summary_line(report), style="bold " + style))
 
@@ -270,8 +299,13 @@ def _files_table(report: Report, console: ReportConsole, *, quiet: bool) -> None
         console.print(table)
 
 
-def _answers_table(report: Report, console: ReportConsole, *, quiet: bool) -> None:
-    """One row per answer under a row naming its file (a file column would squeeze the reasons)."""
+def _answers_table(
+    report: Report, console: ReportConsole, *, quiet: bool, failing_only: bool = False
+) -> None:
+    """One row per answer under a row naming its file (a file column would squeeze the reasons).
+
+    ``failing_only``: the failed and errored answers alone (``-q`` with a class).
+    """
     from mech.render.table import Table, Text
 
     table = Table(box=_box(console))
@@ -281,7 +315,10 @@ def _answers_table(report: Report, console: ReportConsole, *, quiet: bool) -> No
     table.add_column("computed / reason", overflow="fold")
     rows = 0
     for r in report.results:
-        shown = [v for v in r.verdicts if not (quiet and v.passed)]
+        if failing_only:
+            shown = [v for v in r.verdicts if v.status in (FAIL, ERROR)]
+        else:
+            shown = [v for v in r.verdicts if not (quiet and v.passed)]
         if not shown:
             continue
         if rows:
@@ -393,6 +430,8 @@ def verdict_dict(v: Verdict) -> dict[str, Any]:
         "tolerance": v.tolerance,
         "message": v.message,
         "diagnosis": v.diagnosis,
+        "marks": v.marks,
+        "earned": v.earned,
         "line": v.where.line if v.where and v.where.line else None,
         "column": v.where.column if v.where and v.where.line else None,
         "source": v.where.path if v.where else None,
@@ -410,6 +449,8 @@ def _file_dict(r: FileResult) -> dict[str, Any]:
         "errors": r.errors,
         "ignored": r.ignored,
         "total": r.total,
+        "earned": r.earned,
+        "out_of": r.out_of,
         "skipped": r.skipped,
         "excluded": r.excluded,
         "sheet": r.sheet,
@@ -447,9 +488,23 @@ def report_dict(report: Report) -> dict[str, Any]:
                 "errors": s.errors,
                 "ignored": s.ignored,
                 "total": s.asked,
+                "earned": s.earned,
+                "out_of": s.out_of,
                 "score": round(s.score, 6),
             }
             for s in report.scores()
+        ]
+        out["statistics"] = [
+            {
+                "problem": k.problem,
+                "key": k.key,
+                "asked": k.asked,
+                "right": k.right,
+                "wrong": k.wrong,
+                "commonest_mistake": k.mistake,
+                "mistaken": k.mistaken,
+            }
+            for k in key_statistics(report.results)
         ]
     out["results"] = [_file_dict(r) for r in report.results]
     return out
@@ -513,8 +568,16 @@ def _suite(r: FileResult) -> str:
             child = f"<skipped message={_attr(v.message)} />"
             skipped += 1
         cases.append(_case(classname, v.key, child))
+    tests = len(cases)
+    if r.verdicts and not (r.excluded or r.sheet or r.skipped):
+        # the score in marks (DESIGN § 1.3): JUnit has no score, so it rides as suite properties
+        cases.insert(
+            0,
+            f'    <properties>\n      <property name="earned" value="{r.earned:g}" />\n'
+            f'      <property name="out_of" value="{r.out_of:g}" />\n    </properties>\n',
+        )
     return (
-        f'  <testsuite name={_attr(_label(r))} tests="{len(cases)}" failures="{r.failed}" '
+        f'  <testsuite name={_attr(_label(r))} tests="{tests}" failures="{r.failed}" '
         f'errors="{r.errors}" skipped="{skipped}"'
         + (">\n" + "".join(cases) + "  </testsuite>\n" if cases else " />\n")
     )
@@ -572,7 +635,7 @@ def _problem_lines(r: FileResult) -> list[str]:
 
 # -- Gradescope -----------------------------------------------------------------------------
 def gradescope_dict(report: Report) -> dict[str, Any]:
-    """Gradescope autograder ``results.json``: one test per answer, one point each.
+    """Gradescope autograder ``results.json``: one test per answer, worth its marks (1 by default).
 
     Follows the autograder specification (gradescope-autograders.readthedocs.io,
     "Output format"): a top-level ``score`` and ``output``, and ``tests`` with
@@ -595,7 +658,7 @@ def gradescope_dict(report: Report) -> dict[str, Any]:
             )
             tests.append(_gs(f"{title}", f"{i}", 0.0, 0.0, "passed", why))
         for k, v in enumerate(r.verdicts, 1):
-            points = 1.0 if v.scored and not r.excluded and not r.sheet else 0.0
+            points = v.marks if v.scored and not r.excluded and not r.sheet else 0.0
             tests.append(
                 _gs(
                     f"{title}: {v.key}",
@@ -629,15 +692,17 @@ def _gradescope_output(v: Verdict) -> str:
 
 
 # -- CSV ------------------------------------------------------------------------------------
-CSV_COLUMNS = ("student", "problem", "passed", "total", "score", "status")
+CSV_COLUMNS = ("student", "problem", "passed", "total", "score", "status", "earned", "out_of")
 
 
 def csv_text(report: Report) -> str:
-    """One row per student and problem for a gradebook (Moodle, Canvas): ``score`` is a percentage.
+    """One row per student and problem: ``score`` is a percentage of the marks (earned over out_of).
 
-    ``status`` says what the row is: ``graded``, ``nothing to check``,
-    ``excluded`` (the problem file is the teacher's error: no score, not a 0)
-    or ``sheet`` (a row about the sheet itself: ignored keys, unreadable sheet).
+    (``--gradebook`` writes the one row per student that gradebooks import.)
+
+        ``status`` says what the row is: ``graded``, ``nothing to check``,
+        ``excluded`` (the problem file is the teacher's error: no score, not a 0)
+        or ``sheet`` (a row about the sheet itself: ignored keys, unreadable sheet).
     """
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
@@ -656,6 +721,38 @@ def csv_text(report: Report) -> str:
             notes = "; ".join(f"{v.key}: {v.message}" for v in r.verdicts)
             writer.writerow([r.student or "", r.path, "", "", "", f"sheet: {notes}"])
         else:
-            score = 100.0 * r.passed / r.total if r.total else 0.0
-            writer.writerow([r.student or "", r.path, r.passed, r.total, f"{score:.1f}", "graded"])
+            score = 100.0 * r.earned / r.out_of if r.out_of else 0.0
+            row = [r.student or "", r.path, r.passed, r.total, f"{score:.1f}", "graded"]
+            writer.writerow([*row, f"{r.earned:g}", f"{r.out_of:g}"])
+    return buffer.getvalue()
+
+
+# -- the gradebook: one row per student --------------------------------------------------------
+def _marks(x: float) -> str:
+    """Marks as a gradebook cell: a plain decimal number (no exponent, no thousands separator)."""
+    return f"{x:.4f}".rstrip("0").rstrip(".") if x != int(x) else str(int(x))
+
+
+def gradebook_text(report: Report) -> str:
+    """``--gradebook``: one row per student, ``student``, a column per problem (marks earned),
+    ``total``, ``out_of`` and ``percent`` (DESIGN § 1.3): the shape Moodle's and Canvas's CSV grade
+    imports read (a header row, one identifying column, numeric cells, one row per student).
+
+    A problem left out of every score (the teacher's error) has no column: it counts for no one.
+    """
+    columns: dict[str, None] = {}
+    earned: dict[tuple[str, str], float] = {}
+    for r in report.results:
+        if r.student is None or r.sheet or r.excluded or r.skipped:
+            continue
+        label = problem_label(r)
+        columns.setdefault(label)
+        earned[(r.student, label)] = earned.get((r.student, label), 0.0) + r.earned
+    problems = sorted(columns)
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(["student", *problems, "total", "out_of", "percent"])
+    for s in report.scores():
+        cells = [_marks(earned.get((s.student, p), 0.0)) for p in problems]
+        writer.writerow([s.student, *cells, _marks(s.earned), _marks(s.out_of), f"{100 * s.score:.1f}"])
     return buffer.getvalue()

@@ -1,0 +1,295 @@
+"""A problem for each student: ``vary:`` and ``keep:`` (DESIGN § 1.3), drawn deterministically.
+
+A problem file may say how its given values vary from student to student::
+
+    vary:
+      lengths.AB: {from: 30, to: 50, step: 1}    # any scalar of the file, by its dotted path
+      drive.rpm: [100, 120, 150, 200]            # a list: one of these
+    keep:
+      grashof: crank-rocker                      # an answer key and the label it must have
+      transmission_angle.min: {at_least: 35 deg} # or bounds on its value (with units)
+
+**A student's variant depends only on the seed, the file and the student's id**: each
+value is chosen by a hash (SHA-256) of the seed, the file's text, the id, the attempt
+and the value's path — never by a random generator's order — so adding, removing or
+reordering students changes no one's variant, and the same seed gives the same class.
+A variant that breaks a ``keep`` condition, does not assemble, or leaves a question
+of the problem uncomputable is redrawn (the next attempt), at most
+:data:`MAX_ATTEMPTS` times.
+
+Each variant is the problem with that student's numbers, its drawn positions
+recomputed (every ``near`` hint, and every ``at`` of a joint not on the frame, moved
+to where that variant's solution puts it), its ``asks`` kept, and no ``vary``,
+``keep`` or ``answers`` (answers' keys become ``asks``, with their marks).
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import yaml
+
+from mech import loader
+from mech._records import dataclass
+from mech.answers import Compare, parse_key
+from mech.errors import InputError, MechError, Problem, Where
+from mech.grading.key import KeyRow, answer_key
+from mech.grading.lazy import Analysis
+from mech.model import Mechanism
+from mech.units import parse_quantity, to_unit
+
+__all__ = ["MAX_ATTEMPTS", "Plan", "Variant", "plan", "variant_for"]
+
+#: Redraws of one student's variant before giving up (the keep conditions may be too strict).
+MAX_ATTEMPTS = 200
+
+
+@dataclass(frozen=True, slots=True)
+class Plan:
+    """What a problem file varies and keeps, read and checked once."""
+
+    path: str
+    text: str
+    data: dict[str, Any]
+    vary: tuple[tuple[str, tuple[Any, ...]], ...]
+    keep: tuple[tuple[str, Any], ...]
+    digest: str
+
+
+@dataclass(frozen=True, slots=True)
+class Variant:
+    """One student's problem: its values, its text (YAML), the mechanism and its key."""
+
+    student: str
+    values: tuple[tuple[str, Any], ...]
+    text: str
+    mech: Mechanism
+    key: tuple[KeyRow, ...]
+    attempt: int
+
+
+# -- reading vary and keep --------------------------------------------------------------------
+def plan(path: str, text: str | None = None) -> Plan:
+    """Read a problem file's ``vary`` and ``keep``; a located InputError (exit 2) if they are wrong."""
+    if text is None:
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+    loader.loads(text, path=path)  # the problem itself must be a valid file first
+    root = yaml.compose(text)
+    data = yaml.safe_load(text)
+    nodes = {k.value: v for k, v in root.value} if isinstance(root, yaml.MappingNode) else {}
+    problems: list[Problem] = []
+    where = lambda node: Where(path, node.start_mark.line + 1, node.start_mark.column + 1)  # noqa: E731
+    if "vary" not in nodes:
+        raise InputError(
+            f"{path} has no `vary:`: every student would get the same numbers",
+            where=Where(path),
+            hint="add e.g. `vary: {lengths.AB: {from: 30, to: 50, step: 1}}` (DESIGN § 1.3)",
+        )
+    vary = []
+    vnode = nodes["vary"]
+    if not isinstance(vnode, yaml.MappingNode) or not vnode.value:
+        raise InputError("`vary` must map dotted paths to ranges or lists", where=where(vnode))
+    for knode, spec_node in vnode.value:
+        dotted = str(knode.value)
+        spec = data["vary"][dotted]
+        try:
+            _get(data, dotted)
+        except (KeyError, IndexError, TypeError):
+            problems.append(
+                Problem(
+                    f"vary: {dotted} names no value of this file",
+                    where(knode),
+                    "a dotted path to a scalar, e.g. lengths.AB, drive.angle, joints.D.at.0",
+                )
+            )
+            continue
+        choices = _choices(spec)
+        if isinstance(choices, str):
+            problems.append(Problem(f"vary: {dotted}: {choices}", where(spec_node)))
+            continue
+        vary.append((dotted, choices))
+    keep = []
+    if "keep" in nodes:
+        knodes = nodes["keep"]
+        if not isinstance(knodes, yaml.MappingNode):
+            raise InputError(
+                "`keep` must map answer keys to a label or to {at_least, at_most}", where=where(knodes)
+            )
+        for knode, _cnode in knodes.value:
+            key = str(knode.value)
+            try:
+                parse_key(key)
+            except ValueError as exc:
+                problems.append(
+                    Problem(
+                        f"keep: {exc}", where(knode), "a condition is an answer key (see cli.md § answers)"
+                    )
+                )
+                continue
+            keep.append((key, data["keep"][key]))
+    if problems:
+        raise InputError(problems=problems, source=text)
+    digest = hashlib.sha256(text.encode("utf-8")).hexdigest()
+    return Plan(path, text, data, tuple(vary), tuple(keep), digest)
+
+
+def _choices(spec: Any) -> tuple[Any, ...] | str:
+    """The values a ``vary`` entry allows, in order; a string says what is wrong."""
+    if isinstance(spec, list):
+        return tuple(spec) if spec else "an empty list"
+    if not isinstance(spec, dict) or set(spec) - {"from", "to", "step"} or not {"from", "to"} <= set(spec):
+        return "a range {from, to, step} or a list of values"
+    lo, hi, step = spec["from"], spec["to"], spec.get("step", 1)
+    if not all(isinstance(x, (int, float)) for x in (lo, hi, step)) or step <= 0 or hi < lo:
+        return "from ≤ to, and a step above 0 (numbers, in the file's units)"
+    n = math.floor((hi - lo) / step + 1e-9) + 1
+    whole = all(float(x).is_integer() for x in (lo, step))
+    return tuple((int(lo + i * step) if whole else round(lo + i * step, 12)) for i in range(n))
+
+
+def _get(data: Any, dotted: str) -> Any:
+    for part in dotted.split("."):
+        data = data[int(part)] if isinstance(data, list) else data[part]
+    if isinstance(data, (dict, list)):
+        raise TypeError(dotted)
+    return data
+
+
+def _set(data: Any, dotted: str, value: Any) -> None:
+    parts = dotted.split(".")
+    for part in parts[:-1]:
+        data = data[int(part)] if isinstance(data, list) else data[part]
+    last = parts[-1]
+    if isinstance(data, list):
+        data[int(last)] = value
+    else:
+        data[last] = value
+
+
+# -- one student's variant ----------------------------------------------------------------------
+def draw(p: Plan, seed: int, student: str, attempt: int) -> tuple[tuple[str, Any], ...]:
+    """The values of one attempt: each chosen by a hash of seed, file, student, attempt and path."""
+    base = f"{seed}\x1f{p.digest}\x1f{student}\x1f{attempt}".encode()
+    out = []
+    for dotted, choices in p.vary:
+        h = hashlib.sha256(base + b"\x1f" + dotted.encode("utf-8")).digest()
+        out.append((dotted, choices[int.from_bytes(h[:8], "big") % len(choices)]))
+    return tuple(out)
+
+
+def variant_for(p: Plan, seed: int, student: str) -> Variant:
+    """``student``'s variant: the first attempt that assembles, answers every question, keeps ``keep``."""
+    last = "no attempt"
+    for attempt in range(MAX_ATTEMPTS):
+        values = draw(p, seed, student, attempt)
+        try:
+            text, mech, rows = _build(p, values)
+        except MechError as error:
+            last = error.problems[0].message if error.problems else str(error)
+            continue
+        broken = next((r for r in rows if r.error is not None), None)
+        if broken is not None:
+            last = f"{broken.key}: {broken.error}"
+            continue
+        why = _broken_keep(p, mech)
+        if why is None:
+            return Variant(student, values, text, mech, rows, attempt)
+        last = why
+    raise InputError(
+        f"no variant for {student} in {MAX_ATTEMPTS} attempts keeps every condition (last: {last})",
+        where=Where(p.path),
+        hint="widen the `vary` ranges or loosen `keep`",
+    )
+
+
+def _build(p: Plan, values: Sequence[tuple[str, Any]]) -> tuple[str, Mechanism, tuple[KeyRow, ...]]:
+    data = copy.deepcopy(p.data)
+    for dotted, value in values:
+        _set(data, dotted, value)
+    for k in ("vary", "keep"):
+        data.pop(k, None)
+    answers = data.pop("answers", None)
+    if answers:  # the answers' keys are the questions (their values were the teacher's drawing's)
+        asks = {
+            k: (v.get("marks", 1) if isinstance(v, dict) else 1)
+            for k, v in answers.items()
+            if k != "tolerance"
+        }
+        data["asks"] = asks if any(m != 1 for m in asks.values()) else list(asks)
+    first = loader.loads(_dump(data), path=p.path)
+    _redraw(data, first)
+    text = _dump(data)
+    mech = loader.loads(text, path=p.path)
+    return text, mech, answer_key(mech)
+
+
+def _redraw(data: dict[str, Any], mech: Mechanism) -> None:
+    """Move the drawn positions to this variant's solution: ``near`` hints, ``at`` of moving joints."""
+    joints = data.get("joints") or {}
+    drawn = [n for n, j in joints.items() if isinstance(j, dict) and ("near" in j or "at" in j)]
+    if not drawn:
+        return
+    an = Analysis(mech)
+    positions = an.kin.positions
+    unit = mech.length_unit
+    for name in drawn:
+        j = joints[name]
+        moving = mech.ground not in (j.get("links") or ())
+        field = "near" if "near" in j else ("at" if moving else None)
+        if field is None or name not in positions or not isinstance(j[field], list):
+            continue
+        x, y = positions[name]
+        j[field] = [_round(to_unit(x, unit)), _round(to_unit(y, unit))]
+
+
+def _round(v: float) -> float:
+    return float(f"{v:.10g}") + 0.0
+
+
+def _dump(data: dict[str, Any]) -> str:
+    return yaml.safe_dump(data, sort_keys=False, allow_unicode=True, default_flow_style=None, width=100)
+
+
+# -- keep conditions ---------------------------------------------------------------------------
+def _broken_keep(p: Plan, mech: Mechanism) -> str | None:
+    """Why ``mech`` breaks a ``keep`` condition, or None when it keeps them all."""
+    if not p.keep:
+        return None
+    an = Analysis(mech)
+    rows = {r.key: r for r in answer_key(_asking(mech, [k for k, _ in p.keep]), an)}
+    for key, want in p.keep:
+        row = rows[key]
+        if row.error is not None:
+            return f"{key}: {row.error}"
+        akey = parse_key(key)
+        if isinstance(want, dict):
+            value = row.value
+            if not isinstance(value, (int, float)):
+                return f"{key} has no number to bound"
+            for bound, ok in (("at_least", lambda v, b: v >= b), ("at_most", lambda v, b: v <= b)):
+                if bound in want and not ok(
+                    abs(value) if akey.compare is not Compare.SIGNED else value, _si(want[bound])
+                ):
+                    return f"{key} = {row.text} is not {bound.replace('_', ' ')} {want[bound]}"
+        else:
+            normal = akey.kind.normalise or (lambda s: s.strip().lower())
+            if row.value is None or normal(str(row.value)) != normal(str(want)):
+                return f"{key} is {row.text}, not {want}"
+    return None
+
+
+def _si(raw: Any) -> float:
+    if isinstance(raw, (int, float)):
+        return float(raw)
+    return parse_quantity(str(raw)).value
+
+
+def _asking(mech: Mechanism, keys: Sequence[str]) -> Mechanism:
+    from dataclasses import replace
+
+    return replace(mech, answers=(), asks=tuple(keys), marks=())
