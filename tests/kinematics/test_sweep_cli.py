@@ -507,3 +507,18 @@ drive: {link: pinion, rpm: 1200, direction: cw}
         "at every angle, with no toggle or change point (links or gear ratios of very different scales)"
         in said
     )
+
+
+@pytest.mark.parametrize(
+    "name", ["cam_roller_program", "cam_valve_khurmi", "cam_oscillating_roller", "cam_flat_follower"]
+)
+def test_shipped_cam_examples_sweep_one_line_per_dwell_and_no_dead_centre_inside_one(run, name):
+    # Each programme has two dwells (their segments, in the files); a follower at rest over one has
+    # no dead centre inside it (the roller cam listed 92, one at every degree of both dwells).
+    path = str(ROOT / "mechanisms" / f"{name}.yaml")
+    text = run("sweep", path, "--rpm", "100")
+    assert text.exit_code == 0, text.output
+    assert text.output.count("  dwell of ") == 2 and "dead centre" not in text.output
+    d = json.loads(run("sweep", path, "--rpm", "100", "--json").output)
+    assert len(d["dwells"]) == 2 and all(dw["reverses"] for dw in d["dwells"])  # lowest and highest
+    assert d["dead_centres"] == []

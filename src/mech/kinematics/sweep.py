@@ -83,7 +83,7 @@ from mech.kinematics.sweep_events import (
     find_dead_centres,
     find_extremes,
     find_gaps,
-    find_time_ratio,
+    outputs_of,
     runs,
     unbounded_notes,
 )
@@ -94,7 +94,8 @@ from mech.kinematics.sweep_grid import (
     check_position_precision,
     check_precision,
 )
-from mech.kinematics.sweep_result import DriveLaw, Event, Extreme, Gap, Sweep, TimeRatio, frozen
+from mech.kinematics.sweep_rest import find_dwells, find_time_ratios
+from mech.kinematics.sweep_result import DriveLaw, Dwell, Event, Extreme, Gap, Sweep, TimeRatio, frozen
 from mech.model import Mechanism
 from mech.options import SolveOptions
 from mech.units import to_unit
@@ -234,6 +235,9 @@ class _Found:
     extremes: tuple[Extreme, ...] = ()
     ratio: TimeRatio | None = None
     changes: tuple[Event, ...] = ()
+    dwells: tuple[Dwell, ...] = ()
+    ratios: tuple[TimeRatio, ...] = ()
+    refused: tuple[tuple[str, str], ...] = ()
 
 
 def _checked_level(level: str, options: SolveOptions) -> int:
@@ -388,12 +392,13 @@ def _find(
             f"change point at {_at_text(plan, e.angle)}: {e.subject}; continued on the branch with a "
             "continuous tangent"
         )
-    dead, outputs = find_dead_centres(backend, plan.comp, fine, data, ok, names)
+    dwells, rest = find_dwells(backend, fine, data, ok, names, outputs_of(plan.comp, names))
+    dead, outputs = find_dead_centres(backend, plan.comp, fine, data, ok, names, rest)
     # an extreme of a position may lie at a toggle or change point, where refinement cannot look
     extremes = find_extremes(backend, fine, data, ok & ~singular, names, keys, toggles + changes, ok)
     plan.notes.extend(unbounded_notes(extremes, lambda a: _at_text(plan, a)))  # rates ∞ at a toggle
-    ratio = find_time_ratio(fine, ok, dead, outputs) if plan.lead is None else None
-    return _Found(gaps, toggles, dead, extremes, ratio, changes)
+    ratio, ratios, refused = find_time_ratios(fine, ok, dead, dwells, outputs, plan.lead is None)
+    return _Found(gaps, toggles, dead, extremes, ratio, changes, dwells, ratios, refused)
 
 
 def _at_text(plan: _Plan, value: float) -> str:
@@ -415,10 +420,11 @@ def _closing_notes(plan: _Plan, ok: np.ndarray, singular: np.ndarray, found: _Fo
     )
     if circuits:
         notes.append(circuits)
-    if ratio is not None and abs(ratio.ratio - 1.0) > 1e-9:
-        notes.append(
-            f"quick return: {ratio.output} strokes take {math.degrees(ratio.slow):.4f}° and {math.degrees(ratio.fast):.4f}° of crank (ratio {ratio.ratio:.6g})"
-        )
+    for r in [ratio] if ratio is not None else found.ratios:  # the bare one, else each output's
+        if abs(r.ratio - 1.0) > 1e-9:
+            notes.append(
+                f"quick return: {r.output} strokes take {math.degrees(r.slow):.4f}° and {math.degrees(r.fast):.4f}° of crank (ratio {r.ratio:.6g})"
+            )
 
 
 def _singular_note(plan: _Plan, ok: np.ndarray, singular: np.ndarray, found: _Found) -> None:
@@ -473,6 +479,9 @@ def _result(
         notes=tuple(plan.notes),
         parameter=plan.parameter,
         drives=plan.laws,
+        dwells=found.dwells,
+        time_ratios=found.ratios,
+        time_ratio_refused=found.refused,
     )
 
 

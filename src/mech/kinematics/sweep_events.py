@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable, Collection, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -21,7 +21,7 @@ from mech.kinematics.quantities import pick, quantity_unit
 from mech.kinematics.roots import brent, illinois, zoom
 from mech.kinematics.solve import Compiled
 from mech.kinematics.sweep_backends import Closed, Walk
-from mech.kinematics.sweep_result import Event, Extreme, Gap, TimeRatio
+from mech.kinematics.sweep_result import Event, Extreme, Gap
 from mech.pairs import kind_of
 
 __all__ = [
@@ -30,7 +30,7 @@ __all__ = [
     "find_dead_centres",
     "find_extremes",
     "find_gaps",
-    "find_time_ratio",
+    "outputs_of",
     "runs",
     "unbounded_notes",
 ]
@@ -252,11 +252,13 @@ def _edge(backend: Closed, good: float, bad: float) -> float:
     return closing_edge(backend.prog, float(good), float(bad))
 
 
-def _outputs(
-    comp: Compiled, names: dict[str, tuple[str, ...]], driven: Collection[str]
-) -> list[tuple[str, str]]:
-    """Candidate outputs for dead centres: sliders on the frame, then links pivoted on the frame (not driven)."""
+def outputs_of(comp: Compiled, names: dict[str, tuple[str, ...]]) -> list[tuple[str, str]]:
+    """Candidate outputs for dead centres: sliders on the frame, then links pivoted on the frame (not driven).
+
+    Each is (``"slide"``, joint) or (``"link"``, link).
+    """
     lay, mech = comp.layout, comp.mech
+    driven = {d.link or d.joint or "" for d in lay.drives}
     out: list[tuple[str, str]] = []
     for ps in lay.paths:
         if ps.guide == mech.ground and ps.joint not in driven:
@@ -334,14 +336,16 @@ def find_dead_centres(
     data: dict[str, np.ndarray],
     ok: np.ndarray,
     names: dict[str, tuple[str, ...]],
+    rest: Mapping[str, np.ndarray] | None = None,
 ) -> tuple[tuple[Event, ...], list[tuple[str, str]]]:
     """Where each output reverses: the sign change of its speed, root-found to rounding.
 
     Closed form: a bracket zoom on the speed.  Newton: regula falsi (Illinois)
-    with a solve per iterate.
+    with a solve per iterate.  ``rest`` marks each output's steps inside a dwell
+    (:func:`~.sweep_rest.find_dwells`): at rest there, it reverses at none of them.
     """
-    driven = {d.link or d.joint or "" for d in comp.layout.drives}
-    outputs = _outputs(comp, names, driven)
+    outputs = outputs_of(comp, names)
+    rest = rest or {}
     brackets: list[tuple[str, str, float, float, float, float]] = []  # name, key, lo, hi, v_lo, v_hi
     for kind, name in outputs:
         key = f"sliding.{name}" if kind == "slide" else f"omega.{name}"
@@ -349,7 +353,8 @@ def find_dead_centres(
         finite = v[np.isfinite(v)]
         tiny = 1e-12 * (float(np.max(np.abs(finite))) if finite.size else 1.0)
         sgn = np.where(np.abs(v) <= tiny, 0.0, np.sign(v))
-        for s, e in runs(ok & np.isfinite(v)):
+        resting = rest.get(name, np.zeros(v.shape, bool))
+        for s, e in runs(ok & np.isfinite(v) & ~resting):
             for k in range(s, e):
                 if sgn[k] == 0.0:  # on a grid angle: refine only if the neighbours bracket it
                     if s < k < e - 1 and sgn[k - 1] * sgn[k + 1] < 0:
@@ -646,13 +651,22 @@ def _extent(data: dict[str, np.ndarray], ok: np.ndarray) -> float:
 
 
 def _into(a: float, phi: np.ndarray) -> float:
-    """An angle of a full-cycle sweep brought into the swept range."""
+    """An angle of a full-cycle sweep brought into the swept range, the seam's own as its start.
+
+    A flat extreme at 0° is refined to about 1e-8 rad, as often just below 360°: within
+    :data:`SEAM` of the range's top it is the same crank position as its bottom, and is
+    written there (0°, not 359.9999987°: angles in [0°, 360°)).
+    """
     lo, hi = min(phi[0], phi[-1]), max(phi[0], phi[-1])
     while a < lo:
         a += _TWO_PI
     while a > hi:
         a -= _TWO_PI
-    return a
+    return lo if hi - a < SEAM else a
+
+
+#: How near (rad) the top of a full turn a periodic quantity's extreme is the seam's (its start).
+SEAM = 1e-6
 
 
 def _probe(walk: Walk, names: dict[str, tuple[str, ...]], key: str, ref: float) -> Callable[[float], float]:
@@ -668,22 +682,3 @@ def _probe(walk: Walk, names: dict[str, tuple[str, ...]], key: str, ref: float) 
         return v
 
     return fn
-
-
-def find_time_ratio(
-    phi: np.ndarray, ok: np.ndarray, dead: tuple[Event, ...], outputs: list[tuple[str, str]]
-) -> TimeRatio | None:
-    """Slow/fast stroke of the primary output over one full, gap-free revolution."""
-    if phi.size < 3 or not np.all(ok) or abs(phi[-1] - phi[0]) < _TWO_PI - 1e-9:
-        return None
-    order = [name for kind, name in outputs if kind == "slide"][-1:] or [name for kind, name in outputs][-1:]
-    if not order:
-        return None
-    out = order[0]
-    start = min(phi[0], phi[-1])
-    angles = sorted({round((e.angle - start) % _TWO_PI, 12) for e in dead if e.subject == out})
-    if len(angles) != 2:
-        return None
-    arc = angles[1] - angles[0]
-    slow, fast = max(arc, _TWO_PI - arc), min(arc, _TWO_PI - arc)
-    return TimeRatio(out, slow, fast) if fast > 0 else None
