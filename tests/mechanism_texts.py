@@ -104,6 +104,22 @@ joints:
 drive: {{link: g1, rpm: 600}}
 """
 
+# A compound gear train: the middle shaft carries two gears (40 and 15 teeth), each meshing with
+# another; both meshes are points of the middle link (m on link 3, twice).  Module 2.5 mm:
+# pitch radii 25/50 (centres 75 apart) and 18.75/51.25 (centres 70 apart).
+COMPOUND_GEAR = """\
+name: Compound gear train
+units: {length: mm, angle: deg}
+links: [frame, input, compound, output]
+joints:
+  O1: {type: revolute, links: [frame, input], at: [0, 0]}
+  O2: {type: revolute, links: [frame, compound], at: [75, 0]}
+  O3: {type: revolute, links: [frame, output], at: [75, 70]}
+  M12: {type: gear, links: [input, compound], teeth: [20, 40], module: 2.5}
+  M23: {type: gear, links: [compound, output], teeth: [15, 41], module: 2.5}
+drive: {link: input, rpm: 1200, direction: cw}
+"""
+
 # AB = 1, BC = 2, CD = 1, AD = 2 at 180 deg: crank and coupler fold onto AD (a toggle).
 TOGGLE_FOUR_BAR = """\
 links: [frame, crank, coupler, rocker]

@@ -352,12 +352,15 @@ def test_draw_of_a_mechanism_at_rest_states_no_absurd_scale(tmp_path):
     assert p.returncode == 0
     ET.parse(out)
     scales = strict_json(p.stdout)["scales"]
-    exps = [int(x) for s in scales for x in re.findall(r"10\^(-?\d+)", s)]
+    exps = [int(x.translate(_FROM_SUPER)) for s in scales for x in re.findall(r"10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+)", s)]
     assert all(abs(e) < 30 for e in exps), scales
 
 
+_FROM_SUPER = str.maketrans("⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "-0123456789")
+
+
 @pytest.mark.parametrize(
-    "size, scale", [(1e-7, "1 cm = 1×10^-7 m"), (1.0, "1 cm = 1 m"), (1e9, "1 cm = 1×10^9 m")]
+    "size, scale", [(1e-7, "1 cm = 5×10⁻⁸ m"), (1.0, "1 cm = 0.5 m"), (1e9, "1 cm = 5×10⁸ m")]
 )
 def test_draw_of_tiny_and_huge_mechanisms_keeps_the_sheet_and_a_round_scale(tmp_path, size, scale):
     """Crank 0.1 um or 1e9 m: same sheet size, round stated scale, no nan/inf in any attribute."""
@@ -402,6 +405,59 @@ def test_draw_to_a_missing_folder_is_exit_2(tmp_path):
     assert p.returncode == 2
 
 
+def test_exponents_are_typeset_as_superscripts():
+    from mech.draw.scene import fmt
+
+    assert fmt(5e-5) == "5×10⁻⁵"
+    assert fmt(1.25e12) == "1.25×10¹²"
+    assert "^" not in fmt(3e-300)
+
+
+def test_every_mesh_point_of_a_compound_gear_has_a_distinct_label():
+    """Both meshes of the middle shaft are points of link 3: m12₃ and m23₃, never m₃ twice."""
+    from mech.loader import loads
+    from mechanism_texts import COMPOUND_GEAR
+
+    m = loads(COMPOUND_GEAR, path="compound_gear.yaml")
+    kin = solve(m, "acceleration")
+    for data in (velocity_polygon(m, kin), acceleration_polygon(m, kin)):
+        labels = [im.label for im in data.images]
+        assert len(labels) == len(set(labels)), labels
+        assert {"m12₃", "m23₃"} <= {label.rstrip("′") for label in labels}
+    root = _parse(to_svg(draw(m, kin, velocity=True)))
+    shown = [t.text for t in root.iter(f"{SVG}text") if t.get("class") == "image-label"]
+    assert not any("m₃" in text for text in shown), shown
+
+
+def test_far_icentres_give_their_true_distance_from_the_frames_first_pivot():
+    """The shaper's far I-centres: arrows at the edge with distances from O₂ (its first pivot), alike in every drawing."""
+    from mech.icentres import locate
+
+    m, kin = _solve(MECHANISMS / "crank_slotted_lever_quick_return.yaml", "velocity")
+    centres = locate(m, kin).centres
+    texts = list(_parse(to_svg(draw(m, kin, icentres=list(centres)))).iter(f"{SVG}text"))
+    far = [t for t in texts if t.get("class") == "icentre-label" and "→" in (t.text or "")]
+    assert far
+    notes = [t.text for t in texts if t.get("class") == "icentre-note"]
+    assert len(notes) == 1 and notes[0].endswith("from O₂"), notes  # the named point
+    first = next(j for j in m.joints if m.ground in j.links and kind_of(j).role == "pin")
+    pivot = kin.positions[first.name]
+    measured = 0
+    for t in far:
+        for name, value in re.findall(r"(I\d+) → ([0-9.]+) mm", t.text):
+            c = next(c for c in centres if c.name == name)
+            assert float(value) == pytest.approx(math.dist(c.point, pivot) * 1000, rel=5e-4)
+            measured += 1
+    assert measured >= 2
+    # the same numbers with the velocity polygon beside it (the label does not depend on the sheet)
+    again = [
+        t.text
+        for t in _parse(to_svg(draw(m, kin, velocity=True, icentres=list(centres)))).iter(f"{SVG}text")
+        if t.get("class") == "icentre-label" and "→" in (t.text or "")
+    ]
+    assert sorted(again) == sorted(t.text for t in far)
+
+
 @pytest.mark.parametrize("option", [("--path", "C"), ("--centrodes", "link_3")])
 def test_tracing_a_two_drive_file_is_refused_with_a_command_line_hint(run, tmp_path, option):
     """The hint names options of real commands, never a Python call (issue 25, item 13)."""
@@ -441,8 +497,52 @@ def test_labels_are_placed_without_measuring_every_segment_of_a_long_path(monkey
     monkeypatch.setattr(scene, "_seg_dist", counted)
     fast = config.configuration(m, kin, curves=[("path of P", dense, "path")])
     # every segment, as before: no segment is ever out of reach
-    monkeypatch.setattr(scene, "_near_segments", lambda segs, c, rx, ry: list(segs))
+    monkeypatch.setattr(scene, "_near_segments", lambda segs, box, reach: list(segs))
     calls_fast, calls = calls, 0
     slow = config.configuration(m, kin, curves=[("path of P", dense, "path")])
     assert to_svg(fast) == to_svg(slow)
     assert calls_fast < calls / 50, (calls_fast, calls)
+
+
+@pytest.mark.parametrize(
+    "name", ["cam_follower", "cam_roller_program", "cam_flat_follower", "cam_valve_khurmi"]
+)
+def test_a_translating_cam_follower_is_drawn_with_its_stem_in_its_guide(name):
+    """As ``mech cam -o`` and the notes draw it: the follower's stem on its line of stroke, from
+    the follower outward (away from the cam's pivot), held by a guide hatched on both sides."""
+    m, kin = _solve(MECHANISMS / f"{name}.yaml", "position")
+    root = _parse(to_svg(draw(m, kin)))
+
+    def ends(e: ET.Element) -> tuple[tuple[float, float], tuple[float, float]]:
+        x1, y1, x2, y2 = (float(e.get(k)) for k in ("x1", "y1", "x2", "y2"))
+        return (x1, y1), (x2, y2)
+
+    lines = list(root.iter(f"{SVG}line"))
+    (stem,) = [ends(e) for e in lines if e.get("class") == "stem"]
+    (stroke,) = [ends(e) for e in lines if e.get("class") == "stroke-line"]
+    (pivot,) = [
+        (float(e.get("cx")), float(e.get("cy"))) for e in root.iter(f"{SVG}circle") if e.get("class") == "pin"
+    ]
+    a, b = stem
+    length = math.dist(a, b)
+    u = ((b[0] - a[0]) / length, (b[1] - a[1]) / length)
+    n = (-u[1], u[0])
+
+    def off(p: tuple[float, float]) -> float:  # signed distance from the stem's axis
+        return (p[0] - a[0]) * n[0] + (p[1] - a[1]) * n[1]
+
+    def along(p: tuple[float, float]) -> float:
+        return (p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1]
+
+    assert length > 5.0  # mm on the page: a stem, not a dot
+    assert off(stroke[0]) == pytest.approx(0, abs=0.05) and off(stroke[1]) == pytest.approx(0, abs=0.05)
+    assert math.dist(b, pivot) > math.dist(a, pivot) + 0.9 * length  # outward, away from the cam
+    guide = [
+        side
+        for e in lines
+        if e.get("class") == "hatch"
+        for p in ends(e)
+        for side in (-1, 1)
+        if off(p) * side == pytest.approx(1.6, abs=0.05) and 0 < along(p) < length
+    ]
+    assert guide.count(-1) >= 3 and guide.count(1) >= 3, guide

@@ -101,6 +101,36 @@ def test_sweep_plot_writes_png(tmp_path):
     assert img.size[0] > 500 and img.size[1] > 500  # two panels: m/s and rad/s
 
 
+def test_sweep_plot_labels_the_refined_extremes_inside_the_axes():
+    """The labels give the sweep's refined extremes (not the grid's) and stay inside their axes."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from mech.draw.plot import sweep_figure
+    from mech.kinematics import sweep
+
+    m = load(ROOT / "mechanisms" / "four_bar.yaml")
+    sw = sweep(m, np.radians(np.arange(0, 361, 1.0)), level="velocity")
+    series = []
+    for key in ("velocity.C", "omega.rocker"):
+        e = next(x for x in sw.extremes if x.quantity == key)
+        refined = ((math.degrees(e.max_angle), e.max_value), (math.degrees(e.min_angle), e.min_value))
+        series.append(Series(key, "u" + key, list(sw.series(key)), refined))
+    fig = sweep_figure(list(np.degrees(sw.angles)), series)
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    labels = [(ax, t) for ax in fig.axes for t in ax.texts if t.get_text().startswith(("max", "min"))]
+    assert len(labels) == 4
+    for ax, t in labels:
+        box, inside = t.get_window_extent(renderer), ax.get_window_extent(renderer)
+        assert inside.x0 <= box.x0 and box.x1 <= inside.x1 and inside.y0 <= box.y0 and box.y1 <= inside.y1, (
+            t.get_text()
+        )
+    texts = " | ".join(t.get_text() for _, t in labels)
+    # the rocker's speed is zero at its dead centres: the refined minimum is ~1e-16, never the grid's
+    e = next(x for x in sw.extremes if x.quantity == "velocity.C")
+    assert f"at {math.degrees(e.min_angle):.2f}°" in texts
+    assert "×10⁻" in texts and "^" not in texts
+
+
 def test_sweep_plot_rejects_mismatched_lengths(tmp_path):
     with pytest.raises(ValueError, match="values for"):
         sweep_plot(tmp_path / "x.png", [0, 1, 2], [Series("v", "m/s", [1.0, 2.0])])

@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+import ast
 import json
 import math
 import textwrap
 from dataclasses import dataclass
+from pathlib import Path
 from types import MappingProxyType
 
 import pytest
 
+import mech
 from mech.errors import InputError
 from mech.fields import NUMBER, REF, read_ref
 from mech.icentres.order import kennedy_order
@@ -261,7 +264,6 @@ class ArcSlot(PairKind):
     located = "first"
     role = "contact"
     icentre = ("line", "pin in arc slot {joint}: on the radius through the pin")
-    glyph = "contact"
 
     def read(self, r, fields, what, links):
         arc = r.mapping(fields["arc"][1], f"the arc of {what}", allowed=("centre", "radius"))
@@ -284,6 +286,21 @@ class ArcSlot(PairKind):
         b.distance.append(
             Distance(b.index[pin], b.to_local(pin, p), b.index[slotted], b.to_local(slotted, c), d, j.name)
         )
+
+    def glyph(self, view, j):
+        """An arc of its slot (±20° round the pin, about the arc's centre) and the pin in it."""
+        from mech.pairs.glyph import Outline, Pen, pin
+
+        at, c = view.positions.get(j.name), view.positions.get(j.spec.centre.name)
+        if at is None or c is None:
+            return []
+        r, a0 = j.spec.radius, math.atan2(at[1] - c[1], at[0] - c[0])
+        arc = tuple(
+            (c[0] + r * math.cos(a0 + math.radians(t)), c[1] + r * math.sin(a0 + math.radians(t)))
+            for t in range(-20, 21, 2)
+        )
+        pen = Pen(view.colour(j.links[1]), 0.45)
+        return [Outline(arc, False, pen, "arc-slot", j.name, "block", world=True), *pin(view, j.name)]
 
     def inspect(self, seen, j):
         at, c = seen.at(j), seen.positions[j.spec.centre.name]
@@ -353,3 +370,69 @@ def test_a_plug_in_kind_registered_from_outside_reads_solves_inspects_and_draws(
     assert (b[0] * i13[1] - b[1] * i13[0]) == pytest.approx(0.0, abs=1e-9)
     assert ((c[0] - 0.15) * (i13[1] - c[1]) - c[1] * (i13[0] - c[0])) == pytest.approx(0.0, abs=1e-9)
     assert 'data-name="C"' in to_svg(draw(m, kin))
+
+
+def test_a_plug_in_kinds_own_glyph_is_drawn_an_arc_of_its_slot_through_its_pin(arc_slot):
+    """ArcSlot's glyph (its own, no drawing code of mech's names it): an arc about D through C."""
+    import xml.etree.ElementTree as ET
+
+    from tests.oracles.four_bar import four_bar
+
+    from mech.draw import draw
+    from mech.draw.svg import to_svg
+    from mech.kinematics import solve
+
+    c, *_ = four_bar(0.040, 0.150, 0.170, 0.150, math.radians(60), 12.566)
+    m = loads(ARC_FOUR_BAR.format(cx=c[0] * 1000, cy=c[1] * 1000), path="arc.yaml")
+    root = ET.fromstring(to_svg(draw(m, solve(m, "velocity"))))
+    ns = "{http://www.w3.org/2000/svg}"
+    arcs = [e for e in root.iter(f"{ns}polyline") if e.get("class") == "arc-slot"]
+    assert [e.get("data-name") for e in arcs] == ["C"]
+    centre = next(e for e in root.iter(f"{ns}circle") if e.get("data-name") == "D")
+    pin = next(e for e in root.iter(f"{ns}circle") if e.get("class") == "pin" and e.get("data-name") == "C")
+    d = (float(centre.get("cx")), float(centre.get("cy")))
+    radius = math.dist(d, (float(pin.get("cx")), float(pin.get("cy"))))
+    points = [tuple(map(float, xy.split(","))) for xy in arcs[0].get("points").split()]
+    assert len(points) == 21
+    assert [math.dist(d, p) for p in points] == pytest.approx([radius] * 21, abs=0.02)  # SVG keeps 0.01 mm
+    swept = math.degrees(
+        math.atan2(points[-1][1] - d[1], points[-1][0] - d[0])
+        - math.atan2(points[0][1] - d[1], points[0][0] - d[0])
+    )
+    assert abs(math.remainder(swept, 360)) == pytest.approx(40, abs=0.5)
+
+
+def _kind_names_compared(tree: ast.AST) -> list[int]:
+    """Lines that compare a joint's ``type`` or a kind's ``name`` with a kind's name written out."""
+    names = set(KINDS)
+
+    def literal(node: ast.AST) -> bool:
+        if isinstance(node, ast.Constant):
+            return node.value in names
+        if isinstance(node, (ast.Tuple, ast.List, ast.Set)):
+            return any(literal(e) for e in node.elts)
+        return False
+
+    def asks_type(node: ast.AST) -> bool:
+        return isinstance(node, ast.Attribute) and node.attr in ("type", "name")
+
+    return [
+        node.lineno
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Compare)
+        and any(asks_type(side) for side in (node.left, *node.comparators))
+        and any(literal(side) for side in (node.left, *node.comparators))
+    ]
+
+
+def test_nothing_outside_the_pair_kinds_branches_on_a_kind_by_name():
+    # issue 20 item 1: a layer asks the kind for a property (kind_of(j).meshes), never
+    # `j.type == "gear"` or `kind_of(j).name in ("slot", "prismatic")`
+    src = Path(mech.__file__).parent
+    found = [
+        f"{path.relative_to(src)}:{line}"
+        for path in sorted(src.rglob("*.py"))
+        if "pairs" not in path.relative_to(src).parts
+        for line in _kind_names_compared(ast.parse(path.read_text(encoding="utf-8")))
+    ]
+    assert found == []

@@ -286,16 +286,23 @@ _parse_cached = lru_cache(maxsize=4096)(_parse)
 
 
 def names_by_kind(
-    links: Iterable[str], joints: Iterable[str], points: Iterable[str], n_links: int
+    links: Iterable[str],
+    joints: Iterable[str],
+    points: Iterable[str],
+    n_links: int,
+    contacts: Iterable[tuple[str, Iterable[str]]] = (),
 ) -> dict[str, AbstractSet[str]]:
     """The names each placeholder kind accepts in one mechanism (for the loader's checks).
 
     ``points`` are the named points (joints are points too); I-centres are
     named ``I12`` … for ``n_links`` links, ground first: a lazy set
     (:class:`ICentreNames`), since a 10,000-link file has 50 million of them.
+    ``contacts`` are the higher pairs with their links: ``K@cam`` names the cam's
+    point at the contact K (DESIGN § 1.2), a point like any other.
     """
     link_names, joint_names = set(links), set(joints)
     point_names = joint_names | set(points)
+    point_names |= {f"{joint}@{link}" for joint, on in contacts for link in on}
     return {
         "link": link_names,
         "joint": joint_names,

@@ -415,6 +415,33 @@ def check_command(**values: Any) -> None:
     run_command("check", values)
 
 
+# -- the live page --------------------------------------------------------------------
+@cli.command(name="view")
+@kinematic_command("view")
+def view_command(request: Request, output: str, steps: int, start: float | None, stop: float | None) -> None:
+    """Write one self-contained HTML page that plays the mechanism's cycle.
+
+    Slider, play/pause and speed; the configuration with the velocity and
+    acceleration polygons; I-centres, coupler paths, centrodes and the
+    transmission angle as layers; the numbers of the instant shown.  It
+    needs no network and no server: post it, or open it from disk.
+    """
+    import json
+
+    from mech._files import check_writable, write_file
+    from mech.view import page, summary
+
+    check_writable(output)  # before any solving
+    html = page(request.file, options=request.options, steps=steps, start=start, stop=stop)
+    write_file(output, html)
+    info = summary(html, file=request.file, output=output)
+    click.echo(
+        json.dumps(info)
+        if request.as_json
+        else f"wrote {output}: {info['steps']} instants, {info['bytes']:,} bytes"
+    )
+
+
 # -- drawings -------------------------------------------------------------------------
 @cli.command(name="draw")
 @kinematic_command("draw")

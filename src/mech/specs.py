@@ -49,6 +49,7 @@ __all__ = [
     "Knife",
     "Line",
     "Path",
+    "PathSpec",
     "PinSpec",
     "Profile",
     "Profiles",
@@ -84,6 +85,18 @@ class Path:
     through: Ref
     angle: float | None = None
     toward: Ref | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class PathSpec:
+    """A path pair as the layout resolved it: ``point`` of ``slider`` runs on ``path`` fixed in ``guide``."""
+
+    joint: str
+    type: str
+    slider: str
+    guide: str
+    point: str
+    path: Path
 
 
 @dataclass(frozen=True, slots=True)

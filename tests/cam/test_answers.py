@@ -86,3 +86,49 @@ def test_key_on_a_joint_without_a_programme_is_an_error_row(run, write):
     code, report = check(run, write, "  pressure_angle.O: 10 deg\n")
     assert code == 1
     assert verdicts(report) == {"pressure_angle.O": "error"}
+
+
+def _eccentric(name: str, answers: str) -> str:
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[2] / "mechanisms" / name).read_text(encoding="utf-8")
+    return text + answers
+
+
+def test_displacement_of_an_eccentric_cams_follower_is_its_lift_from_the_lowest(run, write):
+    # DESIGN § 1.2: any cam that moves. Eccentric disc R = 40, e = 15 mm at θ = 30°: a flat face
+    # stands at e sin θ + R, lowest R − e, so its lift is e(1 + sin θ) = 22.5 mm; a roller r = 10 at
+    # e sin θ + √((R + r)² − e² cos² θ) = 55.783 mm, lowest R + r − e = 35 mm: 20.783 mm.
+    # The joint's name K stands for the follower's own point, so displacement.K is the same.
+    e, th = 15.0, math.radians(30)
+    flat = e * (1 + math.sin(th))
+    roller = e * math.sin(th) + math.sqrt(50**2 - (e * math.cos(th)) ** 2) - 35
+    for name, point, lift in (("eccentric_cam.yaml", "F", flat), ("eccentric_cam_roller.yaml", "C", roller)):
+        path = write(_eccentric(name, f"  displacement.{point}: {lift} mm\n  displacement.K: {lift} mm\n"))
+        result = run("check", str(path), "--json")
+        report = json.loads(result.output)
+        assert result.exit_code == 0, report
+        assert set(verdicts(report).values()) == {"pass"}
+        wrong = write(_eccentric(name, f"  displacement.{point}: {lift * 1.05} mm\n"), name="wrong.yaml")
+        assert run("check", str(wrong)).exit_code == 1
+
+
+def test_answer_keys_name_each_links_point_at_a_cam_contact(run, write):
+    # K@cam turns with the cam: v = ω r, a = ω² r at the contact, r = |O K@cam|; K@follower moves with
+    # the follower along its path at ds/dθ ω (SHM half-way: π h / 2β ω)
+    from mech.kinematics import solve
+    from mech.loader import load
+
+    path = write(PROBLEM.format(answers="  dof: 1\n", follower_joint=SLIDE, rise="30", more=""))
+    contact = solve(load(path), "velocity").position("K@cam")
+    w = 10 * math.pi
+    r = math.hypot(*contact)
+    v_f = math.pi * 0.030 / (2 * BETA) * w
+    code, report = check(
+        run,
+        write,
+        f"  velocity.K@cam: {w * r} m/s\n  acceleration.K@cam: {w * w * r} m/s^2\n"
+        f"  velocity.K@follower: {v_f} m/s\n  velocity.K: {v_f} m/s\n",
+    )
+    assert code == 0, report
+    assert set(verdicts(report).values()) == {"pass"}

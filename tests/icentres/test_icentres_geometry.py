@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import pytest
 
@@ -152,3 +153,22 @@ def test_a_wrong_centre_is_a_loud_bug_not_a_printed_answer():
 
 def test_unit_of_zero_stays_zero():
     assert unit((0.0, 0.0, 0.0)) == (0.0, 0.0, 0.0)
+
+
+def test_a_flat_faced_programme_cams_centre_is_on_the_normal_at_the_contact_not_at_its_axis():
+    # mechanisms/cam_flat_follower.yaml: an SHM rise of 20 mm over 120°, in-line flat face. The cam
+    # joint K stands for the face's point on the follower's axis (DESIGN § 1.2), but the common
+    # normal passes through the contact, ds/dθ from the axis: I23 is there, where v_follower =
+    # ω·x. At 45° into the rise ds/dθ = πh/(2β) sin(πx) with x = 45/120 (the notes' SHM law).
+    from mech.icentres import locate
+    from mech.kinematics import solve
+    from mech.loader import load
+    from mech.options import SolveOptions
+
+    m = load(Path(__file__).resolve().parents[2] / "mechanisms" / "cam_flat_follower.yaml")
+    kin = solve(m, "velocity", SolveOptions(angle=math.radians(-45), omega=10.0, direction="cw"))
+    ic = locate(m, kin)
+    i23 = ic.get("cam", "follower").point
+    x = math.pi * 0.020 / (2 * math.radians(120)) * math.sin(math.pi * 45 / 120)
+    assert abs(i23[0]) == pytest.approx(x, rel=1e-9)
+    assert i23[1] == pytest.approx(0.0, abs=1e-12)

@@ -233,3 +233,20 @@ def test_newton_continuation_past_a_change_point_says_it_passed_one():
     at = float(note.split("change point at ")[1].split("°")[0])
     assert at == pytest.approx(math.degrees(2 * math.acos(0.8)), abs=1e-5)
     assert "continuous tangent" in note
+
+
+@pytest.mark.parametrize("angle", ["180.000000001", "-179.999999999", "0.000000001", "359.999999999"])
+def test_a_crank_drawn_next_to_a_dead_centre_is_placed_to_its_angles_own_precision(angle):
+    # The crank pin is r (cos θ, sin θ) of the angle as read: its tiny offset from the line of
+    # stroke (r sin θ ≈ 2.6e-12 m here) to the last bits, whatever branch of ±π atan2 would
+    # give the drawn crank (its frame is the drive's angle, not θ ± 2π rounded).
+    text = Path(mech.__file__).parents[2].joinpath("mechanisms", "slider_crank.yaml").read_text()
+    text = text.split("answers:")[0].replace("angle: 135, rpm", f"angle: {angle}, rpm")
+    m = mech.loads(text)
+    th = m.drives[0].angle
+    assert th is not None
+    r = 0.15  # OA of mechanisms/slider_crank.yaml
+    for kin in (solve(m, "velocity"), solve(m, "velocity", SolveOptions(angle=th))):
+        x, y = kin.positions["A"]
+        assert y == pytest.approx(r * math.sin(th), rel=1e-12, abs=0)
+        assert x == pytest.approx(r * math.cos(th), rel=1e-15)

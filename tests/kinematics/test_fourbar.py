@@ -266,3 +266,53 @@ def test_a_file_drawn_at_the_toggle_assembles_at_other_angles(write):
     assert math.degrees(math.atan2(b[1], b[0])) == pytest.approx(70, abs=1e-9)
     assert math.dist(b, c) == pytest.approx(1, rel=1e-9)
     assert math.dist(c, (2, 0)) == pytest.approx(1, rel=1e-9)
+
+
+NON_GRASHOF = """\
+units: {length: mm, angle: deg}
+links: [frame, input, coupler, rocker]
+joints:
+  A: {type: revolute, links: [frame, input], at: [0, 0]}
+  B: {type: revolute, links: [input, coupler]}
+  C: {type: revolute, links: [coupler, rocker], near: [100, 60]}
+  D: {type: revolute, links: [rocker, frame], at: [120, 0]}
+lengths: {AB: 80, BC: 60, CD: 70}
+drive: {link: input, angle: 60, rpm: 60, direction: ccw}
+"""
+
+
+def test_a_solve_next_to_a_toggle_names_it_its_angle_and_how_fast_omega_grows(write):
+    # AD = 120, AB = 80, BC = 60, CD = 70 (non-Grashof): the input stops where BC and CD are in
+    # line, |BD| = 130: cos θ = (80² + 120² − 130²) / (2·80·120) = 0.203125, θ = 78.2802° (issue 21.6)
+    from mech.loader import load
+
+    m = load(write(NON_GRASHOF))
+    toggle = math.acos(3900 / 19200)
+    delta = math.radians(5e-4)
+
+    def omegas(theta: float) -> tuple[float, float]:
+        """ω of coupler and rocker by central differences of the closed-form position (ω_input = 2π)."""
+
+        def angles(t: float) -> tuple[float, float]:
+            b = (0.080 * math.cos(t), 0.080 * math.sin(t))
+            d = math.dist(b, (0.120, 0.0))
+            base = math.atan2(-b[1], 0.120 - b[0])
+            at_b = math.acos((0.060**2 + d * d - 0.070**2) / (2 * 0.060 * d))
+            c = (b[0] + 0.060 * math.cos(base + at_b), b[1] + 0.060 * math.sin(base + at_b))
+            return math.atan2(c[1] - b[1], c[0] - b[0]), math.atan2(c[1], c[0] - 0.120)
+
+        h = 1e-9
+        (c1, r1), (c2, r2) = angles(theta + h), angles(theta - h)
+        return 2 * math.pi * (c1 - c2) / (2 * h), 2 * math.pi * (r1 - r2) / (2 * h)
+
+    kin = solve(m, "velocity", SolveOptions(angle=toggle - delta))
+    (note,) = [n for n in kin.notes if "from the toggle" in n]
+    assert "0.0005° from the toggle at 78.2802°" in note
+    w_coupler, w_rocker = omegas(toggle - delta)
+    assert kin.links["coupler"].omega == pytest.approx(w_coupler, rel=1e-4)
+    assert kin.links["rocker"].omega == pytest.approx(w_rocker, rel=1e-4)
+    # the fastest link is named with its ω and the coefficient of 1/√Δθ
+    assert "ω of coupler grows as 1/√Δθ" in note
+    assert f"{abs(w_coupler) * math.sqrt(delta):.3g}" in note
+    # far from it, nothing is said
+    assert not [n for n in solve(m, "velocity").notes if "toggle" in n]

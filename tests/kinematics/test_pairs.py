@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -396,7 +398,7 @@ def test_acceleration_command_reports_the_gear_pitch_point_on_each_gear(run):
     path = Path(__file__).resolve().parents[2] / "mechanisms" / "gear_pair.yaml"
     result = run("acceleration", str(path))
     assert result.exit_code == 0, result.output
-    assert "mesh (on pinion)" in result.output and "mesh (on wheel)" in result.output
+    assert "mesh@pinion" in result.output and "mesh@wheel" in result.output  # DESIGN § 1.2: K@link
     # pinion 1200 rpm, r = 50 mm: ω²r = 789.57 m/s²; wheel 600 rpm, r = 100 mm: 394.78 m/s²
     assert "789.57" in result.output and "394.78" in result.output
     assert "link=" not in result.output
@@ -485,3 +487,118 @@ drive: {link: cam, angle: 0, rpm: 60}
     p = mech("velocity", str(f))
     assert_bad_input(p, f)
     assert "T" in p.stderr
+
+
+# -- a higher pair's points (DESIGN § 1.2, issue 21 item 1) ---------------------------------------
+ISSUE_CAM = """\
+units: {length: mm, angle: deg}
+links: [frame, cam, follower]
+joints:
+  O: {type: revolute, links: [frame, cam], at: [0, 0]}
+  K: {type: cam, links: [cam, follower],
+      program: {base_radius: 30, follower: roller, roller_radius: 10, offset: 10,
+                segments: [{rise: 40, over: 120, law: cycloidal}, {dwell: 60},
+                           {return: 40, over: 90, law: shm}, {dwell: 90}]}}
+  S: {type: prismatic, links: [follower, frame], path: {through: [-10, 0], angle: 90}, point: K}
+drive: {link: cam, angle: 60, rpm: 300, direction: cw}
+"""
+
+
+def test_a_cam_joint_is_the_followers_point_and_k_at_link_each_links_point_at_the_contact(write):
+    from mech.loader import load
+
+    kin = solve(load(write(ISSUE_CAM)), "acceleration")
+    w = -300 * 2 * math.pi / 60  # cw
+    # the roller's centre from the cycloidal law, half-way up a 40 mm rise over 120°:
+    # v = |ω| h/β (1 − cos 2πx) = 31.416 × 40 mm / 2.0944 × 2 = 1.2 m/s, along the path
+    beta = math.radians(120)
+    v_law = abs(w) * 0.040 / beta * (1 - math.cos(math.pi))
+    assert kin.velocity("K") == pytest.approx((0.0, v_law), abs=1e-9)
+    assert kin.position("K") == pytest.approx((-0.010, math.sqrt(0.040**2 - 0.010**2) + 0.020), abs=1e-12)
+    # K@follower: the roller's point at the contact, one roller radius from its centre; a
+    # translating follower's points all move alike
+    c = kin.position("K@cam")
+    assert kin.position("K@follower") == c
+    assert math.dist(c, kin.position("K")) == pytest.approx(0.010, rel=1e-9)
+    assert kin.velocity("K@follower") == pytest.approx((0.0, v_law), abs=1e-9)
+    # K@cam: the cam's point there turns about O, v = ω × r, a = −ω² r
+    assert kin.velocity("K@cam") == pytest.approx((-w * c[1], w * c[0]), rel=1e-12)
+    assert kin.acceleration("K@cam") == pytest.approx((-(w**2) * c[0], -(w**2) * c[1]), rel=1e-12)
+    # the two points at a contact move alike along the common normal (no gap opens, none closes)
+    k = kin.position("K")
+    n = ((k[0] - c[0]) / 0.010, (k[1] - c[1]) / 0.010)
+    vc, vf = kin.velocity("K@cam"), kin.velocity("K@follower")
+    assert (vc[0] - vf[0]) * n[0] + (vc[1] - vf[1]) * n[1] == pytest.approx(0.0, abs=1e-9 * v_law)
+    with pytest.raises(InputError, match="frame is not a link of joint K"):
+        kin.velocity("K@frame")
+
+
+def test_a_contact_points_acceleration_refused_names_the_k_at_link_syntax():
+    # a gear's pitch point: both gears' points there share a velocity but not an acceleration
+    from mech.loader import load
+
+    kin = solve(load(Path(__file__).resolve().parents[2] / "mechanisms" / "gear_pair.yaml"), "acceleration")
+    with pytest.raises(InputError) as err:
+        kin.acceleration("mesh")
+    assert "mesh@pinion or mesh@wheel" in (err.value.hint or "")
+    # pinion 1200 rpm on r = 50 mm, wheel 600 rpm on r = 100 mm: ω²r toward each centre
+    w1, w2 = 1200 * math.pi / 30, 600 * math.pi / 30
+    assert kin.acceleration("mesh@pinion") == pytest.approx((-(w1**2) * 0.050, 0.0), rel=1e-9, abs=1e-9)
+    assert kin.acceleration("mesh@wheel") == pytest.approx((w2**2 * 0.100, 0.0), rel=1e-9, abs=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("name", "own"),
+    [("eccentric_cam.yaml", "F"), ("eccentric_cam_roller.yaml", "C")],
+)
+def test_a_profile_cams_joint_is_the_followers_own_point_and_k_at_link_the_contact(name, own):
+    # DESIGN § 1.2: a flat face's point on the follower's axis (here F, on x = 0, at e sin θ + R),
+    # a roller's centre (C, at e sin θ + √((R + r)² − e² cos² θ)); θ = 30°, e = 15, R = 40, r = 10 mm
+    from mech.loader import load
+
+    kin = solve(load(Path(__file__).resolve().parents[2] / "mechanisms" / name), "acceleration")
+    w, e, th = 10 * math.pi, 0.015, math.radians(30)
+    y = e * math.sin(th) + (0.040 if own == "F" else math.sqrt(0.050**2 - (e * math.cos(th)) ** 2))
+    assert kin.position("K") == pytest.approx((0.0, y), abs=1e-12)
+    assert kin.velocity("K") == pytest.approx(kin.velocity(own), abs=1e-12)
+    # the contact: a flat face touches straight above E (x = e cos θ), a roller on the line E–C
+    c = kin.position("K@cam")
+    if own == "F":
+        assert c == pytest.approx((e * math.cos(th), y), abs=1e-12)
+    else:
+        ex, ey = e * math.cos(th), e * math.sin(th)
+        assert math.dist(c, (ex, ey)) == pytest.approx(0.040, rel=1e-9)
+        assert math.dist(c, (0.0, y)) == pytest.approx(0.010, rel=1e-9)
+    assert kin.velocity("K@cam") == pytest.approx((-w * c[1], w * c[0]), rel=1e-12)
+    assert kin.velocity("K@follower") == pytest.approx(kin.velocity(own), abs=1e-12)
+
+
+def test_tables_and_json_name_each_links_point_at_a_contact_k_at_link(run, write):
+    path = write(ISSUE_CAM)
+    table = run("acceleration", str(path))
+    assert table.exit_code == 0, table.output
+    assert "K@cam" in table.output and "K@follower" in table.output
+    data = json.loads(run("velocity", str(path), "--json").output)
+    rows = {(p["point"], p["link"]) for p in data["points"]}
+    assert {("K", None), ("K@cam", "cam"), ("K@follower", "follower")} <= rows
+    gear = Path(__file__).resolve().parents[2] / "mechanisms" / "gear_pair.yaml"
+    rows = {p["point"] for p in json.loads(run("acceleration", str(gear), "--json").output)["points"]}
+    assert {"mesh@pinion", "mesh@wheel"} <= rows
+
+
+def test_a_high_gear_ratio_solve_is_called_ill_conditioned_not_a_toggle(run, write):
+    # a 1e12 mm pinion on a 1 mm wheel: Φ_q's condition number is 2e12 at every angle only through
+    # its scales (issue 21 item 6); no links are in line, so no toggle may be named
+    text = """
+units: {length: mm, angle: deg}
+links: [frame, pinion, wheel]
+joints:
+  O1: {type: revolute, links: [frame, pinion], at: [0, 0]}
+  O2: {type: revolute, links: [frame, wheel], at: [1000000000001, 0]}
+  mesh: {type: gear, links: [pinion, wheel], radii: [1000000000000, 1]}
+drive: {link: pinion, rpm: 1200, direction: cw}
+"""
+    result = run("velocity", str(write(text)))
+    assert result.exit_code == 2
+    assert "toggle or dead-centre" not in result.stderr
+    assert "ill-conditioned" in result.stderr and "not a toggle" in result.stderr

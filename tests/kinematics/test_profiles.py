@@ -92,10 +92,11 @@ def test_contact_point_lies_on_both_profiles_where_the_cam_is_drawn():
     mech = loads(_cam("{line: {through: F, angle: 0}}", "F", 47.5), path="cam.yaml")
     kin = solve(mech, "acceleration")
     ex, ey = kin.positions["E"]
-    kx, ky = kin.positions["K"]
+    kx, ky = kin.position("K@cam")  # DESIGN § 1.2: K is the face's point on the axis, K@cam the contact
     assert (kx, ky) == pytest.approx((ex, ey + R), abs=1e-15)  # under the face, above the centre
+    assert kin.position("K") == pytest.approx((0.0, ey + R), abs=1e-15)
     # the follower's point at K moves with the follower; the cam's with the cam (ω × r)
-    vx, vy = kin.velocity("K", link="cam")
+    vx, vy = kin.velocity("K@cam")
     assert (vx, vy) == pytest.approx((-W * ky, W * kx), rel=1e-12)
 
 
@@ -261,7 +262,7 @@ def test_a_contact_point_drawn_away_from_where_the_profiles_touch_is_refused():
     with pytest.raises(InputError, match="1 mm from where its profiles touch"):
         solve(loads(doc, path="cam.yaml"), "velocity")
     good = doc.replace(f"at: [{x_k + 1!r}, 47.5]", f"at: [{x_k!r}, 47.5]")
-    assert solve(loads(good, path="cam.yaml"), "velocity").positions["K"][0] == pytest.approx(
+    assert solve(loads(good, path="cam.yaml"), "velocity").position("K@cam")[0] == pytest.approx(
         0.015 * math.cos(math.radians(30))
     )
 
@@ -301,3 +302,34 @@ def test_roller_on_any_eccentric_cam_follows_its_equivalent_slider_crank(e, extr
     assert kin.positions["C"][1] == pytest.approx(s, abs=1e-12 * size)
     assert kin.velocity("C")[1] == pytest.approx(v, abs=1e-10 * size * w)
     assert kin.acceleration("C")[1] == pytest.approx(a, abs=1e-9 * size * w**2)
+
+
+@pytest.mark.parametrize("n", [12, 36, 144])
+def test_a_curve_profiles_stated_departure_bounds_the_splines_distance_from_the_circle(n):
+    # The spline through n points of a circle of radius r strays from it by about r (2π/n)⁴ / 400
+    # (measured on a fine grid below, against the circle itself); de Boor's bound that
+    # departure() states, (5/384) h⁴ max|f⁗| with f⁗ = r (2π/n)⁴ for the circle's coordinates
+    # in the index parameter, is about five times that: above it, and of its order.
+    from mech.pairs.curves import Spline
+
+    r = 40.0
+    th = 2 * math.pi * np.arange(n) / n
+    spline = Spline(np.c_[r * np.cos(th), r * np.sin(th)])
+    c, _, _ = spline.eval(np.linspace(0.0, n, 40 * n, endpoint=False))
+    true = float(np.abs(np.hypot(c[:, 0], c[:, 1]) - r).max())
+    bound = 5 / 384 * r * (2 * math.pi / n) ** 4
+    assert true < spline.departure() < 10 * true
+    assert spline.departure() == pytest.approx(bound, rel=0.05)
+
+
+def test_a_solve_on_a_curve_profile_says_how_close_its_spline_is():
+    doc = _cam("{line: {through: F, angle: 0}}", "F", 47.5).replace(
+        "cam: {circle: {centre: E, radius: 40}}", "cam: {curve: [" + _circle_as_curve(36) + "]}"
+    )
+    mech = loads(doc, path="cam.yaml")
+    bound = 5 / 384 * 40 * (2 * math.pi / 36) ** 4  # mm, as the test above derives it
+    for notes in (solve(mech, "velocity").notes, sweep(mech, ANGLES, analyse=False).notes):
+        (note,) = [n for n in notes if "spline" in n]
+        assert "36 points" in note
+        stated = float(note.split("within about ")[1].split(" mm")[0])
+        assert stated == pytest.approx(bound, rel=0.05)

@@ -509,6 +509,54 @@ drive: {link: pinion, rpm: 1200, direction: cw}
     )
 
 
+def test_a_sweep_follows_each_links_point_at_a_cam_contact(run):
+    # mechanisms/eccentric_cam.yaml (R = 40, e = 15 mm, 300 rpm): the face touches straight above E,
+    # so the cam's point there is e sin θ + R from the shaft: ω(R + e) = 1.7279 m/s at θ = 90°,
+    # ω(R − e) = 0.7854 at 270°; the face's point rises at eω cos θ, at most eω = 0.4712 m/s
+    w = 10 * math.pi
+    result = run(
+        "sweep",
+        str(ROOT / "mechanisms" / "eccentric_cam.yaml"),
+        "--json",
+        "--quantity",
+        "velocity.K@cam",
+        "--quantity",
+        "velocity.K@follower",
+        "--quantity",
+        "velocity.K",
+    )
+    assert result.exit_code == 0, result.output
+    ext = {e["quantity"]: e for e in json.loads(result.output)["extremes"]}
+    cam = ext["velocity.K@cam"]
+    assert cam["max"] == pytest.approx(w * 0.055, rel=1e-6) and cam["max_angle"] == pytest.approx(
+        90, abs=1e-3
+    )
+    assert cam["min"] == pytest.approx(w * 0.025, rel=1e-6) and cam["min_angle"] == pytest.approx(
+        270, abs=1e-3
+    )
+    assert ext["velocity.K@follower"]["max"] == pytest.approx(w * 0.015, rel=1e-6)
+    assert ext["velocity.K"]["max"] == pytest.approx(w * 0.015, rel=1e-6)
+    wrong = run("sweep", str(ROOT / "mechanisms" / "eccentric_cam.yaml"), "--quantity", "velocity.K@frame")
+    assert wrong.exit_code == 2 and "K@cam or K@follower" in wrong.stderr
+
+
+def test_a_swept_rolling_wheels_point_at_the_ground_accelerates_at_omega_squared_r():
+    # mechanisms/rolling_wheel.yaml: a wheel of r = 30 mm rolling without slip on straight ground.
+    # Its point at the contact is the instant centre (at rest) and accelerates toward the wheel's
+    # centre at ω² r, whatever α (rolling kinematics); the ground's point there is at rest. W alone
+    # is asked for its velocity: its acceleration, two-valued, is not given (NaN), not an error.
+    from mech.kinematics import sweep
+    from mech.loader import load
+
+    m = load(ROOT / "mechanisms" / "rolling_wheel.yaml")
+    keys = ["acceleration.W@wheel", "acceleration.W@frame", "velocity.W"]
+    s = sweep(m, np.radians(np.arange(0.0, 360.0, 10.0)), level="acceleration", quantities=keys)
+    w = s.series("omega.wheel")
+    assert s.series("acceleration.W@wheel") == pytest.approx(w * w * 0.030, rel=1e-9, abs=1e-12)
+    assert s.series("acceleration.W@frame") == pytest.approx(np.zeros(w.size), abs=1e-12)
+    assert s.series("velocity.W") == pytest.approx(np.zeros(w.size), abs=1e-12)
+
+
 @pytest.mark.parametrize(
     "name", ["cam_roller_program", "cam_valve_khurmi", "cam_oscillating_roller", "cam_flat_follower"]
 )

@@ -326,6 +326,33 @@ def test_parallelogram_transmission_angle_is_0_and_180_and_its_rocker_turns(step
     assert checked.exit_code == 0, checked.output
 
 
+@pytest.mark.parametrize("steps", [36, 360, 3600])
+def test_a_crank_driven_by_its_rocker_swings_between_the_toggles_of_the_drawn_circuit_only(steps):
+    # Khurmi's crank-rocker (AD 150, AB 40, BC 150, CD 80 mm) driven by the rocker, drawn at 100°
+    # with the crank at 102.33° (C above AD). The rocker reaches only 72.54°–134.43° on this
+    # circuit; turned right round, the closed form also assembles the mirror circuit (C below AD,
+    # 225.57°–287.46°), which no motion reaches from the drawing. The crank stops where it and the
+    # coupler lie in line (cosine rule in triangle ACD): stretched, AC = b + a = 190 mm, the crank
+    # along AC at acos((190² + 150² − 80²)/(2·190·150)) = 23.68°; folded, AC = b − a = 110 mm, the
+    # crank opposite C at 180° + acos((110² + 150² − 80²)/(2·110·150)) = 211.29°. Its swing on the
+    # drawn circuit is their difference, 187.61°; both circuits together gave 234.97°.
+    d, a, b, c = 150.0, 40.0, 150.0, 80.0
+    stretched = math.acos(((b + a) ** 2 + d * d - c * c) / (2 * (b + a) * d))
+    folded = math.pi + math.acos(((b - a) ** 2 + d * d - c * c) / (2 * (b - a) * d))
+    text = four_bar_text(d, a, b, c).replace(
+        "drive: {link: crank, angle: 60.0, rpm: 60}", "drive: {link: rocker, angle: 100, rpm: 60}"
+    )
+    result = cycle(loads(text), steps=steps)
+    stroke = result.strokes["A"]
+    assert (stroke.low, stroke.high) == pytest.approx((stretched, folded), abs=1e-9)
+    assert stroke.value == pytest.approx(folded - stretched, abs=1e-9)  # 187.6085°
+    # the toggles met are the drawn circuit's, where the rocker stops: 180° − ∠ADC at AC = 190 and
+    # 110 mm (cosine rule), 72.54° and 134.43°; not the mirror circuit's 225.57° and 287.46°
+    rocker_at = sorted(math.degrees(t.angle) % 360.0 for t in result.sweep.toggles)
+    adc = [math.degrees(math.acos((d * d + c * c - ac**2) / (2 * d * c))) for ac in (b + a, b - a)]
+    assert rocker_at == pytest.approx(sorted(180.0 - x for x in adc), abs=1e-6)
+
+
 # -- issue 21, items 2 and 4: dwells, strokes, one angle convention ------------------------------
 def test_cam_follower_limit_positions_are_its_dwells_at_lowest_and_highest():
     # The shipped roller cam: prime circle 40 + 10 = 50 mm, rise 30 mm.  Its follower rests at

@@ -367,6 +367,23 @@ DRAW = (
     ),
 )
 
+#: ``mech view``: the live page (DESIGN § 1.5).
+VIEW = (
+    _out(("-o", "--output"), "output", "The page to write (.html).", required=True),
+    Param(
+        ("--steps",),
+        "steps",
+        "int",
+        "Instants over a crank's turn (360: 1° apart); a slider's stroke: steps from --from to --to.",
+        default=360,
+        show_default=True,
+        low=2,
+        high=100_000,
+    ),
+    Param(("--from",), "start", "float", "A slider drive's first position (file's length unit)."),
+    Param(("--to",), "stop", "float", "A slider drive's last position (file's length unit)."),
+)
+
 CAM = (
     FILE,
     Param(("--rpm",), "rpm", "float", "Cam speed in rpm (overrides the file's drive).", check=_cam_rpm),
@@ -438,6 +455,7 @@ COMMANDS: dict[str, tuple[Param, ...]] = {
     "check": CHECK,
     "draw": (*DRAW, *KINEMATIC, ALPHA),
     "cam": CAM,
+    "view": (*VIEW, *KINEMATIC),
 }
 
 #: The commands :mod:`mech.entry` reads without click (their bodies are in :mod:`mech.commands`).

@@ -18,6 +18,7 @@ from collections.abc import Iterable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from mech._records import dataclass
+from mech.draw.glyphs import Sheet, glyphs, paint, world_points
 from mech.draw.scene import (
     INK,
     PALETTE,
@@ -32,12 +33,12 @@ from mech.draw.scene import (
     Transform,
     arrow,
     bbox,
-    hatch,
+    leader,
     nice_scale,
     place_label,
     scale_bar,
 )
-from mech.model import Joint, Mechanism
+from mech.model import Mechanism
 from mech.pairs import kind_of
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -49,8 +50,6 @@ __all__ = ["View", "configuration", "display_name", "link_colours", "link_member
 Vec = tuple[float, float]
 
 MARGIN = 14.0  # mm around the drawing, for labels and ground symbols
-PIN_R = 1.3
-BLOCK = (9.0, 5.5)  # slider block, mm along × across the path
 TITLE_H = 9.0
 FOOT_H = 11.0
 _SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
@@ -90,12 +89,7 @@ def link_members(
                     members[link].append(name)
     for j in mech.joints:
         geom = kin.joints.get(j.name)
-        if (
-            kind_of(j).glyph in ("slider", "slot")
-            and geom is not None
-            and geom.point is not None
-            and geom.point in pos
-        ):
+        if kind_of(j).role == "path" and geom is not None and geom.point is not None and geom.point in pos:
             guide = j.links[1]
             if guide != mech.ground and geom.point not in members[guide]:
                 members[guide].append(geom.point)
@@ -180,44 +174,51 @@ def configuration(
     Figure
         In page millimetres; the caption states the scale in the file's unit.
     """
-    from mech.draw.icentres import overlay, reachable
+    from mech.draw.icentres import marks, overlay, reachable
 
     pos = dict(kin.positions if positions is None else positions)
     members = link_members(mech, kin, pos)
     colours = link_colours(mech)
+    frame = positions is not None
+    directions = _directions(mech, kin, pos)
+
+    def sheet(tr: Transform) -> Sheet:
+        carried = None if frame else (lambda link: _carried(mech, kin, link))
+        return Sheet(mech, kin, pos, directions, tr, colours, frame=frame, carried=carried)
+
     if view is None:
-        pts = (
-            list(pos.values())
-            + _circle_extents(mech, kin, pos, frame=positions is not None)
-            + [e for _, _, e in _follower_rods(mech, kin, pos)]
-        )
+        pts = list(pos.values())
+        pts += world_points(glyphs(mech, sheet(fit_view(pts, room).transform())))
         pts += [c.point for c in reachable(icentres, pts)]
         pts += [q for _label, curve, _kind in curves for q in _near(curve, pts)]
         view = fit_view(pts, room)
     tr = view.transform()
+    shapes = glyphs(mech, sheet(tr))
     width, height = view.size
     page = Page(width, height)
     page.add(Text((MARGIN - 6, 5.5), title, 3.4, "start", bold=True, cls="title"))
+    factor = _unit_factor(mech.length_unit)  # the scale first: what is placed later keeps off it
+    page.extend(scale_bar((MARGIN - 6, height - 7), view.scale / factor, mech.length_unit))
 
-    directions = _directions(mech, kin, pos)
     if curves:
         page.extend(_curves(curves, tr, view))
-    page.extend(_guides(mech, kin, pos, tr, directions, view))
+    page.extend(paint(shapes, tr, "under"))
     page.extend(_links(mech, members, pos, tr, colours))
-    page.extend(_contacts(mech, kin, pos, tr, frame=positions is not None))
-    page.extend(_ground_pivots(mech, kin, pos, tr))
-    page.extend(_blocks(mech, kin, pos, tr, directions, colours))
-    page.extend(_pins_and_points(mech, kin, pos, tr))
-    page.extend(_labels(mech, members, pos, tr, list(page.items)))
-    page.extend(_drive_arrows(mech, kin, pos, tr, [i for i in page.items if isinstance(i, Text)]))
+    for layer in ("contact", "ground", "block", "pin"):
+        page.extend(paint(shapes, tr, layer))
+    page.extend(_points(mech, pos, tr, page.items))
+    box = (MARGIN, TITLE_H + MARGIN, width - MARGIN, height - MARGIN - FOOT_H)
+    spots = marks(icentres, tr, box) if icentres else []  # the joints' labels and ω keep off them
+    page.extend(_labels(mech, members, pos, tr, [*page.items, *spots]))
+    near = [i.centre for i in spots if isinstance(i, Circle)]
+    page.extend(_drive_arrows(mech, kin, pos, tr, [i for i in page.items if isinstance(i, Text)], near))
     if icentres:
-        page.extend(
-            overlay(icentres, tr, (MARGIN, TITLE_H + MARGIN, width - MARGIN, height - MARGIN - FOOT_H))
-        )
+        page.extend(spots)
+        unit = (mech.length_unit, _unit_factor(mech.length_unit))
+        origin = _first_pivot(mech, pos)
+        page.extend(overlay(icentres, tr, box, drawn=page.items, origin=origin, unit=unit, marked=True))
 
-    factor = _unit_factor(mech.length_unit)
-    page.extend(scale_bar((MARGIN - 6, height - 7), view.scale / factor, mech.length_unit))
-    return page.figure(title)
+    return page.figure(title, fit=not frame)
 
 
 def curves_figure(
@@ -238,7 +239,15 @@ def curves_figure(
     page = Page(width, height)
     page.add(Text((MARGIN - 6, 5.5), title, 3.4, "start", bold=True, cls="title"))
     page.extend(_curves(curves, tr, view))
-    page.extend(_ground_pivots(mech, kin, pos, tr))
+    sheet = Sheet(mech, kin, pos, {}, tr, link_colours(mech))
+    pivots_only = [
+        s
+        for j in mech.joints
+        if mech.ground in j.links and kind_of(j).role == "pin"
+        for s in kind_of(j).glyph(sheet, j)
+    ]
+    for layer in ("ground", "pin"):
+        page.extend(paint(pivots_only, tr, layer))
     for j in mech.joints:
         if mech.ground in j.links and j.name in pos:
             x, y = tr(pos[j.name])
@@ -314,7 +323,7 @@ def _directions(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec]) -> dic
     out: dict[str, Vec] = {}
     for j in mech.joints:
         geom = kin.joints.get(j.name)
-        if geom is None or geom.direction is None or kind_of(j).glyph not in ("slider", "slot"):
+        if geom is None or geom.direction is None or kind_of(j).role != "path":
             continue
         u = geom.direction
         guide = j.links[1]
@@ -339,43 +348,6 @@ def _turn(kin: Kinematics, link: str, pos: Mapping[str, Vec]) -> float:
 
 def _page_dir(u: Vec) -> Vec:
     return (u[0], -u[1])
-
-
-def _guides(
-    mech: Mechanism,
-    kin: Kinematics,
-    pos: Mapping[str, Vec],
-    tr: Transform,
-    directions: Mapping[str, Vec],
-    view: View,
-) -> list[Item]:
-    """Ground guides of sliders: the line of stroke (dash-dot) and a hatched guide surface."""
-    items: list[Item] = []
-    centre = _centre(pos)
-    for j in mech.joints:
-        if kind_of(j).glyph != "slider" or j.links[1] != mech.ground or j.name not in directions:
-            continue
-        point = kin.joints[j.name].point
-        if point is None or point not in pos:
-            continue
-        p, u = pos[point], directions[j.name]
-        ts = [(q[0] - p[0]) * u[0] + (q[1] - p[1]) * u[1] for q in pos.values()]
-        pad = view.scale / 10 * (BLOCK[0] * 0.9)
-        a = (p[0] + (min(ts) - pad) * u[0], p[1] + (min(ts) - pad) * u[1])
-        b = (p[0] + (max(ts) + pad) * u[0], p[1] + (max(ts) + pad) * u[1])
-        items.append(Line(tr(a), tr(b), Style("#777777", 0.2, dash=(4, 1, 0.8, 1)), "stroke-line", j.name))
-        # the guide surface on the side away from the rest of the mechanism
-        n = (-u[1], u[0])
-        away = -1.0 if (centre[0] - p[0]) * n[0] + (centre[1] - p[1]) * n[1] > 0 else 1.0
-        du = _page_dir(u)
-        pn = (n[0] * away, -n[1] * away)  # page normal toward the guide surface
-        off = BLOCK[1] / 2
-        pa, pb = tr(a), tr(b)
-        sa = (pa[0] + pn[0] * off, pa[1] + pn[1] * off)
-        sb = (pb[0] + pn[0] * off, pb[1] + pn[1] * off)
-        side = 1.0 if (-du[1] * pn[0] + du[0] * pn[1]) > 0 else -1.0
-        items.extend(hatch(sa, sb, side=side))
-    return items
 
 
 def _centre(pos: Mapping[str, Vec]) -> Vec:
@@ -443,173 +415,6 @@ def _links(
     return plates + bars
 
 
-def _ground_pivots(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec], tr: Transform) -> list[Item]:
-    """A small triangle under each ground pivot, standing on a hatched base."""
-    items: list[Item] = []
-    for j in mech.joints:
-        if kind_of(j).glyph == "pin" and mech.ground in j.links and j.name in pos:
-            x, y = tr(pos[j.name])
-            tri = ((x, y), (x - 3.2, y + 5.0), (x + 3.2, y + 5.0))
-            items.append(Poly(tri, True, Style(INK, 0.35, fill="#ffffff"), "ground-pivot", j.name))
-            items.extend(hatch((x - 5.0, y + 5.0), (x + 5.0, y + 5.0), side=-1.0))
-    return items
-
-
-def _blocks(
-    mech: Mechanism,
-    kin: Kinematics,
-    pos: Mapping[str, Vec],
-    tr: Transform,
-    directions: Mapping[str, Vec],
-    colours: Mapping[str, str],
-) -> list[Item]:
-    """Slider blocks (prismatic) and slots (pin in a slot), oriented along their paths."""
-    items: list[Item] = []
-    for j in mech.joints:
-        if j.name not in directions:
-            continue
-        point = kin.joints[j.name].point
-        if point is None or point not in pos:
-            continue
-        c = tr(pos[point])
-        du = _page_dir(directions[j.name])
-        nv = (-du[1], du[0])
-        if kind_of(j).glyph == "slider":
-            a, b = BLOCK[0] / 2, BLOCK[1] / 2
-            corners = tuple(
-                (c[0] + du[0] * sa * a + nv[0] * sb * b, c[1] + du[1] * sa * a + nv[1] * sb * b)
-                for sa, sb in ((-1, -1), (1, -1), (1, 1), (-1, 1))
-            )
-            colour = colours.get(j.links[0], INK)
-            items.append(Poly(corners, True, Style(colour, 0.6, fill="#ffffff"), "slider", j.name))
-            items.append(
-                Poly(corners, True, Style(None, 0, fill=colour, fill_opacity=0.16), "slider-fill", j.name)
-            )
-        else:  # slot: two parallel lines along the path, in the slot link's colour
-            colour = colours.get(j.links[1], INK)
-            half, w = 9.0, PIN_R + 0.6
-            for s in (-1, 1):
-                p0 = (c[0] - du[0] * half + nv[0] * s * w, c[1] - du[1] * half + nv[1] * s * w)
-                p1 = (c[0] + du[0] * half + nv[0] * s * w, c[1] + du[1] * half + nv[1] * s * w)
-                items.append(Line(p0, p1, Style(colour, 0.45), "slot", j.name))
-    return items
-
-
-def _contacts(
-    mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec], tr: Transform, *, frame: bool = False
-) -> list[Item]:
-    """Higher pairs at the drawn instant: pitch circles of gears, the common normal of cams."""
-    items: list[Item] = []
-    for j in mech.joints:
-        if kind_of(j).glyph not in ("contact", "pitch"):
-            continue
-        if j.name not in pos:
-            continue
-        c = tr(pos[j.name])
-        items.extend(_profiles(mech, kin, j, pos, tr, frame=frame))
-        if kind_of(j).glyph == "pitch" and not _profile_list(mech, kin, j, pos[j.name]):
-            for link in j.links:
-                centre = _pivot_of(mech, link, pos)
-                if centre is not None:
-                    pc = tr(centre)
-                    items.append(
-                        Circle(
-                            pc,
-                            math.dist(pc, c),
-                            Style(link_colours(mech).get(link, INK), 0.6, dash=(3, 1, 0.6, 1)),
-                            "pitch-circle",
-                            link,
-                        )
-                    )
-        normal = j.normal
-        geom = kin.joints.get(j.name)
-        if normal is None and geom is not None and geom.direction is not None:
-            normal = math.atan2(geom.direction[1], geom.direction[0]) - math.pi / 2
-        if normal is not None:
-            u = (math.cos(normal), -math.sin(normal))
-            items.append(
-                Line(
-                    (c[0] - 14 * u[0], c[1] - 14 * u[1]),
-                    (c[0] + 14 * u[0], c[1] + 14 * u[1]),
-                    Style("#555555", 0.25, dash=(3, 1, 0.6, 1)),
-                    "normal",
-                    j.name,
-                )
-            )
-            t = (-u[1], u[0])
-            items.append(
-                Line(
-                    (c[0] - 6 * t[0], c[1] - 6 * t[1]),
-                    (c[0] + 6 * t[0], c[1] + 6 * t[1]),
-                    Style(INK, 0.5),
-                    "tangent",
-                    j.name,
-                )
-            )
-        colours = link_colours(mech)
-        for link in j.links:
-            if kind_of(j).glyph == "pitch" or _profile_list(mech, kin, j, pos[j.name]):
-                continue
-            body = [n for n, links in kin.carriers.items() if link in links and n in pos]
-            for n in body:  # the profile is unknown: show which points the contact belongs to
-                items.append(
-                    Line(tr(pos[n]), c, Style(colours.get(link, INK), 0.5, dash=(2.0, 1.0)), "body", link)
-                )
-            if not body and link != mech.ground:
-                items.extend(_follower(mech, kin, link, pos[j.name], tr, colours.get(link, INK)))
-        items.append(Circle(c, 0.9, Style(INK, 0.3, fill=INK), "contact", j.name))
-    return items
-
-
-def _profiles(
-    mech: Mechanism, kin: Kinematics, j: Joint, pos: Mapping[str, Vec], tr: Transform, *, frame: bool = False
-) -> list[Item]:
-    """Each link's profile where it is now: a circle about its centre, a flat face along the
-    tangent at the contact, a closed curve (a cam's surface) carried with its link.
-
-    A knife edge is the contact dot itself.  Profiles given by coordinates (as drawn) are
-    carried by their link's motion from the drawing; in an animation frame (``frame``) only
-    those placed by named points are drawn.
-    """
-    from mech.specs import Circle as CircleProfile
-    from mech.specs import Curve as CurveProfile
-    from mech.specs import Line as LineProfile
-
-    items: list[Item] = []
-    colours = link_colours(mech)
-    contact = pos.get(j.name)
-    for link, prof in _profile_list(mech, kin, j, contact):
-        colour = colours.get(link, INK)
-        move = None if frame else _carried(mech, kin, link)
-        if isinstance(prof, CircleProfile):
-            centre = pos.get(prof.centre.name) if prof.centre.name is not None else None
-            if centre is None and prof.centre.xy is not None and move is not None:
-                centre = move(prof.centre.xy)
-            if centre is None:
-                continue
-            pc = tr(centre)
-            r_page = tr((centre[0] + prof.radius, centre[1]))[0] - pc[0]
-            items.append(Circle(pc, abs(r_page), Style(colour, 0.6), "profile", link))
-        elif isinstance(prof, CurveProfile) and move is not None:
-            pts = tuple(tr(move(p)) for p in prof.points)
-            items.append(Poly(pts, True, Style(colour, 0.6), "profile", link))
-        elif isinstance(prof, LineProfile) and contact is not None:
-            geom = kin.joints.get(j.name)
-            if geom is None or geom.direction is None:
-                continue
-            c, u = tr(contact), _page_dir(geom.direction)
-            items.append(
-                Line(
-                    (c[0] - 12 * u[0], c[1] - 12 * u[1]),
-                    (c[0] + 12 * u[0], c[1] + 12 * u[1]),
-                    Style(colour, 1.0),
-                    "profile",
-                    link,
-                )
-            )
-    return items
-
-
 def _carried(mech: Mechanism, kin: Kinematics, link: str) -> Any:
     """A function taking a point of ``link`` as drawn to where the link has carried it in ``kin``."""
     if link == mech.ground:
@@ -637,121 +442,36 @@ def _carried(mech: Mechanism, kin: Kinematics, link: str) -> Any:
     return move
 
 
-def _profile_list(mech: Mechanism, kin: Kinematics, j: Joint, contact: Vec | None) -> list[tuple[str, Any]]:
-    """The profiles to draw: what the pair's kind draws on its links (given, generated, or radii)."""
-    return kind_of(j).drawn_profiles(mech, j, contact)
-
-
-def _follower_rods(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec]) -> list[tuple[str, Vec, Vec]]:
-    """Followers known only by a contact and a guide: (link, tip, far end) of a rod along the guide.
-
-    The rod is half the mechanism's size long and leaves the cam, as a
-    knife-edge follower does in the notes' figures.
-    """
-    out = []
-    pts = list(pos.values())
-    x0, y0, x1, y1 = bbox(pts) if pts else (0.0, 0.0, 0.0, 0.0)
-    length = 0.6 * max(x1 - x0, y1 - y0, 1e-9)
+def _first_pivot(mech: Mechanism, pos: Mapping[str, Vec]) -> tuple[str, Vec] | None:
+    """The frame's first pivot (in the file's order), from which far I-centres are measured."""
     for j in mech.joints:
-        if kind_of(j).glyph != "contact" or j.profiles or j.name not in pos:
-            continue
-        for link in j.links:
-            if link == mech.ground or any(link in links and n in pos for n, links in kin.carriers.items()):
-                continue
-            guide = next(
-                (
-                    g
-                    for g in mech.joints
-                    if kind_of(g).glyph == "slider"
-                    and g.links[0] == link
-                    and g.name in kin.joints
-                    and kin.joints[g.name].direction
-                ),
-                None,
-            )
-            if guide is None:
-                continue
-            u = kin.joints[guide.name].direction
-            if u is None:  # a guide without a direction solved: nothing to draw along
-                continue
-            tip = pos[j.name]
-            other = next((lk for lk in j.links if lk != link), None)
-            pivot = _pivot_of(mech, other, pos) if other else None
-            if pivot is not None and (tip[0] - pivot[0]) * u[0] + (tip[1] - pivot[1]) * u[1] < 0:
-                u = (-u[0], -u[1])
-            out.append((link, tip, (tip[0] + length * u[0], tip[1] + length * u[1])))
-    return out
-
-
-def _follower(
-    mech: Mechanism, kin: Kinematics, link: str, tip: Vec, tr: Transform, colour: str
-) -> list[Item]:
-    """The rod of a knife-edge follower, with its guide hatched on both sides."""
-    for name, t, end in _follower_rods(mech, kin, kin.positions):
-        if name != link or t != tip:
-            continue
-        c, e = tr(t), tr(end)
-        L = math.dist(c, e)
-        u = ((e[0] - c[0]) / L, (e[1] - c[1]) / L)
-        items: list[Item] = [Line(c, e, Style(colour, 1.0), "link", link)]
-        n = (-u[1], u[0])
-        for s in (-1, 1):
-            g0 = (c[0] + 0.45 * L * u[0] + n[0] * s * 1.6, c[1] + 0.45 * L * u[1] + n[1] * s * 1.6)
-            g1 = (c[0] + 0.8 * L * u[0] + n[0] * s * 1.6, c[1] + 0.8 * L * u[1] + n[1] * s * 1.6)
-            items.extend(hatch(g0, g1, side=s, depth=1.6))
-        return items
-    return []
-
-
-def _contact_partners(mech: Mechanism, link: str) -> list[str]:
-    return [
-        lk
-        for j in mech.joints
-        if kind_of(j).glyph == "contact" and link in j.links
-        for lk in j.links
-        if lk != link
-    ]
-
-
-def _circle_extents(
-    mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec], *, frame: bool = False
-) -> list[Vec]:
-    """Corners of the boxes round gears' pitch circles, so the view holds them."""
-    out: list[Vec] = []
-    for j in mech.joints:
-        for link, prof in _profile_list(mech, kin, j, pos.get(j.name)):
-            points = getattr(prof, "points", None)
-            move = None if frame else _carried(mech, kin, link)
-            if points is not None and move is not None:
-                out += [move(p) for p in points]
-            centre = getattr(prof, "centre", None)
-            if centre is not None:
-                c = centre.xy if centre.name is None else pos.get(centre.name)
-                if c is not None:
-                    out += [
-                        (c[0] - prof.radius, c[1] - prof.radius),
-                        (c[0] + prof.radius, c[1] + prof.radius),
-                    ]
-        if kind_of(j).glyph == "pitch" and j.name in pos:
-            for link in j.links:
-                c = _pivot_of(mech, link, pos)
-                if c is not None:
-                    r = math.dist(c, pos[j.name])
-                    out += [(c[0] - r, c[1] - r), (c[0] + r, c[1] + r)]
-    return out
-
-
-def _pivot_of(mech: Mechanism, link: str, pos: Mapping[str, Vec]) -> Vec | None:
-    for j in mech.joints:
-        if kind_of(j).glyph == "pin" and link in j.links and mech.ground in j.links and j.name in pos:
-            return pos[j.name]
+        if mech.ground in j.links and kind_of(j).role == "pin" and j.name in pos:
+            return display_name(j.name), pos[j.name]
     return None
 
 
+def _points(mech: Mechanism, pos: Mapping[str, Vec], tr: Transform, drawn: Sequence[Item]) -> list[Item]:
+    """A dot for every named point that no glyph has drawn as a pin."""
+    pins = {i.name for i in drawn if isinstance(i, Circle) and i.cls == "pin"}
+    return [
+        Circle(tr(pos[p.name]), 0.85, Style(INK, 0.2, fill=INK), "point", p.name)
+        for p in mech.points
+        if p.name in pos and p.name not in pins
+    ]
+
+
 def _drive_arrows(
-    mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec], tr: Transform, labels: Sequence[Text] = ()
+    mech: Mechanism,
+    kin: Kinematics,
+    pos: Mapping[str, Vec],
+    tr: Transform,
+    labels: Sequence[Text] = (),
+    marks: Sequence[Vec] = (),
 ) -> list[Item]:
-    """A curved arrow round each driven pivot showing the sense of ω, as the notes draw it."""
+    """A curved arrow round each driven pivot showing the sense of ω, as the notes draw it.
+
+    It turns away from the links, the labels and the ``marks`` (I-centres) near the pivot.
+    """
     items: list[Item] = []
     for d in getattr(kin, "drives", ()):
         if d.link is None or d.omega is None or d.omega == 0:
@@ -776,6 +496,7 @@ def _drive_arrows(
                 q = tr(pos[name])
                 busy.append(math.atan2(q[1] - cy, q[0] - cx))
         busy += [math.atan2(t.at[1] - cy, t.at[0] - cx) for t in labels if math.dist(t.at, (cx, cy)) < 12]
+        busy += [math.atan2(q[1] - cy, q[0] - cx) for q in marks if 0.5 < math.dist(q, (cx, cy)) < 12]
         centre = max(
             (math.radians(15 * k) for k in range(24)),
             key=lambda a: min(abs(math.remainder(a - b, 2 * math.pi)) for b in busy),
@@ -794,25 +515,6 @@ def _drive_arrows(
     return items
 
 
-def _pins_and_points(mech: Mechanism, kin: Kinematics, pos: Mapping[str, Vec], tr: Transform) -> list[Item]:
-    """An open circle for every pin (revolute joint, or slot pin), a dot for every named point."""
-    items: list[Item] = []
-    pins: dict[str, None] = {}  # in the file's order: a set's order changes with the hash seed
-    for j in mech.joints:
-        if kind_of(j).glyph == "pin" and j.name in pos:
-            pins[j.name] = None
-        elif kind_of(j).glyph == "slot":
-            point = kin.joints[j.name].point if j.name in kin.joints else None
-            if point is not None and point in pos:
-                pins[point] = None
-    for name in pins:
-        items.append(Circle(tr(pos[name]), PIN_R, Style(INK, 0.4, fill="#ffffff"), "pin", name))
-    for p in mech.points:
-        if p.name in pos and p.name not in pins:
-            items.append(Circle(tr(pos[p.name]), 0.85, Style(INK, 0.2, fill=INK), "point", p.name))
-    return items
-
-
 def _labels(
     mech: Mechanism,
     members: Mapping[str, list[str]],
@@ -827,9 +529,7 @@ def _labels(
         j.name for j in mech.joints if j.name in pos and not any(j.name in m for m in members.values())
     ]
     for name in contacts:
-        items.append(
-            place_label(tr(pos[name]), display_name(name), 3.0, (0.6, -0.8), drawn + items, cls="label")
-        )
+        _label_at(items, tr(pos[name]), display_name(name), 3.0, (0.6, -0.8), drawn)
         done.add(name)
     for names in members.values():
         for name in names:
@@ -850,6 +550,14 @@ def _labels(
                             dy += (here[1] - q[1]) / d
             n = math.hypot(dx, dy)
             prefer = (dx / n, dy / n) if n > 0.3 else (0.6, -0.8)
-            label = place_label(here, display_name(name), 3.4, prefer, drawn + items, cls="label")
-            items.append(label)
+            _label_at(items, here, display_name(name), 3.4, prefer, drawn)
     return items
+
+
+def _label_at(items: list[Item], here: Vec, text: str, size: float, prefer: Vec, drawn: list[Item]) -> None:
+    """Place a joint's label (and its leader line, if it stands off) into ``items``."""
+    label = place_label(here, text, size, prefer, drawn + items, cls="label")
+    line = leader(here, label)
+    if line is not None:
+        items.append(line)
+    items.append(label)

@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from mech._files import write_with
 from mech._records import dataclass
@@ -26,7 +26,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from mech.kinematics.result import Kinematics
     from mech.model import Mechanism
 
-__all__ = ["Series", "animate", "extremes", "sweep_plot", "thin"]
+__all__ = ["Series", "animate", "extremes", "sweep_figure", "sweep_plot", "thin"]
 
 Vec = tuple[float, float]
 
@@ -42,6 +42,9 @@ class Series:
     label: str
     unit: str
     values: Sequence[float]
+    #: The extremes refined between steps, ((angle, largest), (angle, smallest)), when the sweep
+    #: found them: what the plot labels (the grid's own extremes are only near them).
+    refined: tuple[tuple[float, float], tuple[float, float]] | None = None
 
 
 def extremes(
@@ -70,8 +73,27 @@ def sweep_plot(
 
     Series sharing a unit share a panel (v_B and v_C together, ω's apart).
     Dead centres are dashed vertical lines labelled "dead centre"; the largest
-    and smallest value of each series is marked and annotated with its angle.
+    and smallest value of each series is marked and annotated with its angle
+    (the refined extremes where the series carries them), inside the axes.
     """
+    fig = sweep_figure(
+        angles, series, dead_centres=dead_centres, mark_extremes=mark_extremes, title=title, xlabel=xlabel
+    )
+    write_with(
+        path, lambda f: fig.savefig(f, format="png", dpi=DPI, facecolor="white", metadata={"Software": None})
+    )
+
+
+def sweep_figure(
+    angles: Sequence[float],
+    series: Sequence[Series],
+    *,
+    dead_centres: Sequence[float] = (),
+    mark_extremes: bool = True,
+    title: str = "",
+    xlabel: str = "crank angle θ (°)",
+) -> Any:
+    """The matplotlib figure :func:`sweep_plot` writes (for tests, and for a caller's own use)."""
     use_matplotlib()
     from matplotlib.figure import Figure as MplFigure
 
@@ -89,20 +111,10 @@ def sweep_plot(
             colour = colours[k % len(colours)]
             ax.plot(angles, s.values, color=colour, lw=1.4, label=s.label)
             if mark_extremes:
-                (ah, vh), (al, vl) = extremes(angles, s.values)
-                for a, v, word, va in ((ah, vh, "max", "bottom"), (al, vl, "min", "top")):
-                    ax.plot([a], [v], marker="o", ms=4, color=colour)
-                    ax.annotate(
-                        f"{word} {v:.4g} at {a:.0f}°",
-                        (a, v),
-                        textcoords="offset points",
-                        xytext=(4, 4 if va == "bottom" else -4),
-                        va=va,
-                        fontsize=7,
-                        color=colour,
-                    )
+                _mark_extremes(ax, angles, s, colour)
         for d in dead_centres:
             ax.axvline(d, color="#777777", lw=0.8, ls="--")
+        ax.margins(y=0.22)  # room inside the axes for the extremes' labels
         ax.set_ylabel(unit)
         ax.grid(True, color="#dddddd", lw=0.5)
         ax.axhline(0, color="#999999", lw=0.6)
@@ -129,9 +141,35 @@ def sweep_plot(
     if title:
         fig.suptitle(title, fontsize=10, fontweight="bold")
     fig.tight_layout()
-    write_with(
-        path, lambda f: fig.savefig(f, format="png", dpi=DPI, facecolor="white", metadata={"Software": None})
-    )
+    return fig
+
+
+def _mark_extremes(ax: Any, angles: Sequence[float], s: Series, colour: str) -> None:
+    """Dots at the largest and smallest values, labelled inside the axes with value and angle.
+
+    The refined extremes where the sweep found them (the table's numbers), else the grid's.
+    A label leans away from the nearer side of the axes and away from the curve's extreme
+    (below a maximum, above a minimum), so it stays inside.
+    """
+    from mech.draw.scene import fmt
+
+    (ah, vh), (al, vl) = s.refined if s.refined is not None else extremes(angles, s.values)
+    lo, hi = min(angles), max(angles)
+    for a, v, word, up in ((ah, vh, "max", False), (al, vl, "min", True)):
+        ax.plot([a], [v], marker="o", ms=4, color=colour)
+        right = a > lo + 0.6 * (hi - lo)
+        where = f"{a:.2f}".rstrip("0").rstrip(".") if s.refined is not None else f"{a:.0f}"
+        ax.annotate(
+            f"{word} {fmt(v)} at {where}°",
+            (a, v),
+            textcoords="offset points",
+            xytext=(-4 if right else 4, 5 if up else -5),
+            ha="right" if right else "left",
+            va="bottom" if up else "top",
+            fontsize=7,
+            color=colour,
+            annotation_clip=True,
+        )
 
 
 def thin(points: Sequence[Vec], resolution: float) -> list[Vec]:

@@ -47,7 +47,10 @@ from mech.draw.scene import (
     arrow,
     bbox,
     best_spot,
+    clashes,
     fmt,
+    item_rect,
+    leader,
     nice_scale,
     place_label,
     scale_bar,
@@ -243,13 +246,11 @@ class _Builder:
                 if link_name == self.ground:
                     continue
                 key = f"{j.name}@{link_name}"
-                short = j.name if len(j.name) <= 2 else j.name[0]
-                if short.lower() in {display_name(n, lower=True) for n in self.pos if n != j.name}:
-                    short = j.name  # "c" is taken by a point C: keep the full name
+                short = self._short(j)
                 self._add(
                     Image(
                         key,
-                        display_name(short, lower=True)
+                        (display_name(short, lower=True) if len(short) <= 2 else short)
                         + str(self.numbers[link_name]).translate(_SUB)
                         + self.mark,
                         j.name,
@@ -258,6 +259,16 @@ class _Builder:
                     )
                 )
                 self.link_keys[link_name].append(key)
+
+    def _short(self, j: Joint) -> str:
+        """A contact's letter: its name's first (``m`` for ``mesh``), unless a point or another
+        contact has it, when the whole name is kept (``m12`` and ``m23``, never two ``m₃``)."""
+        short = j.name if len(j.name) <= 2 else j.name[0]
+        taken = {display_name(n, lower=True) for n in self.pos if n != j.name}
+        others = [c.name if len(c.name) <= 2 else c.name[0] for c in self.contacts if c.name != j.name]
+        if short.lower() in taken or short.lower() in {o.lower() for o in others}:
+            return j.name.lower() if len(j.name) > 2 else j.name
+        return short
 
     def absolute_vectors(self) -> None:
         """From the pole to each image, named after the fixed point of the same link, if any."""
@@ -474,10 +485,16 @@ def polygon_figure(
         return tr(data.at(key))
 
     drawn, labelled = _vector_items(data, at, colours, tiny)
+    drawn[:0] = page.items  # the title: no label on it
     _add_image_points(drawn, data, at, tr(((x0 + x1) / 2, (y0 + y1) / 2)))
     _add_vector_names(drawn, labelled, at)
-    page.extend(drawn)
-    y = TITLE_H + 2 * MARGIN + ph
+    page.items = drawn
+    # the scale and the values go under everything drawn, labels that stand out included
+    lowest = max(
+        (item_rect(i)[3] for i in drawn if not (isinstance(i, Text) and i.cls == "title")), default=0.0
+    )
+    y = max(TITLE_H + 2 * MARGIN + ph, lowest + 4.5)
+    page.height += y - (TITLE_H + 2 * MARGIN + ph)
     page.extend(scale_bar((MARGIN - 6, y), scale / factor, unit))
     y += 7
     for v in named:
@@ -529,9 +546,9 @@ def _add_image_points(drawn: list[Item], data: PolygonData, at: Callable[[str], 
         dx, dy = q[0] - centre[0], q[1] - centre[1]
         n = math.hypot(dx, dy)
         prefer = (dx / n, dy / n) if n > 1 else (-0.7, 0.7)
-        drawn.append(
-            place_label(q, ", ".join(labs), 3.2, prefer, drawn, italic=True, bold=True, cls="image-label")
-        )
+        label = place_label(q, ", ".join(labs), 3.2, prefer, drawn, italic=True, bold=True, cls="image-label")
+        line = leader(q, label)
+        drawn.extend([line, label] if line is not None else [label])
 
 
 def _add_vector_names(
@@ -544,12 +561,32 @@ def _add_vector_names(
         if n < 3:
             continue
         ux, uy = (p1[0] - p0[0]) / n, (p1[1] - p0[1]) / n
-        hw, hh = text_box(v.name, 2.9)
-        off = 1.2 + abs(ux) * hh + abs(uy) * hw
+        hw, hh = text_box(v.name, 2.9, bold=True)
         cands = []
-        for t, bonus in ((0.5, 0.3), (0.4, 0.2), (0.6, 0.2), (0.3, 0.1), (0.7, 0.1)):
-            m = (p0[0] + (p1[0] - p0[0]) * t, p0[1] + (p1[1] - p0[1]) * t)
-            for side, sb in ((1, 0.05), (-1, 0.0)):
-                cands.append(((m[0] + uy * off * side, m[1] - ux * off * side), bonus + sb))
-        spot = best_spot(cands, v.name, 2.9, drawn)
-        drawn.append(Text(spot, v.name, 2.9, "middle", colour, italic=True, bold=True, cls="vector-label"))
+        for extra, cost in ((1.2, 0.0), (3.0, 0.6), (5.5, 1.4)):
+            off = extra + abs(ux) * hh + abs(uy) * hw
+            for t, bonus in (
+                (0.5, 0.3),
+                (0.4, 0.2),
+                (0.6, 0.2),
+                (0.3, 0.1),
+                (0.7, 0.1),
+                (0.2, 0.0),
+                (0.8, 0.0),
+            ):
+                m = (p0[0] + (p1[0] - p0[0]) * t, p0[1] + (p1[1] - p0[1]) * t)
+                for side, sb in ((1, 0.05), (-1, 0.0)):
+                    cands.append(
+                        ((m[0] + uy * off * side, m[1] - ux * off * side - 0.15 * 2.9), bonus + sb - cost)
+                    )
+        spot = best_spot(cands, v.name, 2.9, drawn, bold=True)
+        label = Text(spot, v.name, 2.9, "middle", colour, italic=True, bold=True, cls="vector-label")
+        if clashes(label, drawn):  # no room beside the shaft: farther off, with a leader to its middle
+            mid = ((p0[0] + p1[0]) / 2, (p0[1] + p1[1]) / 2)
+            label = place_label(
+                mid, v.name, 2.9, (uy, -ux), drawn, colour=colour, italic=True, bold=True, cls="vector-label"
+            )
+            line = leader(mid, label, colour)
+            if line is not None:
+                drawn.append(line)
+        drawn.append(label)

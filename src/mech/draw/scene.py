@@ -34,10 +34,15 @@ __all__ = [
     "Transform",
     "arrow",
     "best_spot",
+    "clashes",
     "hatch",
+    "item_rect",
+    "leader",
     "nice_scale",
     "place_label",
     "scale_bar",
+    "text_rect",
+    "text_width",
 ]
 
 Vec = tuple[float, float]
@@ -166,8 +171,16 @@ def fmt(value: float, digits: int = 4) -> str:
     text = f"{value:.{digits}g}"
     if "e" in text:
         mant, exp = text.split("e")
-        return f"{mant}×10^{int(exp)}"
+        return f"{mant}×10{superscript(int(exp))}"
     return text
+
+
+_SUPER = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+
+
+def superscript(n: int) -> str:
+    """An exponent typeset as superscript characters (``-5`` → ``⁻⁵``), as print writes 10⁻⁵."""
+    return str(n).translate(_SUPER)
 
 
 @dataclass
@@ -194,8 +207,29 @@ class Page:
         self.width = max(self.width, dx + other.width)
         self.height = max(self.height, dy + other.height)
 
-    def figure(self, title: str = "") -> Figure:
+    def figure(self, title: str = "", *, fit: bool = True) -> Figure:
+        """The finished figure; with ``fit``, grown (and its items moved) so that nothing is cut.
+
+        A label placed beyond the sheet's edge, or a title longer than the sheet is wide,
+        makes the sheet larger rather than being clipped: the page stays in millimetres, so
+        every scale on it still holds.  Animation frames keep their size (``fit=False``).
+        """
+        if fit and self.items:
+            x0, y0, x1, y1 = bbox([p for item in self.items for p in _corners(item_rect(item))])
+            dx, dy = max(0.0, EDGE - x0), max(0.0, EDGE - y0)
+            if dx or dy:
+                self.items = [shift(item, dx, dy) for item in self.items]
+            self.width = max(self.width + dx, x1 + dx + EDGE)
+            self.height = max(self.height + dy, y1 + dy + EDGE)
         return Figure(self.width, self.height, tuple(self.items), title)
+
+
+#: The least white (mm) round everything drawn on a fitted sheet.
+EDGE = 1.5
+
+
+def _corners(box: tuple[float, float, float, float]) -> tuple[Vec, Vec]:
+    return ((box[0], box[1]), (box[2], box[3]))
 
 
 def shift(item: Item, dx: float, dy: float) -> Item:
@@ -291,14 +325,90 @@ def bbox(points: Sequence[Vec]) -> tuple[float, float, float, float]:
 
 
 # -- label placement ----------------------------------------------------------------------
-def _obstacles(items: Sequence[Item]) -> tuple[list[tuple[Vec, Vec, float]], list[tuple[Vec, float]]]:
-    """Segments (with a softness bonus, mm) and discs already drawn, which labels keep clear of.
+_ADVANCE = (  # DejaVu Sans advance widths of " " … "~" (em/1000, four digits each), regular then bold
+    (
+        "031804010460083806360950078002750390039005000838031803610318033706360636063606360636063606360636"
+        "063606360337033708380838083805311000068406860698077006320575077507520295029506560557086307480787"
+        "060307870695063506110732068409890685061106850390033703900838050005000613063505500635061503520635"
+        "06340278027805790278097406340612063506350411052103920634059208180592059205250636033706360838"
+    ),
+    (
+        "034804560521083806961002087203060457045705230838038004150380036506960696069606960696069606960696"
+        "069606960400040008380838083805801000077407620734083006830683082108370372037207750637099508370850"
+        "073308500770072006820812077411030771072407250457036504570838050005000675071605930716067804350716"
+        "07120343034306650343104207120687071607160493059504780712065209240645065205820712036507120838"
+    ),
+)
+_SCRIPT = set("₀₁₂₃₄₅₆₇₈₉⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def text_width(text: str, size: float, bold: bool = False) -> float:
+    """A text's width (mm) as DejaVu Sans sets it at cap height ``size`` (the font's em is size/0.73).
+
+    Printable ASCII from the font's own advance widths (regular or bold; the oblique
+    faces have the same); sub- and superscript digits 0.44 em, a prime 0.27 em, any other
+    character (ω, →, ∞, ×) 0.87 em, the widest of them; 5 % added (matplotlib sets a line
+    about 2.5 % wider than the sum of its advances).
+    """
+    table = _ADVANCE[1 if bold else 0]
+    em = 0.0
+    for ch in text:
+        code = ord(ch) - 32
+        if 0 <= code < 95:
+            em += int(table[4 * code : 4 * code + 4]) / 1000
+        elif ch in _SCRIPT:
+            em += 0.44
+        elif ch == "′":
+            em += 0.27
+        else:
+            em += 0.87
+    return em * size / 0.73 * 1.05
+
+
+#: A text's box above and below the point it is placed at, in units of its size (as painted).
+_ABOVE, _BELOW = 0.58, 0.88
+
+Box = tuple[float, float, float, float]
+
+
+def text_rect(t: Text) -> Box:
+    """The box (x0, y0, x1, y1, mm) a text covers on the page, as placed by its anchor."""
+    w = text_width(t.text, t.size, t.bold)
+    x0 = t.at[0] - {"start": 0.0, "middle": w / 2, "end": w}[t.anchor]
+    return (x0, t.at[1] - _ABOVE * t.size, x0 + w, t.at[1] + _BELOW * t.size)
+
+
+def item_rect(item: Item) -> Box:
+    """The box an item covers, its stroke included."""
+    if isinstance(item, Text):
+        return text_rect(item)
+    half = item.style.width / 2 if item.style.stroke else 0.0
+    if isinstance(item, Line):
+        pts: Sequence[Vec] = (item.p0, item.p1)
+    elif isinstance(item, Poly):
+        pts = item.points
+    else:
+        (cx, cy), r = item.centre, item.r
+        pts = ((cx - r, cy - r), (cx + r, cy + r))
+    x0, y0, x1, y1 = bbox(pts)
+    return (x0 - half, y0 - half, x1 + half, y1 + half)
+
+
+def _overlap(a: Box, b: Box, gap: float = 0.0) -> bool:
+    return a[0] < b[2] + gap and b[0] < a[2] + gap and a[1] < b[3] + gap and b[1] < a[3] + gap
+
+
+def _obstacles(
+    items: Sequence[Item],
+) -> tuple[list[tuple[Vec, Vec, float]], list[tuple[Vec, float]], list[Box]]:
+    """Segments (with a softness bonus, mm), discs and texts' boxes already drawn.
 
     Dashed construction lines are soft: a label may sit closer to them than
-    to a link or a vector.
+    to a link or a vector.  A text is a hard obstacle: no label is put on another.
     """
     segs: list[tuple[Vec, Vec, float]] = []
     discs: list[tuple[Vec, float]] = []
+    rects: list[Box] = []
     for item in items:
         if isinstance(item, Line):
             segs.append((item.p0, item.p1, 1.2 if item.style.dash else 0.0))
@@ -310,9 +420,9 @@ def _obstacles(items: Sequence[Item]) -> tuple[list[tuple[Vec, Vec, float]], lis
             )
         elif isinstance(item, Circle):
             discs.append((item.centre, item.r))
-        elif isinstance(item, Text):
-            discs.append((item.at, 0.3 * item.size * len(item.text)))
-    return segs, discs
+        elif item.text.strip():
+            rects.append(text_rect(item))
+    return segs, discs, rects
 
 
 def _seg_dist(p: Vec, a: Vec, b: Vec) -> float:
@@ -322,21 +432,42 @@ def _seg_dist(p: Vec, a: Vec, b: Vec) -> float:
     return math.dist(p, (a[0] + t * dx, a[1] + t * dy))
 
 
+def _crosses(a: Vec, b: Vec, box: Box, inset: float) -> bool:
+    """Whether the segment a–b passes through the box (shrunk by ``inset``): a line through a label."""
+    x0, y0, x1, y1 = box[0] + inset, box[1] + inset, box[2] - inset, box[3] - inset
+    if max(a[0], b[0]) < x0 or min(a[0], b[0]) > x1 or max(a[1], b[1]) < y0 or min(a[1], b[1]) > y1:
+        return False
+    # Liang–Barsky: clip the segment's parameter range to the box's slabs
+    t0, t1 = 0.0, 1.0
+    d = (b[0] - a[0], b[1] - a[1])
+    for p, q in ((-d[0], a[0] - x0), (d[0], x1 - a[0]), (-d[1], a[1] - y0), (d[1], y1 - a[1])):
+        if p == 0:
+            if q < 0:
+                return False
+        elif p < 0:
+            t0 = max(t0, q / p)
+        else:
+            t1 = min(t1, q / p)
+    return t0 <= t1
+
+
 #: Clearance beyond this (mm) gains a label nothing: a segment farther from all of a candidate's
 #: samples cannot change its score, and is not measured (a traced path of 10,000 steps has
 #: 10,000 segments, nearly all of them far from any one label).
 _CAP = 3.0
+#: A circle smaller than this (mm) is a mark (a pin, a point, an I-centre): no label is put on it.
+_MARK = 3.0
 
 
 def _near_segments(
-    segs: Sequence[tuple[Vec, Vec, float]], c: Vec, reach_x: float, reach_y: float
+    segs: Sequence[tuple[Vec, Vec, float]], box: Box, reach: float
 ) -> list[tuple[Vec, Vec, float]]:
-    """The segments whose bounding box comes within ``reach`` of ``c`` on both axes.
+    """The segments whose bounding box comes within ``reach`` of ``box`` on both axes.
 
-    Any other segment lies at least :data:`_CAP` from every sample of the label's box
-    (the samples are within half its width and 0.8 of half its height of ``c``).
+    Any other segment lies at least ``reach`` from every point of the box: it neither
+    crosses the label nor comes nearer to its samples than :data:`_CAP` when ``reach`` is that.
     """
-    x0, x1, y0, y1 = c[0] - reach_x, c[0] + reach_x, c[1] - reach_y, c[1] + reach_y
+    x0, y0, x1, y1 = box[0] - reach, box[1] - reach, box[2] + reach, box[3] + reach
     return [
         s
         for s in segs
@@ -347,38 +478,66 @@ def _near_segments(
     ]
 
 
-def text_box(text: str, size: float) -> Vec:
-    """Approximate half width and half height (mm) of a label: enough to keep labels apart."""
-    return (0.33 * size * len(text) + 0.4, 0.55 * size)
+def text_box(text: str, size: float, bold: bool = False) -> Vec:
+    """Half the width and half the height (mm) of a label centred on its point."""
+    return (text_width(text, size, bold) / 2, (_ABOVE + _BELOW) / 2 * size)
 
 
-def best_spot(candidates: Sequence[tuple[Vec, float]], text: str, size: float, drawn: Sequence[Item]) -> Vec:
+def _centred(c: Vec, text: str, size: float, bold: bool) -> Box:
+    return text_rect(Text(c, text, size, "middle", bold=bold))
+
+
+def best_spot(
+    candidates: Sequence[tuple[Vec, float]],
+    text: str,
+    size: float,
+    drawn: Sequence[Item],
+    *,
+    bold: bool = False,
+) -> Vec:
     """Of candidate label centres (each with a preference bonus), the one clearest of ``drawn``.
 
-    Clearance is sampled over the label's box and capped at 3 mm (beyond
-    that, nothing is gained by moving further), then the bonus decides.
+    A spot where the label would lie on a text or a mark already drawn is taken only when
+    every spot would (then the least overlapped).  Otherwise clearance from lines and circles
+    is sampled over the label's box and capped at 3 mm (beyond that, nothing is gained by
+    moving further), then the bonus decides.
     """
-    segs, discs = _obstacles(drawn)
-    half_w, half_h = text_box(text, size)
-    xs, ys = [c[0] for c, _ in candidates], [c[1] for c, _ in candidates]
-    if xs:  # first the segments near any candidate (one pass), then near each
-        middle = ((min(xs) + max(xs)) / 2, (min(ys) + max(ys)) / 2)
-        spread = ((max(xs) - min(xs)) / 2, (max(ys) - min(ys)) / 2)
-        segs = _near_segments(segs, middle, spread[0] + half_w + _CAP, spread[1] + 0.8 * half_h + _CAP)
+    segs, discs, rects = _obstacles(drawn)
+    marks = [(c[0] - r, c[1] - r, c[0] + r, c[1] + r) for c, r in discs if r < _MARK]
+    boxes = [_centred(c, text, size, bold) for c, _ in candidates]
+    if boxes:  # first the segments near any candidate (one pass), then near each
+        hull = (
+            min(b[0] for b in boxes),
+            min(b[1] for b in boxes),
+            max(b[2] for b in boxes),
+            max(b[3] for b in boxes),
+        )
+        segs = _near_segments(segs, hull, _CAP)
     best: tuple[float, Vec] | None = None
-    for c, bonus in candidates:
-        samples = [(c[0] + dx * half_w, c[1] + dy * half_h) for dx in (-1, 0, 1) for dy in (-0.8, 0, 0.8)]
-        near = _near_segments(segs, c, half_w + _CAP, 0.8 * half_h + _CAP)
+    for (c, bonus), box in zip(candidates, boxes, strict=True):
+        hits = sum(1 for r in rects if _overlap(box, r, 0.3))
+        hits += sum(1 for r in marks if _overlap(box, r, 0.0))  # a pin or an I-centre's mark under it
+        xs, ys = (
+            (box[0], (box[0] + box[2]) / 2, box[2]),
+            (box[1] + 0.1 * size, (box[1] + box[3]) / 2, box[3] - 0.2 * size),
+        )
+        samples = [(x, y) for x in xs for y in ys]
+        near = _near_segments(segs, box, _CAP)
         clear = min(
             [_seg_dist(q, a, b) + soft for q in samples for a, b, soft in near]
             + [math.dist(q, dc) - dr for q in samples for dc, dr in discs]
             + [9.0]
         )
-        score = min(clear, _CAP) + bonus
+        crossed = sum(4.5 if soft == 0 else 1.5 for a, b, soft in near if _crosses(a, b, box, 0.15 * size))
+        score = min(clear, _CAP) + bonus - 100.0 * hits - crossed
         if best is None or score > best[0] + 1e-9:
             best = (score, c)
     assert best is not None
     return best[1]
+
+
+#: Distances (mm beyond the label's edge) at which labels are tried, and what each costs.
+RINGS = ((2.6, 0.0), (4.6, 0.5), (7.0, 1.8), (10.0, 2.6), (14.0, 3.4), (19.0, 4.2))
 
 
 def place_label(
@@ -395,17 +554,40 @@ def place_label(
 ) -> Text:
     """A label beside the point ``here`` where it overlaps the least of what is ``drawn``.
 
-    Sixteen directions at two distances are tried, with a small bonus for the
-    ``prefer`` direction (away from the lines meeting there) and for being near.
+    Sixteen directions at growing distances are tried, with a small bonus for the
+    ``prefer`` direction (away from the lines meeting there) and for being near; a label
+    never lies on another unless there is no room at all.  A label put far from its point
+    gets a leader line (:func:`leader`).
     """
-    half_w, half_h = text_box(text, size)
+    half_w, half_h = text_box(text, size, bold)
     candidates = []
     for k in range(16):
         a = 2 * math.pi * k / 16
         u = (math.cos(a), math.sin(a))
         edge = min(abs(u[0]) * half_w + abs(u[1]) * half_h, max(half_w, half_h))
-        for r, cost in ((2.6, 0.0), (4.6, 0.5)):
-            c = (here[0] + u[0] * (r + edge), here[1] + u[1] * (r + edge))
+        for r, cost in RINGS:
+            c = (here[0] + u[0] * (r + edge), here[1] + u[1] * (r + edge) - (_BELOW - _ABOVE) / 2 * size)
             candidates.append((c, 0.6 * (u[0] * prefer[0] + u[1] * prefer[1]) - cost))
-    c = best_spot(candidates, text, size, drawn)
+    c = best_spot(candidates, text, size, drawn, bold=bold)
     return Text(c, text, size, "middle", colour, italic=italic, bold=bold, cls=cls)
+
+
+def clashes(label: Text, drawn: Sequence[Item]) -> int:
+    """How many texts already ``drawn`` the label would lie on."""
+    box = text_rect(label)
+    return sum(
+        1 for t in drawn if isinstance(t, Text) and t.text.strip() and _overlap(box, text_rect(t), 0.3)
+    )
+
+
+def leader(here: Vec, label: Text, colour: str = "#777777") -> Line | None:
+    """A thin line from near the point ``here`` to its label's box, when the label stands off (> 5 mm)."""
+    x0, y0, x1, y1 = text_rect(label)
+    edge = (min(max(here[0], x0), x1), min(max(here[1], y0 + 0.3 * label.size), y1 - 0.3 * label.size))
+    d = math.dist(here, edge)
+    if d <= 5.0:
+        return None
+    u = ((edge[0] - here[0]) / d, (edge[1] - here[1]) / d)
+    start = (here[0] + 1.6 * u[0], here[1] + 1.6 * u[1])
+    end = (edge[0] - 0.5 * u[0], edge[1] - 0.5 * u[1])
+    return Line(start, end, Style(colour, 0.18), "leader")

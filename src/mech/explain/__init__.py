@@ -50,7 +50,7 @@ def explain(mech: Mechanism, kin: Any, *, kind: str = "velocity") -> Constructio
         from mech.explain.cam import working
 
         return working(mech, kin)
-    if any(kind_of(j).name == "gear" for j in mech.joints):
+    if any(kind_of(j).meshes for j in mech.joints):
         from mech.explain.train import working as train
 
         return train(mech, kin)

@@ -15,7 +15,7 @@ from typing import Any
 from mech.explain.worked import Line, Worked, g
 from mech.model import Mechanism
 from mech.pairs import kind_of
-from mech.pairs.gear import carrier_of
+from mech.pairs.gearing import carrier_of
 
 __all__ = ["working"]
 
@@ -81,7 +81,7 @@ def _view(kin: Any) -> _Carriers:
 
 def working(mech: Mechanism, kin: Any) -> Worked:
     """The train of ``mech``'s gear meshes, from the driver outward, and its value."""
-    gears = [j for j in mech.joints if kind_of(j).name == "gear"]
+    gears = [j for j in mech.joints if kind_of(j).meshes]
     driver = next((d.link for d in mech.drives if d.link), None)
     lines: list[Line] = []
     if driver is None:

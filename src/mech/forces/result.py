@@ -4,33 +4,11 @@ its parts, the shaking force and moment on the frame.  Plain records, SI; render
 from __future__ import annotations
 
 from mech._records import dataclass
+from mech.pairs.base import PairForce  # a pair kind's forces hook gives these: defined with the kinds
 
 __all__ = ["Effort", "ForceAnalysis", "Inertia", "PairForce"]
 
 Vec = tuple[float, float]
-
-
-@dataclass(frozen=True, slots=True)
-class PairForce:
-    """The force a pair carries at the instant: ``force`` (N, global) acting on link ``on`` from ``by``.
-
-    ``at`` is where it acts (m): a pin's centre, a contact point, or for a sliding
-    pair the point of the guide where the normal force acts, ``offset`` (m) along
-    the path from the slider's point.  ``normal`` is the signed component along the
-    pair's normal (a slider's side thrust, a cam's or a gear's tooth load), None for a pin.
-    """
-
-    joint: str
-    on: str
-    by: str
-    force: Vec
-    at: Vec | None
-    normal: float | None = None
-    offset: float | None = None
-
-    @property
-    def magnitude(self) -> float:
-        return float((self.force[0] ** 2 + self.force[1] ** 2) ** 0.5)
 
 
 @dataclass(frozen=True, slots=True)

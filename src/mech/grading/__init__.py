@@ -33,7 +33,7 @@ from collections.abc import Callable
 from typing import Any
 
 from mech.answers import JOINT_CLASSES, LINK_CLASSES, AnswerKey
-from mech.grading import keys, properties
+from mech.grading import cam, keys, properties
 from mech.grading.cam import cam_key
 from mech.grading.lazy import NOISE, Analysis, InternalError
 
@@ -80,7 +80,7 @@ COMPUTE: dict[str, Compute] = {
     "input_force": properties.input_force,
     "pressure_angle.<joint>": cam_key("pressure_angle"),
     "pressure_angle.<joint>.max": cam_key("pressure_angle.max"),
-    "displacement.<point>": cam_key("displacement"),
+    "displacement.<point>": cam.displacement,
 }
 
 

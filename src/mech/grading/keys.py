@@ -96,7 +96,8 @@ def chain(an: Analysis, names: tuple[str, ...]) -> str | None:
 
 # -- the solution at the drive's instant -----------------------------------------------------------
 def position(an: Analysis, names: tuple[str, ...]) -> Vec:
-    p = an.kin.positions.get(names[0])
+    name = names[0]
+    p = an.kin.position(name) if "@" in name else an.kin.positions.get(name)
     if p is None:
         raise Undefined(
             f"cannot be computed: {names[0]} has no position of its own (a contact or slider joint)"

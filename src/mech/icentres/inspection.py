@@ -245,7 +245,12 @@ class _Seen:
     contacts: list[Contact] = field(default_factory=list)
 
     def at(self, j: Joint) -> Vec | None:
+        """Where the pair acts now: a higher pair's contact (``JointGeom.at``), not the follower's
+        own point its name stands for (DESIGN § 1.2: a flat face's point on its axis is off the
+        common normal), else the joint's point."""
         geom = self.joints.get(j.name)
+        if geom is not None and geom.at is not None:
+            return geom.at  # type: ignore[no-any-return]
         return self.positions.get(geom.point if geom is not None and geom.point else j.name)
 
     def direction(self, j: Joint) -> Vec | None:

@@ -102,6 +102,7 @@ class System:
         default_factory=dict
     )  # a pair's contact, its location elsewhere
     row_names: tuple[str, ...] = ()  # per row: the joint or drive it comes from
+    notes: tuple[str, ...] = ()  # what the rows approximate (a fitted profile), for every result
     holonomic: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))  # per row
     drive_rows: np.ndarray = field(default_factory=lambda: np.zeros(0, int))  # row per drive (file order)
     path_dirs: dict[str, tuple[int, np.ndarray]] = field(
@@ -387,6 +388,7 @@ def build_system(lay: Layout, drawn: Drawn) -> System:
     sys_.locators = b.locators
     sys_.normals = b.normals
     sys_.contact_points = b.contact_points
+    sys_.notes = tuple(b.notes)
     sys_.loc_names = tuple(local)
     sys_.loc_i = np.array([local[k][0] for k in local], int)
     sys_.loc_s = np.array([local[k][1] for k in local], float).reshape(-1, 2)
@@ -459,8 +461,25 @@ def _link_frames(
         slider_dir.setdefault(ps.slider, ps)
     for ps in lay.paths:
         slider_dir.setdefault(ps.guide, ps)
+    # A crank's frame: at its pivot, on its drive's angle (pivot → toward) as the drive gives it,
+    # not as atan2 gives it back an ulp or a turn away: the closed form turns the crank by
+    # phi + (q0 − drawn), and near ±π that difference of two π-sized numbers keeps only their
+    # rounding (4.4e-16 rad), 2.5e-5 of a crank drawn 1e-11 rad from a dead centre.
+    crank_at: dict[str, tuple[str, float]] = {}
+    for k, spec in enumerate(lay.drives):
+        if spec.link and spec.pivot in pos and spec.toward in pos and spec.reference == lay.mech.ground:
+            w = scn(spec.toward) - scn(spec.pivot)  # type: ignore[arg-type]
+            drive = drawn.drive_angles[k]
+            if drive is not None and abs(math.remainder(math.atan2(w[1], w[0]) - drive, math.tau)) < 1e-9:
+                crank_at[spec.link] = (spec.pivot, drive)  # type: ignore[assignment]
     for name in links:
         names = [p for p in lay.on_link.get(name, ()) if p in pos]
+        if name in crank_at:
+            pivot, on_drive = crank_at[name]
+            origin = scn(pivot)
+            frames[name] = pivot
+            q0[3 * index[name] : 3 * index[name] + 3] = (origin[0], origin[1], on_drive)
+            continue
         origin = scn(names[0]) if names else np.zeros(2)
         theta = None
         for other in names[1:]:

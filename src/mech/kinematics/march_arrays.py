@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["sweep_arrays"]
+__all__ = ["point_or_nan", "sweep_arrays"]
 
 
 def sweep_arrays(
@@ -31,7 +31,8 @@ def sweep_arrays(
     scale, (cx, cy) = sys_.scale, (float(sys_.centre[0]), float(sys_.centre[1]))
     n_steps = q.shape[0]
     where = {name: k for k, name in enumerate(sys_.loc_names)}
-    pick = np.array([where[p] for p in backend.points], int)
+    extra = tuple(getattr(backend, "extra", ()))
+    pick = np.array([where[p] for p in backend.points if p not in extra], int)
     idx, loc = sys_.loc_i, sys_.loc_s  # every located name ('#' ones too: slides may sit on them)
     zeros = np.zeros((n_steps, 3))
     qf = np.concatenate([q, zeros], axis=1)
@@ -69,6 +70,11 @@ def sweep_arrays(
             nan_mask[..., None], np.nan, np.stack([ax_[:, pick], ay_[:, pick]], axis=-1)
         )
         res["alphas"] = np.where(nan_mask, np.nan, qdd[:, 3 * li + 2] * omega_ref**2)
+    if extra:  # a link's point at a contact (K@cam), after the located points
+        more = _contact_columns(extra, comp, q, qd, qdd, ok, good, omega_ref, lvl)
+        for key, arr in zip(("positions", "velocities", "accelerations"), more, strict=True):
+            if key in res:
+                res[key] = np.concatenate([res[key], arr], axis=1)
     res["displacement"], sliding = _slides(backend, comp, qf, qd, px, py, omega_ref, lvl)
     if lvl >= 1:
         res["sliding"] = np.where(nan_mask, np.nan, sliding)
@@ -81,6 +87,62 @@ def sweep_arrays(
     res["disc"] = np.where(ok, 1.0, -1.0)[:, None]
     res["miss"] = np.full((n_steps, 1), np.nan)
     return res
+
+
+def _contact_columns(
+    names: tuple[str, ...],
+    comp: Any,
+    q: np.ndarray,
+    qd: np.ndarray,
+    qdd: np.ndarray,
+    ok: np.ndarray,
+    good: np.ndarray,
+    omega_ref: float,
+    lvl: int,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Position, velocity and acceleration (SI) of each ``K@link`` per step, NaN where not solved.
+
+    Where a higher pair touches moves along both profiles, so it is no located point of
+    the system: each step's result is packaged (:func:`~.result_fields.result`) and asked,
+    as a single solve is — one truth for where the contact is and how each link's point
+    there moves.  Only the points a sweep is asked for pay this.
+    """
+    from mech.kinematics.result_fields import result
+
+    levels = ("position", "velocity", "acceleration")
+    shape = (q.shape[0], len(names), 2)
+    pos, vel, acc = np.full(shape, np.nan), np.full(shape, np.nan), np.full(shape, np.nan)
+    for k in np.flatnonzero(ok):
+        use = lvl if good[k] else 0
+        kin = result(
+            comp,
+            levels[use],
+            q[k],
+            qd[k] if use >= 1 else None,
+            qdd[k] if use >= 2 else None,
+            omega_ref,
+            True,
+            (),
+            (),
+        )
+        for i, name in enumerate(names):
+            pos[k, i] = kin.position(name)
+            if use >= 1:
+                vel[k, i] = kin.velocity(name)
+            if use >= 2:
+                acc[k, i] = point_or_nan(kin.acceleration, name)
+    return pos, vel, acc
+
+
+def point_or_nan(read: Any, name: str) -> tuple[float, float]:
+    """A point's vector, or NaN where it has none of its own (a rolling pair's pitch point has
+    one velocity but two accelerations: asked for its velocity, its acceleration is not given)."""
+    from mech.errors import InputError
+
+    try:
+        return read(name)  # type: ignore[no-any-return]
+    except InputError:
+        return (math.nan, math.nan)
 
 
 def _slides(

@@ -16,7 +16,7 @@ import numpy as np
 
 from mech.errors import InputError
 
-__all__ = ["LEVELS", "check_quantity", "default_quantities", "pick", "quantity_unit"]
+__all__ = ["LEVELS", "check_quantity", "contact_points_asked", "default_quantities", "pick", "quantity_unit"]
 
 LEVELS = ("position", "velocity", "acceleration")
 
@@ -75,6 +75,14 @@ def check_quantity(
         raise InputError(
             _slide_message(key, kind, name, slides, sw_points),
             hint=_slide_hint(kind, name, slides, sw_points),
+        )
+    if name not in pool and "@" in name:
+        raise InputError(
+            f"{key}: {name} is a link's point at a contact (DESIGN § 1.2); a sweep does not follow "
+            "such points yet",
+            hint=f"mech {kind if kind != 'position' else 'position'} FILE --angle A gives {name} at one "
+            f"angle; a sweep follows {name.split('@')[0]} where it is a follower's own point, and the "
+            f"links' named points: {', '.join(pool)}",
         )
     if name not in pool:
         raise InputError(
@@ -150,3 +158,35 @@ def default_quantities(
         out += [f"alpha.{lk}" for lk in links if lk != drive]
         out += [f"acceleration.{p}" for p in points]
     return out
+
+
+def contact_points_asked(mech: Any, quantities: Sequence[str] | None) -> tuple[str, ...]:
+    """The points of higher pairs the quantities name, checked: ``<joint>@<link>`` (DESIGN § 1.2), a
+    link's point at the contact, and a pair's own name (the follower's own point, which a programme
+    cam already has among its located points)."""
+    from mech.pairs import higher_pairs
+
+    pairs = dict(higher_pairs(mech.joints))
+    out: list[str] = []
+    for key in quantities or ():
+        parts = key.split(".")
+        if len(parts) < 2 or parts[0] not in ("position", "velocity", "acceleration"):
+            continue
+        if parts[1] in pairs and parts[1] not in out:  # a profile cam's K: its follower's own point
+            out.append(parts[1])
+        if "@" not in parts[1]:
+            continue
+        joint, _, link = parts[1].partition("@")
+        if joint not in pairs:
+            raise InputError(
+                f"{key}: {joint} is no higher pair (cam, contact, rolling or gear joint)",
+                hint=f"higher pairs: {', '.join(pairs) or 'none'}",
+            )
+        if link not in pairs[joint]:
+            raise InputError(
+                f"{key}: {link} is not a link of {joint}",
+                hint=" or ".join(f"{joint}@{lk}" for lk in pairs[joint]),
+            )
+        if parts[1] not in out:
+            out.append(parts[1])
+    return tuple(out)

@@ -94,6 +94,13 @@ def _checked(
             s = svd[1]
             cond = float(s[0] / s[n - 1]) if s[n - 1] > 0 else math.inf
             if cond > SINGULAR:
+                balanced = equilibrated_condition(jac)
+                if balanced <= SINGULAR:  # only the scales differ: no links in line
+                    raise GeometryError(
+                        _scaled_message(comp, cond, balanced, drives),
+                        hint="give links and gears sizes within about 1e9 of each other: "
+                        "velocities here would carry errors of about ε·condition",
+                    )
                 raise GeometryError(
                     _singular_message(comp, svd[2][n - 1], cond, drives),
                     hint="analyse a slightly different angle: velocities here are undetermined",
@@ -107,6 +114,35 @@ def _checked(
             hint="analyse a slightly different angle: velocities here are undetermined",
         )
     return lambda rhs: snap_to_error(jac, None, refined(jac, lambda b: form.solve(jac, b), rhs), rhs)
+
+
+def equilibrated_condition(jac: np.ndarray) -> float:
+    """Φ_q's condition number with each column, then each row, scaled to unit length.
+
+    A toggle stays singular under any scaling (links in line lose a constraint); a
+    gear ratio of 1e12, or links of 1 mm beside links of 1e9 m, make Φ_q's condition
+    number huge only through its scales, and equilibration (van der Sluis) removes that.
+    """
+    cols = np.linalg.norm(jac, axis=0)
+    scaled = jac / np.where(cols > 0, cols, 1.0)
+    rows = np.linalg.norm(scaled, axis=1)
+    scaled = scaled / np.where(rows > 0, rows, 1.0)[:, None]
+    s = np.linalg.svd(scaled, compute_uv=False)
+    n = jac.shape[1]
+    return float(s[0] / s[n - 1]) if n and s[n - 1] > 0 else math.inf
+
+
+def _scaled_message(comp: Compiled, cond: float, balanced: float, drives: tuple[Drive, ...]) -> str:
+    """An ill-conditioned solve that is no toggle: the scales of the links or gear ratios differ."""
+    where = ", ".join(
+        f"{d.link} at {angle_text(d.angle)}" for d in drives if d.link is not None and d.angle is not None
+    )
+    at = f" ({where})" if where else ""
+    return (
+        f"ill-conditioned configuration of {comp.mech.label}{at}: condition number {cond:.2g}, but "
+        f"{balanced:.2g} with each equation and coordinate scaled to unit size — no links are in line "
+        "(not a toggle): links or gear ratios of very different scales"
+    )
 
 
 def _singular_message(comp: Compiled, v: np.ndarray, cond: float, drives: tuple[Drive, ...]) -> str:

@@ -346,7 +346,34 @@ class Kinematics:
         if _LEVELS.index(self.level) < _LEVELS.index(level):
             raise InputError(f"{level}s were not solved (solve with level={level!r})")
 
+    def _at_link(self, name: str) -> tuple[JointGeom, str] | None:
+        """``<joint>@<link>`` (DESIGN § 1.2): the joint and the link whose point at its contact is meant.
+
+        None for a plain name.  The joint's point now is its ``at`` (a higher pair's contact
+        point, a gear's pitch point, a pin, a slider's point); ``link`` must be one it joins.
+        """
+        if "@" not in name:
+            return None
+        joint, _, link = name.partition("@")
+        j = self.joints.get(joint)
+        if j is None:
+            raise InputError(f"{name}: no joint named {joint}", hint=f"joints: {', '.join(self.joints)}")
+        if link not in j.links:
+            either = " or ".join(f"{joint}@{lk}" for lk in j.links)
+            raise InputError(f"{name}: {link} is not a link of joint {joint}", hint=f"say {either}")
+        if j.at is None:
+            raise InputError(f"{name}: joint {joint} has no point in this configuration")
+        return j, link
+
+    def position(self, name: str) -> Vec:
+        """Where a point is (m): a named point or joint, or ``<joint>@<link>``, that link's point at the
+        joint's contact now (where the follower touches the cam, the pitch point of a gear)."""
+        return self._where(name)
+
     def _where(self, name: str) -> Vec:
+        pair = self._at_link(name)
+        if pair is not None:
+            return pair[0].at  # type: ignore[return-value]
         try:
             return self.positions[name]
         except KeyError:
@@ -367,7 +394,12 @@ class Kinematics:
             raise InputError(f"no link named {link}", hint=f"links: {', '.join(self.links)}") from None
 
     def _choose(self, name: str, link: str | None, what: str) -> LinkState:
-        """The link whose point at ``name`` is meant: given, or the unique carrier."""
+        """The link whose point at ``name`` is meant: named (``K@cam``), given, or the unique carrier."""
+        pair = self._at_link(name)
+        if pair is not None:
+            if link is not None and link != pair[1]:
+                raise InputError(f"{name} is a point of {pair[1]}, not of {link}")
+            return self._state(pair[1])
         if link is not None:
             return self._state(link)
         carriers = self.carriers.get(name, ())
@@ -378,23 +410,24 @@ class Kinematics:
         choices = joint.links if joint else tuple(self.links)
         raise InputError(
             f"{name} is a contact point: the {what} of the points of {' and '.join(choices)} there differ",
-            hint=f"say whose point is meant: the point of {choices[0]} or of {choices[-1]} there "
-            "(mech's tables list both)",
+            hint=f"say whose point is meant: {name}@{choices[0]} or {name}@{choices[-1]} "
+            "(the point of that link at the contact; mech's tables list both)",
         )
 
     # -- queries -----------------------------------------------------------------
     def velocity(self, name: str, link: str | None = None) -> Vec:
         """Absolute velocity (m/s) of a point.
 
-        ``link`` picks the link whose coincident point is meant: needed only
-        at a contact point of a higher pair (cam, gear, contact, rolling) whose
+        ``name`` may be ``<joint>@<link>``: that link's point at the joint's contact now
+        (DESIGN § 1.2: ``K@cam``, ``K@follower``).  ``link`` picks the link whose
+        coincident point is meant: needed only at a contact point of a higher pair (cam, gear, contact, rolling) whose
         two links move differently there; any link may be named, giving the
         velocity of that link's point coincident with ``name`` (for a slotted
         lever, the lever's point under the slider).
         """
         self._need("velocity")
         p = self._where(name)
-        if link is None and not self.carriers.get(name, ()):
+        if link is None and "@" not in name and not self.carriers.get(name, ()):
             joint = self.joints.get(name)
             if joint is not None:  # rolling: both agree
                 va = self._state(joint.links[0]).velocity_at(p)

@@ -84,6 +84,8 @@ def _fields(
     carriers = {n_: c_ for n_, c_ in lay.carriers.items() if not n_.startswith("#")}
     for alias, target in lay.alias.items():
         carriers[alias] = carriers.get(target, ())
+    for name, (link, p) in _own_points(comp, positions, joints).items():
+        positions[name], carriers[name] = p, (link,)  # the pair's contact stays its JointGeom.at
     return Fields(
         MappingProxyType(positions),
         MappingProxyType(links),
@@ -205,3 +207,65 @@ def _joint_geoms(
             point = None
         joints[j.name] = JointGeom(j.name, j.type, tuple(j.links), point, direction, j.radius, at)
     return joints
+
+
+def _own_points(
+    comp: Compiled, positions: dict[str, tuple[float, float]], joints: dict[str, JointGeom]
+) -> dict[str, tuple[str, tuple[float, float]]]:
+    """A cam given by profiles: its joint's name is the follower's own point (DESIGN § 1.2).
+
+    The roller's centre (a circle's), the knife edge, or a translating flat face's point on
+    the follower's path; a programme cam's is already so (its joint is a point of the
+    follower).  A follower whose profile is a free curve, or an oscillating flat face, has
+    no such point: there the name stays the contact point, and ``K@link`` says whose.
+    """
+    from mech.specs import Circle, Knife, Line
+
+    mech = comp.mech
+    out: dict[str, tuple[str, tuple[float, float]]] = {}
+    for j in mech.joints:
+        kind = kind_of(j)
+        if not j.profiles or not kind.higher or kind.rolls or getattr(j.spec, "program", None) is not None:
+            continue
+        follower = j.links[1]
+        prof = dict(j.profiles).get(follower)
+        ref = prof.centre if isinstance(prof, Circle) else prof.point if isinstance(prof, Knife) else None
+        if ref is not None and ref.name is not None and ref.name in positions:
+            out[j.name] = (follower, positions[ref.name])
+        elif isinstance(prof, Line):
+            p = _face_on_path(mech, follower, prof, positions, joints)
+            if p is not None:
+                out[j.name] = (follower, p)
+    return out
+
+
+def _face_on_path(
+    mech: object,
+    follower: str,
+    face: object,
+    positions: dict[str, tuple[float, float]],
+    joints: dict[str, JointGeom],
+) -> tuple[float, float] | None:
+    """Where a translating follower's flat face crosses its path now (None: no slide, or parallel)."""
+    ground = mech.ground  # type: ignore[attr-defined]
+    slide = next(
+        (g for g in joints.values() if g.links == (follower, ground) and kind_of(g.type).keeps_angle), None
+    )
+    through = face.through  # type: ignore[attr-defined]
+    if slide is None or slide.at is None or slide.direction is None or through.name not in positions:
+        return None
+    p = positions[through.name]
+    toward = face.toward  # type: ignore[attr-defined]
+    if toward is not None and toward.name in positions:
+        q = positions[toward.name]
+        d = (q[0] - p[0], q[1] - p[1])
+    elif face.angle is not None:  # type: ignore[attr-defined]
+        d = (math.cos(face.angle), math.sin(face.angle))  # type: ignore[attr-defined]
+    else:
+        return None
+    (ax, ay), (ux, uy) = slide.at, slide.direction
+    den = ux * d[1] - uy * d[0]
+    if abs(den) <= 1e-12 * math.hypot(*d):
+        return None
+    t = ((p[0] - ax) * d[1] - (p[1] - ay) * d[0]) / den  # at + t u lies on the face
+    return (ax + t * ux, ay + t * uy)

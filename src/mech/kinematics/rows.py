@@ -53,6 +53,7 @@ class Build:
     distance: list[Distance] = field(default_factory=list)
     curves: list[CurveRow] = field(default_factory=list)
     problems: list[Problem] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)  # what the rows approximate, said once
     path_dirs: dict[str, tuple[int, np.ndarray]] = field(default_factory=dict)
     path_points: dict[str, tuple[int, str]] = field(default_factory=dict)
     locators: dict[str, Locator] = field(default_factory=dict)  # moving contact point, from q

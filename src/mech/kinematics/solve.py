@@ -37,6 +37,7 @@ from mech.kinematics.dyads import (
     DyadProgram,
     branches,
     change_points,
+    closure_gaps,
     passed,
     program,
     route,
@@ -118,8 +119,14 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
     if plan.closed:
         fast = _closed_form(comp, drives, lvl, omega_ref, options, moved)
         if fast is not None:
-            state, note = fast
-            told = (lambda: (*plan.notes, note())) if moved else plan.notes
+            state, note, near = fast
+            told: tuple[str, ...] | Callable[[], tuple[str, ...]] = plan.notes
+            if moved or near is not None:
+                told = lambda: (  # noqa: E731
+                    *plan.notes,
+                    *((note(),) if moved else ()),
+                    *((near(),) if near is not None else ()),
+                )
             return lazy_result(comp, level, state, omega_ref, moved, told, drives)
     notes = list(plan.notes)
     q = move_from_drawing(comp, drives, options, list(plan.targets), notes) if moved else comp.system.q0
@@ -159,7 +166,7 @@ def _plan(comp: Compiled, options: SolveOptions, lvl: int) -> _Plan:
         targets,
         moved,
         omega_ref_of(drives, comp.drawn.scale),
-        (*comp.drawn.notes, *comp.mobility.notes),
+        (*comp.drawn.notes, *comp.system.notes, *comp.mobility.notes),
         _closed_route(comp, options, lvl, moved),
     )
 
@@ -261,8 +268,11 @@ def _closed_form(
     omega_ref: float,
     options: SolveOptions,
     moved: bool = True,
-) -> tuple[Callable[[], State], Callable[[], str]] | None:
+) -> tuple[Callable[[], State], Callable[[], str], Callable[[], str] | None] | None:
     """q, q̇, q̈ (scaled) from the dyad program, or None to let the general route solve (and explain).
+
+    Returned with the note of a move and, next to a toggle, the note that says where it is
+    (:func:`_near_toggle_note`), both callables.
 
     Checked here (closure, reachability, toggles); the arrays and the note are
     made only when the result is read (two callables), so a solve whose caller
@@ -302,8 +312,53 @@ def _closed_form(
         if not moved and options.method == "auto":
             return None
         _refuse_singular(comp, prog, d, phi, sines)
-    return (lambda: _state(comp, prog.split(out, lvl), drives, lvl, omega_ref, moved)), (
-        lambda: _moved_note(prog, phi, met)
+    near = None
+    if lvl >= 1 and sines and min(sines) < NEAR_TOGGLE:
+        near = lambda: _near_toggle_note(comp, prog, phi, prog.split(out, lvl))  # noqa: E731
+    return (
+        (lambda: _state(comp, prog.split(out, lvl), drives, lvl, omega_ref, moved)),
+        (lambda: _moved_note(prog, phi, met)),
+        near,
+    )
+
+
+#: A dyad whose links are within this sine of in line (about 1.1°) is next to a toggle: the solve says so.
+NEAR_TOGGLE = 0.02
+
+
+def _near_toggle_note(comp: Compiled, prog: DyadProgram, phi: float, parts: dict[str, tuple]) -> str:
+    """Where the toggle next to ``phi`` is and how fast the output's ω grows toward it.
+
+    A toggle is an edge of a range of drive angles where the loop cannot close (a
+    non-Grashof input's limit, :func:`~mech.kinematics.dyads.closure_gaps`): the
+    dyad's position goes as √Δθ there, so the ω of the links it carries grows as
+    1/√Δθ (a quarter of the distance, twice the ω).  The output named is the link
+    turning fastest; its coefficient ω·√Δθ is today's value times the root of the distance.
+    """
+    two_pi = 2.0 * math.pi
+    edges = [prog.drawn_angle + e for gap in closure_gaps(prog) for e in gap]
+    if not edges:
+        return (
+            f"next to a toggle or change point at {angle_text(phi)}: links are within "
+            f"{math.degrees(math.asin(NEAR_TOGGLE)):.1f}° of in line, where velocities grow without bound"
+        )
+    gaps = [abs(math.remainder(phi - e, two_pi)) for e in edges]
+    k = gaps.index(min(gaps))
+    delta, edge = gaps[k], edges[k]
+    links = comp.system.links
+    omegas = [abs(float(w)) for w in parts["lw"]]
+    drive = comp.mech.drives[0].link
+    out = max((i for i, lk in enumerate(links) if lk != drive), key=lambda i: omegas[i], default=None)
+    grows = "the links' ω grow as 1/√Δθ toward it"
+    if out is not None and delta > 0:
+        w, name = omegas[out], links[out]
+        grows = (
+            f"ω of {name} grows as 1/√Δθ toward it: {w:.4g} rad/s here ≈ {w * math.sqrt(delta):.4g}/√Δθ "
+            f"(Δθ in rad), twice that at a quarter of the distance"
+        )
+    return (
+        f"{math.degrees(delta):.3g}° from the toggle at {angle_text(edge)} (the drive cannot pass it: "
+        f"links come into line there); {grows}"
     )
 
 

@@ -65,6 +65,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -73,7 +74,13 @@ from mech._records import dataclass
 from mech.errors import InputError, UnsupportedError
 from mech.kinematics.dyads import ACCURATE_COND, DyadProgram, program
 from mech.kinematics.march import MAX_SPAN, Marcher
-from mech.kinematics.quantities import LEVELS, check_quantity, default_quantities, quantity_unit
+from mech.kinematics.quantities import (
+    LEVELS,
+    check_quantity,
+    contact_points_asked,
+    default_quantities,
+    quantity_unit,
+)
 from mech.kinematics.result import Kinematics
 from mech.kinematics.solve import SINGULAR, Compiled, compiled, instant_pairs, refuse_underdriven, solve
 from mech.kinematics.sweep_backends import Closed, Newton, law_series, newton_series, seam_shifts
@@ -188,6 +195,7 @@ def sweep(
     if not several and drive not in (None, mech.drives[0].link):
         raise InputError(f"no drive of {drive!r} to sweep", hint=f"choose {mech.drives[0].link}")
     plan = (_plan_laws if several else _plan)(mech, angles, level, options, drive)
+    plan = replace(plan, contacts=contact_points_asked(mech, quantities))
     backend, data, fine, pick = _evaluate(plan, analyse)
     ok, cond, singular = _masked(data, plan.prog is not None, fine if plan.parameter == "angle" else None)
     keys = _quantity_keys(backend, plan, quantities)
@@ -223,6 +231,7 @@ class _Plan:
     lead: int | None = None  # several drives or a slider drive: the drive whose coordinate phi holds
     parameter: str = "angle"  # or "position" (m): a slider drive leads
     laws: tuple[DriveLaw, ...] = ()
+    contacts: tuple[str, ...] = ()  # K@link points asked for (followed by the Newton back-end)
 
 
 @dataclass(frozen=True)
@@ -304,7 +313,7 @@ def _plan(
         alpha,
         options,
         phi,
-        list(comp.drawn.notes),
+        [*comp.drawn.notes, *comp.system.notes],
     )
 
 
@@ -326,7 +335,7 @@ def _evaluate(plan: _Plan, analyse: bool) -> tuple[Any, dict[str, np.ndarray], n
             data = backend.evaluate(fine)
         notes.append("closed form: " + "; ".join(prog.steps))
     else:
-        backend = Newton(plan.mech, comp, plan.options, w_int, plan.alpha, plan.lvl_int)
+        backend = Newton(plan.mech, comp, plan.options, w_int, plan.alpha, plan.lvl_int, extra=plan.contacts)
         data = newton_series(backend, fine, notes, comp.drawn.drive_angles[0])
     return backend, data, fine, pick
 
@@ -650,7 +659,8 @@ def _evaluate_laws(
 ) -> tuple[Any, dict[str, np.ndarray], np.ndarray, np.ndarray | None]:
     """:func:`_evaluate` for a slider drive or several drives: the marched Newton series."""
     w_int = plan.omega if plan.omega else 1.0
-    backend = Newton(plan.mech, plan.comp, plan.options, w_int, plan.alpha, plan.lvl_int, lead=plan.lead)
+    args = (plan.mech, plan.comp, plan.options, w_int, plan.alpha, plan.lvl_int)
+    backend = Newton(*args, lead=plan.lead, extra=plan.contacts)
     marcher = Marcher.make(backend)
     if marcher is None:
         raise UnsupportedError(

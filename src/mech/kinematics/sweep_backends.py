@@ -20,6 +20,7 @@ import numpy as np
 from mech.errors import GeometryError
 from mech.kinematics.dyads import SLACK, DyadProgram, branches, numpy_namespace
 from mech.kinematics.march import Marcher
+from mech.kinematics.march_arrays import point_or_nan
 from mech.kinematics.quantities import LEVELS
 from mech.kinematics.result import Kinematics
 from mech.kinematics.solve import Compiled, continuation
@@ -202,6 +203,7 @@ class Newton:
         alpha: float,
         lvl: int,
         lead: int | None = None,
+        extra: tuple[str, ...] = (),
     ) -> None:
         self.mech, self.comp, self.lvl = mech, comp, lvl
         # lead: the drive whose coordinate is the parameter when every drive follows a linear law
@@ -216,7 +218,10 @@ class Newton:
         )
         self.links = comp.system.links
         self.slides = tuple(ps.joint for ps in comp.layout.paths)
-        self.points = tuple(p for p in comp.system.loc_names if not p.startswith("#"))
+        # the located points, then any link's point at a contact asked for (K@cam: DESIGN § 1.2)
+        located = tuple(p for p in comp.system.loc_names if not p.startswith("#"))
+        self.extra = tuple(p for p in extra if p not in located)
+        self.points = located + self.extra
         self.marcher: Marcher | None = None  # set when the series was marched: grids can then be evaluated
         # the marched series' steps and, per step, where the march solved it: the marcher's own step
         # (index) and the parameter's shift (a whole period, for a step reached round the other way)
@@ -277,7 +282,7 @@ class Newton:
         lay = self.comp.layout
         singular = kin.level != LEVELS[self.lvl]
         res: dict[str, Any] = {
-            "positions": np.array([kin.positions[p] for p in self.points]),
+            "positions": np.array([kin.position(p) for p in self.points]),
             "link_angles": np.array([kin.links[lk].angle for lk in self.links]),
             "condition": math.inf if singular else 1.0,
         }
@@ -301,7 +306,9 @@ class Newton:
             res["omegas"] = nan_l if singular else np.array([kin.links[lk].omega for lk in self.links])
             res["sliding"] = np.full(len(self.slides), np.nan) if singular else np.array(slid)
         if self.lvl >= 2:
-            res["accelerations"] = nan_p if singular else np.array([kin.acceleration(p) for p in self.points])
+            res["accelerations"] = (
+                nan_p if singular else np.array([point_or_nan(kin.acceleration, p) for p in self.points])
+            )
             res["alphas"] = nan_l if singular else np.array([kin.links[lk].alpha for lk in self.links])
         return res
 

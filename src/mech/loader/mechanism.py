@@ -40,6 +40,7 @@ from mech.model import (
     Tolerance,
     Vec,
 )
+from mech.pairs import higher_pairs
 
 __all__ = ["TOP_KEYS", "read_mechanism"]
 
@@ -199,7 +200,11 @@ def _questions(
     if "answers" not in top and "asks" not in top:
         return answers, tolerance, asks  # the names' kinds (I-centres too) cost more than the rest
     kinds = names_by_kind(
-        (link.name for link in links), (j.name for j in joints), (p.name for p in points), len(links)
+        (link.name for link in links),
+        (j.name for j in joints),
+        (p.name for p in points),
+        len(links),
+        higher_pairs(joints),
     )
     if "answers" in top:
         answers, tolerance = r.guard(lambda: read_answers(r, top["answers"][1], kinds), ([], tolerance))

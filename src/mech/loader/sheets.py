@@ -28,6 +28,7 @@ from mech.loader.answers import DEFAULT_TOLERANCE, read_answers, read_claim
 from mech.loader.nodes import compose, is_null, node_kind, text_of, where_of
 from mech.loader.reader import NodeReader, Skip
 from mech.model import Claim, Mechanism, Tolerance
+from mech.pairs import higher_pairs
 
 __all__ = [
     "SheetEntry",
@@ -149,6 +150,7 @@ def _kinds(mechanism: Mechanism) -> dict[str, AbstractSet[str]]:
         (j.name for j in mechanism.joints),
         (p.name for p in mechanism.points),
         len(mechanism.links),
+        higher_pairs(mechanism.joints),
     )
 
 

@@ -13,6 +13,7 @@ kind (the model holds only what the file says).
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 from mech.pairs.base import PairKind
@@ -22,7 +23,17 @@ if TYPE_CHECKING:
     from mech.model import Joint, Mechanism
     from mech.specs import JointSpec
 
-__all__ = ["KINDS", "PairKind", "closure_of", "kind_of", "located_on", "points_of", "register", "spec_of"]
+__all__ = [
+    "KINDS",
+    "PairKind",
+    "closure_of",
+    "higher_pairs",
+    "kind_of",
+    "located_on",
+    "points_of",
+    "register",
+    "spec_of",
+]
 
 
 def located_on(joint: Joint) -> tuple[str, ...]:
@@ -53,3 +64,11 @@ def closure_of(joint: Joint) -> str:
 def spec_of(joint: Joint) -> JointSpec:
     """The joint's spec, or its kind's empty spec when it was built without one."""
     return joint.spec if joint.spec is not None else KINDS[joint.type].spec
+
+
+def higher_pairs(joints: Iterable[Joint]) -> tuple[tuple[str, tuple[str, ...]], ...]:
+    """(name, links) of every cam, contact, rolling or gear pair (DESIGN § 1.2): each link's point at its
+    contact is ``K@link``.  Rolling counts as a lower pair in Kutzbach's j, but touches as these do."""
+    return tuple(
+        (j.name, tuple(j.links)) for j in joints if j.type in KINDS and KINDS[j.type].role == "contact"
+    )

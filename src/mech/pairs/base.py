@@ -20,7 +20,8 @@ of branching on the type's name.  What a kind says:
 * **its I-centre by inspection** — :attr:`PairKind.icentre` from the joints
   alone, :meth:`PairKind.inspect` at a solved instant;
 * **its glyph** — :meth:`PairKind.glyph`, the geometry a configuration diagram
-  draws at the joint.
+  draws at the joint: backend-neutral shapes (:mod:`mech.pairs.glyph`) from what a
+  :class:`~mech.pairs.glyph.GlyphView` lets it read.
 
 The hooks are given small protocols of what they may read (the drawn
 configuration, the solved instant, the page), never the layers' own classes,
@@ -32,19 +33,43 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, ClassVar, Protocol
 
+from mech._records import dataclass
 from mech.errors import Problem, UnsupportedError
 from mech.specs import BareSpec, JointSpec, Profile
 
 if TYPE_CHECKING:
     from mech.fields import Fields, Reader
-    from mech.forces.result import PairForce
     from mech.model import Joint, Mechanism
+    from mech.pairs.glyph import GlyphView, Shape
     from mech.pairs.rows import RowBuilder
 
 #: A wrench on one link: force (N) and moment (N·m, ccw +) about the point it is given for.
 Wrench = tuple[float, float, float]
 
 Vec = tuple[float, float]
+
+
+@dataclass(frozen=True, slots=True)
+class PairForce:
+    """The force a pair carries at the instant: ``force`` (N, global) acting on link ``on`` from ``by``.
+
+    ``at`` is where it acts (m): a pin's centre, a contact point, or for a sliding
+    pair the point of the guide where the normal force acts, ``offset`` (m) along
+    the path from the slider's point.  ``normal`` is the signed component along the
+    pair's normal (a slider's side thrust, a cam's or a gear's tooth load), None for a pin.
+    """
+
+    joint: str
+    on: str
+    by: str
+    force: Vec
+    at: Vec | None
+    normal: float | None = None
+    offset: float | None = None
+
+    @property
+    def magnitude(self) -> float:
+        return float((self.force[0] ** 2 + self.force[1] ** 2) ** 0.5)
 
 
 class Carriers(Protocol):
@@ -127,16 +152,13 @@ class PairKind:
         the block turns with its guide); a pin in a slot does not.
     rolls
         Its profiles roll on each other without slip (rolling, gears); a cam slides.
+    meshes
+        Teeth keep its links' speed ratio: a stage of a gear train (``--explain`` writes
+        the train's value stage by stage).
     dyad
         How the closed-form dyads use it (``pin`` of an RRR or RRP dyad or a crank's
         pivot, ``path`` of an RRP or RPR dyad), or None: a mechanism with such a
         joint is solved by Newton.
-    glyph
-        How a configuration diagram draws it: ``pin`` (open circle; a triangle on a
-        hatched base at a ground pivot), ``slider`` (a block on its guide, line of stroke
-        dash-dotted), ``slot`` (two lines along the path round the pin), ``pitch`` (pitch
-        circles about each pivot, the contact point), ``contact`` (common normal and
-        tangent at the contact point), ``none`` (not drawn).
     icentre
         What inspection gives from the joints alone (:mod:`mech.icentres.order`):
         ``point`` (its I-centre), ``infinity`` (a point at infinity), ``line`` (only a
@@ -156,9 +178,9 @@ class PairKind:
     role: ClassVar[str] = "contact"
     keeps_angle: ClassVar[bool] = False
     rolls: ClassVar[bool] = False
+    meshes: ClassVar[bool] = False
     dyad: ClassVar[str | None] = None
     icentre: ClassVar[tuple[str, str]] = ("none", "")
-    glyph: ClassVar[str] = "none"
 
     def __repr__(self) -> str:
         return f"<pair kind {self.name}>"
@@ -226,6 +248,16 @@ class PairKind:
         """
         return list(j.profiles)
 
+    # -- the drawing --------------------------------------------------------------------------------
+    def glyph(self, view: GlyphView, j: Joint) -> Sequence[Shape]:
+        """The shapes a configuration diagram draws for the joint (:mod:`mech.pairs.glyph`).
+
+        In page mm from ``view.page``, or in world metres where a shape says ``world``
+        (which the drawing then holds in its view).  The default draws nothing: a pair
+        the planar solvers refuse has no place in a planar drawing.
+        """
+        return ()
+
     # -- kinematics -----------------------------------------------------------------------------
     def rows(self, b: RowBuilder, j: Joint) -> None:
         """Append the joint's constraint rows to ``b`` (in the shapes of :mod:`mech.pairs.rows`).
@@ -250,7 +282,6 @@ class PairKind:
         after the first, from the first (a binary joint: on its second link, as DESIGN
         § 1.4's ``force.<joint>.x`` reads it).
         """
-        from mech.forces.result import PairForce
 
         first = j.links[0]
         return [
@@ -292,7 +323,6 @@ def contact_forces(
 ) -> list[PairForce]:
     """A higher pair's force on its second link at the contact, with its component along the
     common normal (the tangent ``direction`` turned −90°): a cam's or a gear's tooth load."""
-    from mech.forces.result import PairForce
 
     on, by = j.links[1], j.links[0]
     if on not in wrenches:

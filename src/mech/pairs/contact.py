@@ -8,13 +8,13 @@ from typing import TYPE_CHECKING
 
 from mech.fields import NUMBER, PROFILES, Fields, Reader
 from mech.pairs.base import PairKind, contact_forces
-from mech.pairs.cam import read_contact, see_contact
+from mech.pairs.higher import read_contact, see_contact
 from mech.specs import ContactSpec
 
 if TYPE_CHECKING:
-    from mech.forces.result import PairForce
     from mech.model import Joint
-    from mech.pairs.base import InstantView, Wrench
+    from mech.pairs.base import InstantView, PairForce, Wrench
+    from mech.pairs.glyph import GlyphView, Shape
     from mech.pairs.rows import RowBuilder
 
 
@@ -32,10 +32,15 @@ class Contact(PairKind):
     line_contact = True
     closure = "force"
     icentre = ("line", "contact {joint}: on the common normal at the contact")
-    glyph = "contact"
 
     def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> ContactSpec:
         return read_contact(r, fields, what, links)
+
+    def glyph(self, view: GlyphView, j: Joint) -> list[Shape]:
+        """The profiles as they are now (what the contact belongs to where no profile is drawn, a follower's stem on its guide), the common normal and tangent, the contact."""
+        from mech.pairs.glyph import contact
+
+        return contact(view, j, self.drawn_profiles(view.mech, j, view.positions.get(j.name)), pitch=False)
 
     def rows(self, b: RowBuilder, j: Joint) -> None:
         """Profiles that touch and slide, else the common normal of the instant."""

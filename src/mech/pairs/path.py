@@ -13,13 +13,11 @@ from collections.abc import Callable, Mapping
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
-from mech._records import dataclass
 from mech.fields import NAME, PATH, Fields, Reader, read_path
-from mech.pairs.base import PairKind
-from mech.specs import Path, Ref, SlideSpec
+from mech.pairs.base import PairForce, PairKind
+from mech.specs import Path, PathSpec, Ref, SlideSpec
 
 if TYPE_CHECKING:
-    from mech.forces.result import PairForce
     from mech.model import Joint
     from mech.pairs.base import InstantView, Wrench
     from mech.pairs.rows import RowBuilder
@@ -27,18 +25,6 @@ if TYPE_CHECKING:
 __all__ = ["PathPair", "PathSpec", "path_angle", "path_direction"]
 
 Vec = tuple[float, float]
-
-
-@dataclass(frozen=True, slots=True)
-class PathSpec:
-    """A path pair as the layout resolved it: ``point`` of ``slider`` runs on ``path`` fixed in ``guide``."""
-
-    joint: str
-    type: str
-    slider: str
-    guide: str
-    point: str
-    path: Path
 
 
 def path_angle(path: Path, positions: Mapping[str, Vec], resolve: Callable[[str], str]) -> float:
@@ -127,8 +113,6 @@ class PathPair(PairKind):
         pair's couple about the slider's point it acts ``offset = M/N`` along the path from
         that point (a block's side thrust is off its centre when the block is held from turning).
         """
-        from mech.forces.result import PairForce
-
         guide = j.links[1]
         if guide not in wrenches or at is None:
             return super().forces(j, wrenches, at, direction)

@@ -85,7 +85,7 @@ def drawn_profiles(
         return dict(j.profiles)
     if radii is None:
         return {}
-    from mech.pairs.gear import gear_centre
+    from mech.pairs.gearing import gear_centre
 
     out: dict[str, Profile] = {}
     for link, r in zip(j.links, radii, strict=True):
@@ -323,7 +323,7 @@ def _circle_contact(
     sa, sb = b.to_local(ga.link, ga.p), b.to_local(gb.link, gb.p)
     ca, cb = _at(b, ga.link, sa), _at(b, gb.link, sb)
     if how.rolls:
-        from mech.pairs.gear import gear_row
+        from mech.pairs.gearing import gear_row
 
         holo = gear_row(b, j)
         if holo is None:
@@ -412,6 +412,14 @@ def _curve_contact(
         gap_problem(gap, f"curve and {other.kind}")
         return True
     b.curves.append(row)
+    from mech.units import to_unit
+
+    unit = b.mech.length_unit
+    b.notes.append(
+        f"the profile of joint {j.name} on {curve.link} is the periodic cubic spline through its "
+        f"{spline.n} points: within about {to_unit(spline.departure() * b.scale, unit):.2g} {unit} "
+        "of the smooth curve through them (more points, closer: as the fourth power of their spacing)"
+    )
 
     def full(q: np.ndarray) -> np.ndarray:
         return np.append(q, (0.0, 0.0, 0.0))[None]

@@ -13,6 +13,7 @@ from mech.units import Dimension
 if TYPE_CHECKING:
     from mech.model import Joint
     from mech.pairs.base import InstantView
+    from mech.pairs.glyph import GlyphView, Shape
     from mech.pairs.rows import RowBuilder
 
 
@@ -27,13 +28,18 @@ class Revolute(PairKind):
     role = "pin"
     dyad = "pin of an rrr or rrp dyad, or a crank's pivot"
     icentre = ("point", "pin {joint}")
-    glyph = "pin"
 
     def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> PinSpec:
         radius = r.optional(
             fields, "radius", lambda n: r.number(n, "the pin radius", Dimension.LENGTH, positive=True)
         )
         return PinSpec(radius=radius)
+
+    def glyph(self, view: GlyphView, j: Joint) -> list[Shape]:
+        """An open circle; at a ground pivot a triangle on a hatched base under it."""
+        from mech.pairs.glyph import pin
+
+        return pin(view, j.name, ground=view.mech.ground in j.links)
 
     def rows(self, b: RowBuilder, j: Joint) -> None:
         """The pin's point of the first link on the same point of every other link it joins."""

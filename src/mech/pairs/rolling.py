@@ -19,9 +19,9 @@ Vec = tuple[float, float]
 
 if TYPE_CHECKING:
     from mech.errors import Problem
-    from mech.forces.result import PairForce
     from mech.model import Joint, Mechanism
-    from mech.pairs.base import InstantView, Wrench
+    from mech.pairs.base import InstantView, PairForce, Wrench
+    from mech.pairs.glyph import GlyphView, Shape
     from mech.pairs.rows import RowBuilder
     from mech.specs import Profile
 
@@ -37,7 +37,6 @@ class Rolling(PairKind):
     closure = "force"
     rolls = True
     icentre = ("point", "rolling {joint}: the point of contact")
-    glyph = "pitch"
 
     def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> RollingSpec:
         radii = r.optional(fields, "radii", lambda n: read_radii(r, n, what, nulls=True))
@@ -50,13 +49,19 @@ class Rolling(PairKind):
             )
         return RollingSpec(radii=radii, profiles=profiles)
 
+    def glyph(self, view: GlyphView, j: Joint) -> list[Shape]:
+        """The profiles as they are now (pitch circles about the pivots where no profile is drawn), the common normal and tangent, the contact."""
+        from mech.pairs.glyph import contact
+
+        return contact(view, j, self.drawn_profiles(view.mech, j, view.positions.get(j.name)), pitch=True)
+
     def contact_problem(self, j: Joint) -> Problem | None:
         """Radii put the contact between the circles: no ``at`` needed."""
         return None if j.radii is not None else super().contact_problem(j)
 
     def drawn_profiles(self, mech: Mechanism, j: Joint, contact: Vec | None) -> list[tuple[str, Profile]]:
         """The profiles, or ``radii``: circles about each link's pin, a straight line through the contact."""
-        from mech.pairs.registry import kind_of
+        from mech.pairs.table import kind_of
         from mech.specs import Circle, Line, Ref
 
         if j.profiles or j.radii is None:

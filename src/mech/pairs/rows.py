@@ -37,8 +37,7 @@ if TYPE_CHECKING:
     from mech.errors import Problem
     from mech.model import Mechanism
     from mech.pairs.curves import CurveRow
-    from mech.pairs.path import PathSpec
-    from mech.specs import Ref
+    from mech.specs import PathSpec, Ref
 
 __all__ = ["Angle", "Coincide", "Distance", "Law", "Locator", "OnLine", "RowBuilder"]
 
@@ -153,6 +152,8 @@ class RowBuilder(Protocol):
     def curves(self) -> list[CurveRow]: ...
     @property
     def problems(self) -> list[Problem]: ...
+    @property
+    def notes(self) -> list[str]: ...
     @property
     def locators(self) -> dict[str, Locator]: ...
     @property

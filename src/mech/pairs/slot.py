@@ -2,7 +2,13 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from mech.pairs.path import PathPair
+
+if TYPE_CHECKING:
+    from mech.model import Joint
+    from mech.pairs.glyph import GlyphView, Shape
 
 
 class Slot(PathPair):
@@ -14,4 +20,9 @@ class Slot(PathPair):
     line_contact = True
     located = "first"
     icentre = ("line", "pin in slot {joint}: on the normal to the slot through the pin")
-    glyph = "slot"
+
+    def glyph(self, view: GlyphView, j: Joint) -> list[Shape]:
+        """Two lines along the slot round the pin, and the pin."""
+        from mech.pairs.glyph import slot
+
+        return slot(view, j)

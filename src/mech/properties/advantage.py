@@ -245,6 +245,10 @@ def _by_icentres(
     i = driver
     tiny = placement(kin) * (kin.size or 1.0)
     rest = tiny if at_rest else 0.0
+    # six figures of a distance need it a million times the rounding of the points it is measured
+    # between (an ulp of the farthest): 1e-9° from a slider crank's dead centre, I12·I24 = 3.3e-12 m
+    # is 160 × tiny, yet carries the points' rounding at 2e-5 of itself
+    six = 1e6 * sys.float_info.epsilon * (_far(kin) + (kin.size or 1.0))
     c1i = ics.get(ground, i)
     if c1i.at_infinity or c1i.point is None:
         return None, None, "the driver translates: its I-centre with the ground is at infinity"
@@ -271,8 +275,8 @@ def _by_icentres(
                     None,
                     f"{n1k} and {nik} coincide: ω_{k}/ω_{i} = {n1i}·{nik} / {n1k}·{nik} is {why}",
                 )
-            if a <= tiny and not at_rest:
-                return None, None, _unresolved(f"{n1i}·{nik}", a, tiny)
+            if a <= six and not at_rest:
+                return None, None, _unresolved(f"{n1i}·{nik}", a, six)
             a = 0.0 if a <= rest else a
             same = (
                 (c1i.point[0] - cik.point[0]) * (c1k.point[0] - cik.point[0])
@@ -294,15 +298,15 @@ def _by_icentres(
     if k != i and c1k.at_infinity:
         cik = ics.get(i, k)
         speed = _dist(c1i.point, cik.point)
-        if speed <= tiny and not at_rest:
-            return None, None, _unresolved(f"{c1i.name}·{cik.name}", speed, tiny)
+        if speed <= six and not at_rest:
+            return None, None, _unresolved(f"{c1i.name}·{cik.name}", speed, six)
         speed = 0.0 if speed <= rest else speed
         text += f"; v_{output}/ω_in = {c1i.name}·{cik.name} = {speed:.6g} m"
     else:
         r = _dist(c1k.point, p)
         speed = abs(ratio or 0.0) * r
-        if speed <= tiny and not at_rest:
-            return None, None, _unresolved(f"v_{output}/ω_in", speed, tiny)
+        if speed <= six and not at_rest:
+            return None, None, _unresolved(f"v_{output}/ω_in", speed, six)
         speed = 0.0 if speed <= rest else speed
         text += f"; v_{output}/ω_in = |ω_{k}/ω_{i}|·{c1k.name}{output} = {abs(ratio or 0.0):.6g} × {r:.6g} m = {speed:.6g} m"
     if speed == 0.0:
@@ -310,10 +314,11 @@ def _by_icentres(
     return ratio, (1.0 / speed if speed else math.inf), text
 
 
-def _unresolved(what: str, value: float, tiny: float) -> str:
+def _unresolved(what: str, value: float, six: float) -> str:
     return (
-        f"the I-centre ratio is not resolved: {what} = {value:.3g} m is within the rounding of the "
-        f"points ({tiny:.2g} m), and the velocity solution finds the output moving"
+        f"the I-centre ratio is not resolved to six figures: {what} = {value:.3g} m is less than "
+        f"{six:.2g} m, a million times the rounding of the points, and the velocity solution finds the "
+        "output moving"
     )
 
 

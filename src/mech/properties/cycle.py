@@ -34,6 +34,8 @@ from mech.pairs import kind_of
 from mech.topology.grashof import FourBarLoop, linkage_loops
 
 if TYPE_CHECKING:  # pragma: no cover
+    import numpy as np
+
     from mech.kinematics import Kinematics, Sweep
 
 __all__ = [
@@ -254,6 +256,10 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
     quantities = ([trans.quantity] if trans else []) + slides_and_links
     angles = np.linspace(0.0, 2.0 * math.pi, steps + 1)
     sw = sweep(mech, angles, level="position", options=options, quantities=quantities or None)
+    window = _drawn_circuit(sw.angles, sw.assembled, base.drives[0].angle if base.drives else None)
+    if window is not None:  # the turn met other circuits: read the drawn one's alone
+        angles = np.linspace(window[0], window[1], steps + 1)
+        sw = sweep(mech, angles, level="position", options=options, quantities=quantities or None)
     ext = {e.quantity: e for e in sw.extremes}
     mu = ext.get(trans.quantity) if trans else None  # 0 or 180° where coupler and output fold in line
     mu_min = (mu.min_value, mu.min_angle) if mu else None
@@ -285,20 +291,7 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
             e.max_value,
             e.max_angle,
         )
-    limits = tuple(
-        LimitPosition(
-            e.subject,
-            e.angle,
-            float(e.value) if e.value is not None else math.nan,
-            "m" if e.subject in sw.slides else "rad",
-        )
-        for e in sw.dead_centres
-    ) + tuple(  # a follower's dwell at its lowest or highest is its limit position
-        LimitPosition(d.subject, d.start, d.value, "m" if d.subject in sw.slides else "rad", d.end)
-        for d in sw.dwells
-        if d.reverses
-    )
-    limits = tuple(sorted(limits, key=lambda lp: lp.crank_angle))
+    limits = _limits(sw)
     return Cycle(
         sweep=sw,
         transmission=trans,
@@ -315,6 +308,24 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
         time_ratios={r.output: r.ratio for r in sw.time_ratios},
         time_ratio_why=dict(sw.time_ratio_refused),
     )
+
+
+def _limits(sw: Sweep) -> tuple[LimitPosition, ...]:
+    """The outputs' dead centres and the dwells they come back from, by crank angle."""
+    limits = tuple(
+        LimitPosition(
+            e.subject,
+            e.angle,
+            float(e.value) if e.value is not None else math.nan,
+            "m" if e.subject in sw.slides else "rad",
+        )
+        for e in sw.dead_centres
+    ) + tuple(  # a follower's dwell at its lowest or highest is its limit position
+        LimitPosition(d.subject, d.start, d.value, "m" if d.subject in sw.slides else "rad", d.end)
+        for d in sw.dwells
+        if d.reverses
+    )
+    return tuple(sorted(limits, key=lambda lp: lp.crank_angle))
 
 
 def _turns_on(sw: Sweep, subject: str) -> bool:
@@ -336,6 +347,36 @@ def _turns_on(sw: Sweep, subject: str) -> bool:
     return not any(e.subject == subject for e in sw.dead_centres) and not any(
         d.subject == subject and d.reverses for d in sw.dwells
     )
+
+
+def _drawn_circuit(angles: np.ndarray, ok: np.ndarray, drawn: float | None) -> tuple[float, float] | None:
+    """The drive angles around the drawn circuit, when a turn assembled separate circuits; else None.
+
+    A drive that cannot turn fully (a rocker driving a crank-rocker) meets, over a whole turn,
+    the same branch of the closed form on each circuit of the loop (C above AD, and its mirror
+    below); no motion joins them. Extremes read over all of them join positions of different
+    circuits (the crank's stroke from one circuit's low to the other's high). The window runs
+    from the unassembled step before the drawn circuit to the one after it, so the sweep of it
+    locates both limit positions as before and holds nothing of another circuit.
+    """
+    import numpy as np
+
+    n = angles.size - 1  # a full turn: step n is step 0 again
+    if drawn is None or n < 2 or abs(angles[-1] - angles[0] - 2.0 * math.pi) > 1e-9:
+        return None
+    turn = 2.0 * math.pi
+    k = int(np.argmin(np.abs((angles[:n] - drawn + math.pi) % turn - math.pi)))
+    if not ok[k] or bool(np.all(ok[:n])):
+        return None
+    left, right = k, k
+    while ok[(left - 1) % n]:
+        left -= 1
+    while ok[(right + 1) % n]:
+        right += 1
+    if int(np.count_nonzero(ok[:n])) == right - left + 1:
+        return None  # one circuit: nothing else was read
+    lo, hi = left - 1, right + 1
+    return float(angles[lo % n] + turn * (lo // n)), float(angles[hi % n] + turn * (hi // n))
 
 
 def stroke_joints(mech: Mechanism) -> Sequence[str]:

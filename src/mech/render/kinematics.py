@@ -46,10 +46,18 @@ def _dir(v: tuple[float, float]) -> float | None:
 
 
 def _point_rows(kin: Kinematics) -> Iterator[tuple[str, str | None]]:
-    """(point, link) for every reported point: a contact point once per link when they differ."""
+    """(point, link) for every reported point; a higher pair's points at the contact as ``K@link``.
+
+    A contact point whose links' points move differently there is listed once per link,
+    ``K@cam`` and ``K@follower`` (DESIGN § 1.2); a higher pair whose name is the follower's
+    own point (a programme cam's roller centre) lists it, then each link's point at the contact.
+    """
+    moving = _at_least(kin, "velocity")
     for name in kin.positions:
-        if not _at_least(kin, "velocity"):
+        joint = kin.joints.get(name)
+        if not moving:
             yield name, None
+            yield from _contact_rows(kin, name)
             continue
         try:
             kin.velocity(name)
@@ -57,9 +65,30 @@ def _point_rows(kin: Kinematics) -> Iterator[tuple[str, str | None]]:
                 kin.acceleration(name)  # a rolling contact: one velocity, two accelerations
             yield name, None
         except InputError:
-            joint = kin.joints.get(name)
             for link in joint.links if joint else ():
-                yield name, link
+                yield f"{name}@{link}", link
+            continue
+        yield from _contact_rows(kin, name)
+
+
+def _contact_rows(kin: Kinematics, name: str) -> Iterator[tuple[str, str | None]]:
+    """``K@cam``, ``K@follower`` after a higher pair's own point ``K`` when it is not where they touch."""
+    from mech.pairs import kind_of
+
+    joint = kin.joints.get(name)
+    if joint is None or not kin.carriers.get(name) or joint.at is None or not kind_of(joint.type).higher:
+        return
+    if math.dist(joint.at, kin.positions[name]) > 1e-12 * max(kin.size, 1e-300):
+        for link in joint.links:  # the follower's own point (a roller's centre) is not where it touches
+            yield f"{name}@{link}", link
+
+
+def _higher(kin: Kinematics, name: str) -> bool:
+    """Whether ``name`` is a higher pair's joint (its name a follower's own point)."""
+    from mech.pairs import kind_of
+
+    joint = kin.joints.get(name)
+    return joint is not None and kind_of(joint.type).higher
 
 
 def _link_pairs(kin: Kinematics) -> Iterator[tuple[str, str, str]]:
@@ -69,10 +98,19 @@ def _link_pairs(kin: Kinematics) -> Iterator[tuple[str, str, str]]:
         if name in kin.positions:
             for lk in carriers:
                 on_link.setdefault(lk, []).append(name)
+    tol = 1e-12 * max(kin.size, 1e-300)
     for lk, state in kin.links.items():
         if lk == kin.ground:
             continue
         names = on_link.get(lk, [])
+        # a cam joint standing for the follower's own point where a named point already is
+        # (a roller's centre C): the same point twice, no vector between them
+        names = [
+            n
+            for n in names
+            if not _higher(kin, n)
+            or not any(m != n and math.dist(kin.positions[m], kin.positions[n]) <= tol for m in names)
+        ]
         # start from the link's origin point (its ground pivot where it has one)
         names.sort(key=lambda n: math.dist(kin.positions[n], state.origin) > 1e-12 * max(kin.size, 1e-300))
         for other in names[1:]:
@@ -131,10 +169,10 @@ class _Noise:
         return out
 
     def point_v_scale(self, name: str, link: str | None) -> float:
-        return self.v_scale(self._links_at(name, link), self.kin.positions[name])
+        return self.v_scale(self._links_at(name, link), self.kin.position(name))
 
     def point_a_scale(self, name: str, link: str | None) -> float:
-        return self.a_scale(self._links_at(name, link), self.kin.positions[name])
+        return self.a_scale(self._links_at(name, link), self.kin.position(name))
 
     def angle(self, theta: float) -> float:
         return 0.0 if abs(math.remainder(theta, 2 * math.pi)) < self.RELATIVE else theta
@@ -358,7 +396,7 @@ def _points_json(kin: Kinematics, quiet: _Noise, units: OutputUnits) -> list[dic
             {
                 "point": name,
                 "link": link,
-                "position": _vec(quiet.position(kin.positions[name]), units.length),
+                "position": _vec(quiet.position(kin.position(name)), units.length),
                 "velocity": _vec(v, V),
                 "speed": _num(math.hypot(*v), V) if v is not None else None,
                 "direction": _dir(v) if v is not None else None,
@@ -456,8 +494,8 @@ def _col(table: Any, header: str, justify: str = "left") -> None:
 
 
 def _point_label(p: dict[str, Any]) -> str:
-    """``C``, or ``C (on coupler)`` where coincident points of two links differ."""
-    return p["point"] if p["link"] is None else f"{p['point']} (on {p['link']})"
+    """``C``, ``K@cam`` (a link's point at a contact), or ``C (on coupler)`` for a coincident point."""
+    return p["point"] if p["link"] is None or "@" in p["point"] else f"{p['point']} (on {p['link']})"
 
 
 _LEVEL_TITLES = {"position": "positions", "velocity": "velocities", "acceleration": "accelerations"}

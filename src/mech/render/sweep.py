@@ -349,7 +349,15 @@ def sweep_plot_file(path: str, sw: Sweep, *, units: OutputUnits, quantities: tup
     for k in keys:
         unit = _out_unit(quantity_unit(k), units)
         factor = to_unit(1.0, unit)
-        series.append(Series(k, format_unit(unit), (np.asarray(sw.series(k)) * factor).tolist()))
+        ext = next((e for e in sw.extremes if e.quantity == k), None)
+        refined = None
+        if ext is not None:  # the refined extremes, as the report's table gives them
+            par = _par(sw, units)
+            refined = (
+                (par(ext.max_angle), ext.max_value * factor),
+                (par(ext.min_angle), ext.min_value * factor),
+            )
+        series.append(Series(k, format_unit(unit), (np.asarray(sw.series(k)) * factor).tolist(), refined))
     sweep_plot(
         path,
         [_par(sw, units)(a) for a in sw.angles.tolist()],

@@ -13,66 +13,26 @@ from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 from mech.cam.program import program_schema
-from mech.cam.read import read_program
-from mech.fields import NUMBER, PROFILES, Fields, Reader, read_profiles
+from mech.fields import NUMBER, PROFILES, Fields, Reader
 from mech.pairs.base import PairKind, contact_forces
+from mech.pairs.higher import read_contact, see_contact
 from mech.specs import ContactSpec
-from mech.units import Dimension
 
 if TYPE_CHECKING:
-    from mech.forces.result import PairForce
     from mech.model import Joint, Mechanism
-    from mech.pairs.base import InstantView, Wrench
+    from mech.pairs.base import InstantView, PairForce, Wrench
+    from mech.pairs.glyph import GlyphView, Shape
     from mech.pairs.rows import RowBuilder
     from mech.specs import Profile
 
 Vec = tuple[float, float]
 
-__all__ = ["Cam", "read_contact", "see_contact"]
+__all__ = ["Cam"]
 
 PROGRAM: dict[str, Any] = {
     "description": "The follower's programme, from which mech generates the cam profile (DESIGN § 1.1).",
     **program_schema(NUMBER),
 }
-
-
-def read_contact(
-    r: Reader, fields: Fields, what: str, links: tuple[str, ...], *, program: bool = False
-) -> ContactSpec:
-    """``normal`` and ``profiles`` (and a cam's ``program``): what a cam or a contact pair reads."""
-    normal = r.optional(fields, "normal", lambda n: r.number(n, "the common normal", Dimension.ANGLE))
-    profiles = r.optional(fields, "profiles", lambda n: read_profiles(r, n, what, links)) or ()
-    prog = r.optional(fields, "program", lambda n: read_program(r, n, what)) if program else None
-    if program and "program" in fields and "profiles" in fields:
-        r.problem(
-            fields["program"][0],
-            f"{what} gives both `program` and `profiles`",
-            "the programme generates the cam's profile: give one",
-        )
-    return ContactSpec(normal=normal, profiles=profiles, program=prog)
-
-
-def see_contact(seen: InstantView, j: Joint, line_of_action: Vec | None = None) -> None:
-    """A cam, gear or point contact: its I-centre is somewhere on the common normal (Kennedy finishes it).
-
-    The normal is the solved common tangent turned a quarter, else the file's ``normal``,
-    else ``line_of_action`` (a gear's); with none, the contact is taken as rolling (a gear
-    whose pitch point is where its pitch circles roll).
-    """
-    import math
-
-    at = seen.at(j)
-    at = j.place.at if at is None else at
-    if at is None:
-        return
-    a, b = j.links[0], j.links[1]
-    tangent = seen.direction(j)
-    normal: Vec | None = line_of_action
-    if tangent is not None:
-        normal = (tangent[1], -tangent[0])  # the common tangent turned −90°
-    elif j.normal is not None:
-        normal = (math.cos(j.normal), math.sin(j.normal))
-    seen.contact(j.name, (a, b), at, normal)
 
 
 def _programme(j: Joint) -> bool:
@@ -90,10 +50,15 @@ class Cam(PairKind):
     line_contact = True
     closure = "force"
     icentre = ("line", "cam {joint}: on the common normal at the contact")
-    glyph = "contact"
 
     def read(self, r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> ContactSpec:
         return read_contact(r, fields, what, links, program=True)
+
+    def glyph(self, view: GlyphView, j: Joint) -> list[Shape]:
+        """The profiles as they are now (what the contact belongs to where no profile is drawn, a follower's stem on its guide), the common normal and tangent, the contact."""
+        from mech.pairs.glyph import contact
+
+        return contact(view, j, self.drawn_profiles(view.mech, j, view.positions.get(j.name)), pitch=False)
 
     def fixed_in(self, j: Joint) -> tuple[str, ...]:
         """A programme's joint stands for the follower's own point (DESIGN § 1.2); a contact moves."""

@@ -28,7 +28,7 @@ from mech.cam.profile import CamLayout, evaluate, layout_problem
 from mech.cam.program import CamProgram, resolve
 from mech.errors import InputError, UnsupportedError, Where
 from mech.model import Joint, Mechanism, Ref
-from mech.pairs.registry import kind_of
+from mech.pairs.table import kind_of
 
 if TYPE_CHECKING:
     from mech.specs import Profile

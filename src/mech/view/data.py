@@ -1,0 +1,260 @@
+"""Everything the live page shows, as one JSON-able dict made from one sweep.
+
+The page's script only draws: it never solves.  What it draws at step ``i`` is here:
+the points' positions, the links' outlines, the sliders' blocks and slots, the velocity
+and acceleration polygons (images and vectors, built by :mod:`mech.draw.polygon` at every
+step), the I-centres, the transmission angle's joints, and the numbers of the table under
+their answer keys (``omega.rocker``, ``velocity.C``…) in SI as ``mech velocity --json``
+gives them.  Numbers are kept to 7 significant figures: a four-bar page is about 0.3 MB.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from mech.draw.config import display_name, link_colours
+from mech.draw.polygon import PolygonData, acceleration_polygon, velocity_polygon
+from mech.errors import MechError
+from mech.pairs import kind_of
+from mech.units import unit_factor
+from mech.view.frames import as_list, icentres, instant, link_members, own_step, round_sig
+
+if TYPE_CHECKING:  # pragma: no cover
+    from mech.kinematics.result import Kinematics
+    from mech.kinematics.sweep import Sweep
+    from mech.model import Mechanism
+
+__all__ = ["page_data"]
+
+
+def page_data(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> dict[str, Any]:
+    """The page's data: the sweep ``sw`` (its first step is the file's own instant) and its pictures.
+
+    ``drawn`` is the solve at the file's own instant (carriers, joints, drives).
+    """
+    own = own_step(sw, drawn)
+    kins = [instant(mech, drawn, sw, i, own) for i in range(sw.angles.shape[0])]
+    factor = unit_factor(mech.length_unit)[1]
+    data: dict[str, Any] = {
+        "title": mech.label,
+        "unit": mech.length_unit,
+        "factor": factor,
+        "level": sw.level,
+        "param": _parameter(mech, sw, factor),
+        "own": own,
+        "ok": [bool(x) for x in sw.assembled],
+        "marks": _marks(sw, factor),
+        "notes": list(sw.notes),
+    }
+    data.update(_configuration(mech, drawn, sw))
+    data["polygons"] = [
+        p for p in (_polygon(mech, kins, sw, "velocity"), _polygon(mech, kins, sw, "acceleration")) if p
+    ]
+    data["table"] = _table(mech, drawn, sw)
+    names, ic = icentres(mech, drawn, sw)
+    data["icentres"] = {"names": names, "rows": as_list(ic, 6), "from": _first_pivot(mech, drawn, sw)}
+    data["transmission"] = _transmission(mech, drawn, sw)
+    return data
+
+
+def _parameter(mech: Mechanism, sw: Sweep, factor: float) -> dict[str, Any]:
+    """What the slider moves: a crank's angle (shown in degrees) or a slider's position (file unit)."""
+    if sw.parameter == "angle":
+        shown = [round_sig(math.degrees(a) % 360.0, 9) for a in sw.angles]
+        turn = np.mod(sw.angles, 2 * math.pi)  # radians in [0, 2π), as the file's angle is read
+        return {"kind": "angle", "si": as_list(turn, 10), "shown": shown, "drive": sw.drive, "unit": "°"}
+    shown = [round_sig(a / factor, 9) for a in sw.angles]
+    return {
+        "kind": "position",
+        "si": as_list(sw.angles, 10),
+        "shown": shown,
+        "drive": sw.drive,
+        "unit": mech.length_unit,
+    }
+
+
+def _marks(sw: Sweep, factor: float) -> list[dict[str, Any]]:
+    """Dead centres, toggles, change points and gaps, at the sweep parameter's values (SI)."""
+    out: list[dict[str, Any]] = []
+    for e in (*sw.dead_centres, *sw.toggles, *sw.change_points):
+        out.append({"kind": e.kind, "at": e.angle, "text": f"{e.kind}: {e.subject}"})
+    for g in sw.gaps:
+        out.append({"kind": "gap", "at": g.start, "to": g.end, "text": f"not assembled: {g.what}"})
+    return out
+
+
+def _configuration(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> dict[str, Any]:
+    """Points and their positions at every step, links' outlines, pins, pivots, sliders, colours."""
+    points = list(sw.points)
+    index = {n: k for k, n in enumerate(points)}
+    colours = link_colours(mech)
+    members = link_members(mech, drawn)
+    links = []
+    for link in mech.moving_links:
+        idx = [index[n] for n in members[link.name] if n in index]
+        if len(idx) >= 2:
+            links.append({"name": link.name, "colour": colours[link.name], "points": idx})
+    pins, pivots, sliders = [], [], []
+    for j in mech.joints:
+        kind = kind_of(j)
+        g = drawn.joints.get(j.name)
+        if kind.role == "pin" and j.name in index:
+            pins.append(index[j.name])
+            if mech.ground in j.links:
+                pivots.append(index[j.name])
+        elif kind.role == "path" and g is not None and g.point in index and g.direction is not None:
+            guide = j.links[1]
+            if not kind.keeps_angle:
+                pins.append(index[g.point])  # a pin in a slot
+            sliders.append(
+                {
+                    "joint": j.name,
+                    "point": index[g.point],
+                    "dir": list(g.direction),
+                    "guide": None if guide == mech.ground else sw.links.index(guide),
+                    "block": kind.keeps_angle,
+                    "colour": colours.get(j.links[0 if kind.keeps_angle else 1], "#1a1a1a"),
+                }
+            )
+    named = {p.name for p in mech.points}
+    return {
+        "points": points,
+        "labels": [display_name(n) for n in points],
+        "named": [index[n] for n in points if n in named and index[n] not in pins],
+        "xy": as_list(sw.positions),
+        "links": links,
+        "pins": pins,
+        "pivots": pivots,
+        "sliders": sliders,
+        "angles": as_list(sw.link_angles, 8),
+        "moving": list(sw.links),
+        "origins": [_origin_index(drawn, sw, name) for name in sw.links],
+    }
+
+
+def _origin_index(drawn: Kinematics, sw: Sweep, link: str) -> int | None:
+    for k, name in enumerate(sw.points):
+        if link in drawn.carriers.get(name, ()):
+            return k
+    return None
+
+
+def _polygon(mech: Mechanism, kins: list[Kinematics], sw: Sweep, kind: str) -> dict[str, Any] | None:
+    """One polygon's structure (from the file's own instant) and its points at every step."""
+    from mech.kinematics.quantities import LEVELS
+
+    if LEVELS.index(sw.level) < LEVELS.index(kind):
+        return None
+    build = velocity_polygon if kind == "velocity" else acceleration_polygon
+    first: PolygonData | None = None
+    frames: list[PolygonData | None] = []
+    for kin in kins:
+        try:
+            frames.append(build(mech, kin))
+        except (MechError, ValueError, TypeError, KeyError):
+            frames.append(None)  # a step not assembled
+    first = next((f for f in frames if f is not None), None)
+    if first is None:
+        return None
+    keys = ["o"] + [im.key for im in first.images] + sorted(first.construction)
+    values = np.full((len(frames), len(keys), 2), np.nan)
+    for i, f in enumerate(frames):
+        if f is None:
+            continue
+        for k, key in enumerate(keys):
+            with contextlib.suppress(KeyError):
+                values[i, k] = f.at(key)
+    colours = link_colours(mech)
+    return {
+        "kind": kind,
+        "keys": keys,
+        "labels": [first.pole] + [im.label for im in first.images] + [""] * len(first.construction),
+        "values": as_list(values),
+        "vectors": [
+            {
+                "name": v.name,
+                "s": keys.index(v.start),
+                "e": keys.index(v.end),
+                "kind": v.kind,
+                "colour": colours.get(v.link, "#444444") if v.link else "#444444",
+            }
+            for v in first.vectors
+            if v.start in keys and v.end in keys
+        ],
+        "unit": "m/s" if kind == "velocity" else "m/s²",
+    }
+
+
+def _table(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> list[dict[str, Any]]:
+    """The numbers shown for each instant, keyed as answers are: ω, α of links, speeds of points."""
+    rows: list[dict[str, Any]] = []
+    for li, name in enumerate(sw.links):
+        if sw.omegas is not None:
+            rows.append(
+                {
+                    "key": f"omega.{name}",
+                    "label": f"ω {name}",
+                    "unit": "rad/s",
+                    "values": as_list(sw.omegas[:, li]),
+                }
+            )
+        if sw.alphas is not None and sw.level == "acceleration":
+            rows.append(
+                {
+                    "key": f"alpha.{name}",
+                    "label": f"α {name}",
+                    "unit": "rad/s²",
+                    "values": as_list(sw.alphas[:, li]),
+                }
+            )
+    moving = [(k, n) for k, n in enumerate(sw.points) if mech.ground not in drawn.carriers.get(n, ())]
+    for k, name in moving:
+        if sw.velocities is not None:
+            speed = np.hypot(sw.velocities[:, k, 0], sw.velocities[:, k, 1])
+            rows.append(
+                {
+                    "key": f"velocity.{name}",
+                    "label": f"v {display_name(name)}",
+                    "unit": "m/s",
+                    "values": as_list(speed),
+                }
+            )
+    for k, name in moving:
+        if sw.accelerations is not None:
+            mag = np.hypot(sw.accelerations[:, k, 0], sw.accelerations[:, k, 1])
+            rows.append(
+                {
+                    "key": f"acceleration.{name}",
+                    "label": f"a {display_name(name)}",
+                    "unit": "m/s²",
+                    "values": as_list(mag),
+                }
+            )
+    return rows
+
+
+def _first_pivot(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> int | None:
+    """The frame's first pivot (where far I-centres' distances are measured from)."""
+    for j in mech.joints:
+        if mech.ground in j.links and kind_of(j).role == "pin" and j.name in sw.points:
+            return sw.points.index(j.name)
+    return None
+
+
+def _transmission(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> list[int] | None:
+    """The three joints of the transmission angle (coupler joint, joint, output pivot), or None."""
+    from mech.errors import UnsupportedError
+    from mech.properties.cycle import transmission_loop
+
+    try:
+        t = transmission_loop(mech, drawn.positions)
+    except (UnsupportedError, MechError):
+        return None
+    names = (t.coupler_joint, t.joint, t.pivot)
+    if not all(n in sw.points for n in names):
+        return None
+    return [sw.points.index(n) for n in names]
