@@ -562,3 +562,58 @@ def test_a_unit_slip_hint_names_a_unit_of_the_claims_quantity_and_following_it_p
     assert v.status == FAIL and f'"{bare} {unit}"' in v.message, v.message
     (followed,) = check(loads(text + f'  {key}: "{bare} {unit}"\n'))
     assert followed.status == PASS, followed.message
+
+
+# -- time_ratio.<output> (DESIGN § 1.2, issue 21 item 3) -----------------------------------------
+#: One crank drives two crank-rockers through a shared pin B: rocker1 (coupler 110, rocker 70 about
+#: O4 100 mm right) and rocker2 (coupler 120, rocker 60 about O6 100 mm left).
+TWO_ROCKERS = """
+units: {length: mm, angle: deg}
+ground: frame
+links: [frame, crank, coupler1, rocker1, coupler2, rocker2]
+joints:
+  O2: {type: revolute, links: [frame, crank], at: [0, 0]}
+  B: {type: revolute, links: [crank, coupler1, coupler2]}
+  C: {type: revolute, links: [coupler1, rocker1], near: [117, 68]}
+  O4: {type: revolute, links: [rocker1, frame], at: [100, 0]}
+  E: {type: revolute, links: [coupler2, rocker2], near: [-80, 60]}
+  O6: {type: revolute, links: [rocker2, frame], at: [-100, 0]}
+lengths: {O2B: 30, BC: 110, O4C: 70, BE: 120, O6E: 60}
+drive: {link: crank, angle: 60, rpm: 100, direction: ccw}
+"""
+
+
+def test_time_ratio_of_each_output_is_its_own_and_bare_time_ratio_names_the_candidates() -> None:
+    # Each rocker's ratio (180 + α)/(180 − α), α from its loop's limit positions by the law of
+    # cosines (oracles.four_bar; the mirror image of a loop has the same ratio).  Two outputs with
+    # different ratios: the bare key is refused with both named, never one picked silently.
+    sys.path.insert(0, str(Path(__file__).parent))
+    from oracles.four_bar import crank_rocker_limits
+
+    r1 = crank_rocker_limits(30.0, 110.0, 70.0, 100.0)[2]
+    r2 = crank_rocker_limits(30.0, 120.0, 60.0, 100.0)[2]
+    claims = f"answers:\n  time_ratio.rocker1: {r1!r}\n  time_ratio.rocker2: {r2!r}\n  time_ratio: {r1!r}\n"
+    one, two, bare = check(loads(TWO_ROCKERS + claims))
+    assert (one.status, two.status) == (PASS, PASS)
+    assert one.computed == pytest.approx(r1, rel=1e-10) and two.computed == pytest.approx(r2, rel=1e-10)
+    assert bare.status == ERROR and "rocker1" in bare.message and "rocker2" in bare.message
+
+
+def test_time_ratio_of_a_slider_by_its_joint_or_link_and_a_refusal_that_says_why() -> None:
+    # Offset slider crank r = 50, l = 200, e = 20 mm: dead centres at ψ = asin(e/(l + r)) and
+    # π + asin(e/(l − r)); ratio (π + β)/(π − β) with β the difference less π.  The slider is named
+    # by its joint (guide) or its link (slider); the crank is the driven link, the rod no output.
+    sys.path.insert(0, str(Path(__file__).parent))
+    from oracles.slider_crank import slider_dead_centres
+
+    outer, inner, _x1, _x2 = slider_dead_centres(50.0, 200.0, 20.0)
+    beta = inner - outer - math.pi
+    ratio = (math.pi + beta) / (math.pi - beta)
+    text = (Path(__file__).parents[1] / "mechanisms" / "offset_slider_crank.yaml").read_text(encoding="utf-8")
+    text = text[: text.index("answers:")]
+    claims = f"answers:\n  time_ratio.guide: {ratio!r}\n  time_ratio.slider: {ratio!r}\n  time_ratio.crank: 1\n  time_ratio.rod: 1\n"
+    guide, slider, crank, rod = check(loads(text + claims))
+    assert (guide.status, slider.status) == (PASS, PASS)
+    assert guide.computed == pytest.approx(ratio, rel=1e-10)
+    assert crank.status == ERROR and "driven link" in crank.message
+    assert rod.status == ERROR and "not an output" in rod.message

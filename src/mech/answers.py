@@ -26,7 +26,8 @@ How to add an answer key
      placeholders name what the user writes there (:data:`PLACEHOLDERS`):
      ``<link>``, ``<a>``, ``<b>`` a link; ``<point>``, ``<other>`` a joint or
      named point; ``<joint>`` a joint; ``<p>``, ``<q>`` a point or I-centre
-     (``I13``); ``<out>`` a link or a point.  The loader checks every name.
+     (``I13``); ``<out>`` a link or a point; ``<output>`` a link or a joint (an
+     output: a link, or a slider's joint).  The loader checks every name.
    - ``compare``: how a claim is held against the value (:class:`Compare`):
      ``COUNT`` exact int, ``LABEL`` exact name after ``normalise``, ``POINT``
      ``[x, y]`` within tolerance × size (``infinity=True``, for any mode,
@@ -98,10 +99,11 @@ PLACEHOLDERS: dict[str, str] = {
     "<p>": "icpoint",
     "<q>": "icpoint",
     "<out>": "linkpoint",
+    "<output>": "linkjoint",
 }
 
 #: How each kind of name reads in a message ("names unknown point or I-centre 'Q'").
-KIND_LABELS = {"icpoint": "point or I-centre", "linkpoint": "link or point"}
+KIND_LABELS = {"icpoint": "point or I-centre", "linkpoint": "link or point", "linkjoint": "link or joint"}
 
 
 class Compare(str, Enum):
@@ -307,6 +309,7 @@ def names_by_kind(
         "point": point_names,
         "icpoint": ICentreNames(frozenset(point_names), n_links),
         "linkpoint": link_names | point_names,
+        "linkjoint": link_names | joint_names,
     }
 
 
@@ -454,6 +457,13 @@ KINDS: tuple[AnswerKind, ...] = (
         "greatest transmission angle over the cycle",
     ),
     AnswerKind("time_ratio", Compare.MAGNITUDE, "position", _D.NUMBER, "slow / fast stroke"),
+    AnswerKind(
+        "time_ratio.<output>",
+        Compare.MAGNITUDE,
+        "position",
+        _D.NUMBER,
+        "slow / fast stroke of one output (a link, or a slider's joint)",
+    ),
     AnswerKind(
         "stroke.<joint>",
         Compare.MAGNITUDE,

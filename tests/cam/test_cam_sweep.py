@@ -132,6 +132,29 @@ def test_sweep_extremes_of_the_roller_programme_are_the_laws_peaks():
     assert ext["velocity.K"].max_value == pytest.approx(2 * 0.030 * w / math.radians(150), rel=1e-9)
 
 
+def test_an_acceleration_that_jumps_at_a_segment_end_is_reported_as_a_jump():
+    # SHM rise of h = 30 mm over β = 120° after a dwell: the follower's acceleration jumps at the
+    # rise's start from 0 to π²hω²/(2β²) = 33.3099 m/s² (Khurmi & Gupta ch. 20) at ω = 300 rpm,
+    # and that jump's upper side is the largest value over the turn: a jump, not a smooth peak
+    m = load(MECHANISMS / "cam_roller_program.yaml")
+    sw = sweep(m, np.radians(np.linspace(0.0, 360.0, 361)), level="acceleration")
+    w = 300 * 2 * math.pi / 60
+    peak = math.pi**2 * 0.030 * w**2 / (2 * math.radians(120) ** 2)
+    acc = {e.quantity: e for e in sw.extremes}["acceleration.K"]
+    assert acc.max_value == pytest.approx(peak, rel=1e-9)
+    assert acc.max_jump is not None and sorted(acc.max_jump) == pytest.approx([0.0, peak], abs=1e-6 * peak)
+    assert any("acceleration.K jumps at" in n for n in sw.notes)
+    # a smooth quantity's extremes are not jumps: the roller's speed peaks inside its segments
+    assert all(e.max_jump is None and e.min_jump is None for e in sw.extremes if e.quantity == "velocity.K")
+
+
+def test_no_extreme_of_a_four_bar_is_a_jump():
+    sw = sweep(
+        load(MECHANISMS / "four_bar.yaml"), np.radians(np.linspace(0.0, 360.0, 361)), level="acceleration"
+    )
+    assert [e.quantity for e in sw.extremes if e.max_jump or e.min_jump] == []
+
+
 def test_oscillating_follower_turns_by_its_law_exactly():
     path = MECHANISMS / "cam_oscillating_roller.yaml"
     m = load(path)

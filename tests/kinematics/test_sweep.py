@@ -601,3 +601,95 @@ def test_a_rate_that_grows_without_bound_toward_a_toggle_has_an_infinite_extreme
     assert any("omega.rod grows without bound toward the toggle" in n for n in sw.notes)
     table = run("sweep", str(ROOT / "mechanisms" / "khurmi_six_link_slider.yaml"), "--quantity", "omega.rod")
     assert "∞ (toggle)" in table.output and "−∞ (toggle)" in table.output
+
+
+# -- dwells and every output's time ratio (issue 21, items 2 and 3) ------------------------------
+#: A roller cam of one's own (issue 21): offset 10 mm, base circle 30, roller 10; rise 40 mm over
+#: 120° (cycloidal), dwell 60°, return over 90° (SHM), dwell 90°; the cam turns clockwise.
+OWN_CAM = """
+units: {length: mm, angle: deg}
+links: [frame, cam, follower]
+joints:
+  O: {type: revolute, links: [frame, cam], at: [0, 0]}
+  K: {type: cam, links: [cam, follower],
+      program: {base_radius: 30, follower: roller, roller_radius: 10, offset: 10,
+                segments: [{rise: 40, over: 120, law: cycloidal}, {dwell: 60},
+                           {return: 40, over: 90, law: shm}, {dwell: 90}]}}
+  S: {type: prismatic, links: [follower, frame], path: {through: [-10, 0], angle: 90}}
+drive: {link: cam, angle: 60, rpm: 300, direction: cw}
+"""
+
+
+def test_a_follower_at_rest_over_a_dwell_is_one_dwell_with_no_dead_centre_inside_it():
+    # DESIGN § 1.1: the drive angle is the cam's turn from the programme's start, counted in the
+    # sense it turns; a sweep's angle is the absolute (counter-clockwise) one, so a clockwise cam is
+    # at programme angle 360° − θ.  The top dwell, programme 120°–180°, is θ = 180°–240°; the bottom
+    # one, programme 270°–360°, is θ = 0°–90°.  At rest the roller's centre is on the prime circle
+    # (30 + 10 = 40 mm from the cam's centre), offset 10 mm: √(40² − 10²) up the path, 40 mm higher
+    # at the top.  The SHM return leaves rest linearly (its ends to rounding), the cycloidal rise
+    # quadratically (its end found to about 1e-5°).
+    sw = sweep(mech.loads(OWN_CAM), level="velocity")
+    assert sw.dead_centres == ()  # it listed one at every step of both dwells (122)
+    low = math.sqrt(40.0**2 - 10.0**2) / 1000
+    got = sorted((math.degrees(d.start), math.degrees(d.end), d.value, d.reverses) for d in sw.dwells)
+    assert got == [
+        (pytest.approx(0.0, abs=1e-9), pytest.approx(90.0, abs=1e-9), pytest.approx(low, rel=1e-9), True),
+        (
+            pytest.approx(180.0, abs=1e-9),
+            pytest.approx(240.0, abs=1e-3),
+            pytest.approx(low + 0.04, rel=1e-9),
+            True,
+        ),
+    ]
+    assert sw.time_ratio is None and "S rests at its limits over 2 dwells" in dict(sw.time_ratio_refused)["S"]
+
+
+def test_every_output_with_two_dead_centres_has_a_time_ratio_the_watt_rocker_by_the_cosine_rule():
+    # The Watt six-bar's first loop: crank 30, coupler 110, rocker O4C 70, frame 100 mm.  Its rocker
+    # reverses where crank and coupler are in line (the law of cosines: oracles.four_bar), so its
+    # time ratio is (180 + α)/(180 − α); the output link O6F, driven through the second loop,
+    # reverses four times and has none: bare time_ratio is the rocker's, the one output with two.
+    # (It was refused: "no output with two dead centres", while the rocker has exactly two.)
+    from oracles.four_bar import crank_rocker_limits
+
+    sw = sweep(mech.load(ROOT / "mechanisms" / "watt_six_bar.yaml"), level="velocity")
+    t_ext, t_fold, ratio = crank_rocker_limits(30.0, 110.0, 70.0, 100.0)
+    (rocker,) = sw.time_ratios
+    assert rocker.output == "rocker" and rocker.ratio == pytest.approx(ratio, rel=1e-10)
+    assert math.degrees(rocker.fast) == pytest.approx(360.0 - (t_fold - t_ext), rel=1e-10)
+    assert sw.time_ratio == rocker
+    # the refusal's reason is true: the output reverses four times, counted here on a fine grid of
+    # its angle alone (no dead-centre finding)
+    bare = sweep(
+        mech.load(ROOT / "mechanisms" / "watt_six_bar.yaml"),
+        np.radians(np.linspace(0, 360, 7201)),
+        analyse=False,
+    )
+    step = np.diff(bare.series("angle.output"))
+    turns = int(np.sum(np.sign(step[1:]) * np.sign(step[:-1]) < 0))
+    assert turns == 4 and dict(sw.time_ratio_refused)["output"].startswith("output reverses 4 times")
+
+
+def test_a_full_turn_extreme_at_the_seam_is_written_at_0_not_360():
+    # The crank-rocker's least transmission angle is at crank 0° (crank toward D: cos μ =
+    # (b² + c² − (d − a)²)/(2bc)); refined on the seam it came out 359.9999987°.  0° and 360° are
+    # one crank position, written as 0 (angles in [0°, 360°)).
+    sw = sweep(mech.load(ROOT / "mechanisms" / "watt_six_bar.yaml"), quantities=["included.B.C.O4"])
+    (mu,) = sw.extremes
+    assert math.degrees(mu.min_value) == pytest.approx(math.degrees(math.acos(110 / 140)), rel=1e-9)
+    assert mu.min_angle == 0.0
+
+
+def test_dwell_ends_found_on_a_newton_walk_are_the_programmes_as_on_the_marched_grid(monkeypatch):
+    # Without a marcher the sweep refines on a Newton walk (sweep_backends.Walk), one end after the
+    # other: the same dwells as the marched grid's, from the programme (see the test above).
+    import mech.kinematics.sweep_backends as backends
+
+    monkeypatch.setattr(backends.Marcher, "make", classmethod(lambda cls, backend: None))
+    sw = sweep(mech.loads(OWN_CAM), np.radians(np.linspace(0.0, 360.0, 121)), level="velocity")
+    assert sw.method == "newton" and sw.dead_centres == ()
+    got = sorted((math.degrees(d.start), math.degrees(d.end)) for d in sw.dwells)
+    assert got == [
+        (0.0, pytest.approx(90.0, abs=1e-9)),
+        (pytest.approx(180.0, abs=1e-9), pytest.approx(240.0, abs=1e-3)),
+    ]

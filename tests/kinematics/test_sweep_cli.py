@@ -555,3 +555,18 @@ def test_a_swept_rolling_wheels_point_at_the_ground_accelerates_at_omega_squared
     assert s.series("acceleration.W@wheel") == pytest.approx(w * w * 0.030, rel=1e-9, abs=1e-12)
     assert s.series("acceleration.W@frame") == pytest.approx(np.zeros(w.size), abs=1e-12)
     assert s.series("velocity.W") == pytest.approx(np.zeros(w.size), abs=1e-12)
+
+
+@pytest.mark.parametrize(
+    "name", ["cam_roller_program", "cam_valve_khurmi", "cam_oscillating_roller", "cam_flat_follower"]
+)
+def test_shipped_cam_examples_sweep_one_line_per_dwell_and_no_dead_centre_inside_one(run, name):
+    # Each programme has two dwells (their segments, in the files); a follower at rest over one has
+    # no dead centre inside it (the roller cam listed 92, one at every degree of both dwells).
+    path = str(ROOT / "mechanisms" / f"{name}.yaml")
+    text = run("sweep", path, "--rpm", "100")
+    assert text.exit_code == 0, text.output
+    assert text.output.count("  dwell of ") == 2 and "dead centre" not in text.output
+    d = json.loads(run("sweep", path, "--rpm", "100", "--json").output)
+    assert len(d["dwells"]) == 2 and all(dw["reverses"] for dw in d["dwells"])  # lowest and highest
+    assert d["dead_centres"] == []

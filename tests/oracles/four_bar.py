@@ -152,7 +152,7 @@ def rocker_angle(a: float, b: float, c: float, d: float, th: Any) -> Any:
 
 
 def rocker_swing(a: float, b: float, c: float, d: float, theta0: float) -> float | None:
-    """The rocker's swing (rad) over one turn of the crank, θ from 0 to 2π, or None when it turns.
+    """The rocker's swing (rad) over one turn of the crank, θ from 0 to 2π, or None when it turns (never turns back).
 
     For a crank that turns fully.  C is left of B→D at the drawn angle ``theta0`` and keeps the
     branch with a continuous tangent: it changes side at each change point between θ0 and θ,
@@ -180,10 +180,12 @@ def rocker_swing(a: float, b: float, c: float, d: float, theta0: float) -> float
 
     grid = np.linspace(0.0, 2 * math.pi, 4097)
     v = np.unwrap(psi(grid))
-    # it turns when it comes back a whole turn on; past a change point it need not come back at
-    # all (a change-point four-bar's rocker runs 211° on over one turn, between 35° and 325°:
-    # a swing of 290°, not a turn), so a net run over half a turn is not enough
-    if abs(v[-1] - v[0]) > math.pi and float(np.ptp(v)) >= 2 * math.pi - 1e-9:
+    # it turns when it never turns back: over a whole turn of the crank it then comes back a whole
+    # turn on, or, past a change point, runs on and comes round after a second turn (a change-point
+    # four-bar's rocker running 185° on over one turn); one that turns back swings, between its
+    # least and greatest (another runs 211° on between 35° and 325°: a swing of 290°)
+    step = np.diff(v)
+    if bool(np.all(step >= 0.0)) or bool(np.all(step <= 0.0)):
         return None
     values = [float(v[0]), float(v[-1])]
     for k in range(1, grid.size - 1):

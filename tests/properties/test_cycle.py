@@ -351,3 +351,70 @@ def test_a_crank_driven_by_its_rocker_swings_between_the_toggles_of_the_drawn_ci
     rocker_at = sorted(math.degrees(t.angle) % 360.0 for t in result.sweep.toggles)
     adc = [math.degrees(math.acos((d * d + c * c - ac**2) / (2 * d * c))) for ac in (b + a, b - a)]
     assert rocker_at == pytest.approx(sorted(180.0 - x for x in adc), abs=1e-6)
+
+
+# -- issue 21, items 2 and 4: dwells, strokes, one angle convention ------------------------------
+def test_cam_follower_limit_positions_are_its_dwells_at_lowest_and_highest():
+    # The shipped roller cam: prime circle 40 + 10 = 50 mm, rise 30 mm.  Its follower rests at
+    # 50 mm (bottom dwell) and 80 mm (top dwell): those are its limit positions, one row each, never
+    # a dead centre at every degree of a dwell (there were 92).
+    c = cycle(load("mechanisms/cam_roller_program.yaml"))
+    assert [(lp.value, lp.until is not None) for lp in c.limits] == [
+        (pytest.approx(0.05, rel=1e-12), True),
+        (pytest.approx(0.08, rel=1e-12), True),
+    ]
+    assert c.strokes["S"].value == pytest.approx(0.03, rel=1e-12)
+
+
+COMPOUND_TRAIN = """
+units: {length: mm, angle: deg}
+ground: frame
+links: [frame, gear1, gear23, gear4]
+joints:
+  O1: {type: revolute, links: [frame, gear1], at: [0, 0]}
+  O2: {type: revolute, links: [frame, gear23], at: [200, 0]}
+  O3: {type: revolute, links: [frame, gear4], at: [200, 200]}
+  m12: {type: gear, links: [gear1, gear23], teeth: [20, 60], module: 5}
+  m34: {type: gear, links: [gear23, gear4], teeth: [20, 60], module: 5}
+drive: {link: gear1, angle: 0, rpm: 100, direction: ccw}
+"""
+
+
+def test_compound_gear_train_turning_on_has_no_stroke(run):
+    # 20:60 twice: gear23 turns a third of a turn (120°) and gear4 a ninth (40°) per turn of gear1,
+    # always the same way.  DESIGN § 1.2: a stroke belongs to an output that reverses; these were
+    # given "O2 gear23 120 deg from -120 at crank 0 to 0 at crank 0".
+    c = cycle(loads(COMPOUND_TRAIN))
+    assert c.strokes == {} and set(c.turning) == {"O2", "O3"}
+    out = json.loads(run("properties", "-", "--json", input=COMPOUND_TRAIN).output)
+    assert out["stroke"] == {} and out["turns_fully_at"] == ["O2", "O3"]
+
+
+def test_an_output_angle_reads_the_same_under_limit_positions_and_strokes_in_0_to_360(run, write):
+    # A crank-rocker (AD 150, AB 20, BC 180, CD 60 mm) with its frame turned −60°, so that the
+    # rocker swings across 0°.  Its limits, crank and coupler in line (AC = b ± a), are at D→C =
+    # −60° + 180° − ∠ADC, ∠ADC by the law of cosines (C left of A→D).  The same angles, in
+    # [0°, 360°), under Limit positions and Strokes (Strokes printed 391.59° for 31.592°; the
+    # issue's file, −58.447° for 301.55°).
+    a, b, c, d = 20.0, 180.0, 60.0, 150.0
+    adc = [math.degrees(math.acos((c * c + d * d - ac * ac) / (2 * c * d))) for ac in (b + a, b - a)]
+    expected = sorted((120.0 - x) % 360.0 for x in adc)
+    dx, dy = d * math.cos(math.radians(-60)), d * math.sin(math.radians(-60))
+    text = four_bar_text(d, a, b, c, 0.0).replace(f"at: [{d!r}, 0]", f"at: [{dx!r}, {dy!r}]")
+    out = json.loads(run("properties", str(write(text)), "--json").output)
+    limits = sorted(lp["position"] for lp in out["limit_positions"])
+    s = out["stroke"]["D"]
+    assert limits == pytest.approx(expected, rel=1e-9)
+    assert sorted((s["low"], s["high"])) == pytest.approx(expected, rel=1e-9)
+    assert s["value"] == pytest.approx(adc[0] - adc[1], rel=1e-9)
+
+
+def test_least_transmission_angle_at_the_seam_is_at_crank_0_not_360(run):
+    # Watt's first loop (crank 30, coupler 110, rocker 70, frame 100 mm): μ is least with the crank
+    # toward O4, crank angle 0: cos μ = (b² + c² − (d − a)²)/(2bc) = 110/140.  It read "at crank
+    # 360.0000°".
+    out = run("properties", "mechanisms/watt_six_bar.yaml")
+    mu = math.degrees(math.acos(110 / 140))
+    assert f"least {mu:.4f}° at crank 0.0000°" in out.output and "360.0000" not in out.output
+    t = json.loads(run("properties", "mechanisms/watt_six_bar.yaml", "--json").output)["transmission_angle"]
+    assert t["min_crank_angle"] == 0.0

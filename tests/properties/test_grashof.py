@@ -140,3 +140,39 @@ def test_offset_slider_crank_turns_fully_when_r_plus_e_within_l(run):
     (loop,) = out["loops"]
     assert loop["crank_turns_fully"] is True
     assert abs(loop["offset"]) == pytest.approx(0.02, rel=1e-12)
+
+
+#: Watt's six-bar with a Grashof second loop: O4E = 30 mm is its shortest link, beside the frame, so
+#: that loop alone is a crank-rocker whose "crank" is the first loop's rocker (issue 21, item 4).
+WATT_GRASHOF_SECOND_LOOP = """
+units: {length: mm, angle: deg}
+ground: frame
+links: [frame, crank, coupler, rocker, link5, output]
+joints:
+  O2: {type: revolute, links: [frame, crank], at: [0, 0]}
+  B: {type: revolute, links: [crank, coupler]}
+  C: {type: revolute, links: [coupler, rocker], near: [117, 68]}
+  O4: {type: revolute, links: [rocker, frame], at: [100, 0]}
+  E: {type: revolute, links: [rocker, link5], near: [120, -20]}
+  F: {type: revolute, links: [link5, output], near: [230, 100]}
+  O6: {type: revolute, links: [output, frame], at: [250, 0]}
+lengths: {O2B: 30, BC: 110, O4C: 70, O4E: 30, CE: 80, EF: 150, O6F: 100}
+drive: {link: crank, angle: 60, rpm: 100, direction: ccw}
+"""
+
+
+def test_a_loop_driven_through_another_says_its_rockers_real_swing_beside_the_loops_class(run):
+    # The second loop alone: s + l = 30 + 150 < p + q = 100 + 150, shortest beside the frame: a
+    # crank-rocker whose rocker would turn fully.  In the mechanism the first loop moves it: its
+    # swing is between the first loop's limit positions (crank and coupler in line, |O2C| = 110 ± 30),
+    # the angle at O4 by the law of cosines in triangle O2 O4 C.  It said "turns fully: rocker".
+    import math
+
+    def at_o4(o2c: float) -> float:
+        return math.degrees(math.acos((100.0**2 + 70.0**2 - o2c**2) / (2 * 100.0 * 70.0)))
+
+    swing = at_o4(140.0) - at_o4(80.0)
+    out = run("properties", "-", input=WATT_GRASHOF_SECOND_LOOP).output
+    second = out[out.index("loop frame–rocker–link5–output") :]
+    assert "crank-rocker as a loop alone; turns fully: rocker" in second
+    assert f"in this mechanism: rocker swings {swing:.5g}°" in second

@@ -73,6 +73,7 @@ COMPUTE: dict[str, Compute] = {
     "transmission_angle.min": properties.transmission_angle_min,
     "transmission_angle.max": properties.transmission_angle_max,
     "time_ratio": properties.time_ratio,
+    "time_ratio.<output>": properties.time_ratio,
     "stroke.<joint>": properties.stroke,
     "mechanical_advantage.<out>": properties.mechanical_advantage,
     "input_torque": forces.input_torque,  # with masses, their inertia and weight count (issue 24)

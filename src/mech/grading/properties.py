@@ -83,13 +83,37 @@ def transmission_angle_max(an: Analysis, names: tuple[str, ...]) -> float:
 
 
 def time_ratio(an: Analysis, names: tuple[str, ...]) -> float:
-    """Slow stroke over fast stroke of the output (≥ 1), over a full turn of the crank."""
+    """Slow stroke over fast stroke (≥ 1) of the mechanism's one output with two dead centres.
+
+    ``time_ratio.<output>`` names the output (a link, or a slider's joint; a slider's own link
+    stands for its joint); bare ``time_ratio`` is refused with the candidates named when
+    several outputs have different ones (DESIGN § 1.2).  Every refusal says what is true of
+    this mechanism's turn (:func:`mech.kinematics.sweep_rest.find_time_ratios`).
+    """
     c = _cycle(an)
-    if c.time_ratio is None:
-        raise Undefined(
-            "cannot be computed: no output with two dead centres over a full, gap-free turn of the crank"
-        )
-    return float(c.time_ratio)
+    output = _output(an, c, names[0]) if names else None
+    got = c.sweep.time_ratio_of(output)
+    if isinstance(got, str):
+        raise Undefined(f"cannot be computed: {got}")
+    return float(got.ratio)
+
+
+def _output(an: Analysis, c: Any, name: str) -> str:
+    """The output a key names: a link, a slider's joint, or a slider's own link (its one joint)."""
+    sw = c.sweep
+    known = {r.output for r in sw.time_ratios} | {n for n, _w in sw.time_ratio_refused if n}
+    if name in known:
+        return name
+    carried = [j.name for j in an.mech.joints if j.name in known and name in j.links]
+    if any(lk.name == name for lk in an.mech.links) and len(carried) == 1 and carried[0] in sw.slides:
+        return carried[0]
+    drive = next((d.link for d in an.mech.drives if d.link is not None), None)
+    if name == drive:
+        raise Undefined(f"cannot be computed: {name} is the driven link, not an output")
+    raise Undefined(
+        f"cannot be computed: {name} is not an output whose dead centres a sweep finds "
+        f"(a link pivoted on the frame or a slider on it: {', '.join(sorted(known)) or 'none here'})"
+    )
 
 
 def stroke(an: Analysis, names: tuple[str, ...]) -> float:
@@ -99,7 +123,10 @@ def stroke(an: Analysis, names: tuple[str, ...]) -> float:
     if joint in c.strokes:
         return float(c.strokes[joint].value)
     if joint in c.turning:
-        raise Undefined(f"cannot be computed: the link at {joint} turns right round (no swing)")
+        raise Undefined(
+            f"cannot be computed: the output at {joint} never reverses over the turn "
+            "(it turns right round, or turns on as a gear): no stroke"
+        )
     raise Undefined(
         f"cannot be computed: {joint} is neither a prismatic joint nor a revolute joint on the frame "
         "carrying a link other than the crank"

@@ -82,6 +82,7 @@ from mech.kinematics.quantities import (
     quantity_unit,
 )
 from mech.kinematics.result import Kinematics
+from mech.kinematics.runs import unwrap_runs
 from mech.kinematics.solve import SINGULAR, Compiled, compiled, instant_pairs, refuse_underdriven, solve
 from mech.kinematics.sweep_backends import Closed, Newton, law_series, newton_series, seam_shifts
 from mech.kinematics.sweep_events import (
@@ -90,8 +91,7 @@ from mech.kinematics.sweep_events import (
     find_dead_centres,
     find_extremes,
     find_gaps,
-    find_time_ratio,
-    runs,
+    outputs_of,
     unbounded_notes,
 )
 from mech.kinematics.sweep_grid import (
@@ -101,7 +101,9 @@ from mech.kinematics.sweep_grid import (
     check_position_precision,
     check_precision,
 )
-from mech.kinematics.sweep_result import DriveLaw, Event, Extreme, Gap, Sweep, TimeRatio, frozen
+from mech.kinematics.sweep_jumps import jump_notes, with_jumps
+from mech.kinematics.sweep_rest import find_dwells, find_time_ratios
+from mech.kinematics.sweep_result import DriveLaw, Dwell, Event, Extreme, Gap, Sweep, TimeRatio, frozen
 from mech.model import Mechanism
 from mech.options import SolveOptions
 from mech.units import to_unit
@@ -243,6 +245,9 @@ class _Found:
     extremes: tuple[Extreme, ...] = ()
     ratio: TimeRatio | None = None
     changes: tuple[Event, ...] = ()
+    dwells: tuple[Dwell, ...] = ()
+    ratios: tuple[TimeRatio, ...] = ()
+    refused: tuple[tuple[str, str], ...] = ()
 
 
 def _checked_level(level: str, options: SolveOptions) -> int:
@@ -363,7 +368,7 @@ def _masked(
     for key in ("velocities", "omegas", "sliding", "accelerations", "alphas"):
         if key in data:
             data[key] = np.where(_expand(ok & ~singular, data[key]), data[key], np.nan)
-    data["link_angles"] = _unwrap(data["link_angles"], ok, phi)
+    data["link_angles"] = unwrap_runs(data["link_angles"], ok, phi)
     return ok, cond, singular
 
 
@@ -397,12 +402,15 @@ def _find(
             f"change point at {_at_text(plan, e.angle)}: {e.subject}; continued on the branch with a "
             "continuous tangent"
         )
-    dead, outputs = find_dead_centres(backend, plan.comp, fine, data, ok, names)
+    dwells, rest = find_dwells(backend, fine, data, ok, names, outputs_of(plan.comp, names))
+    dead, outputs = find_dead_centres(backend, plan.comp, fine, data, ok, names, rest)
     # an extreme of a position may lie at a toggle or change point, where refinement cannot look
     extremes = find_extremes(backend, fine, data, ok & ~singular, names, keys, toggles + changes, ok)
+    extremes = with_jumps(backend, names, extremes, fine)  # a cam law's acceleration at a segment end
     plan.notes.extend(unbounded_notes(extremes, lambda a: _at_text(plan, a)))  # rates ∞ at a toggle
-    ratio = find_time_ratio(fine, ok, dead, outputs) if plan.lead is None else None
-    return _Found(gaps, toggles, dead, extremes, ratio, changes)
+    plan.notes.extend(jump_notes(extremes, lambda a: _at_text(plan, a)))  # a law's segment ends
+    ratio, ratios, refused = find_time_ratios(fine, ok, dead, dwells, outputs, plan.lead is None)
+    return _Found(gaps, toggles, dead, extremes, ratio, changes, dwells, ratios, refused)
 
 
 def _at_text(plan: _Plan, value: float) -> str:
@@ -424,10 +432,11 @@ def _closing_notes(plan: _Plan, ok: np.ndarray, singular: np.ndarray, found: _Fo
     )
     if circuits:
         notes.append(circuits)
-    if ratio is not None and abs(ratio.ratio - 1.0) > 1e-9:
-        notes.append(
-            f"quick return: {ratio.output} strokes take {math.degrees(ratio.slow):.4f}° and {math.degrees(ratio.fast):.4f}° of crank (ratio {ratio.ratio:.6g})"
-        )
+    for r in [ratio] if ratio is not None else found.ratios:  # the bare one, else each output's
+        if abs(r.ratio - 1.0) > 1e-9:
+            notes.append(
+                f"quick return: {r.output} strokes take {math.degrees(r.slow):.4f}° and {math.degrees(r.fast):.4f}° of crank (ratio {r.ratio:.6g})"
+            )
 
 
 def _singular_note(plan: _Plan, ok: np.ndarray, singular: np.ndarray, found: _Found) -> None:
@@ -482,32 +491,14 @@ def _result(
         notes=tuple(plan.notes),
         parameter=plan.parameter,
         drives=plan.laws,
+        dwells=found.dwells,
+        time_ratios=found.ratios,
+        time_ratio_refused=found.refused,
     )
 
 
 def _expand(mask: np.ndarray, arr: np.ndarray) -> np.ndarray:
     return mask.reshape(mask.shape + (1,) * (arr.ndim - mask.ndim))
-
-
-def _unwrap(a: np.ndarray, ok: np.ndarray, phi: np.ndarray | None = None) -> np.ndarray:
-    """Link angles continuous along each assembled run (no 2π jumps), first value in [0, 2π).
-
-    Over a full turn of a crank (``phi``) whose first and last steps are assembled, the first
-    and last runs are one stretch of the motion, through 360° ≡ 0° (the two-crank five-bar:
-    169.5°–360° then 0°–123.6°): the first run continues the last, so that angles on either
-    side of a gap are on one turn.
-    """
-    out = a.copy()
-    spans = runs(ok)
-    for start, end in spans:
-        run = np.unwrap(out[start:end], axis=0)
-        run -= np.floor(run[0] / _TWO_PI) * _TWO_PI
-        out[start:end] = run
-    full = phi is not None and phi.size > 2 and abs(abs(float(phi[-1] - phi[0])) - _TWO_PI) < 1e-9
-    if full and len(spans) > 1 and spans[0][0] == 0 and spans[-1][1] == ok.size:
-        (s0, e0), last = spans[0], out[spans[-1][1] - 1]
-        out[s0:e0] += _TWO_PI * np.round((last - out[s0]) / _TWO_PI)
-    return out
 
 
 def _drive_omega(mech: Mechanism, options: SolveOptions) -> float | None:

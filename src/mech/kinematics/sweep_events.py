@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable, Collection, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -19,9 +19,10 @@ import numpy as np
 from mech.kinematics.dyads import ACCURATE_COND, change_points, closing_edge
 from mech.kinematics.quantities import pick, quantity_unit
 from mech.kinematics.roots import brent, illinois, zoom
+from mech.kinematics.runs import runs
 from mech.kinematics.solve import Compiled
 from mech.kinematics.sweep_backends import Closed, Walk
-from mech.kinematics.sweep_result import Event, Extreme, Gap, TimeRatio
+from mech.kinematics.sweep_result import Event, Extreme, Gap
 from mech.pairs import kind_of
 
 __all__ = [
@@ -30,18 +31,12 @@ __all__ = [
     "find_dead_centres",
     "find_extremes",
     "find_gaps",
-    "find_time_ratio",
-    "runs",
+    "outputs_of",
+    "refiner",
     "unbounded_notes",
 ]
 
 _TWO_PI = 2.0 * math.pi
-
-
-def runs(mask: np.ndarray) -> list[tuple[int, int]]:
-    """Index ranges [i, j) where ``mask`` is True."""
-    edges = np.flatnonzero(np.diff(np.concatenate(([0], mask.astype(np.int8), [0]))))
-    return [(int(i), int(j)) for i, j in zip(edges[0::2], edges[1::2], strict=True)]
 
 
 def circuits_note(phi: np.ndarray, ok: np.ndarray, drawn: float | None) -> str | None:
@@ -252,11 +247,13 @@ def _edge(backend: Closed, good: float, bad: float) -> float:
     return closing_edge(backend.prog, float(good), float(bad))
 
 
-def _outputs(
-    comp: Compiled, names: dict[str, tuple[str, ...]], driven: Collection[str]
-) -> list[tuple[str, str]]:
-    """Candidate outputs for dead centres: sliders on the frame, then links pivoted on the frame (not driven)."""
+def outputs_of(comp: Compiled, names: dict[str, tuple[str, ...]]) -> list[tuple[str, str]]:
+    """Candidate outputs for dead centres: sliders on the frame, then links pivoted on the frame (not driven).
+
+    Each is (``"slide"``, joint) or (``"link"``, link).
+    """
     lay, mech = comp.layout, comp.mech
+    driven = {d.link or d.joint or "" for d in lay.drives}
     out: list[tuple[str, str]] = []
     for ps in lay.paths:
         if ps.guide == mech.ground and ps.joint not in driven:
@@ -271,7 +268,7 @@ def _outputs(
     return out
 
 
-def _refiner(
+def refiner(
     backend: Any,
     names: dict[str, tuple[str, ...]],
     keys: Sequence[str],
@@ -334,14 +331,16 @@ def find_dead_centres(
     data: dict[str, np.ndarray],
     ok: np.ndarray,
     names: dict[str, tuple[str, ...]],
+    rest: Mapping[str, np.ndarray] | None = None,
 ) -> tuple[tuple[Event, ...], list[tuple[str, str]]]:
     """Where each output reverses: the sign change of its speed, root-found to rounding.
 
     Closed form: a bracket zoom on the speed.  Newton: regula falsi (Illinois)
-    with a solve per iterate.
+    with a solve per iterate.  ``rest`` marks each output's steps inside a dwell
+    (:func:`~.sweep_rest.find_dwells`): at rest there, it reverses at none of them.
     """
-    driven = {d.link or d.joint or "" for d in comp.layout.drives}
-    outputs = _outputs(comp, names, driven)
+    outputs = outputs_of(comp, names)
+    rest = rest or {}
     brackets: list[tuple[str, str, float, float, float, float]] = []  # name, key, lo, hi, v_lo, v_hi
     for kind, name in outputs:
         key = f"sliding.{name}" if kind == "slide" else f"omega.{name}"
@@ -349,7 +348,8 @@ def find_dead_centres(
         finite = v[np.isfinite(v)]
         tiny = 1e-12 * (float(np.max(np.abs(finite))) if finite.size else 1.0)
         sgn = np.where(np.abs(v) <= tiny, 0.0, np.sign(v))
-        for s, e in runs(ok & np.isfinite(v)):
+        resting = rest.get(name, np.zeros(v.shape, bool))
+        for s, e in runs(ok & np.isfinite(v) & ~resting):
             for k in range(s, e):
                 if sgn[k] == 0.0:  # on a grid angle: refine only if the neighbours bracket it
                     if s < k < e - 1 and sgn[k - 1] * sgn[k + 1] < 0:
@@ -365,8 +365,8 @@ def find_dead_centres(
     keys = [b[1] for b in brackets]
     pos_keys = [f"displacement.{b[0]}" if b[1].startswith("sliding") else f"angle.{b[0]}" for b in brackets]
     if backend.vectorised:
-        roots, _ = zoom(_refiner(backend, names, keys, np.full(len(keys), np.nan)), lo, hi, "root")
-        at = _refiner(backend, names, pos_keys, np.full(len(keys), np.nan))(roots[:, None])[:, 0]
+        roots, _ = zoom(refiner(backend, names, keys, np.full(len(keys), np.nan)), lo, hi, "root")
+        at = refiner(backend, names, pos_keys, np.full(len(keys), np.nan))(roots[:, None])[:, 0]
     else:  # one bracket at a time along a warm-started walk, on the sweep's branch
         roots, at = np.empty(len(brackets)), np.empty(len(brackets))
         walk = Walk(backend, phi[0])
@@ -484,7 +484,7 @@ def find_extremes(
     ang, val = np.full(len(rows), np.nan), np.full(len(rows), np.nan)
     if rows and backend.vectorised:
         # minima are maxima of −v: one zoom refines every extreme of every quantity at once
-        inner = _refiner(backend, names, [r[0] for r in rows], np.array([r[5] for r in rows]), regular=True)
+        inner = refiner(backend, names, [r[0] for r in rows], np.array([r[5] for r in rows]), regular=True)
         ang, val = zoom(
             lambda g: sign[:, None] * inner(g),
             np.array([r[3] for r in rows]),
@@ -551,7 +551,7 @@ def _at_events(
     if backend.vectorised:
         at = np.array([e.angle for _key, e in rows])
         grid = at[:, None] + nudges[None, :] * np.maximum(1.0, np.abs(at))[:, None]
-        tries = _refiner(backend, names, [key for key, _e in rows], refs)(grid)
+        tries = refiner(backend, names, [key for key, _e in rows], refs)(grid)
         vals = tries[np.arange(len(rows)), np.argmax(np.isfinite(tries), axis=1)]
     else:
         walk = Walk(backend, phi[0])
@@ -607,7 +607,7 @@ def _unbounded(
     scale = np.maximum(1.0, np.abs(at))
     steps = np.array([-TOWARD[0], -TOWARD[1], TOWARD[0], TOWARD[1]])
     grid = at[:, None] + steps[None, :] * scale[:, None]
-    vals = _refiner(backend, names, [key for key, _t in rows], np.full(len(rows), np.nan), regular=True)(grid)
+    vals = refiner(backend, names, [key for key, _t in rows], np.full(len(rows), np.nan), regular=True)(grid)
     for (key, t), (far_l, near_l, far_r, near_r) in zip(rows, vals, strict=True):
         for far, near in ((far_l, near_l), (far_r, near_r)):
             if not (math.isfinite(far) and math.isfinite(near)) or abs(near) <= 2.0 * abs(far):
@@ -646,13 +646,22 @@ def _extent(data: dict[str, np.ndarray], ok: np.ndarray) -> float:
 
 
 def _into(a: float, phi: np.ndarray) -> float:
-    """An angle of a full-cycle sweep brought into the swept range."""
+    """An angle of a full-cycle sweep brought into the swept range, the seam's own as its start.
+
+    A flat extreme at 0° is refined to about 1e-8 rad, as often just below 360°: within
+    :data:`SEAM` of the range's top it is the same crank position as its bottom, and is
+    written there (0°, not 359.9999987°: angles in [0°, 360°)).
+    """
     lo, hi = min(phi[0], phi[-1]), max(phi[0], phi[-1])
     while a < lo:
         a += _TWO_PI
     while a > hi:
         a -= _TWO_PI
-    return a
+    return lo if hi - a < SEAM else a
+
+
+#: How near (rad) the top of a full turn a periodic quantity's extreme is the seam's (its start).
+SEAM = 1e-6
 
 
 def _probe(walk: Walk, names: dict[str, tuple[str, ...]], key: str, ref: float) -> Callable[[float], float]:
@@ -668,22 +677,3 @@ def _probe(walk: Walk, names: dict[str, tuple[str, ...]], key: str, ref: float) 
         return v
 
     return fn
-
-
-def find_time_ratio(
-    phi: np.ndarray, ok: np.ndarray, dead: tuple[Event, ...], outputs: list[tuple[str, str]]
-) -> TimeRatio | None:
-    """Slow/fast stroke of the primary output over one full, gap-free revolution."""
-    if phi.size < 3 or not np.all(ok) or abs(phi[-1] - phi[0]) < _TWO_PI - 1e-9:
-        return None
-    order = [name for kind, name in outputs if kind == "slide"][-1:] or [name for kind, name in outputs][-1:]
-    if not order:
-        return None
-    out = order[0]
-    start = min(phi[0], phi[-1])
-    angles = sorted({round((e.angle - start) % _TWO_PI, 12) for e in dead if e.subject == out})
-    if len(angles) != 2:
-        return None
-    arc = angles[1] - angles[0]
-    slow, fast = max(arc, _TWO_PI - arc), min(arc, _TWO_PI - arc)
-    return TimeRatio(out, slow, fast) if fast > 0 else None

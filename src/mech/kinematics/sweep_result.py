@@ -9,7 +9,7 @@ import numpy as np
 from mech._records import dataclass
 from mech.kinematics.quantities import LEVELS, check_quantity, pick
 
-__all__ = ["DriveLaw", "Event", "Extreme", "Gap", "Sweep", "TimeRatio", "frozen"]
+__all__ = ["DriveLaw", "Dwell", "Event", "Extreme", "Gap", "Sweep", "TimeRatio", "frozen"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -51,6 +51,23 @@ class Event:
 
 
 @dataclass(frozen=True, slots=True)
+class Dwell:
+    """An output at rest over drive angles ``start``–``end`` (rad): one dwell, not dead centres.
+
+    Over a full turn a dwell across the seam has ``start`` > ``end`` (from 300° on to 60°).
+    ``value`` is where the output rests (a slider's displacement, m, or a link's angle, rad,
+    in [0, 2π)); ``reverses`` says the output comes back the way it went: the dwell is then a
+    limit position (a cam follower's dwell at its top or bottom), else a pause on the way.
+    """
+
+    subject: str
+    start: float
+    end: float
+    value: float
+    reverses: bool
+
+
+@dataclass(frozen=True, slots=True)
 class Extreme:
     """Largest and smallest value of one quantity over the sweep, with the drive angles (rad)."""
 
@@ -60,6 +77,11 @@ class Extreme:
     max_value: float
     min_angle: float
     min_value: float
+    #: Where the largest (least) value is reached at a jump, not at the top of a smooth curve: the
+    #: values just before and just after the angle, in the sweep's direction (a cam's acceleration
+    #: where one segment of its law gives way to the next); None where it is an extreme.
+    max_jump: tuple[float, float] | None = None
+    min_jump: tuple[float, float] | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -131,7 +153,15 @@ class Sweep:
     condition
         (N,) the largest dyad condition number at each step (Newton: of Φ_q).
     gaps, toggles, dead_centres, extremes, time_ratio, notes
-        What the sweep found (see the classes).
+        What the sweep found (see the classes).  ``time_ratio`` is the bare one: the
+        mechanism's one output with a time ratio (or several with the same one), else None.
+    dwells
+        Where an output rests over an interval (:class:`Dwell`); no dead centre lies inside one.
+    time_ratios
+        The time ratio of every output with two dead centres over a full, gap-free turn.
+    time_ratio_refused
+        (output, why) for every output without a time ratio, and ("", why) when the bare
+        ``time_ratio`` is refused: reasons true of this sweep.
     change_points
         Change points passed (``kind="change point"``): a dyad's two positions
         meet and part again with the loop closed on both sides; the sweep
@@ -174,6 +204,19 @@ class Sweep:
     notes: tuple[str, ...]
     parameter: str = "angle"
     drives: tuple[DriveLaw, ...] = ()
+    dwells: tuple[Dwell, ...] = ()
+    time_ratios: tuple[TimeRatio, ...] = ()
+    time_ratio_refused: tuple[tuple[str, str], ...] = ()
+
+    def time_ratio_of(self, output: str | None = None) -> TimeRatio | str:
+        """The time ratio of ``output`` (None: the bare one), or why there is none."""
+        if output is None and self.time_ratio is not None:
+            return self.time_ratio
+        for tr in self.time_ratios:
+            if output is not None and tr.output == output:
+                return tr
+        why = dict(self.time_ratio_refused).get(output or "")
+        return why or f"{output} is not an output whose dead centres a sweep finds"
 
     def series(self, quantity: str) -> np.ndarray:
         """The (N,) values of one quantity (see :func:`quantity_unit` for the keys)."""

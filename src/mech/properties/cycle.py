@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
+from dataclasses import field
 from typing import TYPE_CHECKING
 
 from mech._records import dataclass
@@ -133,15 +134,18 @@ def transmission_angle(mech: Mechanism, kin: Kinematics) -> tuple[Transmission, 
 
 @dataclass(frozen=True, slots=True)
 class LimitPosition:
-    """A dead centre of an output: the drive angle (rad) and the output's position there.
+    """A dead centre of an output, or a dwell it comes back from: the drive angle (rad) and its position.
 
     ``value`` is a slider's displacement along its path (m) or a link's angle (rad).
+    ``until`` is the drive angle where a dwell ends (rad; the output rests from
+    ``crank_angle`` to it), None for a dead centre.
     """
 
     output: str
     crank_angle: float
     value: float
     unit: str
+    until: float | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -173,8 +177,11 @@ class Cycle:
     ``transmission`` is None when the mechanism has no four-bar loop with the
     driven crank; ``mu_min``/``mu_max`` (rad) with the drive angles
     ``mu_min_angle``/``mu_max_angle`` (rad) where they occur.  ``strokes`` are
-    keyed by joint name; ``turning`` lists joints whose link turns right round
-    (no swing).  ``time_ratio`` is slow over fast stroke (≥ 1) of ``time_ratio_output``.
+    keyed by joint name; ``turning`` lists joints whose output never reverses over a
+    full turn (a link that turns right round, a gear turning on: no stroke, DESIGN § 1.2).
+    ``time_ratio`` is slow over fast stroke (≥ 1) of ``time_ratio_output`` (the bare
+    one); ``time_ratios`` every output's, by name; ``time_ratio_why`` why each output
+    without one ("" for the bare one) has none.
     """
 
     sweep: Sweep
@@ -189,6 +196,8 @@ class Cycle:
     time_ratio: float | None
     time_ratio_output: str | None
     gaps: tuple[tuple[float, float], ...]
+    time_ratios: Mapping[str, float] = field(default_factory=dict)
+    time_ratio_why: Mapping[str, str] = field(default_factory=dict)
 
 
 def _stroke_subjects(mech: Mechanism) -> list[tuple[str, str, str]]:
@@ -254,6 +263,9 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
     turning: list[str] = []
     for (joint, kind, subject), key in zip(subjects, slides_and_links, strict=True):
         e = ext.get(key)
+        if e is not None and _turns_on(sw, subject):
+            turning.append(joint)
+            continue
         if e is None:
             series = sw.series(key)
             ok = np.isfinite(series)
@@ -274,15 +286,7 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
             e.max_value,
             e.max_angle,
         )
-    limits = tuple(
-        LimitPosition(
-            e.subject,
-            e.angle,
-            float(e.value) if e.value is not None else math.nan,
-            "m" if e.subject in sw.slides else "rad",
-        )
-        for e in sw.dead_centres
-    )
+    limits = _limits(sw)
     return Cycle(
         sweep=sw,
         transmission=trans,
@@ -296,6 +300,47 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
         time_ratio=sw.time_ratio.ratio if sw.time_ratio else None,
         time_ratio_output=sw.time_ratio.output if sw.time_ratio else None,
         gaps=tuple((g.start, g.end) for g in sw.gaps),
+        time_ratios={r.output: r.ratio for r in sw.time_ratios},
+        time_ratio_why=dict(sw.time_ratio_refused),
+    )
+
+
+def _limits(sw: Sweep) -> tuple[LimitPosition, ...]:
+    """The outputs' dead centres and the dwells they come back from, by crank angle."""
+    limits = tuple(
+        LimitPosition(
+            e.subject,
+            e.angle,
+            float(e.value) if e.value is not None else math.nan,
+            "m" if e.subject in sw.slides else "rad",
+        )
+        for e in sw.dead_centres
+    ) + tuple(  # a follower's dwell at its lowest or highest is its limit position
+        LimitPosition(d.subject, d.start, d.value, "m" if d.subject in sw.slides else "rad", d.end)
+        for d in sw.dwells
+        if d.reverses
+    )
+    return tuple(sorted(limits, key=lambda lp: lp.crank_angle))
+
+
+def _turns_on(sw: Sweep, subject: str) -> bool:
+    """An output that never reverses over a full, gap-free turn of the crank: a gear turning on.
+
+    It has no dead centre and no dwell it comes back from; its range over the turn (a 3:1
+    gear's 120°) is no stroke (DESIGN § 1.2: a stroke belongs to an output that reverses).
+    Only the outputs whose dead centres the sweep finds are judged (a slider or a link on the
+    frame); a block on a moving guide keeps its travel.
+    """
+    import numpy as np
+
+    full = sw.angles.size > 2 and abs(abs(float(sw.angles[-1] - sw.angles[0])) - 2.0 * math.pi) < 1e-9
+    if not full or not bool(np.all(sw.assembled)):
+        return False
+    outputs = {name for name, _why in sw.time_ratio_refused} | {r.output for r in sw.time_ratios}
+    if subject not in outputs:
+        return False
+    return not any(e.subject == subject for e in sw.dead_centres) and not any(
+        d.subject == subject and d.reverses for d in sw.dwells
     )
 
 
@@ -307,7 +352,12 @@ def _cycle_sweep(
     quantities: list[str],
     outputs: list[str],
 ) -> Sweep:
-    """The sweep the properties are read on: a turn of the crank, the drawn circuit's part of it, or two turns."""
+    """The sweep the properties are read on: a turn of the crank, or the drawn circuit's part of it.
+
+    Over one turn of the crank, as the notes read a linkage: past a change point the loop need
+    not come back where it started (a change-point four-bar's rocker runs 211° on over a turn and
+    comes back after two); its swing is then what it covers over that turn.
+    """
     import numpy as np
 
     from mech.kinematics import sweep
@@ -322,27 +372,7 @@ def _cycle_sweep(
     window = _drawn_circuit(sw.angles, sw.assembled, drawn) if sw.gaps else None
     if window is not None:  # the turn met other circuits: read the drawn one's alone
         return over(np.linspace(window[0], window[1], steps + 1))
-    if sw.change_points and not _comes_back(sw, outputs):
-        # past a change point the loop may come back only after a second turn of the crank (a
-        # change-point four-bar's rocker): its swing, or its turning, is read over that period
-        return over(np.linspace(0.0, 4.0 * math.pi, 2 * steps + 1))
     return sw
-
-
-def _comes_back(sw: Sweep, quantities: Sequence[str]) -> bool:
-    """Each output is where it started after the turn (angles modulo a turn, to 1e-9 of one)."""
-    import numpy as np
-
-    for key in quantities:
-        v = sw.series(key)
-        if v.size < 2 or not (np.isfinite(v[0]) and np.isfinite(v[-1])):
-            continue
-        gap = float(v[-1] - v[0])
-        if key.startswith("angle."):
-            gap = math.remainder(gap, 2.0 * math.pi)  # rad: a link back where it was, turns apart
-        if abs(gap) > 1e-9 * max(1.0, float(np.nanmax(np.abs(v)))):
-            return False
-    return True
 
 
 def _drawn_circuit(angles: np.ndarray, ok: np.ndarray, drawn: float | None) -> tuple[float, float] | None:

@@ -6,6 +6,7 @@ No rich at import: the table functions import it inside.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 from mech.units import to_unit
@@ -58,8 +59,16 @@ def loop_dict(loop: FourBarLoop | SliderCrankLoop) -> dict[str, Any]:
     }
 
 
-def loop_lines(loop: FourBarLoop | SliderCrankLoop, unit: str) -> list[str]:
-    """Grashof's criterion worked for one loop, as a student writes it (lengths in ``unit``)."""
+def loop_lines(
+    loop: FourBarLoop | SliderCrankLoop, unit: str, motion: Mapping[str, str] | None = None
+) -> list[str]:
+    """Grashof's criterion worked for one loop, as a student writes it (lengths in ``unit``).
+
+    ``motion`` (``mech properties``): what each link on the frame does in the whole mechanism
+    over the crank's turn ("turns fully", "swings 69.09°"), written beside what the loop alone
+    would do: a loop driven through another one (a Watt six-bar's second loop) is a
+    crank-rocker alone, while its "crank" only swings as far as the first loop moves it.
+    """
     from mech.topology.grashof import FourBarLoop
 
     if isinstance(loop, FourBarLoop):
@@ -78,13 +87,17 @@ def loop_lines(loop: FourBarLoop | SliderCrankLoop, unit: str) -> list[str]:
                 f"Grashof (no fixed link in this loop; {loop.shortest} turns fully relative to the others)"
             )
         else:
-            verdict = loop.kind
+            verdict = loop.kind + (" as a loop alone" if motion is not None else "")
             if loop.kind != "non-grashof":
                 turning = ", ".join(loop.turns_fully) or "none"
                 verdict += f"; turns fully: {turning}"
             else:
                 verdict += " (triple rocker): no link turns fully"
-        return [f"Grashof, loop {ring} ({' '.join(loop.joints)}): {worked} ({names})", f"  {verdict}"]
+        lines = [f"Grashof, loop {ring} ({' '.join(loop.joints)}): {worked} ({names})", f"  {verdict}"]
+        done = [f"{lk} {motion[lk]}" for lk in loop.links if motion is not None and lk in motion]
+        if done:
+            lines.append(f"  in this mechanism: {'; '.join(done)}")
+        return lines
     ring = "–".join(loop.links)
     lines = [f"slider-crank loop {ring}: slider {loop.slider} on guide {loop.guide}, crank {loop.crank}"]
     if loop.inversion:
@@ -109,8 +122,41 @@ def _deg(rad: float | None) -> float | None:
     return None if rad is None else math.degrees(rad)
 
 
+#: A crank angle within this (deg) below 360° is 0°: the seam's extremes are refined to about 1e-6°.
+SEAM_DEG = 1e-5
+
+
 def _crank_deg(rad: float) -> float:
-    return math.degrees(rad) % 360.0
+    """A drive angle in [0°, 360°): one convention for every crank angle and output angle shown."""
+    d = math.degrees(rad) % 360.0
+    return 0.0 if d >= 360.0 - SEAM_DEG else d
+
+
+def _deg_text(deg: float) -> str:
+    """A crank angle in [0°, 360°) to 4 decimals: one just below 360° rounds to 0.0000, not 360.0000."""
+    text = f"{deg:.4f}"
+    return "0.0000" if text == "360.0000" else text
+
+
+def motion_of(props: LinkageProperties) -> dict[str, str] | None:
+    """What each link on the frame does over the crank's turn in the whole mechanism (None: not swept)."""
+    c = props.cycle
+    if c is None:
+        return None
+    out: dict[str, str] = {}
+    drive = props.kin.drives[0].link if props.kin.drives else None
+    if drive and not c.gaps:
+        out[drive] = "turns fully (driven)"
+    for s in c.strokes.values():
+        if s.unit == "rad":
+            out[s.subject] = f"swings {math.degrees(s.value):.5g}°"
+    for loop in props.loops:
+        joints, links = getattr(loop, "joints", ()), getattr(loop, "links", ())
+        for i, j in enumerate(joints):
+            if j in c.turning and len(links) == len(joints):
+                pair = (links[i], links[(i + 1) % len(links)])
+                out.update({lk: "turns fully" for lk in pair if lk != getattr(loop, "frame", None)})
+    return out
 
 
 def properties_dict(
@@ -161,29 +207,45 @@ def _cycle_dict(c: Cycle, length: str) -> dict[str, Any]:
     def value(v: float, unit: str) -> float:
         return to_unit(v, length) if unit == "m" else math.degrees(v)
 
+    def place(v: float, unit: str) -> float:  # an output's angle in [0°, 360°), as in every table
+        return to_unit(v, length) if unit == "m" else _crank_deg(v)
+
     return {
         "stroke": {
             j: {
                 "subject": s.subject,
                 "value": value(s.value, s.unit),
                 "unit": length if s.unit == "m" else "deg",
-                "low": value(s.low, s.unit),
+                "low": place(s.low, s.unit),
                 "low_crank_angle": _crank_deg(s.low_angle),
-                "high": value(s.high, s.unit),
+                "high": place(s.high, s.unit),
                 "high_crank_angle": _crank_deg(s.high_angle),
             }
             for j, s in c.strokes.items()
         },
         "time_ratio": c.time_ratio,
         "time_ratio_output": c.time_ratio_output,
+        "time_ratios": dict(c.time_ratios),
+        "time_ratio_refused": dict(c.time_ratio_why),
         "limit_positions": [
             {
                 "output": lp.output,
                 "crank_angle": _crank_deg(lp.crank_angle),
-                "position": to_unit(lp.value, length) if lp.unit == "m" else math.degrees(lp.value) % 360.0,
+                "position": place(lp.value, lp.unit),
                 "unit": length if lp.unit == "m" else "deg",
+                "dwell_to_crank_angle": None if lp.until is None else _crank_deg(lp.until),
             }
             for lp in c.limits
+        ],
+        "dwells": [
+            {
+                "output": d.subject,
+                "from_crank_angle": _crank_deg(d.start),
+                "to_crank_angle": _crank_deg(d.end),
+                "position": place(d.value, "m" if d.subject in c.sweep.slides else "rad"),
+                "reverses": d.reverses,
+            }
+            for d in c.sweep.dwells
         ],
         "turns_fully_at": list(c.turning),
     }
@@ -230,7 +292,7 @@ def properties_table(props: LinkageProperties, console: ReportConsole, *, units:
     d = properties_dict(props, units=units)
     console.print(Text(props.mechanism, style="bold"))
     for loop in props.loops:
-        for line in loop_lines(loop, units.length):
+        for line in loop_lines(loop, units.length, motion_of(props)):
             console.print(Text("  " + line), soft_wrap=True)
     if not props.loops:
         console.print("  no four-bar or slider-crank loop")
@@ -260,8 +322,17 @@ def properties_table(props: LinkageProperties, console: ReportConsole, *, units:
         for col, just in (("output", "left"), ("crank angle (deg)", "right"), ("position", "right")):
             table.add_column(col, justify=just)  # type: ignore[arg-type]
         for lp in d["limit_positions"]:
-            table.add_row(lp["output"], f"{lp['crank_angle']:.4f}", f"{lp['position']:.5g} {lp['unit']}")
+            crank = _deg_text(lp["crank_angle"])
+            if lp["dwell_to_crank_angle"] is not None:
+                crank = f"dwell from {crank} to {_deg_text(lp['dwell_to_crank_angle'])}"
+            table.add_row(lp["output"], crank, f"{lp['position']:.5g} {lp['unit']}")
         console.print(table)
+    for dw in d["dwells"]:
+        if not dw["reverses"]:  # a pause on the way (a limit position's dwell is in the table)
+            console.print(
+                f"  dwell of {dw['output']} from {_deg_text(dw['from_crank_angle'])}° to "
+                f"{_deg_text(dw['to_crank_angle'])}° of crank"
+            )
     if d["stroke"]:
         table = Table(box=table_box(console), title="Strokes (stroke.<joint>)")
         for col in ("joint", "of", "stroke", "from", "at crank (deg)", "to", "at crank (deg)"):
@@ -272,13 +343,17 @@ def properties_table(props: LinkageProperties, console: ReportConsole, *, units:
                 s["subject"],
                 f"{s['value']:.5g} {s['unit']}",
                 f"{s['low']:.5g}",
-                f"{s['low_crank_angle']:.4f}",
+                _deg_text(s["low_crank_angle"]),
                 f"{s['high']:.5g}",
-                f"{s['high_crank_angle']:.4f}",
+                _deg_text(s["high_crank_angle"]),
             )
         console.print(table)
-    if d["time_ratio"] is not None:
-        console.print(f"  time ratio (slow / fast stroke of {d['time_ratio_output']}): {d['time_ratio']:.6g}")
+    for joint in d["turns_fully_at"]:
+        console.print(f"  no stroke at {joint}: its output never reverses over the turn (it turns on)")
+    for out, ratio in d["time_ratios"].items():
+        console.print(f"  time ratio (slow / fast stroke of {out}, time_ratio.{out}): {ratio:.6g}")
+    if d["time_ratio"] is None and d["time_ratio_refused"].get("") and d["limit_positions"]:
+        console.print(Text(f"  time ratio: none ({d['time_ratio_refused']['']})"), soft_wrap=True)
 
 
 def _advantage_tables(props: LinkageProperties, d: dict[str, Any], console: ReportConsole) -> None:

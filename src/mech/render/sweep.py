@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mech.kinematics.result import Kinematics
-from mech.kinematics.sweep import Sweep, default_quantities, quantity_unit
+from mech.kinematics.sweep import Sweep, TimeRatio, default_quantities, quantity_unit
 from mech.model import Mechanism
 from mech.options import OutputUnits
 
@@ -125,8 +125,11 @@ def sweep_json(
          "toggles": [{"angle", "what"}],
          "change_points": [{"angle", "what", "continued"}],   # only when one is passed
          "dead_centres": [{"angle", "output", "position" [length or angle]}],
-         "time_ratio": {"output", "slow", "fast", "ratio"} | null,
-         "extremes": [{"quantity", "unit", "max", "max_angle", "min", "min_angle"}],
+         "dwells": [{"output", "from", "to", "position" [length or angle], "reverses"}],
+         "time_ratio": {"output", "slow", "fast", "ratio"} | null,   # the bare one (DESIGN § 1.2)
+         "time_ratios": [{"output", "slow", "fast", "ratio"}],        # every output's
+         "time_ratio_refused": {output or "": why},
+         "extremes": [{"quantity", "unit", "max", "max_angle", "min", "min_angle", "max_jump", "min_jump"}],
          "max_condition": float, "notes": [str],
          "series": {"angle": [...], key: [...]}   # only the keys asked with --quantity
         }
@@ -171,14 +174,10 @@ def sweep_json(
             }
             for e in sw.dead_centres
         ],
-        "time_ratio": None
-        if sw.time_ratio is None
-        else {
-            "output": sw.time_ratio.output,
-            "slow": _deg(sw.time_ratio.slow),
-            "fast": _deg(sw.time_ratio.fast),
-            "ratio": sw.time_ratio.ratio,
-        },
+        "dwells": _dwells_json(sw, units),
+        "time_ratio": None if sw.time_ratio is None else _ratio_json(sw.time_ratio),
+        "time_ratios": [_ratio_json(r) for r in sw.time_ratios],
+        "time_ratio_refused": dict(sw.time_ratio_refused),
         "extremes": [
             {
                 "quantity": e.quantity,
@@ -187,6 +186,9 @@ def sweep_json(
                 "max_angle": at(e.max_angle),
                 "min": _conv(e.min_value, e.unit, units),
                 "min_angle": at(e.min_angle),
+                # reached at a jump: the values just before and after it (a law's segment end)
+                "max_jump": None if e.max_jump is None else [_conv(v, e.unit, units) for v in e.max_jump],
+                "min_jump": None if e.min_jump is None else [_conv(v, e.unit, units) for v in e.min_jump],
             }
             for e in sw.extremes
         ],
@@ -204,6 +206,24 @@ def sweep_json(
             si = quantity_unit(key)
             out["series"][key] = [_conv(v, si, units) for v in sw.series(key).tolist()]
     return out
+
+
+def _dwells_json(sw: Sweep, units: OutputUnits) -> list[dict[str, Any]]:
+    at = _par(sw, units)
+    return [
+        {
+            "output": d.subject,
+            "from": at(d.start),
+            "to": at(d.end),
+            "position": _conv(d.value, "m" if d.subject in sw.slides else "rad", units),
+            "reverses": d.reverses,
+        }
+        for d in sw.dwells
+    ]
+
+
+def _ratio_json(r: TimeRatio) -> dict[str, Any]:
+    return {"output": r.output, "slow": _deg(r.slow), "fast": _deg(r.fast), "ratio": r.ratio}
 
 
 def sweep_csv(sw: Sweep, *, units: OutputUnits, quantities: tuple[str, ...] = ()) -> str:
@@ -261,19 +281,7 @@ def sweep_table(sw: Sweep, console: ReportConsole, *, units: OutputUnits) -> Non
             f"  change point at {_par_text(sw, units, c.angle, 6)}: {c.subject}; "
             "continued on the branch with a continuous tangent"
         )
-    for e in sw.dead_centres:
-        si = "m" if e.subject in sw.slides else "rad"
-        v = _conv(e.value, si, units)
-        unit = format_unit(_out_unit(si, units))
-        word = "at" if e.subject in sw.slides else "angle"
-        at = f" ({word} {v:.6g} {unit})" if v is not None else ""
-        console.print(f"  dead centre of {e.subject} at {_par_text(sw, units, e.angle, 6)}{at}")
-    if sw.time_ratio is not None:
-        tr = sw.time_ratio
-        console.print(
-            f"  time ratio ({tr.output}): slow stroke {_deg(tr.slow):.4f}° / fast stroke {_deg(tr.fast):.4f}° "
-            f"of crank = {tr.ratio:.6g}"
-        )
+    _output_lines(sw, console, units)
     cond = sw.max_condition
     if math.isfinite(cond) and cond > 1e3:
         console.print(
@@ -296,15 +304,40 @@ def sweep_table(sw: Sweep, console: ReportConsole, *, units: OutputUnits) -> Non
             table.add_row(
                 ex.quantity,
                 _cell(mx, ex.max_value),
-                _par_text(sw, units, ex.max_angle, 4),
+                _par_text(sw, units, ex.max_angle, 4) + (" (jump)" if ex.max_jump else ""),
                 _cell(mn, ex.min_value),
-                _par_text(sw, units, ex.min_angle, 4),
+                _par_text(sw, units, ex.min_angle, 4) + (" (jump)" if ex.min_jump else ""),
                 format_unit(unit),
             )
         console.print()
         console.print(table)
     for note in sw.notes:
         console.print(f"  note: {note}")
+
+
+def _output_lines(sw: Sweep, console: ReportConsole, units: OutputUnits) -> None:
+    """The outputs' dead centres, dwells (once each, DESIGN § 1.2) and time ratios."""
+    for e in sw.dead_centres:
+        si = "m" if e.subject in sw.slides else "rad"
+        v = _conv(e.value, si, units)
+        unit = format_unit(_out_unit(si, units))
+        word = "at" if e.subject in sw.slides else "angle"
+        at = f" ({word} {v:.6g} {unit})" if v is not None else ""
+        console.print(f"  dead centre of {e.subject} at {_par_text(sw, units, e.angle, 6)}{at}")
+    for d in sw.dwells:
+        si = "m" if d.subject in sw.slides else "rad"
+        v = _conv(d.value, si, units)
+        word, unit = ("at" if d.subject in sw.slides else "angle"), format_unit(_out_unit(si, units))
+        turn = ", a limit position" if d.reverses else ""
+        console.print(
+            f"  dwell of {d.subject} from {_par_text(sw, units, d.start, 4)} to "
+            f"{_par_text(sw, units, d.end, 4)} ({word} {v:.6g} {unit}{turn})"
+        )
+    for tr in sw.time_ratios:
+        console.print(
+            f"  time ratio ({tr.output}): slow stroke {_deg(tr.slow):.4f}° / fast stroke {_deg(tr.fast):.4f}° "
+            f"of crank = {tr.ratio:.6g}"
+        )
 
 
 def sweep_plot_file(path: str, sw: Sweep, *, units: OutputUnits, quantities: tuple[str, ...] = ()) -> None:
