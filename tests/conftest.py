@@ -102,6 +102,35 @@ SLOW: dict[str, str] = {
     "tests/test_cli.py::test_no_file_gives_a_traceback_or_an_undocumented_status": "every example, every command: 2 s",
     "tests/test_cli.py::test_a_reader_that_has_closed_the_pipe_gives_141_and_no_message": "a pipeline each: 2.8 s",
     "tests/kinematics/test_dyads.py::test_closed_form_and_newton_agree_on_examples": "every example twice: 4.6 s",
+    # hypothesis over every Grashof class, each drawn four-bar swept at 360 and 3,600 steps: 24 s
+    "tests/properties/test_cycle.py::test_transmission_angle_extremes_and_strokes_of_every_grashof_class_are_the_closed_forms": (
+        "40 four-bars, two cycles each: 24 s"
+    ),
+    "tests/forces/test_cli_forces.py::test_every_example_answers_in_strict_json_or_refuses_it_as_bad_input": (
+        "every example through every force command: 15 s"
+    ),
+    "tests/forces/test_cli_forces.py::test_no_hostile_file_gives_a_traceback_from_a_force_command": "2 s",
+    "tests/forces/test_force_cycle.py::test_gears_are_swept_step_by_step_and_carry_their_tooth_load_all_round": "5.5 s",
+    "tests/forces/test_force_cycle.py::test_the_greatest_pin_force_and_its_angle_match_a_newton_euler_scan": (
+        "a Newton-Euler scan per pin: 9 s"
+    ),
+    "tests/test_variants.py::test_the_same_seed_writes_the_same_bytes_and_the_roster_order_changes_no_variant": (
+        "classes of 40 written three times: 8 s"
+    ),
+    "tests/test_variants.py::test_every_variant_keeps_its_keep_and_its_key_is_the_closed_form": "40 variants: 5 s",
+    "tests/kinematics/test_sweep.py::test_dwell_ends_found_on_a_newton_walk_are_the_programmes_as_on_the_marched_grid": (
+        "2.5 s"
+    ),
+    "tests/test_variants.py::test_a_class_is_graded_against_its_own_variants_a_copy_is_diagnosed_and_marks_add_up": (
+        "a class of 40 graded: 5.5 s"
+    ),
+    # whole-library scans of every source file's syntax tree
+    "tests/test_layers.py::test_no_cache_is_keyed_on_object_ids": "every source parsed: 2.4 s",
+    "tests/test_long_functions.py": "every source parsed: 2.2 s",
+    "tests/test_json_contract.py::test_check_json_of_every_example_is_strict_and_all_pass": "every example: 1.8 s",
+    "tests/test_loader.py::test_a_ten_thousand_joint_chain_is_read_with_every_joint_located": "1.4 s",
+    "tests/test_check_sheets.py::test_class_reports_are_identical_with_one_and_two_jobs": "worker processes: 1.4 s",
+    "tests/kinematics/test_sweep_cli.py::test_sweep_steps_beyond_the_memory_budget_are_refused": "1.3 s",
     # the browser: a Chromium launch each, about 1 s of CPU; the default run keeps the four-bar's
     # pages (closed form at three angles) and the page's own size
     "tests/test_view.py::test_slider_crank_page_shows_the_closed_form": "Chromium, 3 launches",
