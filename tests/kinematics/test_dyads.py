@@ -240,7 +240,7 @@ def test_a_crank_drawn_next_to_a_dead_centre_is_placed_to_its_angles_own_precisi
     # The crank pin is r (cos θ, sin θ) of the angle as read: its tiny offset from the line of
     # stroke (r sin θ ≈ 2.6e-12 m here) to the last bits, whatever branch of ±π atan2 would
     # give the drawn crank (its frame is the drive's angle, not θ ± 2π rounded).
-    text = Path(mech.__file__).parents[2].joinpath("mechanisms", "slider_crank.yaml").read_text()
+    text = Path(__file__).resolve().parents[2].joinpath("mechanisms", "slider_crank.yaml").read_text()
     text = text.split("answers:")[0].replace("angle: 135, rpm", f"angle: {angle}, rpm")
     m = mech.loads(text)
     th = m.drives[0].angle
