@@ -131,6 +131,23 @@ SLOW: dict[str, str] = {
     "tests/test_loader.py::test_a_ten_thousand_joint_chain_is_read_with_every_joint_located": "1.4 s",
     "tests/test_check_sheets.py::test_class_reports_are_identical_with_one_and_two_jobs": "worker processes: 1.4 s",
     "tests/kinematics/test_sweep_cli.py::test_sweep_steps_beyond_the_memory_budget_are_refused": "1.3 s",
+    # every example through a whole output, or a process per case (measured 1-5 s of CPU each)
+    "tests/test_draw.py::test_every_kinematic_example_draws_well_formed_svg": "every example drawn: 5 s",
+    "tests/test_plain.py::test_kinematics_tables_print_as_rich_prints_them": "every example, both consoles: 5 s",
+    "tests/test_plain.py::test_counting_tables_print_as_rich_prints_them": "1.2 s",
+    "tests/test_json_contract.py::test_every_example_answers_in_strict_json_or_refuses_as_its_file_says": "3 s",
+    "tests/kinematics/test_march.py::test_moving_higher_pairs_march_in_stacks_as_the_step_by_step_sweep_solves_them": (
+        "every moving higher pair, both ways: 3 s"
+    ),
+    "tests/test_startup.py::test_kinematics_tables_piped_import_numpy_but_no_rich": "a process per command: 1.9 s",
+    "tests/test_check_batch.py::test_a_deeply_nested_file_is_one_error_row_and_the_batch_goes_on": "1.5 s",
+    "tests/test_check_batch.py::test_cli_interrupted_exits_130_and_leaves_no_report": "a process and a signal: 1.2 s",
+    "tests/properties/test_cycle.py::test_transmission_angle_extremes_of_every_grashof_class_are_at_the_ends_of_bd": (
+        "hypothesis: 1.4 s"
+    ),
+    "tests/cam/test_profile.py::test_oscillating_follower_placed_on_profile_reproduces_the_programme": "1.3 s",
+    "tests/kinematics/test_sweep_cli.py::test_two_drive_sweep_says_not_reached_never_cannot_close": "1.2 s",
+    "tests/forces/test_cli_forces.py::test_force_sweep_plots_the_turning_moment_diagram": "matplotlib: 1.2 s",
     # the browser: a Chromium launch each, about 1 s of CPU; the default run keeps the four-bar's
     # pages (closed form at three angles) and the page's own size
     "tests/test_view.py::test_slider_crank_page_shows_the_closed_form": "Chromium, 3 launches",
