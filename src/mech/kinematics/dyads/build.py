@@ -105,7 +105,6 @@ def _build(lay: Layout, sys_: System, drive_angles: tuple[float | None, ...]) ->
         drawn_angle=float(drive_angles[0]),
         writer=partial(b.source, len(values)),
         constants=tuple(values),
-        label=lay.mech.label,
         _sizes=(len(b.dyads), b.n, len(b.pos)),
     )
 

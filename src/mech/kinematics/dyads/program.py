@@ -104,7 +104,6 @@ class DyadProgram:
     centre: tuple[float, float]
     drawn_angle: float
     writer: Callable[[int], str] = field(repr=False)  # the source of a level, written when first asked
-    label: str = field(repr=False)
     _sizes: tuple[int, int, int] = field(repr=False)  # dyads, links, points
     #: The numbers the sources name ``_k0``, ``_k1`` …: this mechanism's lengths, offsets, branch signs.
     constants: tuple[float, ...] = field(default=(), repr=False)
