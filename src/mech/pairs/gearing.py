@@ -86,8 +86,12 @@ def gear_normal(view: Carriers, j: Joint, positions: Mapping[str, Vec]) -> float
     centres = [gear_centre(view, lk, positions) for lk in j.links]
     if centres[0] is None or centres[1] is None:
         return None
-    (x1, y1), (x2, y2) = centres[0], centres[1]
-    return math.atan2(y2 - y1, x2 - x1) + math.pi / 2.0 - (j.pressure_angle or 0.0)
+    return _action_angle(j, centres[0], centres[1])
+
+
+def _action_angle(j: Joint, c1: Vec, c2: Vec) -> float:
+    """The line of action's direction (rad): the line of centres turned by a right angle less the pressure angle."""
+    return math.atan2(c2[1] - c1[1], c2[0] - c1[0]) + math.pi / 2.0 - (j.pressure_angle or 0.0)
 
 
 def line_of_action(mech: Mechanism, j: Joint, positions: Mapping[str, Vec]) -> Vec | None:
@@ -102,8 +106,7 @@ def line_of_action(mech: Mechanism, j: Joint, positions: Mapping[str, Vec]) -> V
         if len(pins) != 1:
             return None
         centres.append(positions[pins[0]])
-    (x1, y1), (x2, y2) = centres
-    if (x1, y1) == (x2, y2):
+    if centres[0] == centres[1]:
         return None
-    a = math.atan2(y2 - y1, x2 - x1) + math.pi / 2.0 - (j.pressure_angle or 0.0)
+    a = _action_angle(j, centres[0], centres[1])
     return (math.cos(a), math.sin(a))
