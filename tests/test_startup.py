@@ -92,3 +92,12 @@ def test_velocity_json_imports_numpy_but_no_rich_drawing_or_checking():
         "matplotlib",
     }
     assert not (mods & unwanted), sorted(mods & unwanted)
+
+
+def test_a_file_of_pins_loads_only_the_revolute_kind():
+    # the kinds are registered by where they live and imported when a file names them
+    # (mech.pairs.table): a four-bar's count never loads the cam's laws or the gears' geometry
+    mods = loaded_by("dof", "--json", FOUR_BAR)
+    kinds = {m for m in mods if m.startswith("mech.pairs.") and m.count(".") == 2}
+    assert kinds - {"mech.pairs.base", "mech.pairs.table", "mech.pairs.registry"} == {"mech.pairs.revolute"}
+    assert not {m for m in mods if m.startswith("mech.cam")}
