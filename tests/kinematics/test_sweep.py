@@ -693,3 +693,18 @@ def test_dwell_ends_found_on_a_newton_walk_are_the_programmes_as_on_the_marched_
         (0.0, pytest.approx(90.0, abs=1e-9)),
         (pytest.approx(180.0, abs=1e-9), pytest.approx(240.0, abs=1e-3)),
     ]
+
+
+def test_an_asked_quantity_with_no_extremes_says_why_instead_of_vanishing():
+    # a crank at constant speed: ω = 10 rad/s and α = 0 at every step (the file's data, not mech's
+    # result); the slider keeps its angle (0 rad) and the crank turns right round
+    s = sweep(
+        slider_crank(r=0.1, rod=0.4, e=0.02, omega=10.0),
+        FULL,
+        level="acceleration",
+        quantities=["sliding.P", "omega.crank", "alpha.crank", "angle.crank"],
+    )
+    assert [x.quantity for x in s.extremes] == ["sliding.P"]
+    assert "omega.crank does not vary over the sweep: 10 rad/s throughout" in s.notes
+    assert "alpha.crank does not vary over the sweep: 0 rad/s^2 throughout" in s.notes
+    assert "angle.crank: the link turns right round (no largest or least angle)" in s.notes

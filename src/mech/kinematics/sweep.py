@@ -91,6 +91,7 @@ from mech.kinematics.sweep_events import (
     find_dead_centres,
     find_extremes,
     find_gaps,
+    left_out_notes,
     outputs_of,
     unbounded_notes,
 )
@@ -203,6 +204,9 @@ def sweep(
     found = _Found()
     if analyse:
         found = _find(backend, plan, fine, data, ok, singular, keys)
+        if quantities:  # an asked quantity with no row says why (it does not vary, it turns round)
+            names = {"points": backend.points, "links": backend.links, "slides": backend.slides}
+            plan.notes.extend(left_out_notes(data, ok & ~singular, names, keys, found.extremes, fine, _shown))
     if pick is not None:  # the series at the steps asked; what was found came from the finer grid
         data = {
             k: v[pick] if isinstance(v, np.ndarray) and v.shape[:1] == fine.shape else v
@@ -411,6 +415,14 @@ def _find(
     plan.notes.extend(jump_notes(extremes, lambda a: _at_text(plan, a)))  # a law's segment ends
     ratio, ratios, refused = find_time_ratios(fine, ok, dead, dwells, outputs, plan.lead is None)
     return _Found(gaps, toggles, dead, extremes, ratio, changes, dwells, ratios, refused)
+
+
+def _shown(value: float, unit: str) -> str:
+    """A constant quantity's value in a note: degrees for an angle, else SI, rounding noise as 0."""
+    value = 0.0 if abs(value) < 1e-12 else value
+    if unit == "rad":
+        return f"{math.degrees(value) + 0.0:.6g}°"
+    return f"{value + 0.0:.6g} {unit}"
 
 
 def _at_text(plan: _Plan, value: float) -> str:

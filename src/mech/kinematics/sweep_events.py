@@ -31,6 +31,7 @@ __all__ = [
     "find_dead_centres",
     "find_extremes",
     "find_gaps",
+    "left_out_notes",
     "outputs_of",
     "refiner",
     "unbounded_notes",
@@ -514,6 +515,38 @@ def find_extremes(
             amax, amin = _into(amax, phi), _into(amin, phi)
         out.append(Extreme(key, quantity_unit(key), amax, vmax, amin, vmin))
     return tuple(out)
+
+
+def left_out_notes(
+    data: dict[str, np.ndarray],
+    ok: np.ndarray,
+    names: dict[str, tuple[str, ...]],
+    asked: Sequence[str],
+    extremes: Sequence[Extreme],
+    phi: np.ndarray,
+    show: Callable[[float, str], str],
+) -> list[str]:
+    """Why a quantity the user asked for has no row of extremes (:func:`find_extremes` leaves it out).
+
+    A quantity that does not vary (a crank's α at constant speed, a piston's angle), a link
+    that turns right round, or one never computed (no step assembled): without a note the
+    asked row would simply be missing.  ``show`` writes a value with its unit.
+    """
+    reported = {e.quantity for e in extremes}
+    notes = []
+    for key in dict.fromkeys(asked):
+        if key in reported:
+            continue
+        v = pick(data, names, key)
+        valid = ok & np.isfinite(v)
+        if not np.any(valid):
+            notes.append(f"{key}: not computed at any step of the sweep (no extremes)")
+        elif key.startswith("angle.") and turns_fully(v, valid, phi):
+            notes.append(f"{key}: the link turns right round (no largest or least angle)")
+        else:
+            value = float(np.median(v[valid]))
+            notes.append(f"{key} does not vary over the sweep: {show(value, quantity_unit(key))} throughout")
+    return notes
 
 
 def _at_events(
