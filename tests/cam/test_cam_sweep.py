@@ -148,6 +148,19 @@ def test_an_acceleration_that_jumps_at_a_segment_end_is_reported_as_a_jump():
     assert all(e.max_jump is None and e.min_jump is None for e in sw.extremes if e.quantity == "velocity.K")
 
 
+def test_a_least_acceleration_held_over_a_dwell_is_the_dwells_not_a_jumps():
+    # the follower is at rest over the programme's dwells (30° and 60°): |a| = 0 at every angle
+    # of them, so the least magnitude, 0, is an extreme held over an interval; the jump at the
+    # dwell's edge is the largest value's (33.3099 m/s², above), not the least's
+    m = load(MECHANISMS / "cam_roller_program.yaml")
+    sw = sweep(m, np.radians(np.linspace(0.0, 360.0, 361)), level="acceleration")
+    acc = {e.quantity: e for e in sw.extremes}["acceleration.K"]
+    assert acc.min_value == pytest.approx(0.0, abs=1e-12)
+    assert acc.min_jump is None
+    assert acc.max_jump is not None
+    assert not any("its least value is that jump's" in n for n in sw.notes if n.startswith("acceleration.K "))
+
+
 def test_no_extreme_of_a_four_bar_is_a_jump():
     sw = sweep(
         load(MECHANISMS / "four_bar.yaml"), np.radians(np.linspace(0.0, 360.0, 361)), level="acceleration"

@@ -62,16 +62,57 @@ def with_jumps(
     }
     sense = 1.0 if phi[-1] >= phi[0] else -1.0
     out: dict[tuple[str, str], tuple[float, float]] = {}
-    for (key, mode, _a), (lf, ln, rn, rf) in zip(rows, vals, strict=True):
+    jumps: list[int] = []
+    for i, ((key, mode, _a), (lf, ln, rn, rf)) in enumerate(zip(rows, vals, strict=True)):
         if not all(math.isfinite(x) for x in (lf, ln, rn, rf)):
             continue
         step_near, step_far = abs(rn - ln), abs(rf - lf)
         if step_near > 1e-6 * size[key] and step_near > 0.5 * step_far:
             out[(key, mode)] = (float(ln), float(rn)) if sense > 0 else (float(rn), float(ln))
+            jumps.append(i)
+    for i in _held(backend, names, rows, vals, refs, size, jumps, phi):
+        del out[(rows[i][0], rows[i][1])]
     return tuple(
         replace(e, max_jump=out.get((e.quantity, "max")), min_jump=out.get((e.quantity, "min")))
         for e in extremes
     )
+
+
+def _held(
+    backend: Any,
+    names: dict[str, tuple[str, ...]],
+    rows: list[tuple[str, str, float]],
+    vals: np.ndarray,
+    refs: np.ndarray,
+    size: dict[str, float],
+    jumps: list[int],
+    phi: np.ndarray,
+) -> list[int]:
+    """The jumps whose extreme is also held on its side: the value a whole dwell keeps.
+
+    A follower's acceleration is 0 over a dwell and jumps to the next segment's value at
+    its end: its least magnitude, 0, is the dwell's, reached at every angle of it, not the
+    jump's.  Read one grid step away on the extreme's side: a value held there to 1e-9 of
+    the quantity's size is a plateau (an SHM rise's cosine, flat to second order at its
+    start, has moved by 3e-4 of its peak one degree in).
+    """
+    if not jumps:
+        return []
+    step = float(abs(phi[1] - phi[0])) if phi.size > 1 else 0.0
+    if step == 0.0:
+        return []
+    at = np.array([rows[i][2] for i in jumps])
+    # the extreme's side: the one (before or after) whose value is the extreme's
+    side = np.array([-1.0 if (vals[i][1] >= vals[i][2]) == (rows[i][1] == "max") else 1.0 for i in jumps])
+    probe = refiner(backend, names, [rows[i][0] for i in jumps], refs[jumps], regular=True)(
+        (at + side * step)[:, None]
+    )
+    return [
+        i
+        for i, v in zip(jumps, probe[:, 0], strict=True)
+        if math.isfinite(v)
+        and abs(v - (max if rows[i][1] == "max" else min)(vals[i][1], vals[i][2])) <= 1e-9 * size[rows[i][0]]
+    ]
 
 
 def jump_notes(extremes: Sequence[Extreme], at: Callable[[float], str]) -> list[str]:
