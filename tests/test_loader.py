@@ -7,6 +7,8 @@ import math
 import textwrap
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from cli_runner import assert_bad_input, mech, strict_json
 from mech.errors import InputError
@@ -282,6 +284,33 @@ def test_alias_bomb_is_refused_not_expanded():
         loads(
             "links: [frame, crank]\njoints: {}\nx:\n" + "".join("  " + ln + "\n" for ln in bomb.splitlines())
         )
+
+
+_leaf = st.one_of(st.integers(-9, 9), st.sampled_from(["a", "b", "", None]))
+_tree = st.recursive(
+    _leaf,
+    lambda kids: st.lists(kids, max_size=4) | st.dictionaries(st.sampled_from("xyz"), kids, max_size=3),
+    max_leaves=30,
+)
+
+
+@settings(max_examples=60, deadline=None)
+@given(_tree, st.booleans())
+def test_text_without_anchors_holds_no_more_values_than_characters(tree, flow):
+    # the premise on which the loader skips its alias-bomb walk for a short file with no `&`
+    # (mech.loader.nodes.compose): written as densely as YAML allows, every node costs a character
+    import yaml
+
+    text = yaml.safe_dump(tree, default_flow_style=flow)
+    nodes, stack = 0, [yaml.compose(text)]
+    while stack:
+        node = stack.pop()
+        nodes += 1
+        if isinstance(node, yaml.MappingNode):
+            stack.extend(n for kv in node.value for n in kv)
+        elif isinstance(node, yaml.SequenceNode):
+            stack.extend(node.value)
+    assert "&" not in text and nodes <= len(text)
 
 
 def test_python_tags_are_never_constructed(tmp_path):

@@ -73,6 +73,7 @@ class _YamlLoader(getattr(yaml, "CSafeLoader", yaml.SafeLoader)):  # type: ignor
 
 
 MAX_NODES = 200_000  # an alias bomb is refused, not expanded
+ANCHOR = "&"  # every alias repeats an anchor, and an anchor is written with this
 MAX_DEPTH = 64  # deeper nesting is refused (before composing, where the composer could crash on it)
 
 
@@ -179,7 +180,9 @@ def compose(text: str, path: str, *, what: str = "this") -> yaml.Node | None:
         raise _unreadable_character(text, path, what, exc) from None
     except yaml.YAMLError as exc:
         raise InputError(f"{what} is not valid YAML: {exc}", where=Where(path)) from None
-    if root is not None:
+    if root is not None and (ANCHOR in text or 2 * len(text) >= MAX_NODES):
+        # without an anchor nothing repeats, and a node takes at least a character of text: a
+        # short file cannot hold MAX_NODES values, so only a long one or one with aliases is walked
         _check_size(root, path, what)
         if deep:
             _check_tree_depth(root, path)
