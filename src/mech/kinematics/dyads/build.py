@@ -143,6 +143,7 @@ class _Builder:
         self.emitted: set[str] = set()
         self.prismatic = [ps for ps in lay.paths if kind_of(ps.type).keeps_angle]
         self._names = list(self.pos)
+        self._index = {name: k for k, name in enumerate(self._names)}
 
     def _drawn_frames(self) -> tuple[dict[str, tuple[float, float]], dict[int, tuple[float, float, float]]]:
         """Drawn positions (SI, relative to the centre) of every location, and each link's frame."""
@@ -169,7 +170,7 @@ class _Builder:
 
     def pv(self, name: str, what: str) -> str:
         """The generated variable of a point's quantity (``p3_vx``)."""
-        return f"p{self._names.index(name)}_{what}"
+        return f"p{self._index[name]}_{what}"
 
     def known_points(self, i: int, exclude: str | None = None) -> list[str]:
         return [p for p in self.on[i] if p in self.avail and p != exclude]
@@ -401,7 +402,20 @@ class _Builder:
 
     # -- the functions --------------------------------------------------------------------
     def source(self, count: int, level: int) -> str:
-        """The code of one level's function (0, 1, 2), inside a maker taking the ``count`` constants."""
+        """The code of one level's function (0, 1, 2), inside a maker taking the ``count`` constants.
+
+        The code names its constants (``_k0`` …), so it is the structure's: a class's four-bars
+        write the same lines, and the source is kept by them (:data:`_SOURCES`), written once.
+        """
+        key = (tuple(self.code), self.n, len(self.pos), len(self.dyads), count, level)
+        src = _SOURCES.get(key)
+        if src is None:
+            if len(_SOURCES) >= _SOURCES_KEPT:
+                _SOURCES.pop(next(iter(_SOURCES)))
+            src = _SOURCES[key] = self._source(count, level)
+        return src
+
+    def _source(self, count: int, level: int) -> str:
         n, pv, names, nd = self.n, self.pv, self._names, len(self.dyads)
         outs = [f"{w}{k}" for w in ("d", "sn", "ms") for k in range(nd)]
         outs += [f"l{i}_{w}" for w in ("x", "y", "t") for i in range(n)]
@@ -435,6 +449,11 @@ class _Builder:
             + ", ".join(ret)
             + ",)\n  return run\n"
         )
+
+
+#: Sources already written, by the code lines and sizes they are written from (oldest dropped first).
+_SOURCES: dict[tuple[Any, ...], str] = {}
+_SOURCES_KEPT = 256
 
 
 def _name(sys_: System, i: int) -> str:
@@ -479,4 +498,4 @@ def _verified(prog: DyadProgram, sys_: System, angles: int) -> bool:
         if off >= 0:
             c_ang[:, off] += turned
     res = sys_.phi(np.array(qs), sys_.ln_c, c_ang)
-    return not (res.size and float(np.max(np.abs(res))) > 1e-9)
+    return not (res.size and float(np.abs(res).max()) > 1e-9)
