@@ -76,6 +76,11 @@ def register_lazy(name: str, where: str) -> None:
     KINDS._entries[name] = where
 
 
+_ENTRIES = KINDS._entries
+
+
 def kind_of(joint: Joint | str) -> PairKind:
-    """The kind of a joint, or of a type's name."""
-    return KINDS[joint if isinstance(joint, str) else joint.type]
+    """The kind of a joint, or of a type's name (asked dozens of times per solve: one dict lookup)."""
+    name = joint if isinstance(joint, str) else joint.type
+    entry = _ENTRIES[name]
+    return KINDS[name] if isinstance(entry, str) else entry
