@@ -38,7 +38,9 @@ class _Kinds(MutableMapping[str, PairKind]):
             module, _, cls = entry.partition(":")
             entry = getattr(import_module(module), cls)()
             if entry.name != name:
-                raise RuntimeError(f"{module}.{cls} is registered as {name!r} but names itself {entry.name!r}")
+                raise RuntimeError(
+                    f"{module}.{cls} is registered as {name!r} but names itself {entry.name!r}"
+                )
             self._entries[name] = entry
         return entry
 
