@@ -28,6 +28,7 @@ from __future__ import annotations
 import copy
 import hashlib
 import math
+import re
 from collections.abc import Sequence
 from typing import Any
 
@@ -46,6 +47,24 @@ __all__ = ["MAX_ATTEMPTS", "Plan", "Variant", "plan", "variant_for"]
 
 #: Redraws of one student's variant before giving up (the keep conditions may be too strict).
 MAX_ATTEMPTS = 200
+
+_BOOL = "tag:yaml.org,2002:bool"
+
+
+class _TextLoader(yaml.SafeLoader):
+    """PyYAML's safe loader with YAML 1.2's booleans (``true``, ``false``) only.
+
+    mech reads ``on``, ``no``, ``yes``, ``off`` as text (a load's ``on: piston``, a link named
+    ``no``), where YAML 1.1 would make them booleans: a variant must keep them text, and the
+    dumper quotes them on the way out (``'on': piston``), so every variant reads as its problem.
+    """
+
+
+_TextLoader.yaml_implicit_resolvers = {
+    first: [(tag, rx) for tag, rx in resolvers if tag != _BOOL]
+    for first, resolvers in yaml.SafeLoader.yaml_implicit_resolvers.items()
+}
+_TextLoader.add_implicit_resolver(_BOOL, re.compile(r"^(?:true|True|TRUE|false|False|FALSE)$"), list("tTfF"))
 
 
 @dataclass(frozen=True, slots=True)
@@ -80,7 +99,7 @@ def plan(path: str, text: str | None = None) -> Plan:
             text = f.read()
     loader.loads(text, path=path)  # the problem itself must be a valid file first
     root = yaml.compose(text)
-    data = yaml.safe_load(text)
+    data = yaml.load(text, Loader=_TextLoader)  # a SafeLoader: nothing is constructed from tags
     nodes = {k.value: v for k, v in root.value} if isinstance(root, yaml.MappingNode) else {}
     problems: list[Problem] = []
     where = lambda node: Where(path, node.start_mark.line + 1, node.start_mark.column + 1)  # noqa: E731
