@@ -151,21 +151,9 @@ def locate(mech: Mechanism, sys_: Any, motion: Motion, name: str) -> np.ndarray:
 
 
 def load_value(load: Load, angle: np.ndarray) -> np.ndarray:
-    """A load's value at the drive's angles (K,): (K, 2) for a force, (K,) for a torque.
-
-    A table is read linearly between its rows and repeated with its span (a
-    four-stroke engine's 720°); a constant load is the same at every angle.
-    """
-    k = angle.shape[0]
-    if load.table is None:
-        if load.force is not None:
-            return np.broadcast_to(np.asarray(load.force, float), (k, 2))
-        return np.full(k, float(load.torque or 0.0))
-    table = np.asarray(load.table, float)
-    start, span = table[0, 0], table[-1, 0] - table[0, 0]
-    t = start + np.mod(np.fmod(angle - start, span), span) if span > 0 else angle
-    cols = [np.interp(t, table[:, 0], table[:, c]) for c in range(1, table.shape[1])]
-    return np.stack(cols, axis=1) if len(cols) == 2 else cols[0]
+    """A load's value at the drive's angles (K,): (K, 2) for a force, (K,) for a torque
+    (:meth:`mech.model.Load.values`: a table read linearly, repeated with its span)."""
+    return load.values(angle)  # type: ignore[no-any-return]
 
 
 def _loads(st: _Stack) -> np.ndarray:
