@@ -33,7 +33,18 @@ import numpy as np
 from mech._records import dataclass
 from mech.model import Load, Mechanism
 
-__all__ = ["Motion", "Solved", "jacobian_si", "load_value", "locate", "multipliers", "reactions", "solve"]
+__all__ = [
+    "Motion",
+    "Solved",
+    "jacobian_si",
+    "load_value",
+    "locate",
+    "multipliers",
+    "reactions",
+    "solve",
+    "unsaid_on",
+    "unsaid_text",
+]
 
 
 @dataclass(frozen=True)
@@ -171,8 +182,36 @@ def _loads(st: _Stack) -> np.ndarray:
     return q
 
 
+def unsaid_on(mech: Mechanism) -> dict[str, tuple[str, ...]]:
+    """Forces at a pin of two or more moving links that do not say which they act on: pin → its
+    moving links (the first takes the load, :func:`_carrier`).
+
+    DESIGN § 1.4: such a load says which link it acts on (``on: piston``).  Where it does not,
+    the power balance (the input effort) is the same whichever link takes it, and so is every
+    other pair's force, but the force the pin itself carries is not (:func:`unsaid_text`).
+    """
+    out: dict[str, tuple[str, ...]] = {}
+    for load in mech.loads:
+        joint = next((j for j in mech.joints if j.name == load.target), None)
+        if joint is None or not load.is_force or load.on is not None:
+            continue
+        moving = tuple(lk for lk in joint.links if lk != mech.ground)
+        if len(moving) > 1:
+            out[load.target] = moving
+    return out
+
+
+def unsaid_text(pin: str, links: tuple[str, ...]) -> str:
+    """Why the force of ``pin`` is not given: its load names none of ``links`` (:func:`unsaid_on`)."""
+    return (
+        f"{pin} joins {' and '.join(links)}, and the load at {pin} does not say which it acts on "
+        f"({' or '.join(f'on: {lk}' for lk in links)}): the force {pin} carries depends on it"
+    )
+
+
 def _carrier(mech: Mechanism, target: str) -> str:
-    """The moving link a force at ``target`` acts on when the file does not say (it has one)."""
+    """The moving link a force at ``target`` acts on when the file does not say (the first; a pin of
+    several moving links then gives no force of its own: :func:`unsaid_on`)."""
     for j in mech.joints:
         if j.name == target:
             return next(lk for lk in j.links if lk != mech.ground)
