@@ -248,6 +248,26 @@ def test_a_wrong_vary_is_a_located_input_error(tmp_path: Path, vary: str, words:
 
 
 @pytest.mark.parametrize(
+    ("keep", "words"),
+    [
+        ("{at_lest: 35 deg}", "bounds are at_least and at_most, not at_lest"),
+        ("{at_least: banana}", "at_least: 'banana' is not a number with a unit"),
+        ("{at_least: 35 mm}", "at_least: 35 mm measures m, not rad"),
+        ("{}", "bounds are at_least and at_most"),
+    ],
+)
+def test_a_keep_bound_that_cannot_be_held_is_a_located_input_error(
+    tmp_path: Path, keep: str, words: str
+) -> None:
+    # DESIGN § 1.3: "each variant must satisfy these": a misspelt bound would hold nothing, silently
+    text = FOUR_BAR.replace("{at_least: 35 deg}", keep)
+    p = _variants(tmp_path, "four_bar.yaml", text, STUDENTS[:2], "bad")
+    assert p.returncode == 2, p.stderr
+    assert f"keep: transmission_angle.min: {words}" in p.stderr and "four_bar.yaml:" in p.stderr
+    assert "Traceback" not in p.stderr and not (tmp_path / "bad").exists()
+
+
+@pytest.mark.parametrize(
     ("roster", "words"),
     [
         ("name\nann\n", "has no `student` column"),
