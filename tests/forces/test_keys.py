@@ -163,3 +163,6 @@ def test_a_load_at_a_pin_of_two_moving_links_acts_on_the_link_it_names_and_witho
 
         (note,) = analyse(loads(PIN + load, path="pin.yaml"), SolveOptions()).notes  # mech forces says so
         assert note.startswith("B joins rod and piston") and note.endswith("shown with the load on rod")
+        from mech.forces.cycle import force_cycle  # and so does mech sweep --level forces
+
+        assert note in force_cycle(loads(PIN + load, path="pin.yaml"), SolveOptions(), steps=36).notes
