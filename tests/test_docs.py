@@ -28,12 +28,38 @@ def section(name: str) -> str:
 
 @pytest.mark.parametrize("name", sorted(cli.commands))
 def test_every_command_and_option_is_documented(name):
+    # each spelling of each option, as a whole word: `--to` is not documented by `--tol`, nor `-o` by `-oo`
     text = section(name)
     command = cli.commands[name]
     for param in command.params:
         if isinstance(param, click.Option):
-            assert any(opt in text for opt in param.opts), f"cli.md, mech {name}: {param.opts} missing"
+            for opt in (*param.opts, *param.secondary_opts):
+                assert re.search(rf"(?<![\w-]){re.escape(opt)}(?![\w-])", text), (
+                    f"cli.md, mech {name}: {opt} missing"
+                )
     assert f"`mech {name}`" in CLI_MD or f"mech {name}" in CLI_MD
+
+
+def _schema_keys(node: object) -> set[str]:
+    """Every key the file format has (mech schema's properties, at every depth)."""
+    keys: set[str] = set()
+    if isinstance(node, dict):
+        keys |= set(node.get("properties") or {})
+        for child in node.values():
+            keys |= _schema_keys(child)
+    elif isinstance(node, list):
+        for child in node:
+            keys |= _schema_keys(child)
+    return keys
+
+
+def test_every_key_of_the_file_format_is_documented():
+    # issue 22: cli.md documents the file as mech schema reads it (DESIGN §§ 1.2-1.5's keys among them)
+    from mech.schema import schema
+
+    for key in sorted(_schema_keys(schema())):
+        quoted = rf"`[^`\n]*(?<![\w.-]){re.escape(key)}(?![\w-])[^`\n]*`"
+        assert re.search(quoted, CLI_MD) or re.search(rf"^\s*{re.escape(key)}:", CLI_MD, re.M), key
 
 
 def test_readme_starts_with_the_two_commands_ci_runs():

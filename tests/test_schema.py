@@ -119,3 +119,81 @@ def test_a_key_the_schema_does_not_list_is_refused_by_the_loader(section: str) -
     path, template = SECTIONS[section]
     assert "colour" not in _section_keys(path)
     assert any(m.startswith("unknown key 'colour'") for m in _messages(BASE + template.format(key="colour")))
+
+
+# DESIGN §§ 1.3 and 1.4 as written there: every key with the value forms the text gives.
+DESIGN_1_3_1_4 = (
+    "units: {length: mm, angle: deg}\n"
+    + BASE
+    + """\
+lengths: {AB: 40, BC: 150, CD: 80}
+drive: {link: crank, angle: 60, rpm: 120, direction: cw}
+points: {G3: {link: coupler, from: B, toward: C, distance: 75}, G4: {link: rocker, from: D, toward: C, distance: 40}}
+masses:
+  coupler: {mass: 5, centre: G3, inertia: 0.08}
+  rocker:  {mass: "2 kg", centre: G4, inertia: "0.012 kg m^2"}
+  crank: {mass: 1, centre: B, radius_of_gyration: 20}
+gravity: [0, -9.81]
+flywheel: {fluctuation: 2%}
+loads:
+  C: {force: {table: [[0, 0, 0], [360, 0, -500]]}, "on": rocker}
+  rocker: {torque: {table: [[0, 0], [720, 20]]}}
+vary:
+  lengths.AB: {from: 30, to: 50, step: 1}
+  drive.angle: {from: 30, to: 150, step: 5}
+  drive.rpm: [100, 120, 150, 200]
+keep:
+  grashof: crank-rocker
+  transmission_angle.min: {at_least: 35 deg}
+asks: {omega.rocker: 2, velocity.C: 3, acceleration.C: 5}
+answers:
+  omega.rocker: {value: 4.8 rad/s, marks: 2}
+  force.C.x: 10 N
+"""
+)
+
+
+def _schema_errors(text: str) -> list[str]:
+    jsonschema = pytest.importorskip("jsonschema")
+    import yaml
+
+    return [
+        f"{list(e.absolute_path)}: {e.message}"
+        for e in jsonschema.Draft7Validator(SCHEMA).iter_errors(yaml.safe_load(text))
+    ]
+
+
+def test_design_1_3_and_1_4_as_written_are_valid_to_the_schema_and_to_mech() -> None:
+    assert _schema_errors(DESIGN_1_3_1_4) == []
+    assert _messages(DESIGN_1_3_1_4) == []
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "where"),
+    [
+        ("{from: 30, to: 50, step: 1}", "{from: 30, upto: 50, step: 1}", "['vary', 'lengths.AB']"),
+        ("{from: 30, to: 50, step: 1}", "{from: 30, to: 50, step: 0}", "['vary', 'lengths.AB']"),
+        ("[100, 120, 150, 200]", "[]", "['vary', 'drive.rpm']"),
+        ("{at_least: 35 deg}", "{at_lest: 35 deg}", "['keep', 'transmission_angle.min']"),
+    ],
+)
+def test_the_schema_refuses_a_vary_or_keep_that_mech_variants_refuses(old: str, new: str, where: str) -> None:
+    assert any(e.startswith(where) for e in _schema_errors(DESIGN_1_3_1_4.replace(old, new, 1)))
+
+
+def test_a_bare_mass_inertia_gravity_or_load_is_described_in_its_own_si_unit_not_the_files() -> None:
+    # DESIGN § 1.4: "Masses are in kg and inertias in kg·m² when bare, whatever the file's length
+    # unit"; gravity in m/s²; § 1.1: a force in N, a torque in N·m; answers: a bare number is SI
+    masses = SCHEMA["properties"]["masses"]["additionalProperties"]["properties"]
+    loads_ = SCHEMA["properties"]["loads"]["additionalProperties"]["properties"]
+    cases = {
+        "kg": masses["mass"],
+        "kg·m²": masses["inertia"],
+        "the file's length unit": masses["radius_of_gyration"],
+        "m/s²": SCHEMA["properties"]["gravity"]["items"],
+        "N": loads_["force"]["oneOf"][0]["items"],
+        "N·m": loads_["torque"]["oneOf"][0],
+        "SI": SCHEMA["properties"]["answers"]["additionalProperties"]["oneOf"][1]["items"],
+    }
+    for unit, fragment in cases.items():
+        assert f"bare number is in {unit}" in fragment["description"], (unit, fragment["description"])

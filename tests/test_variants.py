@@ -248,6 +248,26 @@ def test_a_wrong_vary_is_a_located_input_error(tmp_path: Path, vary: str, words:
 
 
 @pytest.mark.parametrize(
+    ("keep", "words"),
+    [
+        ("{at_lest: 35 deg}", "bounds are at_least and at_most, not at_lest"),
+        ("{at_least: banana}", "at_least: 'banana' is not a number with a unit"),
+        ("{at_least: 35 mm}", "at_least: 35 mm measures m, not rad"),
+        ("{}", "bounds are at_least and at_most"),
+    ],
+)
+def test_a_keep_bound_that_cannot_be_held_is_a_located_input_error(
+    tmp_path: Path, keep: str, words: str
+) -> None:
+    # DESIGN § 1.3: "each variant must satisfy these": a misspelt bound would hold nothing, silently
+    text = FOUR_BAR.replace("{at_least: 35 deg}", keep)
+    p = _variants(tmp_path, "four_bar.yaml", text, STUDENTS[:2], "bad")
+    assert p.returncode == 2, p.stderr
+    assert f"keep: transmission_angle.min: {words}" in p.stderr and "four_bar.yaml:" in p.stderr
+    assert "Traceback" not in p.stderr and not (tmp_path / "bad").exists()
+
+
+@pytest.mark.parametrize(
     ("roster", "words"),
     [
         ("name\nann\n", "has no `student` column"),
@@ -269,3 +289,42 @@ def test_a_bad_roster_is_a_located_input_error(tmp_path: Path, roster: str, word
     assert (
         p.returncode == 2 and words in p.stderr and "roster.csv" in p.stderr and not (tmp_path / "c").exists()
     )
+
+
+# A load at the pin B of rod and piston, written as DESIGN § 1.4 spells it (`on: piston`), on a
+# chain whose ground is named `no`: YAML 1.1 reads both `on` and `no` as booleans; mech reads them
+# as text, and so must every variant.  Statics of the in-line slider crank with the force P along
+# the line of stroke on the piston: the rod is a two-force member, so the pin B carries
+# |P| / cos φ, sin φ = r sin θ / L (Hibbeler, *Engineering Mechanics: Statics*, § 6.6).
+NAMES_AS_TEXT = """\
+name: Slider crank, a load on the piston at its pin
+units: {length: mm, angle: deg}
+ground: "no"
+links: ["no", crank, rod, piston]
+joints:
+  O: {type: revolute, links: ["no", crank], at: [0, 0]}
+  A: {type: revolute, links: [crank, rod]}
+  B: {type: revolute, links: [rod, piston], near: [150, 0]}
+  P: {type: prismatic, links: [piston, "no"], path: {through: [0, 0], angle: 0}}
+lengths: {OA: 30, AB: 120}
+drive: {link: crank, angle: 45, rpm: 120, direction: ccw}
+loads:
+  B: {force: [-1000, 0], on: piston}
+vary:
+  lengths.OA: [20, 25, 30]
+  drive.angle: {from: 10, to: 80, step: 10}
+asks: [force.B]
+"""
+
+
+def test_keys_and_names_yaml_1_1_reads_as_booleans_stay_text_in_every_variant(tmp_path: Path) -> None:
+    p = _variants(tmp_path, "pin.yaml", NAMES_AS_TEXT.replace('"no"', "no"), STUDENTS[:4], "c")
+    assert p.returncode == 0, p.stderr
+    key = _key(tmp_path / "c")
+    for s in STUDENTS[:4]:
+        text = (tmp_path / "c" / s / "pin.yaml").read_text(encoding="utf-8")
+        data = yaml.safe_load(text)
+        assert data["ground"] == "no" and data["loads"]["B"] == {"force": [-1000, 0], "on": "piston"}
+        r, rod, th = data["lengths"]["OA"], data["lengths"]["AB"], math.radians(data["drive"]["angle"])
+        cos_phi = math.sqrt(1 - (r * math.sin(th) / rod) ** 2)
+        assert key[s, "force.B"]["value"] == pytest.approx(1000 / cos_phi, rel=1e-9)

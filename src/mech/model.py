@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import field
+from typing import Any
 
 from mech._memo import Memo
 from mech._records import dataclass
@@ -246,6 +247,27 @@ class Load:
     def period(self) -> float | None:
         """The span of a table's angles, after which it repeats (None for a constant load)."""
         return None if self.table is None else self.table[-1][0] - self.table[0][0]
+
+    def values(self, angle: Any) -> Any:
+        """The load at the drive's angles ``angle`` ((K,) rad): (K, 2) for a force, (K,) for a torque.
+
+        A table is read linearly between its rows and repeated with its span (a four-stroke
+        engine's 720°); a constant load is the same at every angle.  The one reader of a table,
+        for the force solve and the loads' power balance alike (numpy is imported here, when a
+        load is read).
+        """
+        import numpy as np
+
+        k = np.shape(angle)[0]
+        if self.table is None:
+            if self.force is not None:
+                return np.broadcast_to(np.asarray(self.force, float), (k, 2))
+            return np.full(k, float(self.torque or 0.0))
+        table = np.asarray(self.table, float)
+        start, span = table[0, 0], table[-1, 0] - table[0, 0]
+        t = start + np.mod(np.fmod(angle - start, span), span) if span > 0 else angle
+        cols = [np.interp(t, table[:, 0], table[:, c]) for c in range(1, table.shape[1])]
+        return np.stack(cols, axis=1) if len(cols) == 2 else cols[0]
 
 
 @dataclass(frozen=True, slots=True)

@@ -115,9 +115,19 @@ _DRIVE: dict[str, Any] = _only(
 )
 
 
-def _table(columns: int) -> dict[str, Any]:
+def _in(unit: str, example: str) -> dict[str, Any]:
+    """A number whose bare form is in ``unit`` whatever the file's ``units`` (DESIGN § 1.4: masses,
+    inertias, gravity, loads; answers are SI), or a string with its unit."""
+    return {**_NUMBER, "description": f"A bare number is in {unit}, or a string with its unit ({example})."}
+
+
+_ANGLE = {**_NUMBER, "description": "The drive's angle: a bare number is in the file's angle unit."}
+
+
+def _table(unit: str, example: str, values: int) -> dict[str, Any]:
     """``{table: [[angle, value…], …]}``: a load over the drive's angle."""
-    row = {"type": "array", "items": _NUMBER, "minItems": columns, "maxItems": columns}
+    cells = [_ANGLE] + [_in(unit, example)] * values
+    row = {"type": "array", "items": cells, "minItems": 1 + values, "maxItems": 1 + values}
     return {
         "type": "object",
         "required": ["table"],
@@ -125,6 +135,41 @@ def _table(columns: int) -> dict[str, Any]:
         "properties": {"table": {"type": "array", "items": row, "minItems": 2}},
     }
 
+
+_N = _in("N", '"2 kN"')
+_NM = _in("N·m, counter-clockwise positive", '"20 N m"')
+_SI = _in("SI (m, m/s, m/s², rad/s, rad/s²)", '"385 mm"')
+
+#: ``vary``: a range or a list of values for a scalar of the file, by its dotted path (DESIGN § 1.3).
+_VARY = {
+    "oneOf": [
+        {
+            "type": "object",
+            "required": ["from", "to"],
+            "additionalProperties": False,
+            "properties": {
+                "from": {"type": "number"},
+                "to": {"type": "number"},
+                "step": {"type": "number", "exclusiveMinimum": 0},
+            },
+            "description": "A range in the file's units: from, to and step (default 1).",
+        },
+        {"type": "array", "minItems": 1, "description": "A list: one of these."},
+    ]
+}
+#: ``keep``: an answer key's label, or bounds on its value (DESIGN § 1.3).
+_KEEP = {
+    "oneOf": [
+        {"type": ["string", "number"], "description": "The label or value the key must have."},
+        {
+            "type": "object",
+            "minProperties": 1,
+            "additionalProperties": False,
+            "properties": {"at_least": _SI, "at_most": _SI},
+            "description": "Bounds on the key's value, with units (at_least: 35 deg).",
+        },
+    ]
+}
 
 _SECTIONS: dict[str, Any] = {
     "name": {"type": "string"},
@@ -190,11 +235,11 @@ _SECTIONS: dict[str, Any] = {
                 {
                     "force": {
                         "oneOf": [
-                            {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
-                            _table(3),
+                            {"type": "array", "items": _N, "minItems": 2, "maxItems": 2},
+                            _table("N", '"2 kN"', 2),
                         ]
                     },
-                    "torque": {"oneOf": [_NUMBER, _table(2)]},
+                    "torque": {"oneOf": [_NM, _table("N·m", '"20 N m"', 1)]},
                     "on": _NAME,
                 },
             ),
@@ -210,13 +255,18 @@ _SECTIONS: dict[str, Any] = {
             "additionalProperties": False,
             "properties": _only(
                 MASS_KEYS,
-                {"mass": _NUMBER, "centre": _NAME, "inertia": _NUMBER, "radius_of_gyration": _NUMBER},
+                {
+                    "mass": _in("kg", '"2 kg"'),
+                    "centre": _NAME,
+                    "inertia": _in("kg·m² about the centre", '"0.012 kg m^2"'),
+                    "radius_of_gyration": _in("the file's length unit", '"60 mm"'),
+                },
             ),
         },
     },
     "gravity": {
         "type": "array",
-        "items": _NUMBER,
+        "items": _in("m/s²", '"9.81 m/s^2"'),
         "minItems": 2,
         "maxItems": 2,
         "description": "[gx, gy] in m/s^2 (none by default).",
@@ -245,10 +295,13 @@ _SECTIONS: dict[str, Any] = {
     },
     "vary": {
         "type": "object",
+        "minProperties": 1,
+        "additionalProperties": _VARY,
         "description": "mech variants: dotted paths of scalars to {from, to, step} ranges or lists of values.",
     },
     "keep": {
         "type": "object",
+        "additionalProperties": _KEEP,
         "description": "mech variants: answer keys each variant must keep: a label, or {at_least, at_most}.",
     },
     "answers": {
@@ -257,7 +310,7 @@ _SECTIONS: dict[str, Any] = {
         "additionalProperties": {
             "oneOf": [
                 {"type": ["number", "string"]},
-                {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2},
+                {"type": "array", "items": _SI, "minItems": 2, "maxItems": 2},
                 {
                     "type": "object",
                     "required": ["value"],

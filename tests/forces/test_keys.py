@@ -122,3 +122,47 @@ def test_keys_without_a_value_here_are_errors_that_say_why():
     dp = dp[: dp.index("\nanswers:")] + "\nmasses: {coupler: {mass: 1, centre: F}}\n"
     verdicts = _verdicts(dp, {"force.B": "1 N"})
     assert verdicts["force.B"].status == ERROR and "indeterminate" in verdicts["force.B"].message
+
+
+# A force at the pin B of rod and piston (DESIGN § 1.4: such a load "says which link it acts on:
+# on: piston").  Statics of the in-line slider crank, r = 50, l = 200 mm, crank at 60°, P = 1000 N
+# along the line of stroke: on the piston, the rod (a two-force member) carries |P| / cos φ at A
+# and B, sin φ = r sin θ / l; on the rod, the pin B carries only the guide's share, |P| tan φ
+# (Hibbeler, *Engineering Mechanics: Statics*, § 6.6).  A's force is the same either way.
+PIN = """\
+units: {length: mm, angle: deg}
+links: [frame, crank, rod, piston]
+joints:
+  O: {type: revolute, links: [frame, crank], at: [0, 0]}
+  A: {type: revolute, links: [crank, rod]}
+  B: {type: revolute, links: [rod, piston], near: [250, 0]}
+  P: {type: prismatic, links: [piston, frame], path: {through: [0, 0], angle: 0}}
+lengths: {OA: 50, AB: 200}
+drive: {link: crank, angle: 60, rpm: 0, direction: ccw}
+"""
+
+
+@pytest.mark.parametrize("on", ["piston", "rod", None])
+def test_a_load_at_a_pin_of_two_moving_links_acts_on_the_link_it_names_and_without_one_the_pins_force_is_not_given(
+    on,
+):
+    sin_phi = 50 * math.sin(math.radians(60)) / 200
+    cos_phi = math.sqrt(1 - sin_phi**2)
+    load = "loads: {B: {force: [-1000, 0]" + (f", on: {on}" if on else "") + "}}\n"
+    b = {"piston": 1000 / cos_phi, "rod": 1000 * sin_phi / cos_phi, None: 0.0}[on]
+    verdicts = _verdicts(PIN + load, {"force.A": f"{1000 / cos_phi!r} N", "force.B": f"{b!r} N"})
+    assert verdicts["force.A"].status == PASS
+    if on is not None:
+        assert verdicts["force.B"].status == PASS
+    else:
+        assert verdicts["force.B"].status == ERROR
+        assert "B joins rod and piston" in verdicts["force.B"].message
+        assert "on: rod" in verdicts["force.B"].message and "on: piston" in verdicts["force.B"].message
+        from mech.forces import analyse
+        from mech.options import SolveOptions
+
+        (note,) = analyse(loads(PIN + load, path="pin.yaml"), SolveOptions()).notes  # mech forces says so
+        assert note.startswith("B joins rod and piston") and note.endswith("shown with the load on rod")
+        from mech.forces.cycle import force_cycle  # and so does mech sweep --level forces
+
+        assert note in force_cycle(loads(PIN + load, path="pin.yaml"), SolveOptions(), steps=36).notes

@@ -573,6 +573,30 @@ def test_a_profile_cams_joint_is_the_followers_own_point_and_k_at_link_the_conta
     assert kin.velocity("K@follower") == pytest.approx(kin.velocity(own), abs=1e-12)
 
 
+@pytest.mark.parametrize(("name", "own"), [("eccentric_cam.yaml", "F"), ("eccentric_cam_roller.yaml", "C")])
+def test_point_k_on_a_profile_cams_slide_is_the_followers_own_point(name, own):
+    # DESIGN § 1.2: `point: K` on the follower's slide means the follower's own point.  The same
+    # files with `point: K` for `point: F` (a flat face) or `point: C` (a roller's centre): the
+    # follower moves as before, y = e sin θ + R (flat) or e sin θ + S, S = √((R + r)² − e² cos² θ)
+    # (roller), so v = ω y′ and a = ω² y″ (θ = 30°, e = 15, R = 40, r = 10 mm, 300 rpm ccw):
+    # y′ = e cos θ (+ e² sin θ cos θ / S), y″ = −e sin θ (+ e² cos 2θ / S − (e² sin θ cos θ)² / S³)
+    from mech.loader import loads
+
+    path = Path(__file__).resolve().parents[2] / "mechanisms" / name
+    text = path.read_text(encoding="utf-8").replace(f"point: {own}}}", "point: K}")
+    assert "point: K}" in text
+    kin = solve(loads(text, path=name), "acceleration")
+    w, e, th = 10 * math.pi, 0.015, math.radians(30)
+    y, dy, d2y = 0.040 + e * math.sin(th), e * math.cos(th), -e * math.sin(th)
+    if own == "C":
+        root, sc = math.sqrt(0.050**2 - (e * math.cos(th)) ** 2), e * e * math.sin(th) * math.cos(th)
+        y, dy, d2y = y - 0.040 + root, dy + sc / root, d2y + e * e * math.cos(2 * th) / root - sc**2 / root**3
+    assert kin.position("K") == pytest.approx((0.0, y), abs=1e-12)
+    assert kin.velocity("K") == pytest.approx((0.0, w * dy), abs=1e-12)
+    assert kin.acceleration("K") == pytest.approx((0.0, w**2 * d2y), abs=1e-9)
+    assert kin.velocity(own) == pytest.approx(kin.velocity("K"), abs=1e-12)
+
+
 def test_tables_and_json_name_each_links_point_at_a_contact_k_at_link(run, write):
     path = write(ISSUE_CAM)
     table = run("acceleration", str(path))

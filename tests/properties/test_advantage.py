@@ -87,6 +87,38 @@ def test_slider_crank_input_torque_balances_a_piston_force():
     assert effort.by_virtual_work == pytest.approx(expected, rel=1e-9)
 
 
+def test_input_torque_reads_a_load_table_at_the_drive_angle():
+    # DESIGN § 1.4: a load's table is read at the drive's angle, linearly between rows, repeated
+    # with its span.  Slider crank r = 50, l = 200 mm, piston on the right, crank at 30°:
+    # x_B = r cos θ + √(l² − r² sin² θ), dx_B/dθ = −r sin θ − r² sin θ cos θ / √(l² − r² sin² θ);
+    # the piston's force is the row [10°, 80 N] … [170°, 80 N], so T = −80 N·dx_B/dθ.  The crank's
+    # own torque table [[0, 0], [90, 9]] (span 90°) reads 3 N·m at 30° and again at 390° (= 30°
+    # + 4 × 90°), balanced by −3 N·m.
+    base = """
+units: {length: mm, angle: deg}
+links: [frame, crank, rod, piston]
+joints:
+  O: {type: revolute, links: [frame, crank], at: [0, 0]}
+  A: {type: revolute, links: [crank, rod]}
+  B: {type: revolute, links: [rod, piston], near: [250, 0]}
+  P: {type: prismatic, links: [piston, frame], path: {through: [0, 0], angle: 0}}
+lengths: {OA: 50, AB: 200}
+drive: {link: crank, angle: ANGLE, rpm: 1500, direction: ccw}
+"""
+    force = "loads: {B: {force: {table: [[0, 0, 0], [10, 80, 0], [170, 80, 0], [360, 0, 0]]}, on: piston}}\n"
+    r, rod, th = 0.05, 0.2, math.radians(30.0)
+    dx = -r * math.sin(th) - r * r * math.sin(th) * math.cos(th) / math.sqrt(rod**2 - (r * math.sin(th)) ** 2)
+    mech = loads(base.replace("ANGLE", "30") + force)
+    effort = input_effort(mech, solve(mech, "velocity"))
+    assert effort.value == pytest.approx(-80.0 * dx, rel=1e-9)
+    assert effort.by_virtual_work == pytest.approx(-80.0 * dx, rel=1e-9)
+    for angle in ("30", "390"):
+        mech = loads(base.replace("ANGLE", angle) + "loads: {crank: {torque: {table: [[0, 0], [90, 9]]}}}\n")
+        effort = input_effort(mech, solve(mech, "velocity"))
+        assert effort.value == pytest.approx(-3.0, rel=1e-12)
+        assert effort.by_virtual_work == pytest.approx(-3.0, rel=1e-9)
+
+
 def test_four_bar_input_torque_balances_a_rocker_torque():
     d, a, b, c, th2 = 0.15, 0.04, 0.15, 0.08, math.radians(60.0)  # Khurmi Ex. 7.1
     # circle intersection for C (above AD), then the link angles

@@ -28,6 +28,7 @@ from __future__ import annotations
 import copy
 import hashlib
 import math
+import re
 from collections.abc import Sequence
 from typing import Any
 
@@ -35,7 +36,7 @@ import yaml
 
 from mech import loader
 from mech._records import dataclass
-from mech.answers import Compare, parse_key
+from mech.answers import AnswerKey, Compare, parse_key
 from mech.errors import InputError, MechError, Problem, Where
 from mech.grading.key import KeyRow, answer_key
 from mech.grading.lazy import Analysis
@@ -46,6 +47,24 @@ __all__ = ["MAX_ATTEMPTS", "Plan", "Variant", "plan", "variant_for"]
 
 #: Redraws of one student's variant before giving up (the keep conditions may be too strict).
 MAX_ATTEMPTS = 200
+
+_BOOL = "tag:yaml.org,2002:bool"
+
+
+class _TextLoader(yaml.SafeLoader):
+    """PyYAML's safe loader with YAML 1.2's booleans (``true``, ``false``) only.
+
+    mech reads ``on``, ``no``, ``yes``, ``off`` as text (a load's ``on: piston``, a link named
+    ``no``), where YAML 1.1 would make them booleans: a variant must keep them text, and the
+    dumper quotes them on the way out (``'on': piston``), so every variant reads as its problem.
+    """
+
+
+_TextLoader.yaml_implicit_resolvers = {
+    first: [(tag, rx) for tag, rx in resolvers if tag != _BOOL]
+    for first, resolvers in yaml.SafeLoader.yaml_implicit_resolvers.items()
+}
+_TextLoader.add_implicit_resolver(_BOOL, re.compile(r"^(?:true|True|TRUE|false|False|FALSE)$"), list("tTfF"))
 
 
 @dataclass(frozen=True, slots=True)
@@ -80,7 +99,7 @@ def plan(path: str, text: str | None = None) -> Plan:
             text = f.read()
     loader.loads(text, path=path)  # the problem itself must be a valid file first
     root = yaml.compose(text)
-    data = yaml.safe_load(text)
+    data = yaml.load(text, Loader=_TextLoader)  # a SafeLoader: nothing is constructed from tags
     nodes = {k.value: v for k, v in root.value} if isinstance(root, yaml.MappingNode) else {}
     problems: list[Problem] = []
     where = lambda node: Where(path, node.start_mark.line + 1, node.start_mark.column + 1)  # noqa: E731
@@ -120,14 +139,24 @@ def plan(path: str, text: str | None = None) -> Plan:
             raise InputError(
                 "`keep` must map answer keys to a label or to {at_least, at_most}", where=where(knodes)
             )
-        for knode, _cnode in knodes.value:
+        for knode, cnode in knodes.value:
             key = str(knode.value)
             try:
-                parse_key(key)
+                akey = parse_key(key)
             except ValueError as exc:
                 problems.append(
                     Problem(
                         f"keep: {exc}", where(knode), "a condition is an answer key (see cli.md § answers)"
+                    )
+                )
+                continue
+            why = _unholdable(akey, data["keep"][key])
+            if why is not None:
+                problems.append(
+                    Problem(
+                        f"keep: {key}: {why}",
+                        where(cnode),
+                        "a label, or {at_least: …, at_most: …} with units (e.g. {at_least: 35 deg})",
                     )
                 )
                 continue
@@ -136,6 +165,30 @@ def plan(path: str, text: str | None = None) -> Plan:
         raise InputError(problems=problems, source=text)
     digest = hashlib.sha256(text.encode("utf-8")).hexdigest()
     return Plan(path, text, data, tuple(vary), tuple(keep), digest)
+
+
+def _unholdable(akey: AnswerKey, want: Any) -> str | None:
+    """Why a ``keep`` condition could hold nothing (a misspelt bound, a bound not of the key's
+    quantity), or None: each variant must satisfy it (DESIGN § 1.3), never pass it by a typo."""
+    if not isinstance(want, dict):
+        return (
+            None
+            if isinstance(want, (str, int, float)) and not isinstance(want, bool)
+            else "a label or bounds"
+        )
+    if not want or set(want) - {"at_least", "at_most"}:
+        wrong = ", ".join(str(k) for k in want if k not in ("at_least", "at_most"))
+        return "bounds are at_least and at_most" + (f", not {wrong}" if wrong else "")
+    for bound, raw in want.items():
+        try:
+            q = parse_quantity(str(raw)) if not isinstance(raw, bool) else None
+        except (ValueError, KeyError):
+            q = None
+        if q is None:
+            return f"{bound}: {raw!r} is not a number with a unit"
+        if q.dimension is not None and akey.dimensions and q.dimension not in akey.dimensions:
+            return f"{bound}: {raw} measures {q.dimension.value}, not {akey.dimensions[0].value}"
+    return None
 
 
 def _choices(spec: Any) -> tuple[Any, ...] | str:

@@ -33,7 +33,18 @@ import numpy as np
 from mech._records import dataclass
 from mech.model import Load, Mechanism
 
-__all__ = ["Motion", "Solved", "jacobian_si", "load_value", "locate", "multipliers", "reactions", "solve"]
+__all__ = [
+    "Motion",
+    "Solved",
+    "jacobian_si",
+    "load_value",
+    "locate",
+    "multipliers",
+    "reactions",
+    "solve",
+    "unsaid_on",
+    "unsaid_text",
+]
 
 
 @dataclass(frozen=True)
@@ -151,21 +162,9 @@ def locate(mech: Mechanism, sys_: Any, motion: Motion, name: str) -> np.ndarray:
 
 
 def load_value(load: Load, angle: np.ndarray) -> np.ndarray:
-    """A load's value at the drive's angles (K,): (K, 2) for a force, (K,) for a torque.
-
-    A table is read linearly between its rows and repeated with its span (a
-    four-stroke engine's 720°); a constant load is the same at every angle.
-    """
-    k = angle.shape[0]
-    if load.table is None:
-        if load.force is not None:
-            return np.broadcast_to(np.asarray(load.force, float), (k, 2))
-        return np.full(k, float(load.torque or 0.0))
-    table = np.asarray(load.table, float)
-    start, span = table[0, 0], table[-1, 0] - table[0, 0]
-    t = start + np.mod(np.fmod(angle - start, span), span) if span > 0 else angle
-    cols = [np.interp(t, table[:, 0], table[:, c]) for c in range(1, table.shape[1])]
-    return np.stack(cols, axis=1) if len(cols) == 2 else cols[0]
+    """A load's value at the drive's angles (K,): (K, 2) for a force, (K,) for a torque
+    (:meth:`mech.model.Load.values`: a table read linearly, repeated with its span)."""
+    return load.values(angle)  # type: ignore[no-any-return]
 
 
 def _loads(st: _Stack) -> np.ndarray:
@@ -183,8 +182,36 @@ def _loads(st: _Stack) -> np.ndarray:
     return q
 
 
+def unsaid_on(mech: Mechanism) -> dict[str, tuple[str, ...]]:
+    """Forces at a pin of two or more moving links that do not say which they act on: pin → its
+    moving links (the first takes the load, :func:`_carrier`).
+
+    DESIGN § 1.4: such a load says which link it acts on (``on: piston``).  Where it does not,
+    the power balance (the input effort) is the same whichever link takes it, and so is every
+    other pair's force, but the force the pin itself carries is not (:func:`unsaid_text`).
+    """
+    out: dict[str, tuple[str, ...]] = {}
+    for load in mech.loads:
+        joint = next((j for j in mech.joints if j.name == load.target), None)
+        if joint is None or not load.is_force or load.on is not None:
+            continue
+        moving = tuple(lk for lk in joint.links if lk != mech.ground)
+        if len(moving) > 1:
+            out[load.target] = moving
+    return out
+
+
+def unsaid_text(pin: str, links: tuple[str, ...]) -> str:
+    """Why the force of ``pin`` is not given: its load names none of ``links`` (:func:`unsaid_on`)."""
+    return (
+        f"{pin} joins {' and '.join(links)}, and the load at {pin} does not say which it acts on "
+        f"({' or '.join(f'on: {lk}' for lk in links)}): the force {pin} carries depends on it"
+    )
+
+
 def _carrier(mech: Mechanism, target: str) -> str:
-    """The moving link a force at ``target`` acts on when the file does not say (it has one)."""
+    """The moving link a force at ``target`` acts on when the file does not say (the first; a pin of
+    several moving links then gives no force of its own: :func:`unsaid_on`)."""
     for j in mech.joints:
         if j.name == target:
             return next(lk for lk in j.links if lk != mech.ground)

@@ -63,6 +63,9 @@ class ForceAnalysis:
     note: str = ""
     #: True for a static problem (no drive speed: no inertia, the rates only for the power balance).
     static: bool = False
+    #: What else the reader must know: a load at a pin of two moving links that names neither
+    #: (:func:`mech.forces.core.unsaid_on`), its pin's force shown with the load on the first.
+    notes: tuple[str, ...] = ()
     #: The solved instant the forces are of (a :class:`mech.kinematics.Kinematics`), for the free
     #: bodies and the drawings; not part of the result's value.
     kinematics: Any = field(default=None, compare=False, repr=False)

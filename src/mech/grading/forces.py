@@ -51,6 +51,11 @@ def _cycle(an: Analysis) -> Any:
 
 
 def _pair(an: Analysis, joint: str) -> Any:
+    from mech.forces.core import unsaid_on, unsaid_text
+
+    links = unsaid_on(an.mech).get(joint)
+    if links is not None:
+        raise Undefined(f"cannot be computed: {unsaid_text(joint, links)}")
     fa = _instant(an)
     if not fa.determinate:
         raise Undefined(f"cannot be computed: {fa.note}")

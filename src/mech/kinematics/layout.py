@@ -140,7 +140,7 @@ def _layout(mech: Mechanism) -> Layout:
     paths: list[PathSpec] = []
     for j in mech.joints:
         if kind_of(j).role == "path":
-            spec = _path_spec(j, carriers, joint_locs, point_locs, problems)
+            spec = _path_spec(mech, j, carriers, joint_locs, point_locs, problems)
             if spec is not None:
                 paths.append(spec)
 
@@ -176,6 +176,7 @@ def _carriers(mech: Mechanism) -> tuple[dict[str, tuple[str, ...]], dict[str, st
 
 
 def _path_spec(
+    mech: Mechanism,
     j: Joint,
     carriers: dict[str, tuple[str, ...]],
     joint_locs: dict[str, list[str]],
@@ -199,7 +200,9 @@ def _path_spec(
     if kind_of(j).located == "first":  # a slot: its own pin, unless it names one
         point = j.point if j.point is not None else j.name
     elif j.point is not None:
-        point = j.point
+        point = _own_point(mech, j, slider, carriers, joint_locs, problems)
+        if point is None:
+            return None
     elif not joint_locs[slider] and not point_locs[slider]:
         # A slider with no located point of its own (a follower touched only by a cam):
         # the point of it that lies on the path's ``through`` when drawn.
@@ -224,6 +227,45 @@ def _path_spec(
         problems.append(Problem(f"{j.type} joint {j.name}: point {point} is not a located point", j.where))
         return None
     return PathSpec(j.name, j.type, slider, guide, point, j.path)
+
+
+def _own_point(
+    mech: Mechanism,
+    j: Joint,
+    slider: str,
+    carriers: dict[str, tuple[str, ...]],
+    joint_locs: dict[str, list[str]],
+    problems: list[Problem],
+) -> str | None:
+    """The slider's point ``j.point`` names; a profile cam's joint stands for its follower's own point.
+
+    DESIGN § 1.2: ``point: K`` on the follower's slide means the follower's own point.  A cam
+    given by profiles touches where the curves meet, a point of no link; its follower's own point
+    is its roller's centre or knife edge when the profile names one, else (a flat face) the point
+    of the follower on the path, any of which keeps the follower on its path.
+    """
+    pair = next((p for p in mech.joints if p.name == j.point), None)
+    if pair is None or carriers.get(pair.name) != () or not pair.profiles:
+        return j.point
+    if pair.links[-1] != slider:
+        problems.append(
+            Problem(
+                f"{j.type} joint {j.name}: point {pair.name} is the own point of {pair.name}'s follower "
+                f"{pair.links[-1]}, not of the slider {slider}",
+                j.where,
+                hint=f"name a point of {slider}",
+            )
+        )
+        return None
+    ref = getattr(dict(pair.profiles).get(slider), "centre", None) or getattr(
+        dict(pair.profiles).get(slider), "point", None
+    )
+    if ref is not None and ref.name is not None and ref.name in carriers:
+        return ref.name  # type: ignore[no-any-return]
+    point = f"#{j.name}.point"  # the follower's point on the path, where `through` is when drawn
+    carriers[point] = (slider,)
+    joint_locs[slider].append(point)
+    return point
 
 
 def _on_link(

@@ -138,6 +138,7 @@ def forces_dict(
         "static": fa.static,
         "determinate": fa.determinate,
         "note": fa.note or None,
+        "notes": list(fa.notes),
         "pairs": [_pair_dict(p, num, units) for p in fa.pairs],
         "input": _effort_dict(fa),
         "inertia": [
@@ -297,8 +298,8 @@ def _tables(data: dict[str, Any], console: ReportConsole, units: OutputUnits) ->
     if data["drive_angle"] is not None:
         static = "; static (no drive speed: no inertia)" if data["static"] else ""
         console.print(f"  at drive angle {data['drive_angle']:.6g}°{static}")
-    if data["note"]:
-        console.print(f"  note: {data['note']}", soft_wrap=True)
+    for note in ([data["note"]] if data["note"] else []) + data["notes"]:
+        console.print(f"  note: {note}", soft_wrap=True)
     if data["pairs"]:
         console.print(_pairs_table(Table, box, data["pairs"], format_unit(units.length)))
         for p in data["pairs"]:
