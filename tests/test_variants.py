@@ -328,3 +328,40 @@ def test_keys_and_names_yaml_1_1_reads_as_booleans_stay_text_in_every_variant(tm
         r, rod, th = data["lengths"]["OA"], data["lengths"]["AB"], math.radians(data["drive"]["angle"])
         cos_phi = math.sqrt(1 - (r * math.sin(th) / rod) ** 2)
         assert key[s, "force.B"]["value"] == pytest.approx(1000 / cos_phi, rel=1e-9)
+
+
+def _failed(claimed: str, computed: float, diagnosis: str | None, miss: float | None):
+    from mech.check.verdicts import FAIL, Verdict
+
+    return Verdict(
+        "omega.rocker",
+        FAIL,
+        claimed=claimed,
+        computed=computed,
+        unit="rad/s",
+        allowed=0.02 * abs(computed),
+        tolerance="2%",
+        diagnosis=diagnosis,
+        diagnosis_miss=miss,
+    )
+
+
+def test_a_copy_matched_more_closely_than_the_diagnosed_mistake_is_named_a_copy():
+    from mech.check.classes import copied
+    from mech.check.verdicts import FileResult
+
+    # s02's own ω is 0.7374 rad/s; 6.97482 rad/s is s17's right answer, copied to the digit, and also
+    # within 0.95 % of s02's value read in rpm as rad/s (0.7374 × 60/2π = 7.0416): a unit slip
+    slip = 0.7374 * 60 / (2 * math.pi)
+    miss = abs(6.97482 - slip) / slip
+    copy = _failed("6.97482 rad/s", 0.7374, "a unit slip (the value in rpm, given as rad/s)", miss)
+    # s03 slipped honestly (the slip to the digit); s17's value lies 0.95 % away from it by chance
+    honest = _failed(f"{slip:.6g} rad/s", 0.7374, "a unit slip (the value in rpm, given as rad/s)", 1e-7)
+    table = {("p.yaml", "omega.rocker"): [("s02", 0.7374), ("s03", 0.7374), ("s17", 6.97482)]}
+    rows = [
+        FileResult("class/s02/p.yaml", student="s02", verdicts=(copy,)),
+        FileResult("class/s03/p.yaml", student="s03", verdicts=(honest,)),
+    ]
+    out = copied(rows, table)
+    assert out[0].verdicts[0].diagnosis == "the variant of s17"
+    assert out[1].verdicts[0].diagnosis == "a unit slip (the value in rpm, given as rad/s)"

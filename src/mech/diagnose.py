@@ -46,7 +46,7 @@ from mech.units import Dimension
 if TYPE_CHECKING:  # pragma: no cover
     from mech.model import Claim, Tolerance
 
-__all__ = ["diagnose"]
+__all__ = ["diagnose", "diagnosis"]
 
 Vec = tuple[float, float]
 _KINEMATIC = ("position", "velocity", "acceleration")
@@ -54,13 +54,30 @@ _KINEMATIC = ("position", "velocity", "acceleration")
 
 def diagnose(claim: Claim, akey: AnswerKey, value: Any, an: Analysis, tol: Tolerance) -> str | None:
     """The usual mistake a failed claim matches (``"the opposite sense"``), or None."""
+    found = diagnosis(claim, akey, value, an, tol)
+    return None if found is None else found[0]
+
+
+def diagnosis(
+    claim: Claim, akey: AnswerKey, value: Any, an: Analysis, tol: Tolerance
+) -> tuple[str, float] | None:
+    """The usual mistake a failed claim matches and how closely: (words, miss), or None.
+
+    ``miss`` is the claim's distance from the mistake's value, relative to that value (for a
+    point, to the mechanism's size): a copied classmate's answer that the claim matches more
+    closely is named instead (:func:`mech.check.classes.copied`).
+    """
     if akey.compare in (Compare.COUNT, Compare.LABEL) or isinstance(value, AtInfinity):
         return None
     if akey.compare is Compare.POINT:
         if isinstance(claim.value, str):
             return None
         match = _point_match(tol, an, (float(value[0]), float(value[1])))
-        return _first(_point_candidates(akey, value, an), claim.value, match)
+        found = _first(_point_candidates(akey, value, an), claim.value, match)
+        if found is None:
+            return None
+        size = an.kin.size or 1.0
+        return found[0], math.dist(found[1], claim.value) / size  # type: ignore[arg-type]
     to_space = _space(akey, claim)
     claimed = _claimed(akey, claim)
     right = to_space(value)
@@ -68,7 +85,10 @@ def diagnose(claim: Claim, akey: AnswerKey, value: Any, an: Analysis, tol: Toler
     found = _first(_cheap(akey, claim, value, right, an, to_space), claimed, scalar_match)
     if found is None and akey.level in _KINEMATIC:
         found = _first(_branch_candidates(akey, an, to_space), claimed, scalar_match)
-    return found
+    if found is None:
+        return None
+    text, candidate = found
+    return text, abs(claimed - candidate) / abs(candidate) if candidate else math.inf
 
 
 # -- comparing a candidate with the claim -------------------------------------------------------
@@ -126,11 +146,12 @@ def _point_match(tol: Tolerance, an: Analysis, right: Vec) -> Callable[[Vec, Vec
 
 def _first(
     candidates: Iterator[tuple[str, Any]], claimed: Any, match: Callable[[Any, Any], bool]
-) -> str | None:
+) -> tuple[str, Any] | None:
+    """The first candidate the claim matches: its words and its value."""
     for text, candidate in candidates:
         try:
             if match(candidate, claimed):
-                return text
+                return text, candidate
         except (TypeError, ValueError, ArithmeticError):
             continue
     return None

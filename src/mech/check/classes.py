@@ -68,10 +68,14 @@ def owners(files: Sequence[str], folders: dict[str, set[str]]) -> dict[str, str]
 
 
 def copied(results: list[FileResult], table: ClassKey) -> list[FileResult]:
-    """Each failed answer without a diagnosis that is another student's right answer, diagnosed so.
+    """Each failed answer that is another student's right answer, diagnosed so.
 
     Where one answer matches several classmates' variants, the classmate whose variant matches
     the most of the sheet's answers to the problem is named (a copied sheet names its source).
+    An answer already diagnosed with a usual mistake is named a copy only when a classmate's
+    value matches it more closely than the mistake's does: a copy matches to the digits
+    written, a mistake that happens to lie near it (a unit slip, 1 % off) does not, and an
+    honest slip that a classmate's value lies near by chance keeps its diagnosis.
     """
     if not table:
         return results
@@ -84,7 +88,11 @@ def copied(results: list[FileResult], table: ClassKey) -> list[FileResult]:
         matches = [_whose(v, table.get((name, v.key), ()), r.student) for v in r.verdicts]
         tally = Counter(s for m in matches for s in m)
         verdicts = tuple(
-            replace(v, diagnosis=f"the variant of {min(m, key=lambda s: (-tally[s], s))}") if m else v
+            replace(
+                v, diagnosis=f"the variant of {min(m, key=lambda s: (-tally[s], s))}", diagnosis_miss=None
+            )
+            if m
+            else v
             for v, m in zip(r.verdicts, matches, strict=True)
         )
         out.append(replace(r, verdicts=verdicts))
@@ -92,9 +100,12 @@ def copied(results: list[FileResult], table: ClassKey) -> list[FileResult]:
 
 
 def _whose(v: Verdict, others: Sequence[tuple[str, float]], student: str) -> list[str]:
-    """The classmates whose right answer the failed claim ``v`` is, within its tolerance."""
-    if v.status != FAIL or v.diagnosis is not None or not others or not v.claimed:
+    """The classmates whose right answer the failed claim ``v`` is, within its tolerance (and, when
+    it has a diagnosis already, more closely than the diagnosed mistake's value)."""
+    if v.status != FAIL or not others or not v.claimed:
         return []
+    if v.diagnosis is not None and v.diagnosis_miss is None:
+        return []  # diagnosed, by a rule that says not how closely (a copy named already)
     claimed = _claimed(v.claimed)
     if claimed is None:
         return []
@@ -108,7 +119,9 @@ def _whose(v: Verdict, others: Sequence[tuple[str, float]], student: str) -> lis
             continue
         want = theirs if sense else abs(theirs)
         allowed = rel * abs(want) if relative or v.allowed is None else v.allowed
-        if math.isfinite(want) and abs(value - want) <= allowed:
+        miss = abs(value - want)
+        closer = v.diagnosis_miss is None or (want != 0.0 and miss / abs(want) < v.diagnosis_miss)
+        if math.isfinite(want) and miss <= allowed and closer:
             found.append(other)
     return found
 

@@ -17,7 +17,7 @@ from typing import Any
 from mech import grading
 from mech._records import dataclass
 from mech.answers import AnswerKey, AtInfinity, Compare, Undefined, parse_key
-from mech.diagnose import diagnose
+from mech.diagnose import diagnosis
 from mech.errors import MechError, Problem, Where
 from mech.grading import NOISE, Analysis, InternalError
 from mech.model import Claim, Mechanism, Tolerance
@@ -81,6 +81,9 @@ class Verdict:
         What the question is worth (DESIGN § 1.3: ``asks`` as a mapping, or
         ``marks`` on an answer; 1 by default): a pass earns them all, anything
         else none.  An ignored sheet key is worth 0.
+    diagnosis_miss
+        How far the claim is from the diagnosed mistake's value, relative to it (not
+        reported): a classmate's variant the claim matches more closely is named instead.
     """
 
     key: str
@@ -95,6 +98,7 @@ class Verdict:
     where: Where | None = field(default=None, compare=False)
     diagnosis: str | None = None
     marks: float = 1.0
+    diagnosis_miss: float | None = field(default=None, compare=False)
 
     @property
     def passed(self) -> bool:
@@ -135,6 +139,7 @@ def _unpickled(
     where: Where | None,
     diagnosis: str | None,
     marks: float = 1.0,
+    diagnosis_miss: float | None = None,
 ) -> Verdict:
     """A pickled verdict read back (:meth:`Verdict.__reduce__`)."""
     return Verdict(
@@ -150,6 +155,7 @@ def _unpickled(
         where,
         None if diagnosis is None else sys.intern(diagnosis),
         marks,
+        diagnosis_miss,
     )
 
 
@@ -304,11 +310,11 @@ def _verdict(claim: Claim, akey: AnswerKey, analysis: Analysis, default: Toleran
         return _replace(base, status=ERROR, message=str(InternalError.of(exc)))
     if verdict.status == FAIL:
         try:
-            found = diagnose(claim, akey, value, analysis, tolerance)
+            found = diagnosis(claim, akey, value, analysis, tolerance)
         except Exception:  # a diagnosis is a bonus: it never costs the verdict
             found = None
         if found:
-            verdict = _replace(verdict, diagnosis=found)
+            verdict = _replace(verdict, diagnosis=found[0], diagnosis_miss=found[1])
     return verdict
 
 
