@@ -365,3 +365,38 @@ def test_a_copy_matched_more_closely_than_the_diagnosed_mistake_is_named_a_copy(
     out = copied(rows, table)
     assert out[0].verdicts[0].diagnosis == "the variant of s17"
     assert out[1].verdicts[0].diagnosis == "a unit slip (the value in rpm, given as rad/s)"
+
+
+def test_a_point_drawn_on_a_coupler_keeps_its_place_on_the_link_in_every_variant(tmp_path):
+    # the teacher draws E at the middle of BC (crank 40 mm at 60°: B and C by the vector loop);
+    # each student's BC differs, and E must stay the middle of that student's B and C
+    ab, theta = 40 * MM, math.radians(60)
+    b = ab * np.array([math.cos(theta), math.sin(theta)])
+    c = _coupler_pin(ab, 150 * MM, theta)
+    e = (b + c) / 2 / MM
+    text = FOUR_BAR.replace(
+        "lengths: {AB: 40, BC: 150, CD: 80}",
+        f"lengths: {{AB: 40, BC: 150, CD: 80}}\npoints:\n  E: {{link: coupler, at: [{e[0]:.10g}, {e[1]:.10g}]}}",
+    ).replace("  lengths.AB: {from: 30, to: 60, step: 0.5}\n", "  lengths.BC: {from: 140, to: 160, step: 1}\n")
+    done = _variants(tmp_path, "fb.yaml", text, STUDENTS[:8], "class")
+    assert done.returncode == 0, done.stderr
+    for s in STUDENTS[:8]:
+        data = yaml.safe_load((tmp_path / "class" / s / "fb.yaml").read_text(encoding="utf-8"))
+        bc, th = data["lengths"]["BC"] * MM, math.radians(data["drive"]["angle"])
+        b_s = ab * np.array([math.cos(th), math.sin(th)])
+        c_s = _coupler_pin(ab, bc, th)
+        assert np.allclose(np.array(data["points"]["E"]["at"]) * MM, (b_s + c_s) / 2, rtol=0, atol=1e-9)
+
+
+def _coupler_pin(ab: float, bc: float, theta: float) -> np.ndarray:
+    """C of the four-bar (CD 80 mm, AD 150 mm) by the circles about B and D, on the side of (160, 80) mm."""
+    cd, ad = 80 * MM, 150 * MM
+    b = ab * np.array([math.cos(theta), math.sin(theta)])
+    d = np.array([ad, 0.0])
+    dist = float(np.hypot(*(d - b)))
+    x = (bc**2 - cd**2 + dist**2) / (2 * dist)
+    h = math.sqrt(bc**2 - x**2)
+    ex = (d - b) / dist
+    ey = np.array([-ex[1], ex[0]])
+    hint = np.array([160 * MM, 80 * MM])
+    return min((b + x * ex + h * ey, b + x * ex - h * ey), key=lambda p: float(np.hypot(*(p - hint))))

@@ -29,7 +29,8 @@ import copy
 import hashlib
 import math
 import re
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from itertools import pairwise
 from typing import Any
 
 import yaml
@@ -275,21 +276,34 @@ def _build(p: Plan, values: Sequence[tuple[str, Any]]) -> tuple[str, Mechanism, 
         }
         data["asks"] = asks if any(m != 1 for m in asks.values()) else list(asks)
     first = loader.loads(_dump(data), path=p.path)
-    _redraw(data, first)
+    _redraw(data, first, _teacher_positions(p))
     text = _dump(data)
     mech = loader.loads(text, path=p.path)
     return text, mech, answer_key(mech)
 
 
-def _redraw(data: dict[str, Any], mech: Mechanism) -> None:
-    """Move the drawn positions to this variant's solution: ``near`` hints, ``at`` of moving joints."""
+def _redraw(data: dict[str, Any], mech: Mechanism, teacher: Mapping[str, tuple[float, float]]) -> None:
+    """Move the drawn positions to this variant's solution: ``near`` hints, ``at`` of moving joints,
+    and the ``at`` of each point drawn on a moving link, kept at its place on that link."""
     joints = data.get("joints") or {}
     drawn = [n for n, j in joints.items() if isinstance(j, dict) and ("near" in j or "at" in j)]
-    if not drawn:
+    points = data.get("points") or {}
+    placed = [
+        n
+        for n, pt in points.items()
+        if isinstance(pt, dict)
+        and isinstance(pt.get("at"), list)
+        and pt.get("link") not in (None, mech.ground)
+    ]
+    if not drawn and not placed:
         return
     an = Analysis(mech)
     positions = an.kin.positions
     unit = mech.length_unit
+    for name in placed:
+        where = _kept_on_link(mech, points[name]["link"], name, teacher, positions)
+        if where is not None:
+            points[name]["at"] = [_round(to_unit(where[0], unit)), _round(to_unit(where[1], unit))]
     for name in drawn:
         j = joints[name]
         moving = mech.ground not in (j.get("links") or ())
@@ -298,6 +312,53 @@ def _redraw(data: dict[str, Any], mech: Mechanism) -> None:
             continue
         x, y = positions[name]
         j[field] = [_round(to_unit(x, unit)), _round(to_unit(y, unit))]
+
+
+def _kept_on_link(
+    mech: Mechanism,
+    link: str,
+    name: str,
+    teacher: Mapping[str, tuple[float, float]],
+    now: Mapping[str, tuple[float, float]],
+) -> tuple[float, float] | None:
+    """Where a point of ``link`` drawn by the teacher is in this variant: at the same place on the link.
+
+    Its place is read from the teacher's drawing against the first two of the link's joints
+    (as a fraction along the line from one to the other and across it), so a coupler point
+    drawn at the middle of BC stays the middle of this variant's BC, however long BC is.
+    None when the link has fewer than two joints drawn apart (the point then keeps its
+    coordinates, as before).
+    """
+    if name not in teacher:
+        return None
+    ends = [j.name for j in mech.joints if link in j.links and j.name in teacher and j.name in now]
+    for a, b in pairwise(ends):
+        (ax, ay), (bx, by) = teacher[a], teacher[b]
+        dx, dy = bx - ax, by - ay
+        span = dx * dx + dy * dy
+        if span == 0.0:
+            continue
+        ex, ey = teacher[name][0] - ax, teacher[name][1] - ay
+        along, across = (ex * dx + ey * dy) / span, (dx * ey - dy * ex) / span
+        (ax, ay), (bx, by) = now[a], now[b]
+        dx, dy = bx - ax, by - ay
+        return ax + along * dx - across * dy, ay + along * dy + across * dx
+    return None
+
+
+_TEACHER: dict[str, Mapping[str, tuple[float, float]]] = {}
+
+
+def _teacher_positions(p: Plan) -> Mapping[str, tuple[float, float]]:
+    """Every located point of the teacher's own drawing (SI), solved once per problem file."""
+    found = _TEACHER.get(p.digest)
+    if found is None:
+        try:
+            found = Analysis(loader.loads(p.text, path=p.path)).kin.positions
+        except Exception:  # the teacher's numbers do not assemble: the points keep their coordinates
+            found = {}
+        _TEACHER[p.digest] = found
+    return found
 
 
 def _round(v: float) -> float:
