@@ -377,7 +377,9 @@ def test_a_point_drawn_on_a_coupler_keeps_its_place_on_the_link_in_every_variant
     text = FOUR_BAR.replace(
         "lengths: {AB: 40, BC: 150, CD: 80}",
         f"lengths: {{AB: 40, BC: 150, CD: 80}}\npoints:\n  E: {{link: coupler, at: [{e[0]:.10g}, {e[1]:.10g}]}}",
-    ).replace("  lengths.AB: {from: 30, to: 60, step: 0.5}\n", "  lengths.BC: {from: 140, to: 160, step: 1}\n")
+    ).replace(
+        "  lengths.AB: {from: 30, to: 60, step: 0.5}\n", "  lengths.BC: {from: 140, to: 160, step: 1}\n"
+    )
     done = _variants(tmp_path, "fb.yaml", text, STUDENTS[:8], "class")
     assert done.returncode == 0, done.stderr
     for s in STUDENTS[:8]:
