@@ -280,3 +280,31 @@ def test_a_page_of_two_drives_plays_the_first_and_shows_the_closed_form_at_the_f
     h = math.sqrt(80**2 - 50**2) / 1000
     assert shown["velocity.C"] == pytest.approx(math.hypot(-0.4 - w3 * h, w3 * 0.050), rel=1e-6)
     assert not _console_errors(log)
+
+
+def test_a_profile_cams_own_point_has_its_speed_and_acceleration_rows(tmp_path):
+    """DESIGN § 1.2 and § 1.5: K of a cam is the follower's own point (here the roller's centre).
+
+    The eccentric disc (e = 15 mm, R = 40 mm) and roller (r = 10 mm) keep the roller's centre on
+    y = e sin θ + √((R + r)² − e² cos² θ) (Norton § 4.6): its speed and acceleration, by mpmath's
+    derivatives of that at the page's every 30th step, at 300 rpm ccw.
+    """
+    import mpmath
+
+    page = tmp_path / "cam.html"
+    run = mech("view", str(MECHANISMS / "eccentric_cam_roller.yaml"), "-o", str(page))
+    assert run.returncode == 0, run.stderr
+    text = page.read_text(encoding="utf-8")
+    raw = re.search(r'<script id="mech-data" type="application/json">(.*?)</script>', text, re.S).group(1)
+    data = json.loads(raw.replace("<\\/", "</"))
+    rows = {r["key"]: r["values"] for r in data["table"]}
+    e, rr, w = 0.015, 0.050, 300 * 2 * math.pi / 60
+    y = lambda t: e * mpmath.sin(t) + mpmath.sqrt(rr**2 - (e * mpmath.cos(t)) ** 2)  # noqa: E731
+    for i in range(0, len(data["param"]["si"]), 30):
+        theta = data["param"]["si"][i]
+        assert rows["velocity.K"][i] == pytest.approx(
+            abs(float(mpmath.diff(y, theta))) * w, rel=1e-5, abs=1e-9
+        )
+        assert rows["acceleration.K"][i] == pytest.approx(
+            abs(float(mpmath.diff(y, theta, 2))) * w * w, rel=1e-5, abs=1e-7
+        )

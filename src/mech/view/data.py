@@ -212,6 +212,10 @@ def _table(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> list[dict[str, Any]
                 }
             )
     moving = [(k, n) for k, n in enumerate(sw.points) if mech.ground not in drawn.carriers.get(n, ())]
+    own = _own_points(mech, drawn, sw)
+    for name, (vel, _acc) in own.items():
+        if vel is not None:
+            rows.append(_row(f"velocity.{name}", f"v {display_name(name)}", "m/s", np.hypot(*vel)))
     for k, name in moving:
         if sw.velocities is not None:
             speed = np.hypot(sw.velocities[:, k, 0], sw.velocities[:, k, 1])
@@ -223,6 +227,9 @@ def _table(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> list[dict[str, Any]
                     "values": as_list(speed),
                 }
             )
+    for name, (_vel, acc) in own.items():
+        if acc is not None:
+            rows.append(_row(f"acceleration.{name}", f"a {display_name(name)}", "m/s²", np.hypot(*acc)))
     for k, name in moving:
         if sw.accelerations is not None:
             mag = np.hypot(sw.accelerations[:, k, 0], sw.accelerations[:, k, 1])
@@ -235,6 +242,55 @@ def _table(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> list[dict[str, Any]
                 }
             )
     return rows
+
+
+def _row(key: str, label: str, unit: str, values: np.ndarray) -> dict[str, Any]:
+    return {"key": key, "label": label, "unit": unit, "values": as_list(values)}
+
+
+Pair = tuple[np.ndarray, np.ndarray]  # x and y components, one value per step
+
+
+def _own_points(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> dict[str, tuple[Pair | None, Pair | None]]:
+    """A cam's (or contact's) own point that the sweep does not carry: its velocity and acceleration.
+
+    DESIGN § 1.2: the joint's name is the follower's own point (the knife edge, the roller's
+    centre), fixed in the follower, so it moves with the follower as a rigid body does:
+    v_K = v_P + ω k×(K − P) and a_K = a_P + α k×(K − P) − ω²(K − P), from a point P of the
+    follower that the sweep carries, K − P turned with the follower from the file's instant.
+    """
+    out: dict[str, tuple[Pair | None, Pair | None]] = {}
+    if sw.velocities is None or sw.omegas is None:
+        return out
+    own = own_step(sw, drawn)
+    for j in mech.joints:
+        kind = kind_of(j)
+        if not kind.higher or kind.rolls or j.name in sw.points or j.name not in drawn.positions:
+            continue
+        carriers = drawn.carriers.get(j.name, ())
+        if len(carriers) != 1 or carriers[0] not in sw.links:
+            continue
+        link = carriers[0]
+        anchor = next((k for k, n in enumerate(sw.points) if link in drawn.carriers.get(n, ())), None)
+        if anchor is None:
+            continue
+        li = sw.links.index(link)
+        turn = sw.link_angles[:, li] - sw.link_angles[own, li]
+        dx0 = drawn.positions[j.name][0] - sw.positions[own, anchor, 0]
+        dy0 = drawn.positions[j.name][1] - sw.positions[own, anchor, 1]
+        c, s = np.cos(turn), np.sin(turn)
+        rx, ry = c * dx0 - s * dy0, s * dx0 + c * dy0
+        w = sw.omegas[:, li]
+        vel = (sw.velocities[:, anchor, 0] - w * ry, sw.velocities[:, anchor, 1] + w * rx)
+        acc = None
+        if sw.accelerations is not None and sw.alphas is not None and sw.level == "acceleration":
+            al = sw.alphas[:, li]
+            acc = (
+                sw.accelerations[:, anchor, 0] - al * ry - w * w * rx,
+                sw.accelerations[:, anchor, 1] + al * rx - w * w * ry,
+            )
+        out[j.name] = (vel, acc)
+    return out
 
 
 def _first_pivot(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> int | None:
