@@ -19,6 +19,7 @@ test.  The main fixture is an in-line slider crank with the crank at 90°:
 from __future__ import annotations
 
 import io
+import itertools
 import json
 import math
 import subprocess
@@ -602,7 +603,9 @@ def test_time_ratio_of_each_output_is_its_own_and_bare_time_ratio_names_the_cand
 def test_time_ratio_of_a_slider_by_its_joint_or_link_and_a_refusal_that_says_why() -> None:
     # Offset slider crank r = 50, l = 200, e = 20 mm: dead centres at ψ = asin(e/(l + r)) and
     # π + asin(e/(l − r)); ratio (π + β)/(π − β) with β the difference less π.  The slider is named
-    # by its joint (guide) or its link (slider); the crank is the driven link, the rod no output.
+    # by its joint (guide) or its link (slider); the crank is the driven link.  The rod swings
+    # between its limit angles where its ω = r ω₂ cos θ / (l cos φ) is 0, at θ = 90° and 270°: two
+    # half turns, a ratio of exactly 1 (DESIGN § 1.2: any link with two limit positions).
     sys.path.insert(0, str(Path(__file__).parent))
     from oracles.slider_crank import slider_dead_centres
 
@@ -616,4 +619,36 @@ def test_time_ratio_of_a_slider_by_its_joint_or_link_and_a_refusal_that_says_why
     assert (guide.status, slider.status) == (PASS, PASS)
     assert guide.computed == pytest.approx(ratio, rel=1e-10)
     assert crank.status == ERROR and "driven link" in crank.message
-    assert rod.status == ERROR and "not an output" in rod.message
+    assert rod.status == PASS and rod.computed == pytest.approx(1.0, rel=1e-9)
+
+
+def test_time_ratio_of_a_coupler_is_between_its_limit_angles_where_crank_and_rocker_are_parallel() -> None:
+    # The coupler BC of four_bar.yaml (AB 40, BC 150, CD 80, AD 150 mm) stops turning where
+    # v_B = v_C, both perpendicular to their links: AB ∥ DC.  The crank angles of those two
+    # positions, found here by mpmath on the loop's closed form (C on the side of (160, 80)),
+    # split the turn into the slow and the fast stroke.
+    import mpmath
+
+    def cross(theta):
+        b = (40 * mpmath.cos(theta), 40 * mpmath.sin(theta))
+        dx, dy = 150 - b[0], -b[1]
+        dist = mpmath.sqrt(dx * dx + dy * dy)
+        x = (150**2 - 80**2 + dist**2) / (2 * dist)
+        h = mpmath.sqrt(150**2 - x**2)
+        ex, ey = dx / dist, dy / dist
+        c = (b[0] + x * ex - h * ey, b[1] + x * ey + h * ex)  # the branch above AD, as drawn
+        return b[0] * c[1] - b[1] * (c[0] - 150)  # AB × DC
+
+    grid = [2 * math.pi * k / 720 for k in range(721)]
+    roots = [
+        float(mpmath.findroot(cross, (a, b), solver="anderson"))
+        for a, b in itertools.pairwise(grid)
+        if cross(a) * cross(b) < 0
+    ]
+    assert len(roots) == 2
+    arc = roots[1] - roots[0]
+    ratio = max(arc, 2 * math.pi - arc) / min(arc, 2 * math.pi - arc)
+    text = (Path(__file__).parents[1] / "mechanisms" / "four_bar.yaml").read_text(encoding="utf-8")
+    (coupler,) = check(loads(text[: text.index("answers:")] + f"answers:\n  time_ratio.coupler: {ratio!r}\n"))
+    assert coupler.status == PASS
+    assert coupler.computed == pytest.approx(ratio, rel=1e-9)

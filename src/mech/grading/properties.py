@@ -91,11 +91,94 @@ def time_ratio(an: Analysis, names: tuple[str, ...]) -> float:
     this mechanism's turn (:func:`mech.kinematics.sweep_rest.find_time_ratios`).
     """
     c = _cycle(an)
+    if names and _any_link(an, c, names[0]):
+        return float(an.cached(f"time_ratio.{names[0]}", lambda: _link_time_ratio(an, names[0])))
     output = _output(an, c, names[0]) if names else None
     got = c.sweep.time_ratio_of(output)
     if isinstance(got, str):
         raise Undefined(f"cannot be computed: {got}")
     return float(got.ratio)
+
+
+def _any_link(an: Analysis, c: Any, name: str) -> bool:
+    """A moving link that is neither an output the sweep follows nor the driven one (a coupler)."""
+    sw = c.sweep
+    known = {r.output for r in sw.time_ratios} | {n for n, _w in sw.time_ratio_refused if n}
+    drives = {d.link for d in an.mech.drives}
+    carried = any(j.name in known and name in j.links and j.name in sw.slides for j in an.mech.joints)
+    return name not in known and name not in drives and not carried and name in sw.links
+
+
+def _link_time_ratio(an: Analysis, name: str) -> float:
+    """Slow stroke over fast of any link that swings between two limit angles (a coupler).
+
+    DESIGN § 1.2: "a link … for any output with two limit positions over the input's full
+    turn".  Over one turn of the crank the link's ω changes sign exactly twice, at its largest
+    and least angles (its limit positions, refined by the sweep); the crank's arcs between
+    them are the strokes.
+    """
+    import math
+
+    import numpy as np
+
+    from mech.kinematics.sweep import sweep
+
+    if len(an.mech.drives) != 1 or an.mech.drives[0].link is None:
+        raise Undefined("cannot be computed: a time ratio is over one crank's full turn")
+    start = float(an.kin.drives[0].angle or 0.0)
+    angles = start + np.linspace(0.0, 2.0 * math.pi, 721)
+    key = f"angle.{name}"
+    sw = sweep(an.mech, angles, level="velocity", quantities=[key], options=an.options.with_(angle=None))
+    if not np.all(sw.assembled):
+        raise Undefined(
+            "cannot be computed: the crank does not turn fully (a time ratio needs its whole turn)"
+        )
+    w = sw.series(f"omega.{name}")
+    signs = np.sign(w[np.abs(w) > 1e-12 * max(float(np.max(np.abs(w))), 1e-300)])
+    reversals = int(np.count_nonzero(signs != np.roll(signs, 1))) if signs.size else 0
+    if reversals != 2:
+        said = "never reverses" if reversals == 0 else f"reverses {reversals} times"
+        raise Undefined(
+            f"cannot be computed: {name} {said} over the turn (a time ratio needs two limit positions)"
+        )
+    from mech.kinematics import solve
+
+    def omega(theta: float) -> float:
+        kin = solve(an.mech, "velocity", an.options.with_(angle=theta, method="auto"))
+        return float(kin.links[name].omega or 0.0)
+
+    phi = sw.angles
+    ends = [
+        _root(omega, float(phi[k]), float(phi[k + 1]), float(w[k]), float(w[k + 1]))
+        for k in range(phi.size - 1)
+        if w[k] * w[k + 1] < 0.0 or (w[k + 1] == 0.0 and k + 1 < phi.size - 1)
+    ]
+    if len(ends) != 2:
+        raise Undefined(f"cannot be computed: {name}'s limit positions could not be told apart over the turn")
+    arc = (ends[1] - ends[0]) % (2.0 * math.pi)
+    return max(arc, 2.0 * math.pi - arc) / min(arc, 2.0 * math.pi - arc)
+
+
+def _root(fn: Any, a: float, b: float, fa: float, fb: float) -> float:
+    """A root of ``fn`` in [a, b] where it changes sign (regula falsi, Illinois), to rounding."""
+    if fb == 0.0:
+        return b
+    side = 0
+    for _ in range(100):
+        c = b - fb * (b - a) / (fb - fa)
+        if not a < c < b and not b < c < a:
+            c = 0.5 * (a + b)
+        fc = fn(c)
+        if fc == 0.0 or abs(b - a) <= 4e-16 * max(1.0, abs(c)):
+            return c
+        if fc * fb < 0.0:
+            a, fa = b, fb
+            side = 0
+        else:
+            fa = fa / 2 if side == -1 else fa
+            side = -1
+        b, fb = c, fc
+    return b
 
 
 def _output(an: Analysis, c: Any, name: str) -> str:
