@@ -289,7 +289,8 @@ class ArcSlot(PairKind):
 
     def glyph(self, view, j):
         """An arc of its slot (±20° round the pin, about the arc's centre) and the pin in it."""
-        from mech.pairs.glyph import Outline, Pen, pin
+        from mech.pairs.glyph import pin
+        from mech.shapes import Poly, Style
 
         at, c = view.positions.get(j.name), view.positions.get(j.spec.centre.name)
         if at is None or c is None:
@@ -299,8 +300,8 @@ class ArcSlot(PairKind):
             (c[0] + r * math.cos(a0 + math.radians(t)), c[1] + r * math.sin(a0 + math.radians(t)))
             for t in range(-20, 21, 2)
         )
-        pen = Pen(view.colour(j.links[1]), 0.45)
-        return [Outline(arc, False, pen, "arc-slot", j.name, "block", world=True), *pin(view, j.name)]
+        style = Style(view.colour(j.links[1]), 0.45)
+        return [Poly(arc, False, style, "arc-slot", j.name, "block", world=True), *pin(view, j.name)]
 
     def inspect(self, seen, j):
         at, c = seen.at(j), seen.positions[j.spec.centre.name]
