@@ -23,11 +23,12 @@ pytest.importorskip("matplotlib")
 
 from mech.draw import draw
 from mech.draw.kennedy import circle_diagram
-from mech.draw.scene import Circle, Figure, Line, Poly, Text
+from mech.draw.scene import Figure
 from mech.errors import MechError
 from mech.icentres import locate
 from mech.kinematics import solve
 from mech.loader import load, loads
+from mech.shapes import Circle, Line, Poly, Text
 from mechanism_texts import COMPOUND_GEAR
 
 ROOT = Path(__file__).resolve().parent.parent

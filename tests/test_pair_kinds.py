@@ -18,6 +18,7 @@ from mech.fields import NUMBER, REF, read_ref
 from mech.icentres.order import kennedy_order
 from mech.loader import load, loads
 from mech.pairs import PairKind, register
+from mech.pairs.glyph import LAYERS, SHAPES
 from mech.pairs.registry import KINDS
 from mech.specs import (
     Circle,
@@ -225,8 +226,22 @@ def test_every_planar_kind_writes_rows_is_inspected_and_drawn(kind):
     assert seen  # inspected at the instant: a point or a line …
     want = "line" if KINDS[kind].icentre[0] == "line" else "point"
     assert {f.kind for f in seen} == {want}  # … the one the kind says inspection gives
+    shapes = _glyph(m, kin, j)
+    assert shapes  # drawn: its own glyph, not the base's nothing …
+    assert all(isinstance(s, SHAPES) and s.layer in LAYERS for s in shapes)  # … in mech.shapes, layered
+    assert any(s.name == j.name for s in shapes)  # … carrying its name
     svg = to_svg(draw(m, kin))
-    assert f'data-name="{j.name}"' in svg  # drawn: its glyph carries its name
+    assert f'data-name="{j.name}"' in svg  # and painted
+
+
+def _glyph(m, kin, j):
+    """The joint's glyph as its kind gives it, on a sheet as a configuration diagram builds one."""
+    from mech.draw.config import link_colours
+    from mech.draw.glyphs import Sheet
+    from mech.draw.scene import Transform
+
+    sheet = Sheet(m, kin, dict(kin.positions), {}, Transform(0.05, (0.0, 0.0), (60.0, 60.0)), link_colours(m))
+    return list(KINDS[j.type].glyph(sheet, j))
 
 
 @pytest.mark.parametrize("kind", [k for k in KINDS if not KINDS[k].planar])
@@ -289,7 +304,8 @@ class ArcSlot(PairKind):
 
     def glyph(self, view, j):
         """An arc of its slot (±20° round the pin, about the arc's centre) and the pin in it."""
-        from mech.pairs.glyph import Outline, Pen, pin
+        from mech.pairs.glyph import pin
+        from mech.shapes import Poly, Style
 
         at, c = view.positions.get(j.name), view.positions.get(j.spec.centre.name)
         if at is None or c is None:
@@ -299,8 +315,8 @@ class ArcSlot(PairKind):
             (c[0] + r * math.cos(a0 + math.radians(t)), c[1] + r * math.sin(a0 + math.radians(t)))
             for t in range(-20, 21, 2)
         )
-        pen = Pen(view.colour(j.links[1]), 0.45)
-        return [Outline(arc, False, pen, "arc-slot", j.name, "block", world=True), *pin(view, j.name)]
+        style = Style(view.colour(j.links[1]), 0.45)
+        return [Poly(arc, False, style, "arc-slot", j.name, "block", world=True), *pin(view, j.name)]
 
     def inspect(self, seen, j):
         at, c = seen.at(j), seen.positions[j.spec.centre.name]
@@ -400,6 +416,22 @@ def test_a_plug_in_kinds_own_glyph_is_drawn_an_arc_of_its_slot_through_its_pin(a
         - math.atan2(points[0][1] - d[1], points[0][0] - d[0])
     )
     assert abs(math.remainder(swept, 360)) == pytest.approx(40, abs=0.5)
+
+
+def test_a_glyph_that_gives_something_other_than_a_layered_shape_is_refused_with_its_kind(arc_slot):
+    from tests.oracles.four_bar import four_bar
+
+    from mech.draw import draw
+    from mech.kinematics import solve
+    from mech.shapes import Line, Text
+
+    c, *_ = four_bar(0.040, 0.150, 0.170, 0.150, math.radians(60), 12.566)
+    m = loads(ARC_FOUR_BAR.format(cx=c[0] * 1000, cy=c[1] * 1000), path="arc.yaml")
+    kin = solve(m, "velocity")
+    for wrong in (Text((0.0, 0.0), "C"), Line((0.0, 0.0), (1.0, 1.0), name="C")):  # a text; no layer
+        KINDS["arc_slot"].glyph = lambda view, j, wrong=wrong: [wrong]
+        with pytest.raises(TypeError, match="the arc_slot pair's glyph gave"):
+            draw(m, kin)
 
 
 def _kind_names_compared(tree: ast.AST) -> list[int]:

@@ -22,10 +22,11 @@ from typing import TYPE_CHECKING
 
 from mech.draw.config import configuration
 from mech.draw.polygon import acceleration_polygon, polygon_figure, velocity_polygon
-from mech.draw.scene import Figure, Page, Text
+from mech.draw.scene import Figure, Page
 from mech.errors import InputError
 from mech.model import Mechanism
 from mech.options import OutputUnits
+from mech.shapes import Text
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.icentres.locate import ICentre

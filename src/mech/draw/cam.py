@@ -19,22 +19,9 @@ import numpy as np
 
 from mech.cam.analysis import CamAnalysis
 from mech.cam.profile import evaluate
-from mech.draw.scene import (
-    INK,
-    PALETTE,
-    Circle,
-    Figure,
-    Line,
-    Page,
-    Poly,
-    Style,
-    Text,
-    Transform,
-    fmt,
-    nice_scale,
-    scale_bar,
-)
+from mech.draw.scene import PALETTE, Figure, Page, Transform, fmt, nice_scale, scale_bar
 from mech.pairs.cam.setup import CamSetup
+from mech.shapes import INK, Circle, Line, Poly, Style, Text
 
 __all__ = ["diagram_figure", "profile_figure", "profile_points"]
 

@@ -20,16 +20,9 @@ from typing import TYPE_CHECKING, Any
 from mech._records import dataclass
 from mech.draw.glyphs import Sheet, glyphs, paint, world_points
 from mech.draw.scene import (
-    INK,
     PALETTE,
-    Circle,
     Figure,
-    Item,
-    Line,
     Page,
-    Poly,
-    Style,
-    Text,
     Transform,
     arrow,
     bbox,
@@ -40,6 +33,7 @@ from mech.draw.scene import (
 )
 from mech.model import Mechanism
 from mech.pairs import kind_of
+from mech.shapes import INK, Circle, Item, Line, Poly, Style, Text
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.icentres.locate import ICentre

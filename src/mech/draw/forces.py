@@ -24,21 +24,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from mech.draw.config import MARGIN, configuration, fit_view, link_colours
-from mech.draw.scene import (
-    INK,
-    Circle,
-    Figure,
-    Item,
-    Line,
-    Page,
-    Poly,
-    Style,
-    Text,
-    Transform,
-    arrow,
-    nice_scale,
-)
+from mech.draw.scene import Figure, Page, Transform, arrow, nice_scale
 from mech.draw.scene import place_label as _place
+from mech.shapes import INK, Circle, Item, Line, Poly, Style, Text
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.forces.cycle import ForceCycle

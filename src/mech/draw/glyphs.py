@@ -1,22 +1,25 @@
 """The joints of a configuration diagram: what each pair kind's glyph gives, painted.
 
-Each kind says how it is drawn (:meth:`mech.pairs.base.PairKind.glyph`) in the small
-vocabulary of :mod:`mech.pairs.glyph`; this module is the other side of that protocol: a
+Each kind says how it is drawn (:meth:`mech.pairs.base.PairKind.glyph`) in the shapes every
+drawing is made of (:mod:`mech.shapes`); this module is the other side of that protocol: a
 :class:`Sheet` that answers what a glyph may read (positions, directions, the transform,
-colours), and :func:`paint`, which turns the shapes into the scene's items.  Nothing here
-asks which kind a joint is.
+colours), and :func:`paint`, which puts one layer of the shapes on the page (a shape in world
+metres placed by the transform, the others as they are).  Nothing here asks which kind a joint
+is.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterable, Mapping
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
-from mech.draw.scene import INK, Circle, Item, Line, Poly, Style, Transform, bbox, hatch
+from mech.draw.scene import Transform, bbox
 from mech.model import Joint, Mechanism
 from mech.pairs import kind_of
-from mech.pairs.glyph import LAYERS, Hatch, Outline, Pen, Ring, Segment, Shape
+from mech.pairs.glyph import LAYERS, SHAPES, Shape
+from mech.shapes import INK, Item, Line, Poly
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.kinematics.result import Kinematics
@@ -96,10 +99,23 @@ class Sheet:
 
 
 def glyphs(mech: Mechanism, sheet: Sheet) -> list[Shape]:
-    """Every joint's glyph, in the file's order, a shape given twice (a pin and a slot's pin) once."""
+    """Every joint's glyph, in the file's order, a shape given twice (a pin and a slot's pin) once.
+
+    Raises
+    ------
+    TypeError
+        A kind's glyph gave something other than a line, outline or circle of :mod:`mech.shapes`
+        on one of :data:`mech.pairs.glyph.LAYERS` (a plug-in's mistake, named).
+    """
     out: dict[Shape, None] = {}
     for j in mech.joints:
-        for shape in kind_of(j).glyph(sheet, j):
+        kind = kind_of(j)
+        for shape in kind.glyph(sheet, j):
+            if not isinstance(shape, SHAPES) or shape.layer not in LAYERS:
+                raise TypeError(
+                    f"the {kind.name} pair's glyph gave {shape!r}: a glyph gives mech.shapes' "
+                    f"Line, Poly or Circle, each on one of the layers {', '.join(LAYERS)}"
+                )
             out.setdefault(shape, None)
     return list(out)
 
@@ -108,36 +124,28 @@ def world_points(shapes: Iterable[Shape]) -> list[Vec]:
     """The world points the glyphs reach (ends of stems, boxes round pitch circles and profiles)."""
     out: list[Vec] = []
     for s in shapes:
-        if isinstance(s, Segment) and s.world:
+        if not s.world:
+            continue
+        if isinstance(s, Line):
             out += [s.p0, s.p1]
-        elif isinstance(s, Outline) and s.world:
+        elif isinstance(s, Poly):
             out += list(s.points)
-        elif isinstance(s, Ring) and s.world:
+        else:
             c, r = s.centre, s.r
             out += [(c[0] - r, c[1] - r), (c[0] + r, c[1] + r)]
     return out
 
 
-def _style(pen: Pen) -> Style:
-    return Style(pen.stroke, pen.width, pen.fill, pen.fill_opacity, pen.dash)
-
-
 def paint(shapes: Iterable[Shape], tr: Transform, layer: str) -> list[Item]:
-    """The scene's items of the shapes on ``layer`` (one of :data:`mech.pairs.glyph.LAYERS`)."""
+    """The shapes on ``layer`` (one of :data:`mech.pairs.glyph.LAYERS`), on the page: in page mm."""
     assert layer in LAYERS, layer
-    items: list[Item] = []
-    for s in shapes:
-        if s.layer != layer:
-            continue
-        if isinstance(s, Hatch):
-            items.extend(hatch(s.p0, s.p1, side=s.side, depth=s.depth))
-        elif isinstance(s, Segment):
-            p0, p1 = (tr(s.p0), tr(s.p1)) if s.world else (s.p0, s.p1)
-            items.append(Line(p0, p1, _style(s.pen), s.cls, s.name))
-        elif isinstance(s, Outline):
-            pts = tuple(tr(p) for p in s.points) if s.world else s.points
-            items.append(Poly(pts, s.closed, _style(s.pen), s.cls, s.name))
-        elif isinstance(s, Ring):
-            centre = tr(s.centre) if s.world else s.centre
-            items.append(Circle(centre, tr.length(s.r) if s.world else s.r, _style(s.pen), s.cls, s.name))
-    return items
+    return [_placed(s, tr) if s.world else s for s in shapes if s.layer == layer]
+
+
+def _placed(s: Shape, tr: Transform) -> Shape:
+    """A shape given in world metres, placed on the page by ``tr``."""
+    if isinstance(s, Line):
+        return replace(s, p0=tr(s.p0), p1=tr(s.p1), world=False)
+    if isinstance(s, Poly):
+        return replace(s, points=tuple(tr(p) for p in s.points), world=False)
+    return replace(s, centre=tr(s.centre), r=tr.length(s.r), world=False)

@@ -18,19 +18,8 @@ import math
 from collections.abc import Iterable, Sequence
 from typing import Any
 
-from mech.draw.scene import (
-    Circle,
-    Item,
-    Line,
-    Style,
-    Text,
-    Transform,
-    arrow,
-    bbox,
-    fmt,
-    leader,
-    place_label,
-)
+from mech.draw.scene import Transform, arrow, bbox, fmt, leader, place_label
+from mech.shapes import Circle, Item, Line, Style, Text
 
 __all__ = ["REACH", "overlay", "reachable"]
 

@@ -12,7 +12,8 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from mech.draw.scene import INK, Circle, Figure, Line, Page, Style, Text, best_spot, text_width
+from mech.draw.scene import Figure, Page, best_spot, text_width
+from mech.shapes import INK, Circle, Line, Style, Text
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.icentres.locate import ICentres

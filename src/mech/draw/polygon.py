@@ -36,13 +36,8 @@ from typing import TYPE_CHECKING
 from mech._records import dataclass
 from mech.draw.config import display_name, link_colours, link_members
 from mech.draw.scene import (
-    INK,
-    Circle,
     Figure,
-    Item,
     Page,
-    Style,
-    Text,
     Transform,
     arrow,
     bbox,
@@ -59,6 +54,7 @@ from mech.draw.scene import (
 from mech.model import Joint, Mechanism
 from mech.options import OutputUnits
 from mech.pairs import kind_of
+from mech.shapes import INK, Circle, Item, Style, Text
 from mech.units import unit_factor
 
 if TYPE_CHECKING:  # pragma: no cover

@@ -12,8 +12,9 @@ from __future__ import annotations
 
 from typing import IO, Any
 
-from mech.draw.scene import Circle, Figure, Line, Poly, Style, Text
+from mech.draw.scene import Figure
 from mech.errors import MechError
+from mech.shapes import Circle, Line, Poly, Style, Text
 
 __all__ = ["DPI", "MissingExtraError", "render_rgb", "to_png", "use_matplotlib"]
 

@@ -1,11 +1,11 @@
-"""Backend-neutral drawings: a few primitives on a page measured in millimetres.
+"""Backend-neutral drawings: the shapes of :mod:`mech.shapes` on a page measured in millimetres.
 
 Every diagram (configuration, velocity polygon, acceleration polygon) is built
-once as a :class:`Figure` of lines, polygons, circles and text, in page
-millimetres with y pointing *down* (as on paper and in SVG).  Two backends
+once as a :class:`Figure` of lines, polygons, circles and text (:mod:`mech.shapes`),
+in page millimetres with y pointing *down* (as on paper and in SVG).  Two backends
 then paint the same figure: :mod:`mech.draw.svg` (pure Python, nothing to
 import) and :mod:`mech.draw.raster` (matplotlib, for PNG and GIF).  Arrowheads
-and hatching are computed here as polygons and lines, so both backends draw
+and scale bars are computed here as polygons and lines, so both backends draw
 identical pictures and neither needs to know what an arrow is.
 
 Because the page is in millimetres and the SVG states its size in mm, a scale
@@ -21,21 +21,15 @@ from collections.abc import Iterable, Sequence
 from dataclasses import field, replace
 
 from mech._records import dataclass
+from mech.shapes import INK, Circle, Item, Line, Poly, Style, Text, Vec
 
 __all__ = [
-    "Circle",
     "Figure",
-    "Item",
-    "Line",
     "Page",
-    "Poly",
-    "Style",
-    "Text",
     "Transform",
     "arrow",
     "best_spot",
     "clashes",
-    "hatch",
     "item_rect",
     "leader",
     "nice_scale",
@@ -45,76 +39,9 @@ __all__ = [
     "text_width",
 ]
 
-Vec = tuple[float, float]
-
-INK = "#1a1a1a"
 #: Link colours: dark enough to print, distinct enough to tell links apart, and
 #: reused for the same link's edges in the velocity and acceleration polygons.
 PALETTE = ("#1f4e9c", "#b8461b", "#2e7d32", "#7b3f98", "#a0761a", "#00838f", "#ad1457", "#5d4037")
-
-
-@dataclass(frozen=True, slots=True)
-class Style:
-    """How a primitive is painted: ``width`` and ``dash`` in mm, colours as ``#rrggbb``."""
-
-    stroke: str | None = INK
-    width: float = 0.35
-    fill: str | None = None
-    fill_opacity: float = 1.0
-    dash: tuple[float, ...] = ()
-
-
-@dataclass(frozen=True, slots=True)
-class Line:
-    """A straight segment ``p0 → p1``.  ``cls``/``name`` tag it in the SVG (tests read them)."""
-
-    p0: Vec
-    p1: Vec
-    style: Style = Style()
-    cls: str = ""
-    name: str = ""
-
-
-@dataclass(frozen=True, slots=True)
-class Poly:
-    """A polyline, or a polygon when ``closed`` (a link plate, an arrowhead, a slider block)."""
-
-    points: tuple[Vec, ...]
-    closed: bool = True
-    style: Style = Style()
-    cls: str = ""
-    name: str = ""
-
-
-@dataclass(frozen=True, slots=True)
-class Circle:
-    """A circle of radius ``r`` mm (a pin, a point, a pitch circle)."""
-
-    centre: Vec
-    r: float
-    style: Style = Style()
-    cls: str = ""
-    name: str = ""
-
-
-@dataclass(frozen=True, slots=True)
-class Text:
-    """A label whose ``anchor`` (start, middle, end) and vertical middle sit at ``at``.
-
-    ``size`` is the cap-to-baseline height in mm of the font (3.5 mm ≈ 10 pt).
-    """
-
-    at: Vec
-    text: str
-    size: float = 3.2
-    anchor: str = "middle"
-    colour: str = INK
-    italic: bool = False
-    bold: bool = False
-    cls: str = ""
-
-
-Item = Line | Poly | Circle | Text
 
 
 @dataclass(frozen=True, slots=True)
@@ -247,7 +174,7 @@ def shift(item: Item, dx: float, dy: float) -> Item:
     return replace(item, at=m(item.at))
 
 
-# -- composite shapes: arrows, hatching, scale bars ---------------------------------------
+# -- composite shapes: arrows, scale bars ---------------------------------------
 def arrow(
     p0: Vec,
     p1: Vec,
@@ -275,30 +202,6 @@ def arrow(
         tri = ((p1[0], p1[1]), (bx - uy * w, by + ux * w), (bx + uy * w, by - ux * w))
         out.append(Poly(tri, True, Style(None, 0.0, fill=colour), "arrowhead", name))
     return out
-
-
-def hatch(
-    p0: Vec, p1: Vec, side: float = 1.0, depth: float = 2.0, pitch: float = 1.6, colour: str = INK
-) -> list[Item]:
-    """Ground: a base line ``p0 → p1`` with short slanted strokes on one side (``side`` ±1).
-
-    This is the textbook sign for "fixed to the frame" under pivots and along
-    slider guides.
-    """
-    dx, dy = p1[0] - p0[0], p1[1] - p0[1]
-    n = math.hypot(dx, dy)
-    if n == 0:
-        return []
-    ux, uy = dx / n, dy / n
-    nx, ny = -uy * side, ux * side  # page normal toward the hatched side
-    items: list[Item] = [Line(p0, p1, Style(colour, 0.35), "ground")]
-    count = max(int(n / pitch), 1)
-    for i in range(count + 1):
-        t = i * n / count
-        a = (p0[0] + ux * t, p0[1] + uy * t)
-        b = (a[0] + nx * depth - ux * depth * 0.8, a[1] + ny * depth - uy * depth * 0.8)
-        items.append(Line(a, b, Style(colour, 0.2), "hatch"))
-    return items
 
 
 def scale_bar(at: Vec, scale: float, unit: str, cm: int = 2, colour: str = INK) -> list[Item]:

@@ -16,7 +16,8 @@ from __future__ import annotations
 from xml.sax.saxutils import escape, quoteattr
 
 from mech._text import xml_safe
-from mech.draw.scene import Circle, Figure, Item, Line, Poly, Style, Text
+from mech.draw.scene import Figure
+from mech.shapes import Circle, Item, Line, Poly, Style, Text
 
 __all__ = ["to_svg"]
 

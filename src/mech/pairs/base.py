@@ -20,8 +20,8 @@ of branching on the type's name.  What a kind says:
 * **its I-centre by inspection** — :attr:`PairKind.icentre` from the joints
   alone, :meth:`PairKind.inspect` at a solved instant;
 * **its glyph** — :meth:`PairKind.glyph`, the geometry a configuration diagram
-  draws at the joint: backend-neutral shapes (:mod:`mech.pairs.glyph`) from what a
-  :class:`~mech.pairs.glyph.GlyphView` lets it read.
+  draws at the joint: shapes of :mod:`mech.shapes` (the notes' signs are helpers of
+  :mod:`mech.pairs.glyph`) from what a :class:`~mech.pairs.glyph.GlyphView` lets it read.
 
 The hooks are given small protocols of what they may read (the drawn
 configuration, the solved instant, the page), never the layers' own classes,
@@ -252,7 +252,8 @@ class PairKind:
     def glyph(self, view: GlyphView, j: Joint) -> Sequence[Shape]:
         """The shapes a configuration diagram draws for the joint (:mod:`mech.pairs.glyph`).
 
-        In page mm from ``view.page``, or in world metres where a shape says ``world``
+        Lines, outlines and circles of :mod:`mech.shapes`, each on one of
+        :data:`mech.pairs.glyph.LAYERS`, in page mm from ``view.page``, or in world metres where a shape says ``world``
         (which the drawing then holds in its view).  The default draws nothing: a pair
         the planar solvers refuse has no place in a planar drawing.
         """

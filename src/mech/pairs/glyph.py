@@ -1,18 +1,20 @@
 """What a pair kind's glyph is made of, and what a glyph may read of the drawing.
 
 A configuration diagram draws each joint with its kind's :meth:`~mech.pairs.base.PairKind.glyph`:
-a few backend-neutral shapes (:class:`Segment`, :class:`Outline`, :class:`Ring`,
-:class:`Hatch`), each in page millimetres (y down, from :meth:`GlyphView.page`) or, when
+a few of the shapes every drawing is made of (:class:`~mech.shapes.Line`,
+:class:`~mech.shapes.Poly`, :class:`~mech.shapes.Circle` of :mod:`mech.shapes`), each on one of
+the :data:`LAYERS` and in page millimetres (y down, from :meth:`GlyphView.page`) or, when
 ``world`` is set, in world metres (y up) — a pitch circle or a follower's stem belongs to the
 mechanism's size and tells the drawing how much of the world it must hold.  The drawing
-(:mod:`mech.draw.config`) paints what the kinds give, layer by layer (:data:`LAYERS`), and
-never asks a kind's name.
+(:mod:`mech.draw.config`) paints what the kinds give, layer by layer, and never asks a kind's
+name.
 
 A glyph reads only :class:`GlyphView`: positions and directions at the instant drawn, the
 world-to-page transform, the links' colours, and a few facts about the links (pivots, the
 points they carry, how a drawn profile has moved).  The helpers below are the notes' signs,
-shared by the kinds: a pin (an open circle; a triangle on a hatched base at a ground pivot),
-a block on its guide, a slot, profiles and pitch circles, the common normal and tangent.
+shared by the kinds: the frame's hatching, a pin (an open circle; a triangle on a hatched base at
+a ground pivot), a block on its guide, a slot, profiles and pitch circles, the common normal and
+tangent.
 """
 
 from __future__ import annotations
@@ -21,29 +23,23 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Protocol
 
-from mech._records import dataclass
+from mech.shapes import INK, Circle, Line, Poly, Style, Vec
 
 if TYPE_CHECKING:
     from mech.model import Joint, Mechanism
 
 __all__ = [
-    "INK",
     "LAYERS",
+    "SHAPES",
     "GlyphView",
-    "Hatch",
-    "Outline",
-    "Pen",
-    "Ring",
-    "Segment",
     "Shape",
     "contact",
+    "hatch",
     "pin",
     "slider",
     "slot",
 ]
 
-Vec = tuple[float, float]
-INK = "#1a1a1a"
 #: Painting order: ``under`` the links (a line of stroke, a guide), then the links, then
 #: ``contact`` (profiles, normals), ``ground`` (pivots), ``block`` (sliders), ``pin`` (on top).
 LAYERS = ("under", "contact", "ground", "block", "pin")
@@ -51,68 +47,9 @@ PIN_R = 1.3  # mm
 BLOCK = (9.0, 5.5)  # a slider block, mm along × across its path
 
 
-@dataclass(frozen=True, slots=True)
-class Pen:
-    """How a shape is painted: widths and dashes in page mm, colours ``#rrggbb``."""
-
-    stroke: str | None = INK
-    width: float = 0.35
-    fill: str | None = None
-    fill_opacity: float = 1.0
-    dash: tuple[float, ...] = ()
-
-
-@dataclass(frozen=True, slots=True)
-class Segment:
-    """A straight line ``p0 → p1``."""
-
-    p0: Vec
-    p1: Vec
-    pen: Pen = Pen()
-    cls: str = ""
-    name: str = ""
-    layer: str = "contact"
-    world: bool = False
-
-
-@dataclass(frozen=True, slots=True)
-class Outline:
-    """A polyline, or a polygon when ``closed``."""
-
-    points: tuple[Vec, ...]
-    closed: bool = True
-    pen: Pen = Pen()
-    cls: str = ""
-    name: str = ""
-    layer: str = "contact"
-    world: bool = False
-
-
-@dataclass(frozen=True, slots=True)
-class Ring:
-    """A circle of radius ``r`` (page mm, or metres when ``world``)."""
-
-    centre: Vec
-    r: float
-    pen: Pen = Pen()
-    cls: str = ""
-    name: str = ""
-    layer: str = "contact"
-    world: bool = False
-
-
-@dataclass(frozen=True, slots=True)
-class Hatch:
-    """The sign of the frame: a base line ``p0 → p1`` (page mm) hatched on one ``side`` (±1)."""
-
-    p0: Vec
-    p1: Vec
-    side: float = 1.0
-    depth: float = 2.0
-    layer: str = "ground"
-
-
-Shape = Segment | Outline | Ring | Hatch
+#: What a glyph gives: lines, outlines and circles, each with its ``layer`` (one of :data:`LAYERS`).
+Shape = Line | Poly | Circle
+SHAPES = (Line, Poly, Circle)
 
 
 class GlyphView(Protocol):
@@ -168,6 +105,29 @@ class GlyphView(Protocol):
 
 
 # -- the notes' signs ----------------------------------------------------------------------------
+def hatch(
+    p0: Vec, p1: Vec, side: float = 1.0, depth: float = 2.0, *, layer: str = "ground", pitch: float = 1.6
+) -> list[Shape]:
+    """The frame: a base line ``p0 → p1`` (page mm) with short slanted strokes on one ``side`` (±1).
+
+    This is the textbook sign for "fixed to the frame" under pivots and along slider guides.
+    """
+    dx, dy = p1[0] - p0[0], p1[1] - p0[1]
+    n = math.hypot(dx, dy)
+    if n == 0:
+        return []
+    ux, uy = dx / n, dy / n
+    nx, ny = -uy * side, ux * side  # page normal toward the hatched side
+    out: list[Shape] = [Line(p0, p1, Style(INK, 0.35), "ground", "", layer)]
+    count = max(int(n / pitch), 1)
+    for i in range(count + 1):
+        t = i * n / count
+        a = (p0[0] + ux * t, p0[1] + uy * t)
+        b = (a[0] + nx * depth - ux * depth * 0.8, a[1] + ny * depth - uy * depth * 0.8)
+        out.append(Line(a, b, Style(INK, 0.2), "hatch", "", layer))
+    return out
+
+
 def pin(view: GlyphView, name: str, *, ground: bool = False) -> list[Shape]:
     """An open circle at the point ``name``; at a ground pivot, a triangle on a hatched base under it."""
     at = view.positions.get(name)
@@ -177,9 +137,9 @@ def pin(view: GlyphView, name: str, *, ground: bool = False) -> list[Shape]:
     out: list[Shape] = []
     if ground:
         tri = ((x, y), (x - 3.2, y + 5.0), (x + 3.2, y + 5.0))
-        out.append(Outline(tri, True, Pen(INK, 0.35, fill="#ffffff"), "ground-pivot", name, "ground"))
-        out.append(Hatch((x - 5.0, y + 5.0), (x + 5.0, y + 5.0), side=-1.0))
-    out.append(Ring((x, y), PIN_R, Pen(INK, 0.4, fill="#ffffff"), "pin", name, "pin"))
+        out.append(Poly(tri, True, Style(INK, 0.35, fill="#ffffff"), "ground-pivot", name, "ground"))
+        out += hatch((x - 5.0, y + 5.0), (x + 5.0, y + 5.0), side=-1.0)
+    out.append(Circle((x, y), PIN_R, Style(INK, 0.4, fill="#ffffff"), "pin", name, "pin"))
     return out
 
 
@@ -200,9 +160,9 @@ def slider(view: GlyphView, j: Joint) -> list[Shape]:
         for sa, sb in ((-1, -1), (1, -1), (1, 1), (-1, 1))
     )
     colour = view.colour(j.links[0])
-    out.append(Outline(corners, True, Pen(colour, 0.6, fill="#ffffff"), "slider", j.name, "block"))
+    out.append(Poly(corners, True, Style(colour, 0.6, fill="#ffffff"), "slider", j.name, "block"))
     out.append(
-        Outline(corners, True, Pen(None, 0, fill=colour, fill_opacity=0.16), "slider-fill", j.name, "block")
+        Poly(corners, True, Style(None, 0, fill=colour, fill_opacity=0.16), "slider-fill", j.name, "block")
     )
     return out
 
@@ -217,10 +177,10 @@ def _guide(view: GlyphView, j: Joint, p: Vec, u: Vec) -> list[Shape]:
     a = (p[0] + (min(ts) - pad) * u[0], p[1] + (min(ts) - pad) * u[1])
     b = (p[0] + (max(ts) + pad) * u[0], p[1] + (max(ts) + pad) * u[1])
     out: list[Shape] = [
-        Segment(
+        Line(
             view.page(a),
             view.page(b),
-            Pen("#777777", 0.2, dash=(4, 1, 0.8, 1)),
+            Style("#777777", 0.2, dash=(4, 1, 0.8, 1)),
             "stroke-line",
             j.name,
             "under",
@@ -237,7 +197,7 @@ def _guide(view: GlyphView, j: Joint, p: Vec, u: Vec) -> list[Shape]:
     sa = (sa[0] + pn[0] * off, sa[1] + pn[1] * off)
     sb = (sb[0] + pn[0] * off, sb[1] + pn[1] * off)
     side = 1.0 if (-du[1] * pn[0] + du[0] * pn[1]) > 0 else -1.0
-    out.append(Hatch(sa, sb, side=side, layer="under"))
+    out += hatch(sa, sb, side=side, layer="under")
     return out
 
 
@@ -254,7 +214,7 @@ def slot(view: GlyphView, j: Joint) -> list[Shape]:
     for s in (-1, 1):
         p0 = (c[0] - du[0] * half + nv[0] * s * w, c[1] - du[1] * half + nv[1] * s * w)
         p1 = (c[0] + du[0] * half + nv[0] * s * w, c[1] + du[1] * half + nv[1] * s * w)
-        out.append(Segment(p0, p1, Pen(colour, 0.45), "slot", j.name, "block"))
+        out.append(Line(p0, p1, Style(colour, 0.45), "slot", j.name, "block"))
     return out + pin(view, name)
 
 
@@ -277,15 +237,15 @@ def contact(
         for link in j.links:
             centre = view.pivot(link) if link != view.mech.ground else None
             if centre is not None:
-                dash = Pen(view.colour(link), 0.6, dash=(3, 1, 0.6, 1))
-                out.append(Ring(centre, math.dist(centre, at), dash, "pitch-circle", link, world=True))
+                dash = Style(view.colour(link), 0.6, dash=(3, 1, 0.6, 1))
+                out.append(Circle(centre, math.dist(centre, at), dash, "pitch-circle", link, "contact", True))
     out += _normal(view, j, c)
     if not pitch and not profiles:
         for link in j.links:
             out += _belongs(view, j, link, at)
     for link in j.links:
         out += stem(view, j, link, at)
-    out.append(Ring(c, 0.9, Pen(INK, 0.3, fill=INK), "contact", j.name))
+    out.append(Circle(c, 0.9, Style(INK, 0.3, fill=INK), "contact", j.name, "contact"))
     return out
 
 
@@ -299,27 +259,29 @@ def _normal(view: GlyphView, j: Joint, c: Vec) -> list[Shape]:
     n = (math.cos(normal), -math.sin(normal))
     t = (-n[1], n[0])
     return [
-        Segment(
+        Line(
             (c[0] - 14 * n[0], c[1] - 14 * n[1]),
             (c[0] + 14 * n[0], c[1] + 14 * n[1]),
-            Pen("#555555", 0.25, dash=(3, 1, 0.6, 1)),
+            Style("#555555", 0.25, dash=(3, 1, 0.6, 1)),
             "normal",
             j.name,
+            "contact",
         ),
-        Segment(
+        Line(
             (c[0] - 6 * t[0], c[1] - 6 * t[1]),
             (c[0] + 6 * t[0], c[1] + 6 * t[1]),
-            Pen(INK, 0.5),
+            Style(INK, 0.5),
             "tangent",
             j.name,
+            "contact",
         ),
     ]
 
 
 def _belongs(view: GlyphView, j: Joint, link: str, at: Vec) -> list[Shape]:
     """With no profile known: dashed lines from the link's points to the contact it belongs to."""
-    pen = Pen(view.colour(link), 0.5, dash=(2.0, 1.0))
-    return [Segment(view.page(p), view.page(at), pen, "body", link) for p in view.body(link)]
+    style = Style(view.colour(link), 0.5, dash=(2.0, 1.0))
+    return [Line(view.page(p), view.page(at), style, "body", link, "contact") for p in view.body(link)]
 
 
 def stem(view: GlyphView, j: Joint, link: str, at: Vec) -> list[Shape]:
@@ -340,7 +302,7 @@ def stem(view: GlyphView, j: Joint, link: str, at: Vec) -> list[Shape]:
     length = 0.6 * max(view.extent(), 1e-12)
     end = (at[0] + length * u[0], at[1] + length * u[1])
     colour = view.colour(link)
-    out: list[Shape] = [Segment(at, end, Pen(colour, 1.0), "stem", link, "under", world=True)]
+    out: list[Shape] = [Line(at, end, Style(colour, 1.0), "stem", link, "under", world=True)]
     c, e = view.page(at), view.page(end)
     L = max(math.dist(c, e), 1e-9)
     w = ((e[0] - c[0]) / L, (e[1] - c[1]) / L)
@@ -348,38 +310,38 @@ def stem(view: GlyphView, j: Joint, link: str, at: Vec) -> list[Shape]:
     for s in (-1, 1):
         g0 = (c[0] + 0.45 * L * w[0] + n[0] * s * 1.6, c[1] + 0.45 * L * w[1] + n[1] * s * 1.6)
         g1 = (c[0] + 0.8 * L * w[0] + n[0] * s * 1.6, c[1] + 0.8 * L * w[1] + n[1] * s * 1.6)
-        out.append(Hatch(g0, g1, side=s, depth=1.6, layer="under"))
+        out += hatch(g0, g1, side=s, depth=1.6, layer="under")
     return out
 
 
 def _profile(view: GlyphView, j: Joint, link: str, prof: object, at: Vec) -> list[Shape]:
     """One link's profile where it is now: a circle about its centre, a curve carried with its
     link, a flat face along the common tangent.  A knife edge is the contact dot itself."""
-    from mech.specs import Circle, Curve, Line
+    from mech import specs
 
     colour = view.colour(link)
     move = None if view.frame else view.carried(link)
-    if isinstance(prof, Circle):
+    if isinstance(prof, specs.Circle):
         centre = view.positions.get(prof.centre.name) if prof.centre.name is not None else None
         if centre is None and prof.centre.xy is not None and move is not None:
             centre = move(prof.centre.xy)
         if centre is None:
             return []
-        return [Ring(centre, prof.radius, Pen(colour, 0.6), "profile", link, world=True)]
-    if isinstance(prof, Curve) and move is not None:
-        return [
-            Outline(tuple(move(p) for p in prof.points), True, Pen(colour, 0.6), "profile", link, world=True)
-        ]
+        return [Circle(centre, prof.radius, Style(colour, 0.6), "profile", link, "contact", True)]
+    if isinstance(prof, specs.Curve) and move is not None:
+        points = tuple(move(p) for p in prof.points)
+        return [Poly(points, True, Style(colour, 0.6), "profile", link, "contact", True)]
     u = view.direction(j)
-    if isinstance(prof, Line) and u is not None:
+    if isinstance(prof, specs.Line) and u is not None:
         c, du = view.page(at), (u[0], -u[1])
         return [
-            Segment(
+            Line(
                 (c[0] - 12 * du[0], c[1] - 12 * du[1]),
                 (c[0] + 12 * du[0], c[1] + 12 * du[1]),
-                Pen(colour, 1.0),
+                Style(colour, 1.0),
                 "profile",
                 link,
+                "contact",
             )
         ]
     return []

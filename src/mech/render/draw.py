@@ -52,7 +52,7 @@ def draw_file(
     """
     check_output(output)
     from mech.draw import draw, save
-    from mech.draw.scene import Text
+    from mech.shapes import Text
 
     kin = result.kinematics
     assert kin is not None

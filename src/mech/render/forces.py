@@ -75,10 +75,10 @@ def draw_forces(
     from mech.analysis import load_mechanism
     from mech.draw import save
     from mech.draw.forces import forces_drawing
-    from mech.draw.scene import Text
     from mech.errors import InputError
     from mech.forces import analyse
     from mech.render.draw import check_output
+    from mech.shapes import Text
 
     for name, value in (refused or {}).items():
         if value:
