@@ -200,9 +200,10 @@ def _path_spec(
     if kind_of(j).located == "first":  # a slot: its own pin, unless it names one
         point = j.point if j.point is not None else j.name
     elif j.point is not None:
-        point = _own_point(mech, j, slider, carriers, joint_locs, problems)
-        if point is None:
+        own = _own_point(mech, j, slider, carriers, joint_locs, problems)
+        if own is None:
             return None
+        point = own
     elif not joint_locs[slider] and not point_locs[slider]:
         # A slider with no located point of its own (a follower touched only by a cam):
         # the point of it that lies on the path's ``through`` when drawn.
