@@ -164,6 +164,7 @@ SLOW: dict[str, str] = {
 
 def pytest_collection_modifyitems(config, items):
     for item in items:
-        node = item.nodeid.split("[", 1)[0]
-        if any(node == key or node.startswith(key + "::") for key in SLOW):
+        # an entry is a file, a test, or a class; the node id's prefixes are tried against it
+        parts = item.nodeid.split("[", 1)[0].split("::")
+        if any("::".join(parts[:n]) in SLOW for n in range(1, len(parts) + 1)):
             item.add_marker(pytest.mark.slow)

@@ -10,12 +10,13 @@ connected components are the import circles.
 from __future__ import annotations
 
 import ast
-import functools
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
+
+from source_trees import SRC, source_trees
 
 pytest.importorskip(
     "importlinter", reason="import-linter comes with the test extra: pip install -e '.[test]'"
@@ -149,13 +150,8 @@ def test_model_and_analysis_load_no_rich_or_click():
     assert result.stdout.strip() == "[]"
 
 
-@functools.cache
 def _sources() -> list[tuple[str, ast.Module]]:
-    src = ROOT / "src" / "mech"
-    return [
-        (path.relative_to(src).as_posix(), ast.parse(path.read_text(encoding="utf-8")))
-        for path in sorted(src.rglob("*.py"))
-    ]
+    return [(path.relative_to(SRC).as_posix(), tree) for path, _, tree in source_trees()]
 
 
 def test_no_cache_is_keyed_on_object_ids():

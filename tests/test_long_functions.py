@@ -13,11 +13,11 @@ so the list cannot outlive the work it waits for.
 from __future__ import annotations
 
 import ast
-from pathlib import Path
 
 import pytest
 
-SRC = Path(__file__).resolve().parent.parent / "src" / "mech"
+from source_trees import SRC, source_trees
+
 LIMIT = 80
 
 #: "path relative to src/mech:function" → who is splitting it and where it stands.
@@ -48,10 +48,9 @@ def _has_reason(fn: ast.FunctionDef | ast.AsyncFunctionDef, lines: list[str]) ->
 def long_functions() -> dict[str, tuple[int, bool]]:
     """``"path:function"`` → (code lines, has a ``# long:`` reason) for every function over the limit."""
     out: dict[str, tuple[int, bool]] = {}
-    for path in sorted(SRC.rglob("*.py")):
-        text = path.read_text(encoding="utf-8")
+    for path, text, tree in source_trees():
         lines = text.splitlines()
-        for node in ast.walk(ast.parse(text)):
+        for node in ast.walk(tree):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 n = _code_lines(node)
                 if n > LIMIT:

@@ -7,12 +7,10 @@ import json
 import math
 import textwrap
 from dataclasses import dataclass
-from pathlib import Path
 from types import MappingProxyType
 
 import pytest
 
-import mech
 from mech.errors import InputError
 from mech.fields import NUMBER, REF, read_ref
 from mech.icentres.order import kennedy_order
@@ -33,6 +31,7 @@ from mech.specs import (
     SlideSpec,
 )
 from mech.units import Dimension
+from source_trees import SRC, source_trees
 
 
 @pytest.mark.parametrize("jtype", list(KINDS))
@@ -460,11 +459,10 @@ def _kind_names_compared(tree: ast.AST) -> list[int]:
 def test_nothing_outside_the_pair_kinds_branches_on_a_kind_by_name():
     # issue 20 item 1: a layer asks the kind for a property (kind_of(j).meshes), never
     # `j.type == "gear"` or `kind_of(j).name in ("slot", "prismatic")`
-    src = Path(mech.__file__).parent
     found = [
-        f"{path.relative_to(src)}:{line}"
-        for path in sorted(src.rglob("*.py"))
-        if "pairs" not in path.relative_to(src).parts
-        for line in _kind_names_compared(ast.parse(path.read_text(encoding="utf-8")))
+        f"{path.relative_to(SRC)}:{line}"
+        for path, _, tree in source_trees()
+        if "pairs" not in path.relative_to(SRC).parts
+        for line in _kind_names_compared(tree)
     ]
     assert found == []

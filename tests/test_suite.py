@@ -3,11 +3,22 @@
 from __future__ import annotations
 
 import ast
+import functools
 from pathlib import Path
 
 from conftest import SLOW
 
 ROOT = Path(__file__).resolve().parent.parent
+
+
+@functools.cache
+def _functions(file: Path) -> frozenset[str]:
+    """The names of the functions defined in a test file (each file parsed once)."""
+    return frozenset(
+        n.name
+        for n in ast.walk(ast.parse(file.read_text(encoding="utf-8")))
+        if isinstance(n, ast.FunctionDef)
+    )
 
 
 def test_every_slow_entry_names_a_test_that_exists():
@@ -19,11 +30,6 @@ def test_every_slow_entry_names_a_test_that_exists():
         if not file.exists():
             stale.append(entry)
             continue
-        tests = {
-            n.name
-            for n in ast.walk(ast.parse(file.read_text(encoding="utf-8")))
-            if isinstance(n, ast.FunctionDef)
-        }
-        if name and name not in tests:
+        if name and name not in _functions(file):
             stale.append(entry)
     assert stale == []
