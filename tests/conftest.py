@@ -149,7 +149,8 @@ SLOW: dict[str, str] = {
     "tests/kinematics/test_sweep_cli.py::test_two_drive_sweep_says_not_reached_never_cannot_close": "1.2 s",
     "tests/forces/test_cli_forces.py::test_force_sweep_plots_the_turning_moment_diagram": "matplotlib: 1.2 s",
     # the browser: a Chromium launch each, about 1 s of CPU; the default run keeps the four-bar's
-    # pages (closed form at three angles) and the page's own size
+    # page (closed form at 100°; at 30° and 250° too in the slow set, marked in test_view.py) and
+    # the page's own size
     "tests/test_view.py::test_slider_crank_page_shows_the_closed_form": "Chromium, 3 launches",
     "tests/test_view.py::test_six_bar_page_shows_what_mech_velocity_and_acceleration_give": "Chromium, 3 launches",
     "tests/test_view.py::test_a_fragment_the_page_cannot_read_shows_the_files_own_instant": "Chromium per fragment",
