@@ -23,6 +23,7 @@ __all__ = [
     "TOGGLE_FOUR_BAR",
     "expected_refusal",
     "ladder",
+    "lift",
     "slider_crank",
     "strip_answers",
 ]
@@ -197,6 +198,28 @@ drive: {link: a, angle: 80, rpm: 60}
 """
 
 KINEMATIC = ("position", "velocity", "acceleration", "icentres")
+
+
+def lift(angle: float = 30) -> str:
+    """A crank O–A (100 mm, 3 kg at its middle G) and a rod A–B (250 mm) lifting a 20 kg platform B
+    up the vertical through O, under gravity, the crank at ``angle`` degrees and no speed given."""
+    return f"""\
+units: {{length: mm, angle: deg}}
+links: [frame, crank, rod, platform]
+joints:
+  O: {{type: revolute, links: [frame, crank], at: [0, 0]}}
+  A: {{type: revolute, links: [crank, rod]}}
+  B: {{type: revolute, links: [rod, platform], near: [0, 300]}}
+  S: {{type: prismatic, links: [platform, frame], path: {{through: [0, 0], angle: 90}}}}
+lengths: {{OA: 100, AB: 250}}
+points:
+  G: {{link: crank, from: O, toward: A, distance: 50}}
+masses:
+  crank: {{mass: 3, centre: G}}
+  platform: {{mass: 20, centre: B}}
+gravity: [0, -9.81]
+drive: {{link: crank, angle: {angle:g}}}
+"""
 
 
 def _drives(data: dict) -> list[dict]:

@@ -14,13 +14,13 @@ import io
 import json
 import math
 import re
-import warnings
 from pathlib import Path
 
 import pytest
 from tests.mechanism_texts import EXAMPLES
 
 from cli_runner import assert_bad_input, mech, no_traceback, strict_json
+from hostile import HOSTILE_NUMBERS, HOSTILE_WORDS, answers_or_refuses, edit
 
 FOUR_BAR = str(EXAMPLES / "four_bar_inertia_forces.yaml")
 ENGINE = str(EXAMPLES / "engine_turning_moment.yaml")
@@ -197,16 +197,15 @@ def _hostile_files():
     hostile edits, as tests/test_cli.py grows them from the four-bar."""
     import yaml
     from hypothesis import strategies as st
-    from tests.test_cli import _HOSTILE_NUMBERS, _HOSTILE_WORDS
 
     base = yaml.safe_load(Path(ENGINE).read_text(encoding="utf-8"))
     scalars = st.one_of(
         st.none(),
         st.booleans(),
-        st.sampled_from(_HOSTILE_NUMBERS),
+        st.sampled_from(HOSTILE_NUMBERS),
         st.floats(),
         st.text(max_size=8),
-        st.sampled_from([*_HOSTILE_WORDS, "on", "table", "kg", "5 kg", "2%", "-1 kg m^2", "piston", "rod"]),
+        st.sampled_from([*HOSTILE_WORDS, "on", "table", "kg", "5 kg", "2%", "-1 kg m^2", "piston", "rod"]),
     )
     keys = st.one_of(st.sampled_from([*base, "masses", "gravity", "flywheel", "loads", "friction"]), scalars)
     values = st.recursive(
@@ -218,25 +217,7 @@ def _hostile_files():
     @st.composite
     def files(draw):
         doc = copy.deepcopy(base)
-        for _ in range(draw(st.integers(1, 3))):
-            node = doc
-            while isinstance(node, (dict, list)) and node and draw(st.booleans()):
-                key = draw(st.sampled_from(list(node) if isinstance(node, dict) else range(len(node))))
-                if not isinstance(node[key], (dict, list)) or not node[key]:
-                    break
-                node = node[key]
-            if not isinstance(node, (dict, list)) or not node:
-                continue
-            key = draw(st.sampled_from(list(node) if isinstance(node, dict) else range(len(node))))
-            action = draw(st.sampled_from(["replace", "delete", "add"]))
-            if action == "delete":
-                del node[key]
-            elif action == "replace":
-                node[key] = draw(values)
-            elif isinstance(node, dict):
-                node[draw(keys)] = draw(values)
-            else:
-                node.append(draw(values))
+        edit(draw, doc, keys, values, draw(st.integers(1, 3)))
         return yaml.safe_dump(doc, allow_unicode=True, sort_keys=False)
 
     return files()
@@ -247,30 +228,13 @@ def test_no_hostile_file_gives_a_traceback_from_a_force_command(tmp_path_factory
     from hypothesis import HealthCheck, given, settings
     from hypothesis import strategies as st
 
-    from mech.cli import cli
-
     runner = CliRunner()
     folder = tmp_path_factory.mktemp("hostile-forces")
 
     @settings(max_examples=60, deadline=None, suppress_health_check=list(HealthCheck), derandomize=True)
     @given(text=_hostile_files(), command=st.sampled_from(_COMMANDS))
     def one(text: str, command: list[str]) -> None:
-        path = folder / "m.yaml"
-        path.write_text(text, encoding="utf-8", errors="surrogatepass")
-        args = [a.replace("{tmp}", str(folder)) for a in command]
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            result = runner.invoke(cli, [args[0], str(path), *args[1:]], catch_exceptions=True)
-        if result.exception is not None and not isinstance(result.exception, SystemExit):
-            import traceback
-
-            raise AssertionError(
-                f"mech {' '.join(args)} raised on:\n{text}\n"
-                + "".join(traceback.format_exception(*result.exc_info))
-            )
-        assert result.exit_code in (0, 2), (args, result.exit_code, text, result.output[-800:])
-        runtime = [str(w.message) for w in caught if issubclass(w.category, RuntimeWarning)]
-        assert not runtime, (args, runtime, text)
+        answers_or_refuses(runner, folder, text, command)
 
     one()
 

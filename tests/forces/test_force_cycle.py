@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 import pytest
-from tests.mechanism_texts import EXAMPLES
+from tests.mechanism_texts import EXAMPLES, lift
 from tests.oracles.engine_torque import cycle_integrals, engine_torque
 from tests.oracles.newton_euler import four_bar_forces
 from tests.oracles.slider_crank import slider_driven_crank
@@ -192,30 +192,11 @@ def test_the_series_names_the_pair_forces_as_the_kinds_hook_names_them(monkeypat
             )
 
 
-LIFT = """\
-units: {length: mm, angle: deg}
-links: [frame, crank, rod, platform]
-joints:
-  O: {type: revolute, links: [frame, crank], at: [0, 0]}
-  A: {type: revolute, links: [crank, rod]}
-  B: {type: revolute, links: [rod, platform], near: [0, 300]}
-  S: {type: prismatic, links: [platform, frame], path: {through: [0, 0], angle: 90}}
-lengths: {OA: 100, AB: 250}
-points:
-  G: {link: crank, from: O, toward: A, distance: 50}
-masses:
-  crank: {mass: 3, centre: G}
-  platform: {mass: 20, centre: B}
-gravity: [0, -9.81]
-drive: {link: crank, angle: 30}
-"""
-
-
 def test_a_static_sweep_gives_the_mean_torque_of_the_change_in_potential_energy():
     # no drive speed: no inertia.  From 20° to 140° the input's work is the weights' potential
     # energy gained: y_B = r sin θ + √(l² − r² cos² θ), the crank's centre at r/2 sin θ.
     cycle = force_cycle(
-        loads(LIFT, path="lift.yaml"), start=math.radians(20), stop=math.radians(140), steps=12
+        loads(lift(30), path="lift.yaml"), start=math.radians(20), stop=math.radians(140), steps=12
     )
     r, rod, g = 0.1, 0.25, 9.81
 

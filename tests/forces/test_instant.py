@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 import pytest
+from tests.mechanism_texts import lift
 from tests.oracles.newton_euler import four_bar_forces
 from tests.oracles.slider_crank import slider_crank
 
@@ -173,31 +174,12 @@ def test_the_shaking_force_is_minus_the_sum_of_m_a_g():
     assert fa.shaking_moment == pytest.approx(mz, rel=1e-12)
 
 
-LIFT = """\
-units: {length: mm, angle: deg}
-links: [frame, crank, rod, platform]
-joints:
-  O: {type: revolute, links: [frame, crank], at: [0, 0]}
-  A: {type: revolute, links: [crank, rod]}
-  B: {type: revolute, links: [rod, platform], near: [0, 300]}
-  S: {type: prismatic, links: [platform, frame], path: {through: [0, 0], angle: 90}}
-lengths: {OA: 100, AB: 250}
-points:
-  G: {link: crank, from: O, toward: A, distance: 50}
-masses:
-  crank: {mass: 3, centre: G}
-  platform: {mass: 20, centre: B}
-gravity: [0, -9.81]
-drive: {link: crank, angle: ANGLE}
-"""
-
-
 @pytest.mark.parametrize("deg", [20.0, 75.0, 140.0])
 def test_gravity_alone_on_a_slow_lift_needs_the_torque_of_virtual_work(deg):
     # no speed: a static problem.  The platform B rides the vertical through O on a crank OA
     # (r = 100 mm) and a rod AB (l = 250 mm): y_B = r sin θ + √(l² − r² cos² θ); the crank's own
     # 3 kg act at r/2.  Virtual work: T = g (m_p dy_B/dθ + m_c (r/2) cos θ).
-    fa = analyse(loads(LIFT.replace("ANGLE", str(deg)), path="lift.yaml"))
+    fa = analyse(loads(lift(deg), path="lift.yaml"))
     r, rod, th, g = 0.1, 0.25, math.radians(deg), 9.81
     dy_b = r * math.cos(th) + r * r * math.sin(th) * math.cos(th) / math.sqrt(
         rod**2 - (r * math.cos(th)) ** 2
