@@ -20,6 +20,8 @@ __all__ = [
     "FOUR_BAR_NAME",
     "FOUR_BAR_PARALLELOGRAM",
     "GEARS",
+    "ROLLER_CAM",
+    "ROLLER_CAM_POINT_K",
     "TOGGLE_FOUR_BAR",
     "expected_refusal",
     "ladder",
@@ -196,6 +198,24 @@ joints:
 lengths: {AB: 40, BC: 70, CD: 70, DE: 40}
 drive: {link: a, angle: 80, rpm: 60}
 """
+
+#: Issue 21's roller cam of one's own: offset 10 mm, base circle 30, roller 10; rise 40 mm over
+#: 120° (cycloidal), dwell 60°, return over 90° (SHM), dwell 90°; the cam turns clockwise, 300 rpm.
+ROLLER_CAM = """\
+units: {length: mm, angle: deg}
+links: [frame, cam, follower]
+joints:
+  O: {type: revolute, links: [frame, cam], at: [0, 0]}
+  K: {type: cam, links: [cam, follower],
+      program: {base_radius: 30, follower: roller, roller_radius: 10, offset: 10,
+                segments: [{rise: 40, over: 120, law: cycloidal}, {dwell: 60},
+                           {return: 40, over: 90, law: shm}, {dwell: 90}]}}
+  S: {type: prismatic, links: [follower, frame], path: {through: [-10, 0], angle: 90}}
+drive: {link: cam, angle: 60, rpm: 300, direction: cw}
+"""
+#: The same cam, its follower's point on the slide named: the roller's centre K.
+ROLLER_CAM_POINT_K = ROLLER_CAM.replace("angle: 90}}\n", "angle: 90}, point: K}\n")
+assert ROLLER_CAM_POINT_K != ROLLER_CAM
 
 KINEMATIC = ("position", "velocity", "acceleration", "icentres")
 

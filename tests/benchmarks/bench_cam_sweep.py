@@ -26,18 +26,8 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-OWN_CAM = """
-units: {length: mm, angle: deg}
-links: [frame, cam, follower]
-joints:
-  O: {type: revolute, links: [frame, cam], at: [0, 0]}
-  K: {type: cam, links: [cam, follower],
-      program: {base_radius: 30, follower: roller, roller_radius: 10, offset: 10,
-                segments: [{rise: 40, over: 120, law: cycloidal}, {dwell: 60},
-                           {return: 40, over: 90, law: shm}, {dwell: 90}]}}
-  S: {type: prismatic, links: [follower, frame], path: {through: [-10, 0], angle: 90}}
-drive: {link: cam, angle: 60, rpm: 300, direction: cw}
-"""
+sys.path.insert(0, str(ROOT / "tests"))
+from mechanism_texts import ROLLER_CAM as OWN_CAM  # noqa: E402  (issue 21's roller cam)
 
 
 def timed(cmd: list[str], env: dict[str, str] | None = None) -> tuple[float, float]:

@@ -15,6 +15,7 @@ import math
 import numpy as np
 import pytest
 from tests.conftest import MECHANISMS
+from tests.mechanism_texts import ROLLER_CAM_POINT_K
 from tests.oracles.cam import textbook_rise
 
 from mech.kinematics import solve
@@ -216,25 +217,13 @@ def test_drawn_instant_is_the_files_turn_in_the_cams_sense():
 
 
 # -- issue 21: the follower's own point, and programmes that broke sweeps ---------------------------
-ISSUE_21 = """\
-units: {length: mm, angle: deg}
-links: [frame, cam, follower]
-joints:
-  O: {type: revolute, links: [frame, cam], at: [0, 0]}
-  K: {type: cam, links: [cam, follower],
-      program: {base_radius: 30, follower: roller, roller_radius: 10, offset: 10,
-                segments: [{rise: 40, over: 120, law: cycloidal}, {dwell: 60},
-                           {return: 40, over: 90, law: shm}, {dwell: 90}]}}
-  S: {type: prismatic, links: [follower, frame], path: {through: [-10, 0], angle: 90}, point: K}
-drive: {link: cam, angle: 60, rpm: 300, direction: cw}
-"""
 
 
 def test_naming_the_followers_point_on_its_slide_works_and_the_point_is_the_roller_centre():
     # K is the roller's centre (DESIGN § 1.2): on the follower's line x = −10 mm, at √(40² − 10²)
     # above the axis through O on the prime circle (r_p = 30 + 10 mm), plus the lift: at 60° into
     # a 120° cycloidal rise of 40 mm, x = ½: s = 20 mm, v = ω h/β (1 − cos π) = 2hω/β = 1.2 m/s
-    m = loads(ISSUE_21, path="issue21.yaml")
+    m = loads(ROLLER_CAM_POINT_K, path="issue21.yaml")
     kin = solve(m, "velocity")
     assert kin.positions["K"] == pytest.approx((-0.010, math.sqrt(0.04**2 - 0.01**2) + 0.020), abs=1e-12)
     w = 300 * 2 * math.pi / 60

@@ -14,7 +14,7 @@ from cli_runner import assert_bad_input, close, mech, strict_json
 from mech.errors import GeometryError, InputError, UnsupportedError
 from mech.kinematics import mobility, solve
 from mech.options import SolveOptions
-from mechanism_texts import GEARS, ladder
+from mechanism_texts import GEARS, ROLLER_CAM_POINT_K, ladder
 
 
 def five_bar(drives):
@@ -490,24 +490,12 @@ drive: {link: cam, angle: 0, rpm: 60}
 
 
 # -- a higher pair's points (DESIGN § 1.2, issue 21 item 1) ---------------------------------------
-ISSUE_CAM = """\
-units: {length: mm, angle: deg}
-links: [frame, cam, follower]
-joints:
-  O: {type: revolute, links: [frame, cam], at: [0, 0]}
-  K: {type: cam, links: [cam, follower],
-      program: {base_radius: 30, follower: roller, roller_radius: 10, offset: 10,
-                segments: [{rise: 40, over: 120, law: cycloidal}, {dwell: 60},
-                           {return: 40, over: 90, law: shm}, {dwell: 90}]}}
-  S: {type: prismatic, links: [follower, frame], path: {through: [-10, 0], angle: 90}, point: K}
-drive: {link: cam, angle: 60, rpm: 300, direction: cw}
-"""
 
 
 def test_a_cam_joint_is_the_followers_point_and_k_at_link_each_links_point_at_the_contact(write):
     from mech.loader import load
 
-    kin = solve(load(write(ISSUE_CAM)), "acceleration")
+    kin = solve(load(write(ROLLER_CAM_POINT_K)), "acceleration")
     w = -300 * 2 * math.pi / 60  # cw
     # the roller's centre from the cycloidal law, half-way up a 40 mm rise over 120°:
     # v = |ω| h/β (1 − cos 2πx) = 31.416 × 40 mm / 2.0944 × 2 = 1.2 m/s, along the path
@@ -598,7 +586,7 @@ def test_point_k_on_a_profile_cams_slide_is_the_followers_own_point(name, own):
 
 
 def test_tables_and_json_name_each_links_point_at_a_contact_k_at_link(run, write):
-    path = write(ISSUE_CAM)
+    path = write(ROLLER_CAM_POINT_K)
     table = run("acceleration", str(path))
     assert table.exit_code == 0, table.output
     assert "K@cam" in table.output and "K@follower" in table.output

@@ -23,7 +23,7 @@ import mech
 from mech.errors import InputError, UnsupportedError
 from mech.kinematics import sweep
 from mech.options import SolveOptions
-from mechanism_texts import FOLDING_INVERSOR
+from mechanism_texts import FOLDING_INVERSOR, ROLLER_CAM
 from oracles.four_bar import rocker_angle
 from oracles.inversor import FOLD, inversor_p
 from oracles.slider_crank import slider_dead_centres, slider_x
@@ -604,20 +604,6 @@ def test_a_rate_that_grows_without_bound_toward_a_toggle_has_an_infinite_extreme
 
 
 # -- dwells and every output's time ratio (issue 21, items 2 and 3) ------------------------------
-#: A roller cam of one's own (issue 21): offset 10 mm, base circle 30, roller 10; rise 40 mm over
-#: 120° (cycloidal), dwell 60°, return over 90° (SHM), dwell 90°; the cam turns clockwise.
-OWN_CAM = """
-units: {length: mm, angle: deg}
-links: [frame, cam, follower]
-joints:
-  O: {type: revolute, links: [frame, cam], at: [0, 0]}
-  K: {type: cam, links: [cam, follower],
-      program: {base_radius: 30, follower: roller, roller_radius: 10, offset: 10,
-                segments: [{rise: 40, over: 120, law: cycloidal}, {dwell: 60},
-                           {return: 40, over: 90, law: shm}, {dwell: 90}]}}
-  S: {type: prismatic, links: [follower, frame], path: {through: [-10, 0], angle: 90}}
-drive: {link: cam, angle: 60, rpm: 300, direction: cw}
-"""
 
 
 def test_a_follower_at_rest_over_a_dwell_is_one_dwell_with_no_dead_centre_inside_it():
@@ -628,7 +614,7 @@ def test_a_follower_at_rest_over_a_dwell_is_one_dwell_with_no_dead_centre_inside
     # (30 + 10 = 40 mm from the cam's centre), offset 10 mm: √(40² − 10²) up the path, 40 mm higher
     # at the top.  The SHM return leaves rest linearly (its ends to rounding), the cycloidal rise
     # quadratically (its end found to about 1e-5°).
-    sw = sweep(mech.loads(OWN_CAM), level="velocity")
+    sw = sweep(mech.loads(ROLLER_CAM), level="velocity")
     assert sw.dead_centres == ()  # it listed one at every step of both dwells (122)
     low = math.sqrt(40.0**2 - 10.0**2) / 1000
     got = sorted((math.degrees(d.start), math.degrees(d.end), d.value, d.reverses) for d in sw.dwells)
@@ -686,7 +672,7 @@ def test_dwell_ends_found_on_a_newton_walk_are_the_programmes_as_on_the_marched_
     import mech.kinematics.sweep_backends as backends
 
     monkeypatch.setattr(backends.Marcher, "make", classmethod(lambda cls, backend: None))
-    sw = sweep(mech.loads(OWN_CAM), np.radians(np.linspace(0.0, 360.0, 121)), level="velocity")
+    sw = sweep(mech.loads(ROLLER_CAM), np.radians(np.linspace(0.0, 360.0, 121)), level="velocity")
     assert sw.method == "newton" and sw.dead_centres == ()
     got = sorted((math.degrees(d.start), math.degrees(d.end)) for d in sw.dwells)
     assert got == [
