@@ -77,6 +77,17 @@ def pytest_sessionfinish(session, exitstatus):
         Path(target).write_text(f"{sum(c for c, _ in _CPU):.1f}\ttotal\n" + "\n".join(lines) + "\n")
 
 
+def pytest_collection_finish(session):
+    # Everything collection made (the modules, their constants, some 2,600 items) lives to the end of
+    # the run; frozen, the garbage collector's full passes stop walking it again and again (in the
+    # default run its passes took 5.2 s of CPU, 3.8 s after the freeze).  Garbage is collected
+    # first, so none is kept.
+    import gc
+
+    gc.collect()
+    gc.freeze()
+
+
 # -- the default run and the slow one --------------------------------------------------------------
 # `python -m pytest` leaves out the tests marked slow (pyproject: -m "not slow"); `.ci/run` runs
 # them after the README's commands (`python -m pytest -m slow`).  Each entry: a test (or a file),
