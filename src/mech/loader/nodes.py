@@ -180,10 +180,11 @@ def compose(text: str, path: str, *, what: str = "this") -> yaml.Node | None:
         raise _unreadable_character(text, path, what, exc) from None
     except yaml.YAMLError as exc:
         raise InputError(f"{what} is not valid YAML: {exc}", where=Where(path)) from None
-    if root is not None and (ANCHOR in text or 2 * len(text) >= MAX_NODES):
-        # without an anchor nothing repeats, and a node takes at least a character of text: a
-        # short file cannot hold MAX_NODES values, so only a long one or one with aliases is walked
-        _check_size(root, path, what)
+    if root is not None:
+        if ANCHOR in text or 2 * len(text) >= MAX_NODES:
+            # without an anchor nothing repeats, and a node takes at least a character of text: a
+            # short file cannot hold MAX_NODES values, so only a long one or one with aliases is walked
+            _check_size(root, path, what)
         if deep:
             _check_tree_depth(root, path)
     return root
