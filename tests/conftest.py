@@ -93,7 +93,7 @@ def pytest_collection_finish(session):
 # them after the README's commands (`python -m pytest -m slow`).  Each entry: a test (or a file),
 # and what makes it slow, measured with MECH_TEST_CPU on the development machine.  On a quiet
 # machine the default run (1,929 tests) took about 78 s of CPU, the process tree's, and the slow
-# set (741, these and the ones marked in their files) about 265 s.
+# set (741, these and the ones marked in their files) about 290 s.
 SLOW: dict[str, str] = {
     "tests/test_types.py": "mypy over src/: 21 s of CPU",
     "tests/test_entry.py::test_command_line_answers_as_click_answers": "two processes per command line: 33 s",
