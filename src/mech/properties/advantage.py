@@ -543,25 +543,23 @@ def input_effort(
     fastest = _fastest(kin, rate, dkind)
     now = _loads_now(mech, kin)
     terms = []  # a load on a point or link at rest (a piston at its dead centre) does no work: 0
-    for load in mech.loads:
+    for load, f in zip(mech.loads, now, strict=True):
         if not load.is_force:
             w = kin.links[load.target].omega or 0.0
             w = 0.0 if _link_at_rest(kin, w, fastest) else w
-            terms.append((load.target, now[load.target][0] * w / rate))
+            terms.append((load.target, f[0] * w / rate))
         else:
             v = kin.velocity(load.target)
             carrier = _carrier(mech, load.target)
             if _point_at_rest(mech, kin, load.target, carrier, math.hypot(*v)):
                 v = (0.0, 0.0)
-            f = now[load.target]
             terms.append((load.target, (f[0] * v[0] + f[1] * v[1]) / rate + 0.0))
     value = -sum(t for _n, t in terms) + 0.0  # never -0
     by_vw = None
     if dkind == "link" and virtual_work:
         pts, lks = displacements if displacements is not None else _displacements(mech, kin, options)
         total, noise = 0.0, 0.0
-        for load in mech.loads:
-            f = now[load.target]
+        for load, f in zip(mech.loads, now, strict=True):
             if not load.is_force:
                 total += f[0] * lks[load.target]
                 noise += abs(f[0]) * _vw_noise(kin, "link")
@@ -578,13 +576,14 @@ def input_effort(
     )
 
 
-def _loads_now(mech: Mechanism, kin: Any) -> dict[str, tuple[float, ...]]:
-    """Each load at the instant solved: (Fx, Fy) of a force, (T,) of a torque, a table read at the
-    drive's angle (DESIGN § 1.4) as the force solve reads it (:meth:`mech.model.Load.values`)."""
+def _loads_now(mech: Mechanism, kin: Any) -> list[tuple[float, ...]]:
+    """Each load at the instant solved, in the file's order (two may act at one point): (Fx, Fy) of
+    a force, (T,) of a torque, a table read at the drive's angle (DESIGN § 1.4) as the force solve
+    reads it (:meth:`mech.model.Load.values`)."""
     import numpy as np
 
     angle = np.array([kin.drives[0].angle if kin.drives and kin.drives[0].angle is not None else 0.0])
-    return {ld.target: tuple(float(x) for x in np.atleast_1d(ld.values(angle)[0])) for ld in mech.loads}
+    return [tuple(float(x) for x in np.atleast_1d(ld.values(angle)[0])) for ld in mech.loads]
 
 
 def virtual_displacements(mech: Mechanism, kin: Any, *, options: SolveOptions | None = None) -> Any:
