@@ -42,6 +42,7 @@ __all__ = [
     "multipliers",
     "reactions",
     "solve",
+    "unsaid_notes",
     "unsaid_on",
     "unsaid_text",
 ]
@@ -206,6 +207,14 @@ def unsaid_text(pin: str, links: tuple[str, ...]) -> str:
     return (
         f"{pin} joins {' and '.join(links)}, and the load at {pin} does not say which it acts on "
         f"({' or '.join(f'on: {lk}' for lk in links)}): the force {pin} carries depends on it"
+    )
+
+
+def unsaid_notes(mech: Mechanism) -> tuple[str, ...]:
+    """The notes of a force solve (one instant or the cycle) for each load :func:`unsaid_on` finds."""
+    return tuple(
+        f"{unsaid_text(pin, links)}; it is shown with the load on {links[0]}"
+        for pin, links in unsaid_on(mech).items()
     )
 
 

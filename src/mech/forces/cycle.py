@@ -45,7 +45,7 @@ import numpy as np
 
 from mech._records import dataclass
 from mech.errors import InputError
-from mech.forces.core import unsaid_on, unsaid_text
+from mech.forces.core import unsaid_notes
 from mech.forces.series import Evaluator, ForceSeries, PairKey
 from mech.model import Mechanism
 from mech.options import SolveOptions
@@ -280,10 +280,7 @@ def _notes(
         )
     if ev.static:
         notes.append("no drive speed: a static sweep (loads and gravity, no inertia)")
-    notes += [
-        f"{unsaid_text(pin, links)}; it is shown with the load on {links[0]}"
-        for pin, links in unsaid_on(mech).items()
-    ]
+    notes += unsaid_notes(mech)
     return notes
 
 

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from mech.forces.core import Motion, Solved, reactions, solve, unsaid_on, unsaid_text
+from mech.forces.core import Motion, Solved, reactions, solve, unsaid_notes
 from mech.forces.result import Effort, ForceAnalysis, Inertia, PairForce
 from mech.model import Mechanism
 from mech.options import SolveOptions
@@ -112,10 +112,7 @@ def at_instant(mech: Mechanism, kin: Any, comp: Any, *, static: bool = False) ->
         determinate=determinate,
         note=note,
         static=static,
-        notes=tuple(
-            f"{unsaid_text(pin, links)}; it is shown with the load on {links[0]}"
-            for pin, links in unsaid_on(mech).items()
-        ),
+        notes=unsaid_notes(mech),
         kinematics=kin,
     )
 
