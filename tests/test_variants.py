@@ -87,17 +87,10 @@ def _variants(tmp: Path, problem: str, text: str, students: list[str], out: str,
 
 def _four_bar(ab: float, theta: float, rpm: float) -> tuple[float, float]:
     """(ω₄ signed, |v_C|) by the vector loop (module docstring)."""
-    bc, cd, ad = 150 * MM, 80 * MM, 150 * MM
     w2 = -rpm * 2 * math.pi / 60
     b = ab * np.array([math.cos(theta), math.sin(theta)])
-    d = np.array([ad, 0.0])
-    dist = float(np.hypot(*(d - b)))
-    x = (bc**2 - cd**2 + dist**2) / (2 * dist)
-    h = math.sqrt(bc**2 - x**2)
-    ex = (d - b) / dist
-    ey = np.array([-ex[1], ex[0]])
-    hint = np.array([160 * MM, 80 * MM])
-    c = min((b + x * ex + h * ey, b + x * ex - h * ey), key=lambda p: float(np.hypot(*(p - hint))))
+    d = np.array([150 * MM, 0.0])
+    c = _coupler_pin(ab, 150 * MM, theta)
 
     def k(w: float, r: np.ndarray) -> np.ndarray:
         return np.array([-w * r[1], w * r[0]])
