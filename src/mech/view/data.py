@@ -194,53 +194,23 @@ def _table(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> list[dict[str, Any]
     rows: list[dict[str, Any]] = []
     for li, name in enumerate(sw.links):
         if sw.omegas is not None:
-            rows.append(
-                {
-                    "key": f"omega.{name}",
-                    "label": f"ω {name}",
-                    "unit": "rad/s",
-                    "values": as_list(sw.omegas[:, li]),
-                }
-            )
+            rows.append(_row(f"omega.{name}", f"ω {name}", "rad/s", sw.omegas[:, li]))
         if sw.alphas is not None and sw.level == "acceleration":
-            rows.append(
-                {
-                    "key": f"alpha.{name}",
-                    "label": f"α {name}",
-                    "unit": "rad/s²",
-                    "values": as_list(sw.alphas[:, li]),
-                }
-            )
+            rows.append(_row(f"alpha.{name}", f"α {name}", "rad/s²", sw.alphas[:, li]))
     moving = [(k, n) for k, n in enumerate(sw.points) if mech.ground not in drawn.carriers.get(n, ())]
-    own = _own_points(mech, drawn, sw)
-    for name, (vel, _acc) in own.items():
-        if vel is not None:
-            rows.append(_row(f"velocity.{name}", f"v {display_name(name)}", "m/s", np.hypot(*vel)))
-    for k, name in moving:
-        if sw.velocities is not None:
-            speed = np.hypot(sw.velocities[:, k, 0], sw.velocities[:, k, 1])
-            rows.append(
-                {
-                    "key": f"velocity.{name}",
-                    "label": f"v {display_name(name)}",
-                    "unit": "m/s",
-                    "values": as_list(speed),
-                }
-            )
-    for name, (_vel, acc) in own.items():
-        if acc is not None:
-            rows.append(_row(f"acceleration.{name}", f"a {display_name(name)}", "m/s²", np.hypot(*acc)))
-    for k, name in moving:
-        if sw.accelerations is not None:
-            mag = np.hypot(sw.accelerations[:, k, 0], sw.accelerations[:, k, 1])
-            rows.append(
-                {
-                    "key": f"acceleration.{name}",
-                    "label": f"a {display_name(name)}",
-                    "unit": "m/s²",
-                    "values": as_list(mag),
-                }
-            )
+    own = _own_points(mech, drawn, sw)  # a cam's own point first, then the points the sweep carries
+    speeds = [(name, vel) for name, (vel, _acc) in own.items() if vel is not None]
+    accelerations = [(name, acc) for name, (_vel, acc) in own.items() if acc is not None]
+    if sw.velocities is not None:
+        speeds += [(name, (sw.velocities[:, k, 0], sw.velocities[:, k, 1])) for k, name in moving]
+    if sw.accelerations is not None:
+        accelerations += [
+            (name, (sw.accelerations[:, k, 0], sw.accelerations[:, k, 1])) for k, name in moving
+        ]
+    rows += [_row(f"velocity.{n}", f"v {display_name(n)}", "m/s", np.hypot(*v)) for n, v in speeds]
+    rows += [
+        _row(f"acceleration.{n}", f"a {display_name(n)}", "m/s²", np.hypot(*a)) for n, a in accelerations
+    ]
     return rows
 
 
