@@ -85,20 +85,14 @@ def force_y(an: Analysis, names: tuple[str, ...]) -> float:
 def _effort(an: Analysis, kind: str) -> float:
     """The input effort with the links' inertia and weight when the file gives masses; the loads
     alone otherwise, by virtual work (:func:`mech.grading.properties.input_torque`)."""
-    if not an.mech.masses:
-        from mech.grading import properties
+    from mech.grading import properties
 
+    if not an.mech.masses:
         return float(properties.input_torque(an, ()) if kind == "torque" else properties.input_force(an, ()))
     effort = _instant(an).effort
     if effort is None:
         raise Undefined("cannot be computed: the mechanism has no moving drive")
-    if effort.kind != kind:
-        other = "input_force" if kind == "torque" else "input_torque"
-        raise Undefined(
-            f"cannot be computed: the drive is {'a slider' if kind == 'torque' else 'a turning link'}; "
-            f"answer {other} instead"
-        )
-    return float(effort.value)
+    return properties.effort_value(effort, kind)
 
 
 def input_torque(an: Analysis, names: tuple[str, ...]) -> float:

@@ -233,6 +233,12 @@ def _effort(an: Analysis, kind: str) -> float:
     from mech.properties.advantage import input_effort
 
     effort = an.cached("properties.effort", lambda: input_effort(an.mech, an.kin, virtual_work=False))
+    return effort_value(effort, kind)
+
+
+def effort_value(effort: Any, kind: str) -> float:
+    """An input effort's value when it is of ``kind`` (``torque`` or ``force``), else why not:
+    the answer key names the other kind of drive (by the loads alone or with the links' masses)."""
     if effort.kind != kind:
         other = "input_force" if kind == "torque" else "input_torque"
         raise Undefined(
