@@ -125,6 +125,19 @@ def test_other_assembly_branch_for_a_position() -> None:
     assert_diagnosed(f"position.C: [{x:.6f}, {y:.6f}]", "the other assembly branch")
 
 
+def test_other_assembly_branch_of_a_slider_crank() -> None:
+    # r = 0.1, l = 0.4 m, crank at 45° turning 10 rad/s ccw: with the slider behind the crank,
+    # x_B = r cos θ − √(l² − r² sin² θ), so ẋ_B = −rω sin θ + r²ω sin θ cos θ / √(l² − r² sin² θ)
+    r, rod, th, w = 0.1, 0.4, math.radians(45), 10.0
+    v_other = -r * w * math.sin(th) + r * r * w * math.sin(th) * math.cos(th) / math.sqrt(
+        rod**2 - (r * math.sin(th)) ** 2
+    )
+    body = slider_crank(r, rod, angle=45, omega=w) + "answers:\n"
+    v = verdict(f"velocity.B: {abs(v_other):.6f} m/s", body)
+    assert v.status == FAIL and v.diagnosis is not None
+    assert v.diagnosis.startswith("the other assembly branch (B "), v.diagnosis
+
+
 def test_omega_of_the_wrong_link() -> None:
     assert_diagnosed(f"omega.rocker: {abs(FB['w3']):.6f}", "ω of the wrong link (coupler's)")
 

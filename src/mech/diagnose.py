@@ -39,6 +39,7 @@ from typing import TYPE_CHECKING, Any
 
 from mech import grading
 from mech.answers import AnswerKey, AtInfinity, Compare
+from mech.errors import MechError
 from mech.grading import Analysis
 from mech.pairs import kind_of
 from mech.units import Dimension
@@ -342,17 +343,35 @@ def _branches(an: Analysis) -> list[tuple[str, Analysis]]:
 
 
 def _resolved(an: Analysis, joint: Any, near: Vec) -> Analysis | None:
+    """``an``'s mechanism with ``joint`` on the other side: its dyad closed the other way, else assembled anew.
+
+    A chain of dyads closes one dyad the other way in the solve it has already compiled
+    (:attr:`~mech.options.SolveOptions.flipped`: one evaluation); a chain the dyads do not
+    decompose, or whose other side breaks a row no dyad used, is assembled afresh from
+    ``near``, the joint's mirror image, as the general route assembles any drawing.
+    """
+    flipped = Analysis(an.mech, options=an.options.with_(flipped=(joint.name,)))
+    flipped.level = an.level
+    try:
+        return _moved(an, flipped, joint)
+    except MechError:  # no dyad to close the other way, or that side breaks another row: assemble it
+        pass
     mech = an.mech
     moved = replace(joint, place=replace(joint.place, near=near))
     other = replace(mech, joints=tuple(moved if j is joint else j for j in mech.joints), answers=(), asks=())
     alt = Analysis(other, options=an.options)
     alt.level = an.level
     try:
-        p = alt.kin.positions[joint.name]
+        return _moved(an, alt, joint)
     except Exception:  # the other branch does not assemble
         return None
+
+
+def _moved(an: Analysis, alt: Analysis, joint: Any) -> Analysis | None:
+    """``alt`` when it puts ``joint`` elsewhere than ``an`` does; None when it came back to the same place."""
+    p = alt.kin.positions[joint.name]
     if math.dist(p, an.kin.positions[joint.name]) <= 1e-6 * an.kin.size:
-        return None  # it came back to the same configuration (the joint is placed by a drive)
+        return None  # the same configuration (the joint is placed by a drive, or its dyad is in line)
     return alt
 
 

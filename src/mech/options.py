@@ -59,6 +59,14 @@ class SolveOptions:
         otherwise), ``"closed"`` (dyads or an error) or ``"newton"`` (always
         the general solver, with ``tol``).  The closed form is exact to
         rounding, so ``tol`` matters only where Newton runs.
+    flipped
+        Points whose dyads close on the other assembly branch than the drawing's
+        (a four-bar's rocker pin mirrored in the line of its neighbours), every
+        other dyad keeping its own side.  Solved by the closed-form dyads only: a
+        chain that does not decompose into them, or a point no dyad places, is
+        refused.  What a diagnosis of "the other assembly branch" solves
+        (:mod:`mech.diagnose`), at the price of one evaluation, not a second
+        assembly.
     """
 
     angle: float | None = None
@@ -69,6 +77,7 @@ class SolveOptions:
     tol: float = 1e-12
     max_iter: int = 50
     method: str = "auto"
+    flipped: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.direction not in (None, "cw", "ccw"):
@@ -77,6 +86,8 @@ class SolveOptions:
             raise ValueError(f"tol must be between 0 and 1, not {self.tol!r}")
         if self.method not in ("auto", "closed", "newton"):
             raise ValueError(f"method must be 'auto', 'closed' or 'newton', not {self.method!r}")
+        if not isinstance(self.flipped, tuple) or not all(isinstance(n, str) for n in self.flipped):
+            raise ValueError("flipped must be a tuple of point names")
         if self.max_iter < 1:
             raise ValueError("max_iter must be at least 1")
         for name in ("angle", "omega", "speed", "alpha"):

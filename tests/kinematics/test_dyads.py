@@ -250,3 +250,63 @@ def test_a_crank_drawn_next_to_a_dead_centre_is_placed_to_its_angles_own_precisi
         x, y = kin.positions["A"]
         assert y == pytest.approx(r * math.sin(th), rel=1e-12, abs=0)
         assert x == pytest.approx(r * math.cos(th), rel=1e-15)
+
+
+# -- the other assembly branch: a dyad closed the other way (SolveOptions.flipped) ----------------
+
+
+def test_the_other_branch_of_a_slider_crank_puts_the_slider_behind_the_crank():
+    # x_B = r cos θ + s·√(l² − r² sin² θ), s = −1 on the other side of the crank pin; differentiated
+    # in time (θ̇ = ω): ẋ_B = −rω sin θ − s·r²ω sin θ cos θ / √(…); ẍ_B by a central difference of ẋ_B.
+    r, rod, w = 0.1, 0.4, 20 * math.pi
+
+    def x_b(th: float) -> float:
+        return r * math.cos(th) - math.sqrt(rod**2 - (r * math.sin(th)) ** 2)
+
+    def v_b(th: float) -> float:
+        root = math.sqrt(rod**2 - (r * math.sin(th)) ** 2)
+        return -r * w * math.sin(th) + r * r * w * math.sin(th) * math.cos(th) / root
+
+    m = slider_crank(r=r, rod=rod, omega=w)
+    for deg in (45.0, 160.0):
+        th, h = math.radians(deg), 1e-5
+        kin = solve(m, "acceleration", SolveOptions(angle=th, flipped=("B",)))
+        assert kin.positions["B"][0] == pytest.approx(x_b(th), rel=1e-12)
+        assert kin.velocity("B")[0] == pytest.approx(v_b(th), rel=1e-10)
+        assert kin.acceleration("B")[0] == pytest.approx((v_b(th + h) - v_b(th - h)) / (2 * h) * w, rel=1e-6)
+        assert any("other assembly branch" in n for n in kin.notes)
+    assert solve(m, "position").positions["B"][0] > 0  # the drawn side is untouched
+
+
+def test_the_other_branch_of_a_four_bar_is_the_rocker_pin_mirrored_in_bd():
+    m = four_bar()
+    drawn = solve(m, "velocity")
+    other = solve(m, "velocity", SolveOptions(flipped=("C",)))
+    b, c, d = (np.array(drawn.positions[k]) for k in "BCD")
+    u = (d - b) / np.linalg.norm(d - b)
+    mirror = 2 * (b + (c - b) @ u * u) - c  # C reflected in the line BD
+    assert np.allclose(other.positions["C"], mirror, rtol=0, atol=1e-12)
+    assert other.positions["B"] == drawn.positions["B"]
+    # ω₄ of that configuration from two positions a small crank turn apart (ω₂ = −4π rad/s)
+    h = 1e-6
+    angles = []
+    for dt in (-h, h):
+        kin = solve(m, "position", SolveOptions(angle=math.radians(60) + dt, flipped=("C",)))
+        cx, cy = kin.positions["C"]
+        angles.append(math.atan2(cy, cx - 0.15))
+    assert other.links["rocker"].omega == pytest.approx(
+        (angles[1] - angles[0]) / (2 * h) * -4 * math.pi, rel=1e-6
+    )
+
+
+def test_another_side_that_breaks_the_redundant_link_is_refused():
+    # the double parallelogram's third coupler holds only on the drawn branch: with C flipped the
+    # dyads close but its length row does not
+    m = mech.load(ROOT / "mechanisms" / "double_parallelogram.yaml")
+    with pytest.raises(GeometryError, match="other assembly branch"):
+        solve(m, "velocity", SolveOptions(flipped=("C",)))
+
+
+def test_a_point_no_dyad_places_has_no_flipped_side():
+    with pytest.raises(UnsupportedError, match=r"no dyad .* places A"):
+        solve(slider_crank(), "velocity", SolveOptions(flipped=("A",)))

@@ -37,6 +37,7 @@ from mech.kinematics.dyads import (
     DyadProgram,
     branches,
     change_points,
+    closes,
     closure_gaps,
     passed,
     program,
@@ -116,18 +117,25 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
     comp = _compiled(mech, options)
     plan: _Plan = comp.memo.get(("plan", options, lvl), lambda: _plan(comp, options, lvl))
     drives, moved, omega_ref = plan.drives, plan.moved, plan.omega_ref
-    if plan.closed:
+    flipped = options.flipped
+    if plan.closed or flipped:
         fast = _closed_form(comp, drives, lvl, omega_ref, options, moved)
         if fast is not None:
             state, note, near = fast
             told: tuple[str, ...] | Callable[[], tuple[str, ...]] = plan.notes
-            if moved or near is not None:
+            if moved or flipped or near is not None:
                 told = lambda: (  # noqa: E731
                     *plan.notes,
                     *((note(),) if moved else ()),
+                    *((_flipped_note(flipped),) if flipped else ()),
                     *((near(),) if near is not None else ()),
                 )
-            return lazy_result(comp, level, state, omega_ref, moved, told, drives)
+            return lazy_result(comp, level, state, omega_ref, moved or bool(flipped), told, drives)
+        if flipped:
+            raise GeometryError(
+                f"{mech.label} cannot close with {', '.join(flipped)} on the other assembly branch at this angle",
+                hint="the other branch does not assemble here (or is next to a toggle)",
+            )
     notes = list(plan.notes)
     q = move_from_drawing(comp, drives, options, list(plan.targets), notes) if moved else comp.system.q0
     qd, qdd = rates(comp, q, drives, lvl, omega_ref)
@@ -288,6 +296,12 @@ def _closed_form(
     """
     prog = program(comp, lvl, whole_turn=moved)
     if prog is None:
+        if options.flipped:
+            raise UnsupportedError(
+                f"{comp.mech.label} does not decompose into dyads driven by one crank: its other assembly "
+                "branch is not solved by closing a dyad the other way",
+                hint="draw the other branch in the file (its joints' near: or at:) and solve that",
+            )
         if options.method == "closed":
             raise UnsupportedError(
                 f"{comp.mech.label} does not decompose into dyads driven by one crank",
@@ -300,6 +314,8 @@ def _closed_form(
     if way is None:
         return None
     branch, met = way
+    if options.flipped:
+        branch = _flip(prog, branch, options.flipped, comp.mech.label)
     try:
         out = prog.raw(phi, d.omega or 0.0, d.alpha or 0.0, level=lvl, branch=branch)
     except ZeroDivisionError:  # no closure, or exactly in line: Newton explains
@@ -307,16 +323,20 @@ def _closed_form(
     nd = len(prog.dyads)
     if min(out[:nd], default=1.0) < -SLACK:
         return None  # Newton reports the gap, in the file's unit
+    if options.flipped and not closes(prog, comp.system, phi, out):
+        return None  # the other side breaks a row the dyads did not use (a redundant link)
     sines = [abs(x) for x in out[nd : 2 * nd]]
     if lvl >= 1 and sines and min(sines) * ACCURATE_COND < 1.0:
-        if not moved and options.method == "auto":
+        if not moved and options.method == "auto" and not options.flipped:
             return None
         _refuse_singular(comp, prog, d, phi, sines)
     near = None
     if lvl >= 1 and sines and min(sines) < NEAR_TOGGLE:
         near = lambda: _near_toggle_note(comp, prog, phi, prog.split(out, lvl))  # noqa: E731
+    # away from the drawn configuration: its rates are not solved with Φ_q as drawn
+    shifted = moved or bool(options.flipped)
     return (
-        (lambda: _state(comp, prog.split(out, lvl), drives, lvl, omega_ref, moved)),
+        (lambda: _state(comp, prog.split(out, lvl), drives, lvl, omega_ref, shifted)),
         (lambda: _moved_note(prog, phi, met)),
         near,
     )
@@ -360,6 +380,24 @@ def _near_toggle_note(comp: Compiled, prog: DyadProgram, phi: float, parts: dict
         f"{math.degrees(delta):.3g}° from the toggle at {angle_text(edge)} (the drive cannot pass it: "
         f"links come into line there); {grows}"
     )
+
+
+def _flipped_note(names: tuple[str, ...]) -> str:
+    return f"on the other assembly branch: {', '.join(names)} closed the other way, every other dyad as drawn"
+
+
+def _flip(prog: DyadProgram, branch: tuple, names: tuple[str, ...], label: str) -> tuple:
+    """Each dyad's branch multiplier with the dyads placing ``names`` turned to the other side."""
+    placed = {name: k for k, (_, name, _) in enumerate(prog.dyads)}
+    missing = [n for n in names if n not in placed]
+    if missing:
+        raise UnsupportedError(
+            f"no dyad of {label} places {', '.join(missing)}: its other side is not had by closing a dyad "
+            "the other way",
+            hint=f"the dyads place {', '.join(placed) or 'nothing (the crank alone)'}",
+        )
+    turned = {placed[n] for n in names}
+    return tuple(-b if k in turned else b for k, b in enumerate(branch or (1.0,) * len(prog.dyads)))
 
 
 def _way(prog: DyadProgram, phi: float) -> tuple[tuple, list] | None:

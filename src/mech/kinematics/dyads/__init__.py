@@ -34,7 +34,7 @@ arrays), :mod:`.build` (the decomposition and the generated code), :mod:`.templa
 the cycle, its change points, the route and branches to an angle).
 """
 
-from mech.kinematics.dyads.build import program
+from mech.kinematics.dyads.build import closes, program
 from mech.kinematics.dyads.cycle import (
     ChangePoint,
     branches,
@@ -62,6 +62,7 @@ __all__ = [
     "FastState",
     "branches",
     "change_points",
+    "closes",
     "closing_edge",
     "closure_gaps",
     "numpy_namespace",

@@ -32,7 +32,7 @@ from mech.kinematics.dyads.templates import constants, fmt, rpr, rrp, rrr
 from mech.kinematics.layout import Layout
 from mech.pairs import kind_of
 
-__all__ = ["program"]
+__all__ = ["closes", "program"]
 
 
 def program(comp: Any, level: int = 0, *, whole_turn: bool = True) -> DyadProgram | None:
@@ -486,12 +486,39 @@ def _verified(prog: DyadProgram, sys_: System, angles: int) -> bool:
             if k == 0:
                 return False
             continue
-        q = np.empty(3 * n)
-        q[0::3] = np.asarray(parts["lx"]) / scale
-        q[1::3] = np.asarray(parts["ly"]) / scale
-        q[2::3] = parts["lt"]
-        qs.append(q)
+        qs.append(_q(parts, n, scale))
         turned.append(phi - prog.drawn_angle)
+    return _rows_hold(sys_, qs, turned)
+
+
+def closes(prog: DyadProgram, sys_: System, phi: float, out: tuple) -> bool:
+    """The raw output ``out`` of ``prog`` at ``phi`` satisfies every constraint row of the system.
+
+    What a solve off the drawn branches checks (:attr:`~mech.options.SolveOptions.flipped`): a
+    dyad closed the other way can leave a row the decomposition did not use broken (a double
+    parallelogram's redundant link), which the drawn branch's check (:func:`_verified`) never saw.
+    """
+    parts = prog.split(out, 0)
+    if min(parts["disc"], default=1.0) < -SLACK:
+        return False
+    return _rows_hold(sys_, [_q(parts, sys_.n, sys_.scale)], [phi - prog.drawn_angle])
+
+
+def _q(parts: dict[str, tuple], n: int, scale: float) -> Any:
+    """The scaled coordinates (x, y, θ per link) of one configuration of the program."""
+    import numpy as np
+
+    q = np.empty(3 * n)
+    q[0::3] = np.asarray(parts["lx"]) / scale
+    q[1::3] = np.asarray(parts["ly"]) / scale
+    q[2::3] = parts["lt"]
+    return q
+
+
+def _rows_hold(sys_: System, qs: list[Any], turned: list[float]) -> bool:
+    """Every constraint row holds (to 1e-9 of the size) at each configuration, the drive turned by ``turned``."""
+    import numpy as np
+
     c_ang = np.tile(sys_.ang_c, (len(qs), 1))
     for r in sys_.drive_rows:
         off = r - 2 * sys_.pc_i.size - sys_.ln_s.size
