@@ -600,6 +600,26 @@ def test_time_ratio_of_each_output_is_its_own_and_bare_time_ratio_names_the_cand
     assert bare.status == ERROR and "rocker1" in bare.message and "rocker2" in bare.message
 
 
+def test_bare_time_ratio_is_refused_when_several_outputs_share_one_ratio() -> None:
+    # Khurmi Ex. 5.1's shaper: the return stroke takes the crank angle 2·acos(120/240) = 120°, the
+    # cutting stroke 240°, for the slotted lever and the ram it drives alike: ratio 2 for both.
+    # DESIGN § 1.2 refuses the bare key with the candidates named: which stroke is for the file to say.
+    text = (Path(__file__).parents[1] / "mechanisms" / "crank_slotted_lever_quick_return.yaml").read_text(
+        encoding="utf-8"
+    )
+    ratio = (360 - 2 * math.degrees(math.acos(120 / 240))) / (2 * math.degrees(math.acos(120 / 240)))
+    text = (
+        text[: text.index("answers:")]
+        + f"answers:\n  time_ratio.lever: {ratio!r}\n  time_ratio.ram: {ratio!r}\n  time_ratio: {ratio!r}\n"
+    )
+    lever, ram, bare = check(loads(text))
+    assert (lever.status, ram.status) == (PASS, PASS)
+    assert lever.computed == pytest.approx(2.0, rel=1e-9) and ram.computed == pytest.approx(2.0, rel=1e-9)
+    assert bare.status == ERROR and "lever 2" in bare.message and "stroke 2" in bare.message, (
+        bare.message
+    )  # the ram by its joint
+
+
 def test_time_ratio_of_a_slider_by_its_joint_or_link_and_a_refusal_that_says_why() -> None:
     # Offset slider crank r = 50, l = 200, e = 20 mm: dead centres at ψ = asin(e/(l + r)) and
     # π + asin(e/(l − r)); ratio (π + β)/(π − β) with β the difference less π.  The slider is named

@@ -10,8 +10,9 @@ rest and the first that moves, to where the rate leaves rounding (:data:`EDGE`).
 The time ratio (quick return) of an output is its slow stroke over its fast one: the crank
 angles between its two dead centres over a full, gap-free turn (Khurmi & Gupta, *Theory of
 Machines*, § 5.11; Norton, *Design of Machinery*, § 3.5).  Every output with exactly two gets
-one; the bare ``time_ratio`` is the mechanism's one such output's (several with the same
-ratio, as a slotted lever and the ram it drives, count as one), and each refusal says why.
+one; the bare ``time_ratio`` is the mechanism's one such output's, refused with the candidates
+named when there are several (even alike: a slotted lever and the ram it drives), and each
+refusal says why.
 """
 
 from __future__ import annotations
@@ -203,7 +204,7 @@ def find_time_ratios(
         else:
             arc = angles[1] - angles[0]
             ratios.append(TimeRatio(name, max(arc, _TWO_PI - arc), min(arc, _TWO_PI - arc)))
-    bare, bare_why = _bare(ratios, refused, outputs)
+    bare, bare_why = _bare(ratios, refused)
     return bare, tuple(ratios), tuple(refused) + ((("", bare_why),) if bare_why else ())
 
 
@@ -218,17 +219,17 @@ def _whole_turn_why(phi: np.ndarray, ok: np.ndarray, one_crank: bool) -> str | N
     return None
 
 
-def _bare(
-    ratios: list[TimeRatio], refused: list[tuple[str, str]], outputs: Sequence[tuple[str, str]]
-) -> tuple[TimeRatio | None, str | None]:
-    """The one output's ratio (several alike count as one: the last slider's, else the last link's)."""
+def _bare(ratios: list[TimeRatio], refused: list[tuple[str, str]]) -> tuple[TimeRatio | None, str | None]:
+    """The mechanism's one output's ratio; with several, none, and the candidates named (DESIGN § 1.2).
+
+    Several are refused even when their ratios agree (a slotted lever and the ram it drives):
+    which stroke a claim means is the file's to say, not a tie for mech to break.
+    """
     if not ratios:
         said = "; ".join(w for _n, w in refused) or "the mechanism has no slider or link pivoted on the frame"
         return None, f"no output has two dead centres over the turn: {said}"
-    if all(abs(r.ratio - ratios[0].ratio) <= 1e-9 * ratios[0].ratio for r in ratios):
-        mine = {r.output: r for r in ratios}
-        order = [n for k, n in outputs if k == "slide"][::-1] + [n for k, n in outputs if k == "link"][::-1]
-        return next(mine[n] for n in order if n in mine), None
+    if len(ratios) == 1:
+        return ratios[0], None
     listed = ", ".join(f"{r.output} {r.ratio:.6g}" for r in ratios)
     return None, f"{len(ratios)} outputs have a time ratio ({listed}): name one, time_ratio.<output>"
 
