@@ -148,3 +148,24 @@ def test_the_fast_path_reads_values_as_click_converts_them(argv, values):
     read_values = read("velocity", list(argv))
     assert read_values is not None
     assert {k: read_values[k] for k in values} == values
+
+
+@pytest.mark.parametrize("given, seen", [(None, "1"), ("4", "4")])
+def test_a_command_asks_numpy_s_blas_for_one_thread_unless_the_user_said(given, seen):
+    # read by OpenBLAS when numpy is first imported: set by the console script before any command runs
+    import os
+
+    env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
+    if given is not None:
+        env["OPENBLAS_NUM_THREADS"] = given
+    probe = (
+        "import os, sys\n"
+        "from mech.entry import main\n"
+        "try:\n"
+        f"    main(['velocity', {FOUR_BAR!r}, '--json'])\n"
+        "except SystemExit:\n"
+        "    pass\n"
+        "print(os.environ['OPENBLAS_NUM_THREADS'], 'numpy' in sys.modules, file=sys.stderr)\n"
+    )
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=env, check=False)
+    assert done.stderr.split()[-2:] == [seen, "True"], done.stderr

@@ -38,6 +38,8 @@ from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
+from mech._blas import one_thread
+
 if TYPE_CHECKING:  # multiprocessing is imported only when a pool starts
     from multiprocessing.context import ForkContext, ForkServerContext, SpawnContext
 
@@ -136,26 +138,10 @@ def _chunks(n: int, largest: int, workers: int) -> Iterator[list[int]]:
         i += size
 
 
-#: The thread pools of the BLAS libraries numpy may be built on (OpenBLAS, MKL, OpenMP, Accelerate).
-_BLAS_THREADS = ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "OMP_NUM_THREADS", "VECLIB_MAXIMUM_THREADS")
-
-
-def _one_blas_thread() -> None:
-    """A worker's numpy (imported in the worker, on its first solve) runs BLAS on one thread.
-
-    The pool already runs one worker per core, so a BLAS thread pool in each
-    worker could only oversubscribe the cores, and the matrices are a few rows
-    each.  Starting OpenBLAS's pool cost ~40 ms of CPU per worker (its threads
-    spin while they wait), as much as 40 files.  A variable the user set is kept.
-    """
-    for name in _BLAS_THREADS:
-        os.environ.setdefault(name, "1")
-
-
 def _worker(conn: Any, slot: int, board: Any, limited: _Limited[Any, Any]) -> None:
     """Run the chunks of ``(index, job)`` the parent sends; say on ``board`` which job runs since when."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle: it kills us
-    _one_blas_thread()
+    one_thread()  # the pool runs one worker per core: a BLAS pool in each could only oversubscribe them
     gc.freeze()  # what the parent imported lives as long as we do: no collection walks it again
     frozen: set[str] | None = set(sys.modules)
     try:

@@ -30,6 +30,9 @@ __all__ = ["main"]
 
 def main(argv: Sequence[str] | None = None) -> None:
     """Entry point of the ``mech`` console script and ``python -m mech``."""
+    from mech._blas import one_thread
+
+    one_thread()  # before any command imports numpy
     try:
         from mech.commands.exits import guarded
     except KeyboardInterrupt:  # Ctrl-C while the guard itself loads: the guard's answer, by hand
