@@ -304,12 +304,7 @@ def test_a_profile_cams_own_point_has_its_speed_and_acceleration_rows(tmp_path):
     """
     import mpmath
 
-    page = tmp_path / "cam.html"
-    run = mech("view", str(MECHANISMS / "eccentric_cam_roller.yaml"), "-o", str(page))
-    assert run.returncode == 0, run.stderr
-    text = page.read_text(encoding="utf-8")
-    raw = re.search(r'<script id="mech-data" type="application/json">(.*?)</script>', text, re.S).group(1)
-    data = json.loads(raw.replace("<\\/", "</"))
+    data = _page_data(tmp_path, "eccentric_cam_roller")
     rows = {r["key"]: r["values"] for r in data["table"]}
     e, rr, w = 0.015, 0.050, 300 * 2 * math.pi / 60
     y = lambda t: e * mpmath.sin(t) + mpmath.sqrt(rr**2 - (e * mpmath.cos(t)) ** 2)  # noqa: E731
@@ -321,3 +316,62 @@ def test_a_profile_cams_own_point_has_its_speed_and_acceleration_rows(tmp_path):
         assert rows["acceleration.K"][i] == pytest.approx(
             abs(float(mpmath.diff(y, theta, 2))) * w * w, rel=1e-5, abs=1e-7
         )
+
+
+def _page_data(folder: Path, name: str) -> dict:
+    """The data a shipped example's page carries (its table, its steps), read from the page written."""
+    page = folder / f"{name}.html"
+    run = mech("view", str(MECHANISMS / f"{name}.yaml"), "-o", str(page))
+    assert run.returncode == 0, run.stderr
+    text = page.read_text(encoding="utf-8")
+    raw = re.search(r'<script id="mech-data" type="application/json">(.*?)</script>', text, re.S).group(1)
+    return json.loads(raw.replace("<\\/", "</"))
+
+
+def test_a_cams_contact_has_rows_for_the_point_of_each_link_there(tmp_path):
+    """DESIGN § 1.2 and § 1.5: K@cam and K@follower, each link's point where the profiles touch.
+
+    The disc's centre E = e(cos θ, sin θ) turns about O; the roller's centre K = (0, y) with
+    y = e sin θ + √((R + r)² − e² cos² θ); they touch at P = E + R (K − E)/(R + r).  The cam's
+    point there moves on a circle about O: |v| = ω|P|, |a| = ω²|P| at a steady 300 rpm; the
+    follower translates, so its point there moves as K does (y′ω, y″ω², by mpmath).
+    """
+    import mpmath
+
+    data = _page_data(tmp_path, "eccentric_cam_roller")
+    rows = {r["key"]: r["values"] for r in data["table"]}
+    e, big, small, w = 0.015, 0.040, 0.010, 300 * 2 * math.pi / 60
+    y = lambda t: e * mpmath.sin(t) + mpmath.sqrt((big + small) ** 2 - (e * mpmath.cos(t)) ** 2)  # noqa: E731
+    for i in range(0, len(data["param"]["si"]), 30):
+        theta = data["param"]["si"][i]
+        ex, ey = e * math.cos(theta), e * math.sin(theta)
+        k = float(y(theta))
+        px, py = ex + big * (0 - ex) / (big + small), ey + big * (k - ey) / (big + small)
+        assert rows["velocity.K@cam"][i] == pytest.approx(w * math.hypot(px, py), rel=1e-6)
+        assert rows["acceleration.K@cam"][i] == pytest.approx(w * w * math.hypot(px, py), rel=1e-6)
+        assert rows["velocity.K@follower"][i] == pytest.approx(
+            abs(float(mpmath.diff(y, theta))) * w, rel=1e-5, abs=1e-9
+        )
+        assert rows["acceleration.K@follower"][i] == pytest.approx(
+            abs(float(mpmath.diff(y, theta, 2))) * w * w, rel=1e-5, abs=1e-7
+        )
+
+
+def test_a_gear_s_pitch_point_and_a_rolling_wheel_s_contact_have_their_rows(tmp_path):
+    """The pinion (20 teeth, module 5 mm: r₁ = 50 mm) turns at 1,200 rpm and drives a 40-tooth wheel
+    (r₂ = 100 mm, ω₂ = ω₁/2): the pitch point's speed is ω₁r₁ on both, its acceleration ω₁²r₁ as
+    the pinion's point and ω₂²r₂ as the wheel's.  A wheel (r = 30 mm) rolling on flat ground: its
+    point at the contact is at rest, and its acceleration is ω²r toward the centre, whatever α is."""
+    gear = {r["key"]: r["values"] for r in _page_data(tmp_path, "gear_pair")["table"]}
+    w1 = 1200 * 2 * math.pi / 60
+    w2 = w1 / 2
+    for i in range(0, 360, 45):
+        # the page's numbers are to 7 significant figures
+        assert gear["velocity.mesh"][i] == pytest.approx(w1 * 0.050, rel=1e-6)
+        assert gear["acceleration.mesh@pinion"][i] == pytest.approx(w1 * w1 * 0.050, rel=1e-6)
+        assert gear["acceleration.mesh@wheel"][i] == pytest.approx(w2 * w2 * 0.100, rel=1e-6)
+    wheel = {r["key"]: r["values"] for r in _page_data(tmp_path, "rolling_wheel")["table"]}
+    for i in range(0, 360, 45):
+        omega = wheel["omega.wheel"][i]
+        assert wheel["velocity.W"][i] == pytest.approx(0.0, abs=1e-9 * abs(omega) * 0.030)
+        assert wheel["acceleration.W@wheel"][i] == pytest.approx(omega * omega * 0.030, rel=1e-6)

@@ -9,7 +9,7 @@ that makes them, so a caller that reads one number pays for the arrays only.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from types import MappingProxyType
 
 import numpy as np
@@ -20,7 +20,7 @@ from mech.kinematics.result import Fields, JointGeom, Kinematics, LinkState
 from mech.model import Drive
 from mech.pairs import kind_of
 
-__all__ = ["State", "lazy_result", "result"]
+__all__ = ["State", "configuration", "joint_points", "lazy_result", "result"]
 
 _TWO_PI = 2.0 * math.pi
 #: q, q̇, q̈ of a solve, scaled (q̇ and q̈ None above the level asked).
@@ -93,6 +93,33 @@ def _fields(
         MappingProxyType(joints),
         joint_names=sys_.joint_names,
     )
+
+
+def configuration(
+    comp: Compiled, positions: Mapping[str, tuple[float, float]], angles: Mapping[str, float]
+) -> np.ndarray | None:
+    """The scaled configuration q where the named points are at ``positions`` (m) and each moving
+    link is turned to ``angles`` (rad): a sweep's step, read back as the solver holds it.
+
+    Each link's frame has its origin at a location of its own (``System.frames``), so its
+    coordinates are that location's; None when a link's origin or angle is not given.
+    """
+    sys_ = comp.system
+    cx, cy = float(sys_.centre[0]), float(sys_.centre[1])
+    q = np.empty(3 * sys_.n)
+    for i, link in enumerate(sys_.links):
+        origin, angle = positions.get(sys_.frames.get(link, "")), angles.get(link)
+        if origin is None or angle is None:
+            return None
+        q[3 * i : 3 * i + 3] = ((origin[0] - cx) / sys_.scale, (origin[1] - cy) / sys_.scale, angle)
+    return q
+
+
+def joint_points(comp: Compiled, q: np.ndarray) -> dict[str, tuple[float, float] | None]:
+    """Each joint's point in the configuration ``q`` (scaled), as a solve there gives it: a pin's
+    place, a slider's point, where profiles touch, a gear's pitch point (``JointGeom.at``)."""
+    positions, all_pos = _positions(comp, q, True)
+    return {name: g.at for name, g in _joint_geoms(comp, q, positions, all_pos).items()}
 
 
 def _positions(

@@ -21,14 +21,14 @@ from mech.draw.polygon import PolygonData, acceleration_polygon, velocity_polygo
 from mech.errors import MechError
 from mech.pairs import kind_of
 from mech.units import unit_factor
-from mech.view.frames import as_list, icentres, instant, link_members, own_step, round_sig
+from mech.view.frames import Vec, as_list, icentres, instant, link_members, own_step, round_sig
 
 if TYPE_CHECKING:  # pragma: no cover
     from mech.kinematics.result import Kinematics
     from mech.kinematics.sweep import Sweep
     from mech.model import Mechanism
 
-__all__ = ["page_data"]
+__all__ = ["contact_points", "page_data"]
 
 
 def page_data(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> dict[str, Any]:
@@ -37,7 +37,8 @@ def page_data(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> dict[str, Any]:
     ``drawn`` is the solve at the file's own instant (carriers, joints, drives).
     """
     own = own_step(sw, drawn)
-    kins = [instant(mech, drawn, sw, i, own) for i in range(sw.angles.shape[0])]
+    ats = contact_points(mech, sw)
+    kins = [instant(mech, drawn, sw, i, own, ats[i] if ats else None) for i in range(sw.angles.shape[0])]
     factor = unit_factor(mech.length_unit)[1]
     data: dict[str, Any] = {
         "title": mech.label,
@@ -54,7 +55,7 @@ def page_data(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> dict[str, Any]:
     data["polygons"] = [
         p for p in (_polygon(mech, kins, sw, "velocity"), _polygon(mech, kins, sw, "acceleration")) if p
     ]
-    data["table"] = _table(mech, drawn, sw)
+    data["table"] = _table(mech, drawn, sw) + _contact_rows(mech, kins, sw)
     names, ic = icentres(mech, drawn, sw)
     data["icentres"] = {"names": names, "rows": as_list(ic, 6), "from": _first_pivot(mech, drawn, sw)}
     data["transmission"] = _transmission(mech, drawn, sw)
@@ -212,6 +213,83 @@ def _table(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> list[dict[str, Any]
         _row(f"acceleration.{n}", f"a {display_name(n)}", "m/s²", np.hypot(*a)) for n, a in accelerations
     ]
     return rows
+
+
+def contact_points(mech: Mechanism, sw: Sweep) -> list[dict[str, Vec | None]] | None:
+    """Where each higher pair's joint is at every step of ``sw``: the cam's contact, a gear's pitch point.
+
+    The sweep carries the located points and each link's angle; from them each step's
+    configuration is read back as the solver holds it (:func:`~mech.kinematics.result_fields.configuration`)
+    and its joints' points found by the code every solve uses (:func:`~mech.kinematics.result_fields.joint_points`),
+    so the page's ``velocity.K@cam`` is the one ``mech velocity --json`` gives at that instant.
+    None when the mechanism has no higher pair, or its configuration cannot be read back.
+    """
+    names = [j.name for j in mech.joints if kind_of(j).higher or kind_of(j).rolls]
+    if not names:
+        return None
+    from mech.kinematics.compiled import compiled
+    from mech.kinematics.result_fields import configuration, joint_points
+
+    try:
+        comp = compiled(mech, None)
+    except MechError:
+        return None
+    out: list[dict[str, Vec | None]] = []
+    for i in range(sw.angles.shape[0]):
+        q = None
+        if sw.assembled[i]:
+            positions = {
+                n: (float(x), float(y)) for n, (x, y) in zip(sw.points, sw.positions[i], strict=True)
+            }
+            q = configuration(comp, positions, dict(zip(sw.links, sw.link_angles[i].tolist(), strict=True)))
+        if q is None and sw.assembled[i]:
+            return None  # a link without a point of its own in the sweep: its frame cannot be read back
+        points = joint_points(comp, q) if q is not None else {}
+        out.append({n: points.get(n) for n in names})
+    return out
+
+
+def _contact_rows(mech: Mechanism, kins: list[Kinematics], sw: Sweep) -> list[dict[str, Any]]:
+    """Speed and acceleration of the moving links' points at each higher pair's joint, keyed as answers are.
+
+    A rolling pair's points move alike (no slip): one ``velocity.<joint>``; otherwise, and for
+    accelerations always, ``<joint>@<link>`` for each moving link of the pair (DESIGN § 1.2),
+    as ``mech velocity --json`` and ``mech acceleration --json`` list them.
+    """
+    rows: list[dict[str, Any]] = []
+    if sw.velocities is None:
+        return rows
+    for j in mech.joints:
+        kind = kind_of(j)
+        if not (kind.higher or kind.rolls):
+            continue
+        own = [f"{j.name}@{lk}" for lk in j.links if lk != mech.ground]
+        # (key, the point asked of each step): a rolling pair's points agree, so either link's will do
+        asks = [(f"velocity.{name}", name) for name in own]
+        if kind.rolls:
+            asks = [(f"velocity.{j.name}", own[0])] if own and j.name not in sw.points else []
+        if sw.level == "acceleration" and sw.accelerations is not None:
+            asks += [(f"acceleration.{name}", name) for name in own]
+        for key, name in asks:
+            what = key.partition(".")[0]
+            values = np.array(
+                [_magnitude(k, what, name, ok) for k, ok in zip(kins, sw.assembled, strict=True)]
+            )
+            if np.all(np.isnan(values)):
+                continue
+            symbol, unit = ("v", "m/s") if what == "velocity" else ("a", "m/s²")
+            rows.append(_row(key, f"{symbol} {display_name(key.partition('.')[2])}", unit, values))
+    return rows
+
+
+def _magnitude(kin: Kinematics, what: str, name: str, ok: bool) -> float:
+    """|v| or |a| of ``name`` in ``kin`` (NaN where the step is not assembled or has no such point)."""
+    if not ok:
+        return math.nan
+    try:
+        return math.hypot(*(kin.velocity(name) if what == "velocity" else kin.acceleration(name)))
+    except MechError:
+        return math.nan
 
 
 def _row(key: str, label: str, unit: str, values: np.ndarray) -> dict[str, Any]:

@@ -49,12 +49,21 @@ def _origin(kin: Kinematics, sw: Sweep, link: str) -> int | None:
     return None
 
 
-def instant(mech: Mechanism, drawn: Kinematics, sw: Sweep, i: int, own: int = 0) -> Kinematics:
+def instant(
+    mech: Mechanism,
+    drawn: Kinematics,
+    sw: Sweep,
+    i: int,
+    own: int = 0,
+    ats: Mapping[str, Vec | None] | None = None,
+) -> Kinematics:
     """The mechanism at step ``i`` of ``sw`` as a :class:`Kinematics`, carriers and joints as ``drawn``.
 
-    Joints keep their type and links; a path's direction turns with its guide; a contact
-    point the sweep does not carry is left out (the page draws what the sweep knows).  ``own``
-    is the step drawn as ``drawn`` is (where the guides' directions are the drawn ones).
+    Joints keep their type and links; a path's direction turns with its guide.  ``ats`` gives
+    a joint's point the sweep does not carry (a cam's contact, a gear's pitch point:
+    :func:`mech.view.data.contact_points`), so that ``K@cam`` is asked of the result as of a
+    solve; without it such a point is left out.  ``own`` is the step drawn as ``drawn`` is
+    (where the guides' directions are the drawn ones).
     """
     pos: dict[str, Vec] = {
         n: (float(x), float(y)) for n, (x, y) in zip(sw.points, sw.positions[i], strict=True)
@@ -87,6 +96,8 @@ def instant(mech: Mechanism, drawn: Kinematics, sw: Sweep, i: int, own: int = 0)
             c, s = math.cos(t), math.sin(t)
             direction = (c * direction[0] - s * direction[1], s * direction[0] + c * direction[1])
         at = pos.get(g.point) if g.point is not None else None
+        if ats is not None and ats.get(name) is not None:
+            at = ats[name]
         joints[name] = JointGeom(g.name, g.type, g.links, g.point, direction, g.radius, at)
     return Kinematics(
         drawn.mechanism,
