@@ -16,31 +16,21 @@ import html as htmllib
 import json
 import math
 import re
-import shutil
 import subprocess
 from pathlib import Path
 
 import pytest
 
 from cli_runner import mech
+from headless import FLAGS as HEADLESS
+from headless import chromium
 
 ROOT = Path(__file__).resolve().parent.parent
 MECHANISMS = ROOT / "mechanisms"
 INSTALL = "no browser: apt-get install -y chromium (Debian's package; .ci/run installs it)"
-CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
-#: As root on a machine with no network: no sandbox, no GPU, none of Chromium's own connections.
-FLAGS = (
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--enable-logging=stderr",
-    "--v=0",
-)
+CHROMIUM = chromium()
+#: The page's console messages are read from the browser's log on stderr.
+FLAGS = (*HEADLESS, "--enable-logging=stderr", "--v=0")
 needs_browser = pytest.mark.skipif(CHROMIUM is None, reason=INSTALL)
 
 

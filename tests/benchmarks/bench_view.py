@@ -21,22 +21,16 @@ import re
 import shutil
 import statistics
 import subprocess
+import sys
 import tempfile
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tests"))
+from headless import FLAGS, chromium  # noqa: E402  (the tests' own flags: one set for both)
+
 EXAMPLES = ("four_bar", "slider_crank", "watt_six_bar")
-FLAGS = (
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-)
 EMPTY = (
     "<!DOCTYPE html><html><head><meta charset='utf-8'><title>empty</title></head><body>"
     "<script>document.body.setAttribute('data-ready-ms', performance.now().toFixed(1));</script>"
@@ -64,7 +58,7 @@ def load(chromium: str, page: Path, profile: Path) -> tuple[float, float]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("--mech", default=shutil.which("mech") or "mech")
-    parser.add_argument("--chromium", default=shutil.which("chromium") or "chromium")
+    parser.add_argument("--chromium", default=chromium() or "chromium")
     parser.add_argument("--runs", type=int, default=7)
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
