@@ -132,3 +132,11 @@ def test_answer_keys_name_each_links_point_at_a_cam_contact(run, write):
     )
     assert code == 0, report
     assert set(verdicts(report).values()) == {"pass"}
+
+
+def test_a_follower_that_dwells_at_both_limits_has_the_time_ratio_of_its_strokes(run, write):
+    # DESIGN § 1.2: two limit positions, so a time ratio.  The rise takes 120° of the cam's turn and
+    # the return 150°; the dwells (30° at the top, 60° at the bottom) belong to neither: 150/120.
+    code, report = check(run, write, "  time_ratio.S: 1.25\n  time_ratio: 1.25\n  time_ratio.follower: 0.8")
+    assert verdicts(report) == {"time_ratio.S": "pass", "time_ratio": "pass", "time_ratio.follower": "fail"}
+    assert code == 1

@@ -627,7 +627,12 @@ def test_a_follower_at_rest_over_a_dwell_is_one_dwell_with_no_dead_centre_inside
             True,
         ),
     ]
-    assert sw.time_ratio is None and "S rests at its limits over 2 dwells" in dict(sw.time_ratio_refused)["S"]
+    # its two limits are the dwells (DESIGN § 1.2: two limit positions, so a time ratio): the strokes
+    # run from leaving one to reaching the other, 90° → 180° and 240° → 360°, so 120° / 90°
+    (ratio,) = sw.time_ratios
+    assert sw.time_ratio == ratio and ratio.output == "S"
+    assert math.degrees(ratio.slow) == pytest.approx(120.0, abs=1e-3)
+    assert math.degrees(ratio.fast) == pytest.approx(90.0, abs=1e-3)
 
 
 def test_every_output_with_two_dead_centres_has_a_time_ratio_the_watt_rocker_by_the_cosine_rule():

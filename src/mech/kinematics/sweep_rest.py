@@ -8,7 +8,8 @@ of zero at two or more consecutive steps.  Its ends are bisected between the las
 rest and the first that moves, to where the rate leaves rounding (:data:`EDGE`).
 
 The time ratio (quick return) of an output is its slow stroke over its fast one: the crank
-angles between its two dead centres over a full, gap-free turn (Khurmi & Gupta, *Theory of
+angles between its two limit positions over a full, gap-free turn (a stroke runs from leaving one
+limit to reaching the other, so a dwell held at a limit belongs to neither stroke) (Khurmi & Gupta, *Theory of
 Machines*, § 5.11; Norton, *Design of Machinery*, § 3.5).  Every output with exactly two gets
 one; the bare ``time_ratio`` is the mechanism's one such output's, refused with the candidates
 named when there are several (even alike: a slotted lever and the ram it drives), and each
@@ -193,17 +194,22 @@ def find_time_ratios(
     ratios: list[TimeRatio] = []
     refused: list[tuple[str, str]] = []
     for name in names:
-        rests = [d for d in dwells if d.subject == name and d.reverses]  # a pause on the way is a stroke's
-        angles = sorted({round((e.angle - start) % _TWO_PI, 12) for e in dead if e.subject == name})
-        if rests:
-            said = f"rests at its limits over {_count(len(rests), 'dwell')}: its strokes do not run between two dead centres"
-            refused.append((name, f"{name} {said}"))
-        elif len(angles) != 2:
-            said = "never reverses" if not angles else f"reverses {_count(len(angles), 'time')}"
+        # each limit position as the crank angles it is held over: a dead centre an instant, a dwell
+        # the output comes back from an interval (a pause on the way is its stroke's)
+        limits = {(a, a) for a in {round((e.angle - start) % _TWO_PI, 12) for e in dead if e.subject == name}}
+        rests = [d for d in dwells if d.subject == name and d.reverses]
+        limits |= {((d.start - start) % _TWO_PI, (d.end - start) % _TWO_PI) for d in rests}
+        if len(limits) == 2:
+            (a0, a1), (b0, b1) = sorted(limits)
+            # a stroke runs from leaving one limit to reaching the other: a dwell belongs to neither
+            there, back = (b0 - a1) % _TWO_PI, (a0 - b1) % _TWO_PI
+            ratios.append(TimeRatio(name, max(there, back), min(there, back)))
+        elif not rests:
+            said = "never reverses" if not limits else f"reverses {_count(len(limits), 'time')}"
             refused.append((name, f"{name} {said} over the turn (a time ratio needs two dead centres)"))
         else:
-            arc = angles[1] - angles[0]
-            ratios.append(TimeRatio(name, max(arc, _TWO_PI - arc), min(arc, _TWO_PI - arc)))
+            said = f"has {_count(len(limits), 'limit position')} over the turn ({_count(len(rests), 'dwell')} among them)"
+            refused.append((name, f"{name} {said}: a time ratio needs two"))
     bare, bare_why = _bare(ratios, refused)
     return bare, tuple(ratios), tuple(refused) + ((("", bare_why),) if bare_why else ())
 
