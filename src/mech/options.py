@@ -64,7 +64,8 @@ class SolveOptions:
         (a four-bar's rocker pin mirrored in the line of its neighbours), every
         other dyad keeping its own side.  Solved by the closed-form dyads only: a
         chain that does not decompose into them, or a point no dyad places, is
-        refused.  What a diagnosis of "the other assembly branch" solves
+        refused, and so is a sweep (it follows the drawing's own branches).  What a
+        diagnosis of "the other assembly branch" solves
         (:mod:`mech.diagnose`), at the price of one evaluation, not a second
         assembly.
     """

@@ -310,3 +310,14 @@ def test_another_side_that_breaks_the_redundant_link_is_refused():
 def test_a_point_no_dyad_places_has_no_flipped_side():
     with pytest.raises(UnsupportedError, match=r"no dyad .* places A"):
         solve(slider_crank(), "velocity", SolveOptions(flipped=("A",)))
+
+
+def test_a_sweep_and_a_continuation_refuse_a_flipped_side_rather_than_sweep_the_drawn_one():
+    from mech.kinematics import sweep
+    from mech.kinematics.solve import continuation
+
+    options = SolveOptions(flipped=("B",))
+    with pytest.raises(UnsupportedError, match="one instant"):
+        sweep(slider_crank(), np.radians([0.0, 90.0]), options=options)
+    with pytest.raises(UnsupportedError, match="one instant"):
+        list(continuation(slider_crank(), [0.0, 0.5], "velocity", options))

@@ -234,6 +234,11 @@ def continuation(
     A singular step (a toggle) yields positions only.
     """
     lvl = LEVELS.index(level)
+    if options.flipped:
+        raise UnsupportedError(
+            "continuation follows the drawing's own branches; flipped closes dyads the other way at one instant",
+            hint="solve each instant with solve(..., options=SolveOptions(angle=…, flipped=…))",
+        )
     comp = compiled(mech, None)
     sys_, lay, drawn = comp.system, comp.layout, comp.drawn
     base = options.with_(angle=float(angles[0]) if len(angles) else None, method="newton")

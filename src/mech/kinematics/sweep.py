@@ -261,6 +261,11 @@ def _checked_level(level: str, options: SolveOptions) -> int:
         raise InputError(
             "a sweep sets the crank angle itself", hint="give the range (--from, --to) instead of --angle"
         )
+    if options.flipped:
+        raise UnsupportedError(
+            "a sweep follows the drawing's own branches; flipped closes dyads the other way at one instant",
+            hint="solve each instant with solve(..., options=SolveOptions(angle=…, flipped=…))",
+        )
     return LEVELS.index(level)
 
 
