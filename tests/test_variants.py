@@ -210,11 +210,35 @@ def test_a_class_is_graded_against_its_own_variants_a_copy_is_diagnosed_and_mark
     book = list(csv.reader(io.StringIO((klass / "g.csv").read_text(encoding="utf-8"))))
     assert book[0] == ["student", "four_bar.yaml", "total", "out_of", "percent"]
     got = {r[0]: r[1:] for r in book[1:]}
+    # every student the class was made for has a line: one who handed in no sheet answered nothing
+    nothing = {s: ["0", "0", "5", "0.0"] for s in STUDENTS if s not in ("s01", "s02", "s03")}
     assert got == {
         "s01": ["5", "5", "5", "100.0"],
         "s02": ["0", "0", "5", "0.0"],
         "s03": ["2", "2", "5", "40.0"],
+        **nothing,
     }
+    assert rows["s04", "omega.rocker"]["status"] == "fail"
+    assert rows["s04", "omega.rocker"]["message"] == "not answered: no sheet was handed in"
+
+
+def test_a_sheet_of_a_student_the_class_was_not_made_for_is_graded_for_no_one(klass: Path) -> None:
+    # "zed" is on no roster: their sheet names the class's problem, which is only others' variants.
+    # It is an error row, shown apart; zed has no gradebook line (not a 0 out of 0 at 0 %).
+    sheets = klass / "outsider"
+    sheets.mkdir()
+    (sheets / "s01.yaml").write_text("four_bar: {}\n")
+    (sheets / "zed.yaml").write_text("four_bar:\n  omega.rocker: 1 rad/s cw\n")
+    out = klass / "class_four_bar"
+    p = mech("check", str(out), "--answers", str(sheets), "--gradebook", str(klass / "g2.csv"), "-j", "1")
+    assert p.returncode == 1
+    assert "sheets graded for no one" in p.stdout and "none of them is zed's" in p.stdout, p.stdout
+    book = list(csv.reader(io.StringIO((klass / "g2.csv").read_text(encoding="utf-8"))))
+    assert [r[0] for r in book[1:]] == sorted(STUDENTS)
+    report = json.loads(mech("check", str(out), "--answers", str(sheets), "--json", "-j", "1").stdout)
+    assert "zed" not in [s["student"] for s in report["students"]]
+    (zed,) = [r for r in report["results"] if r["student"] == "zed"]
+    assert [a["status"] for a in zed["answers"]] == ["error"]
 
 
 def test_fewer_distinct_variants_than_students_is_said(tmp_path: Path) -> None:

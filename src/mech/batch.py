@@ -201,6 +201,14 @@ class Report:
         return tuple(r for r in self.results if r.excluded and r.student is None)
 
     @property
+    def outsiders(self) -> tuple[FileResult, ...]:
+        """Rows of sheets graded for no one: a student no variant of a class was made for."""
+        if not self.students:
+            return ()
+        scored = set(self.students)
+        return tuple(r for r in self.results if r.student is not None and r.student not in scored)
+
+    @property
     def passed(self) -> int:
         return sum(r.passed for r in self.results)
 
@@ -369,6 +377,7 @@ class Sheet:
     entries: tuple[SheetEntry, ...] = ()
     error: FileResult | None = None
     bad_keys: tuple[tuple[str, str, Where], ...] = ()  # (key as written, what it is, where)
+    missing: bool = False  # none handed in: a class's student without a sheet (answers nothing)
 
 
 def read_sheets(path: str) -> tuple[Sheet, ...]:
@@ -490,7 +499,12 @@ def run(
         index = _Index.of(files, options.paths) if sheets is not None else _Index({}, {})  # keys name files
         # a class of variants (mech variants' folder): each student's own problem files, and their keys
         folders, class_key = read_class_keys(options.paths) if sheets is not None else ({}, {})
-        tasks, extra = _plan(files, sheets, options.solve, index, owners(files, folders))
+        owner = owners(files, folders)
+        if sheets is not None and owner and options.answers and os.path.isdir(options.answers):
+            sheets = _with_roster(sheets, owner, options.answers)
+        tasks, extra = _plan(files, sheets, options.solve, index, owner)
+        if sheets is not None:
+            extra += _not_theirs(sheets, index, owner, folders)
         if sheets is not None:  # the tasks carry the texts and entries now, each let go once done;
             # what is left to report is the entries naming no problem file by path
             sheets = tuple(
@@ -525,7 +539,7 @@ def run(
         results = copied(_exclude_lost(results, lost), class_key)
         results = _shared_names(results, sheets, index, used)
         results += _unmatched(sheets, index, {(student, key) for student, key, _ in used})
-    report = Report.of(results, students=[s.student for s in sheets] if sheets is not None else ())
+    report = Report.of(results, students=_students(sheets, files, owner) if sheets is not None else ())
     if not report.total and not report.errors:
         raise InputError(
             f"no answers to check: none of the {len(files)} file{'s' if len(files) != 1 else ''} has an `answers` section",
@@ -577,6 +591,7 @@ def _plan(
                 tuple(several.get(f, ())),
                 loose,
                 unreadable=s.error is not None,
+                missing=s.missing,
             )
             for s, one, several, loose in zip(sheets, alone, shared, unresolved, strict=True)
             if owner.get(f, s.student) == s.student
@@ -586,6 +601,51 @@ def _plan(
         for start in range(0, len(subs), STUDENTS) or (0,):
             tasks.append(Task(f, subs[start : start + STUDENTS], solve, first=start == 0))
     return tasks, extra
+
+
+def _with_roster(sheets: tuple[Sheet, ...], owner: dict[str, str], answers: str) -> tuple[Sheet, ...]:
+    """The sheets, and an empty one for each student a class's variant was made for who handed in none.
+
+    Each student gets one scored row per question (cli.md, "Answer sheets"): a missing sheet
+    answers nothing, so every question of the student's own variant is "not answered".
+    """
+    handed = {s.student for s in sheets}
+    missing = sorted(set(owner.values()) - handed)
+    empty = tuple(
+        Sheet(student, os.path.join(answers, f"{student}.yaml"), "", missing=True) for student in missing
+    )
+    return tuple(sorted((*sheets, *empty), key=lambda s: s.student))
+
+
+def _not_theirs(
+    sheets: Sequence[Sheet], index: _Index, owner: dict[str, str], folders: dict[str, set[str]]
+) -> list[FileResult]:
+    """An error row for a sheet entry that names only other students' variants: it is graded for no one."""
+    out = []
+    for s in sheets:
+        for e in s.entries:
+            files = index.files.get(e.key, ())
+            if not files or any(owner.get(f, s.student) == s.student for f in files):
+                continue
+            roots = sorted({os.path.dirname(os.path.dirname(os.path.normpath(f))) for f in files})
+            made = sorted({student for r in roots for student in folders.get(r, ())})
+            listed = ", ".join(made[:5]) + (f" and {len(made) - 5:,} more" if len(made) > 5 else "")
+            message = (
+                f"not graded: {e.key} is a problem of a class of variants ({', '.join(roots)}), and none of "
+                f"them is {s.student}'s (mech variants made them for {listed})"
+            )
+            verdict = Verdict(e.key, ERROR, message=message, where=e.where)
+            out.append(FileResult(s.path, verdicts=(verdict,), student=s.student, sheet=True))
+    return out
+
+
+def _students(sheets: Sequence[Sheet], files: Sequence[str], owner: dict[str, str]) -> list[str]:
+    """Who is scored: every sheet's student, but where every problem is some student's own variant,
+    only those a variant was made for (another's sheet is an error row, not a gradebook line of 0/0)."""
+    if not files or len(owner) < len(files):
+        return [s.student for s in sheets]
+    roster = set(owner.values())
+    return [s.student for s in sheets if s.student in roster]
 
 
 def _exclude_lost(results: list[FileResult], lost: dict[str, str]) -> list[FileResult]:

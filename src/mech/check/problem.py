@@ -147,6 +147,7 @@ class Submission:
     ambiguous: tuple[tuple[SheetEntry, tuple[str, ...]], ...]
     unresolved: tuple[SheetEntry, ...]
     unreadable: bool = False  # the sheet could not be read: nothing on it is graded
+    missing: bool = False  # no sheet at all: a class's variant was made for this student, who handed none in
 
 
 @dataclass(frozen=True, slots=True)
@@ -310,9 +311,8 @@ def _grade(
         if sub.ambiguous:
             e = ambiguous(sub.ambiguous[0][0], sub.ambiguous[0][1])
             return _everyone(questions, ERROR, e.problems[0].message, e.problems[0].where)
-        return _everyone(
-            questions, FAIL, "not answered: the sheet has no answers for this problem", Where(sub.sheet)
-        )
+        why = "no sheet was handed in" if sub.missing else "the sheet has no answers for this problem"
+        return _everyone(questions, FAIL, f"not answered: {why}", Where(sub.sheet))
     entry = entries[0]
     if entry.problem is not None:
         return _everyone(questions, ERROR, f"not graded: {entry.problem}", entry.where)

@@ -157,11 +157,19 @@ class Stream:
         self.out.flush()
 
     def _teacher(self, report: Report) -> None:
-        if not report.teacher:
-            return
-        self._write("excluded from every score (the problem file cannot be graded):")
-        for r in report.teacher:
-            self._write(f"  EXCLUDED {r.path}: {r.verdicts[0].message if r.verdicts else ''}")
+        if report.teacher:
+            self._write("excluded from every score (the problem file cannot be graded):")
+            for r in report.teacher:
+                self._write(f"  EXCLUDED {r.path}: {r.verdicts[0].message if r.verdicts else ''}")
+        if report.outsiders:
+            self._write(OUTSIDERS + ":")
+            for r in report.outsiders:
+                for v in r.verdicts:
+                    self._write(f"  {_PLAIN[v.status]:<7} {r.path} {v.key}: {message(v)}")
+
+
+#: The heading of the rows of sheets graded for no one (:attr:`~mech.batch.Report.outsiders`).
+OUTSIDERS = "sheets graded for no one (no variant of the class was made for their student)"
 
 
 def statistics_lines(report: Report) -> list[str]:
@@ -200,6 +208,8 @@ def check_table(
 
     if report.teacher:
         _teacher_table(report, console)
+    if report.outsiders:
+        _outsiders_table(report, console)
     if report.students:
         _class_table(report, console, quiet=quiet)
     elif not verbose:
@@ -239,6 +249,19 @@ def _teacher_table(report: Report, console: ReportConsole) -> None:
     table.add_column("why", overflow="fold")
     for r in report.teacher:
         table.add_row(printable(r.path), printable(r.verdicts[0].message if r.verdicts else ""))
+    console.print(table)
+
+
+def _outsiders_table(report: Report, console: ReportConsole) -> None:
+    from mech.render.table import Table
+
+    table = Table(box=_box(console), title=OUTSIDERS)
+    table.add_column("sheet", overflow="fold")
+    table.add_column("entry", overflow="fold")
+    table.add_column("why", overflow="fold")
+    for r in report.outsiders:
+        for v in r.verdicts:
+            table.add_row(printable(r.path), printable(v.key), printable(message(v)))
     console.print(table)
 
 
