@@ -219,6 +219,27 @@ def test_largest_velocity_and_acceleration_are_the_laws_peaks():
     assert a.velocity_jumps == ()
 
 
+def test_a_parabolic_segment_s_jerk_is_infinite_half_way_through_as_at_its_ends():
+    """Uniform acceleration and retardation (Khurmi ch. 20): s″ = +4h/β² for the first half of the
+    segment and −4h/β² for the second, so the acceleration jumps (the jerk is infinite) at its
+    middle as well as at its ends: a return over 140° from 150° jumps at 150°, 220° and 290°."""
+    prog = CamProgram(
+        0.04,
+        "roller",
+        (
+            Segment("rise", D(100), 0.03, "cycloidal"),
+            Segment("dwell", D(50)),
+            Segment("return", D(140), 0.03, "parabolic"),
+            Segment("dwell", D(70)),
+        ),
+        roller_radius=0.012,
+    )
+    a = analyse(CamLayout(prog, axis=D(90)), omega=20.0)
+    assert a.acceleration_jumps == pytest.approx((D(150), D(220), D(290)))
+    s2 = follower_motion(prog, [D(220) - 1e-6, D(220) + 1e-6]).d2s
+    assert s2 == pytest.approx([-4 * 0.03 / D(140) ** 2, 4 * 0.03 / D(140) ** 2])  # a return: signs turned
+
+
 @pytest.mark.parametrize(("sense", "branch"), [(1, 1), (-1, 1), (1, -1), (-1, -1)])
 def test_oscillating_flat_face_rests_on_the_profile_at_the_programmes_angle(sense, branch):
     """The face, a line fixed to the arm at distance c from the pivot, is turned until it

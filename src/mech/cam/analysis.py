@@ -102,10 +102,10 @@ def _jumps(layout: CamLayout, which: int, *, drops: bool = False) -> tuple[float
     """Cam angles where derivative ``which`` (1 velocity, 2 acceleration) of the lift jumps
     (only where it falls, with ``drops``)."""
     prog = layout.program
-    starts = np.array(prog.starts)
+    starts = np.array(prog.breaks)  # segments' starts, and a law's own knots inside a segment
     eps = 1e-9
     before = follower_motion(prog, starts - eps)[which]
-    after = follower_motion(prog, starts)[which]
+    after = follower_motion(prog, starts + eps)[which]
     sample = follower_motion(prog, np.linspace(0, FULL_TURN, 721))[which]
     scale = max(float(np.max(np.abs(sample))), float(np.max(np.abs(after))), 1e-300)
     # a derivative of order 'which' changes by about f^(which+1)·eps across eps: far below 1e-6 of its scale

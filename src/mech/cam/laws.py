@@ -36,7 +36,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["LAWS", "Motion", "rise"]
+__all__ = ["KNOTS", "LAWS", "Motion", "rise"]
 
 FloatArray = NDArray[np.float64]
 
@@ -93,6 +93,10 @@ LAWS: dict[str, Callable[[FloatArray, float, float], Motion]] = {
     "cycloidal": _cycloidal,
 }
 """The laws by the name a programme gives them (``law: shm``)."""
+
+#: Where inside a segment (fractions of it) a law's pieces meet, so that a derivative may jump there
+#: as at a segment's ends: the parabolic law's acceleration turns from +4h/β² to −4h/β² half-way.
+KNOTS: dict[str, tuple[float, ...]] = {"parabolic": (0.5,)}
 
 
 def rise(law: str, x: ArrayLike, h: float, beta: float) -> Motion:

@@ -101,6 +101,18 @@ class CamProgram:
             at += seg.over
         return tuple(out)
 
+    @property
+    def breaks(self) -> tuple[float, ...]:
+        """Where a derivative of the lift may jump (rad): each segment's start, and inside a segment
+        where its law's pieces meet (:data:`mech.cam.laws.KNOTS`: half-way through a parabolic one)."""
+        from mech.cam.laws import KNOTS
+
+        out = []
+        for start, seg in zip(self.starts, self.segments, strict=True):
+            out.append(start)
+            out += [start + k * seg.over for k in KNOTS.get(seg.law or "", ())]
+        return tuple(out)
+
 
 def program_schema(number: dict[str, Any]) -> dict[str, Any]:
     """The JSON Schema fragment of a cam joint's ``program`` (``number``: the schema of a number)."""
