@@ -102,6 +102,15 @@ def test_opposite_sense() -> None:
     assert_diagnosed(f"omega.rocker: {abs(FB['w4']):.6f} rad/s {sense}", "the opposite sense")
 
 
+def test_opposite_sense_of_an_angular_acceleration_names_the_sense_of_alpha_not_of_turning() -> None:
+    # α₄ by the vector loop; its sense is not how the rocker turns (ω₄), so the words are α's own
+    sense = "ccw" if FB["a4"] < 0 else "cw"  # the wrong one
+    right = "ccw" if FB["a4"] > 0 else "cw"
+    assert_diagnosed(
+        f"alpha.rocker: {abs(FB['a4']):.6f} rad/s^2 {sense}", f"the opposite sense (α of rocker is {right})"
+    )
+
+
 def test_unit_slip_mm_written_as_m() -> None:
     assert_diagnosed(f"velocity.C: {1000 * math.hypot(*FB['vc']):.6f}", "×1000")
 

@@ -215,8 +215,15 @@ def _cheap(
 
 
 def _turns(akey: AnswerKey, right: float) -> str:
-    if akey.family in ("omega", "alpha") and right:
-        return f" ({akey.names[0]} turns {'ccw' if right > 0 else 'cw'})"
+    """What the right sense is: how the link turns (ω), or which way its α points (a link
+    turning ccw and slowing has a cw α: "turns" would say the wrong thing of it)."""
+    if not right:
+        return ""
+    sense = "ccw" if right > 0 else "cw"
+    if akey.family == "omega":
+        return f" ({akey.names[0]} turns {sense})"
+    if akey.family == "alpha":
+        return f" (α of {akey.names[0]} is {sense})"
     return ""
 
 
