@@ -582,18 +582,15 @@ def test_check_json_names_its_command_and_units_and_each_file(run):
 
 @pytest.mark.parametrize(("command", "extra"), [*_CONTRACT_COMMANDS, ("cam", [])])
 def test_an_error_under_json_is_json_with_its_location(run, write, tmp_path, command, extra):
-    """On stderr (stdout is for results), except in mech dof's list of files."""
+    """On stderr (stdout is for results), mech dof's one file too (only a list of several files
+    holds its errors in the list: test_several_files_json_has_an_error_entry)."""
     bad = write("name: x\nlinks: [a\x01]\n")
     args = [a.replace("{tmp}", str(tmp_path)) for a in extra]
     result = run(command, str(bad), "--json", *args)
     assert result.exit_code == 2
-    if command == "dof":
-        assert result.stderr == ""
-        data = json.loads(result.stdout)[0]
-    else:
-        assert result.stdout == ""
-        data = json.loads(result.stderr)
-        assert data["text"].startswith(f"{bad}:2:10: error: ")
+    assert result.stdout == ""
+    data = json.loads(result.stderr)
+    assert data["text"].startswith(f"{bad}:2:10: error: ")
     assert (data["command"], data["file"], data["name"]) == (command, str(bad), None)
     problem = data["error"]["problems"][0]
     assert (problem["file"], problem["line"], problem["column"]) == (str(bad), 2, 10)

@@ -149,6 +149,13 @@ def count_dof(files: Sequence[str], mobility: bool, as_json: bool) -> None:
             if not as_json:
                 report_error(error)
     counted.sort(key=lambda c: isinstance(c[1], MechError))  # the files counted, then the errors
+    if as_json and len(counted) == 1 and isinstance(counted[0][1], MechError):
+        # one file, and it failed: the error object on stderr, as every command's (cli.md, "The JSON contract")
+        from mech.render.jsonout import dumps, error_record
+
+        path, error = counted[0]
+        echo(dumps({**error_record("dof", path, error), "text": error_text(error)}), err=True)
+        sys.exit(error.exit_code)
     emit("dof", choose(as_json), counted, echo=echo, mobility=mobility)
     if any(isinstance(r, MechError) for _, r in counted):
         sys.exit(ExitStatus.BAD_INPUT)
