@@ -87,3 +87,16 @@ def test_readme_python_example_runs(monkeypatch):
     assert code is not None
     monkeypatch.chdir(ROOT)
     exec(compile(code.group(1), "README.md", "exec"), {})
+
+
+def test_readme_s_first_sample_is_what_its_command_prints():
+    # the console block after the two commands: `$ mech dof mechanisms/four_bar.yaml` and its output,
+    # compared line by line with the command's plain output (trailing blanks aside: rich pads tables)
+    block = re.search(r"```console\n\$ (mech dof mechanisms/four_bar\.yaml)\n(.*?)```", README, flags=re.S)
+    assert block is not None, "README.md: the console sample of mech dof mechanisms/four_bar.yaml is gone"
+    from cli_runner import mech
+
+    run = mech(*block.group(1).split()[1:], cwd=ROOT)
+    assert run.returncode == 0, run.stderr
+    got = [line.rstrip() for line in run.stdout.rstrip("\n").splitlines()]
+    assert got == [line.rstrip() for line in block.group(2).rstrip("\n").splitlines()]
