@@ -747,3 +747,28 @@ def test_an_unknown_key_near_a_known_one_still_gets_a_hint():
     with pytest.raises(InputError) as info:
         loads(BASE + "answer: {dof: 1}\n")
     assert info.value.problems[0].hint == "did you mean 'answers'?"
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "hint"),
+    [
+        ("rpm: 120,", 'rpm: "120 m/s",', "rev/min"),
+        ("CD: 80", "CD: -80", "positive length"),
+        ("{link: crank, angle: 60", "{link: wheel, angle: 60", "links: "),
+        ("direction: cw", "direction: clockwise", "direction: ccw"),
+        ("lengths: {AB: 40, BC: 150, CD: 80}", "lengths: [40, 150, 80]", "key: value"),
+        ("from: B, toward: C", "from: B, toward: Z", "place it from a joint or point of coupler: B, C"),
+        ("omega.rocker: 4.8 rad/s", "omega.rocker: {value: 4.8 rad/s, tolerance: -2%}", "give its size"),
+        ("name: Four-bar chain ABCD", "name: [1, 2]", "one value"),
+        ("lengths: {AB: 40,", "lengths: {AB: 40, BA: 40,", "give each distance once"),
+        ("omega.rocker: 4.8 rad/s", "omega.wheel: 4.8 rad/s", "links: "),
+    ],
+)
+def test_a_refusal_says_what_to_do(old: str, new: str, hint: str) -> None:
+    # each from a new user's tries: the message located, and a hint naming the way out
+    assert old in FOUR_BAR
+    with pytest.raises(InputError) as caught:
+        loads(FOUR_BAR.replace(old, new, 1), path="fb.yaml")
+    problem = caught.value.problems[0]
+    assert problem.where is not None and problem.where.line is not None
+    assert problem.hint and hint in problem.hint, (problem.message, problem.hint)

@@ -153,9 +153,10 @@ def count_dof(files: Sequence[str], mobility: bool, as_json: bool) -> None:
         # one file, and it failed: the error object on stderr, as every command's (cli.md, "The JSON contract")
         from mech.render.jsonout import dumps, error_record
 
-        path, error = counted[0]
-        echo(dumps({**error_record("dof", path, error), "text": error_text(error)}), err=True)
-        sys.exit(error.exit_code)
+        path, failed = counted[0]
+        assert isinstance(failed, MechError)
+        echo(dumps({**error_record("dof", path, failed), "text": error_text(failed)}), err=True)
+        sys.exit(failed.exit_code)
     emit("dof", choose(as_json), counted, echo=echo, mobility=mobility)
     if any(isinstance(r, MechError) for _, r in counted):
         sys.exit(ExitStatus.BAD_INPUT)

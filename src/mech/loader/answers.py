@@ -113,7 +113,9 @@ def _answer_key(r: NodeReader, key: str, knode: yaml.Node, kinds: Kinds) -> Answ
             label = KIND_LABELS.get(kind, kind)
             choices = kinds[kind]
             near = choices.suggestions() if isinstance(choices, ICentreNames) else choices
-            raise r.problem(knode, f"answer {key} names unknown {label} {name!r}", did_you_mean(name, near))
+            raise r.problem(
+                knode, f"answer {key} names unknown {label} {name!r}", did_you_mean(name, near, f"{label}s")
+            )
     if akey.kind.distinct and len(set(akey.names)) < len(akey.names):
         raise r.problem(
             knode,
@@ -275,7 +277,7 @@ def _tolerance(r: NodeReader, node: yaml.Node, dimension: Dimension | None, *, f
         except ValueError:
             raise r.problem(node, f"tolerance {raw!r} is not a percentage") from None
         if value < 0:
-            raise r.problem(node, "a tolerance cannot be negative")
+            raise r.problem(node, "a tolerance cannot be negative", "give its size, e.g. 2% or 0.05 m/s")
         return Tolerance(value / 100.0, relative=True)
     if file_level:
         raise r.problem(
@@ -293,5 +295,5 @@ def _tolerance(r: NodeReader, node: yaml.Node, dimension: Dimension | None, *, f
             f"tolerance {raw!r} is {article(q.dimension.label)}, but the answer is {article(dimension.label)}",
         )
     if q.value < 0:
-        raise r.problem(node, "a tolerance cannot be negative")
+        raise r.problem(node, "a tolerance cannot be negative", "give its size, e.g. 2% or 0.05 m/s")
     return Tolerance(q.value, relative=False)

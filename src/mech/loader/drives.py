@@ -99,7 +99,9 @@ def _drive(r: NodeReader, node: yaml.Node, links: set[str], ground: str | None, 
 def _check_crank(r: NodeReader, f: Fields, link: str, links: set[str], ground: str | None) -> None:
     """A crank turns a known link other than the ground and takes no slider keys."""
     if links and link not in links:
-        raise r.problem(f["link"][1], f"the drive turns unknown link {link!r}", did_you_mean(link, links))
+        raise r.problem(
+            f["link"][1], f"the drive turns unknown link {link!r}", did_you_mean(link, links, "links")
+        )
     if link == ground:
         raise r.problem(f["link"][1], "the drive cannot turn the ground link", "drive the crank")
     for key in SLIDER_KEYS:
@@ -111,7 +113,9 @@ def _check_slider(r: NodeReader, f: Fields, joint: str, joints: list[Joint]) -> 
     """A slider drive moves a known prismatic or slot joint and takes no crank keys."""
     known = {j.name: j for j in joints}
     if joint not in known:
-        raise r.problem(f["joint"][1], f"the drive moves unknown joint {joint!r}", did_you_mean(joint, known))
+        raise r.problem(
+            f["joint"][1], f"the drive moves unknown joint {joint!r}", did_you_mean(joint, known, "joints")
+        )
     if kind_of(known[joint]).role != "path":
         raise r.problem(
             f["joint"][1],
@@ -127,7 +131,11 @@ def _speed(r: NodeReader, f: Fields) -> tuple[str | None, float | None]:
     """``direction`` and the unsigned angular speed from ``rpm`` or ``omega`` (whose sense must agree)."""
     direction = r.optional(f, "direction", lambda n: r.scalar(n, "direction"))
     if direction is not None and direction not in DIRECTIONS:
-        r.problem(f["direction"][1], f"direction must be cw or ccw, not {direction!r}")
+        r.problem(
+            f["direction"][1],
+            f"direction must be cw or ccw, not {direction!r}",
+            "write `direction: cw` (clockwise) or `direction: ccw` (counter-clockwise)",
+        )
         direction = None
     omega = None
     for key, unit_factor_ in (("rpm", 2 * math.pi / 60), ("omega", 1.0)):
@@ -149,7 +157,7 @@ def _relative_to(
             raise r.problem(
                 f["relative_to"][1],
                 f"relative_to names unknown link {relative_to!r}",
-                did_you_mean(relative_to, links),
+                did_you_mean(relative_to, links, "links"),
             )
         if relative_to == link:
             raise r.problem(
@@ -179,7 +187,9 @@ def _angular(r: NodeReader, node: yaml.Node, key: str, bare_factor: float) -> tu
         value = q.value
     else:
         raise r.problem(
-            node, f"{key} must be an angular velocity, but {q.unit!r} is a unit of {q.dimension.label}"
+            node,
+            f"{key} must be an angular velocity, but {q.unit!r} is a unit of {q.dimension.label}",
+            "give it in rev/min (`rpm: 120`) or as `omega: 12.6 rad/s`; a slider's drive takes `speed:`",
         )
     if value < 0:
         raise r.problem(node, f"{key} must not be negative", "give the sense with `direction: cw` or `ccw`")

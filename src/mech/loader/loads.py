@@ -42,7 +42,7 @@ def read_loads(
             r.problem(
                 knode,
                 f"loads names {name!r}, which is neither a link nor a point",
-                did_you_mean(name, set(links) | set(carriers)),
+                did_you_mean(name, set(links) | set(carriers), "links and points"),
             )
             continue
         if load is not None:

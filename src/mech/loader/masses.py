@@ -34,7 +34,9 @@ def read_masses(
     out = []
     for link, (knode, vnode) in r.mapping(node, "masses").items():
         if link not in links:
-            r.problem(knode, f"masses names {link!r}, which is not a link", did_you_mean(link, links))
+            r.problem(
+                knode, f"masses names {link!r}, which is not a link", did_you_mean(link, links, "links")
+            )
         elif link == ground:
             r.problem(knode, f"{link} is the ground: it does not move, so its mass does nothing here")
         else:

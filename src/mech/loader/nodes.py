@@ -374,9 +374,16 @@ def article(noun: str) -> str:
     return ("an " if noun[:1] in "aeiou" else "a ") + noun
 
 
-def did_you_mean(word: str, choices: Iterable[str]) -> str | None:
-    """``did you mean 'crank'?`` for a near miss among ``choices``, else None."""
+def did_you_mean(word: str, choices: Iterable[str], kind: str | None = None) -> str | None:
+    """``did you mean 'crank'?`` for a near miss among ``choices``; with no near miss, the choices
+    themselves when ``kind`` names them (``links: frame, crank, …``, the first 12), else None."""
     import difflib  # only for a misspelt name: not paid at start-up
 
-    match = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
-    return f"did you mean {match[0]!r}?" if match else None
+    names = list(choices)
+    match = difflib.get_close_matches(word, names, n=1, cutoff=0.6)
+    if match:
+        return f"did you mean {match[0]!r}?"
+    if kind is None or not names:
+        return None
+    shown = sorted(names)
+    return f"{kind}: {', '.join(shown[:12])}" + (f" and {len(shown) - 12:,} more" if len(shown) > 12 else "")

@@ -67,7 +67,9 @@ def read_points(r: NodeReader, node: yaml.Node, links: set[str]) -> list[Point]:
             link = r.name(fields["link"][1], f"the link of {what}")
             if links and link not in links:
                 raise r.problem(
-                    fields["link"][1], f"{what} is on unknown link {link!r}", did_you_mean(link, links)
+                    fields["link"][1],
+                    f"{what} is on unknown link {link!r}",
+                    did_you_mean(link, links, "links"),
                 )
             place = read_place(r, fields, what)
             if place.at is None and not place.is_relative:
@@ -103,7 +105,11 @@ def read_lengths(r: NodeReader, node: yaml.Node, located: dict[str, set[str]]) -
                 )
             pair = frozenset((a, b))
             if pair in seen:
-                raise r.problem(knode, f"length {key} is given twice (also as {seen[pair]})")
+                raise r.problem(
+                    knode,
+                    f"length {key} is given twice (also as {seen[pair]})",
+                    "give each distance once (AB and BA name the same one)",
+                )
             seen[pair] = key
             out.append(Length(a, b, value, r.where(knode)))
         except Skip:

@@ -93,7 +93,11 @@ class NodeReader:
     ) -> dict[str, tuple[yaml.Node, yaml.Node]]:
         """A mapping node as ``{key: (key node, value node)}``; duplicates and unknown keys reported."""
         if not isinstance(node, yaml.MappingNode):
-            raise self.problem(node, f"{what} must be a mapping (`key: value` lines), not {node_kind(node)}")
+            raise self.problem(
+                node,
+                f"{what} must be a mapping (`key: value` lines), not {node_kind(node)}",
+                f"write {what} as `key: value` pairs, e.g. {{AB: 40, BC: 150}} or one per indented line",
+            )
         out: dict[str, tuple[yaml.Node, yaml.Node]] = {}
         allowed_set = set(allowed) if allowed is not None else None
         for knode, vnode in node.value:
@@ -113,19 +117,31 @@ class NodeReader:
                 )
                 continue
             if allowed_set is not None and key not in allowed_set:
-                self.problem(knode, f"unknown key {key!r} in {what}", did_you_mean(key, allowed_set))
+                self.problem(
+                    knode,
+                    f"unknown key {key!r} in {what}",
+                    did_you_mean(key, allowed_set, f"the keys of {what}"),
+                )
                 continue
             out[key] = (knode, vnode)
         return out
 
     def sequence(self, node: yaml.Node, what: str) -> list[yaml.Node]:
         if not isinstance(node, yaml.SequenceNode):
-            raise self.problem(node, f"{what} must be a list, not {node_kind(node)}")
+            raise self.problem(
+                node,
+                f"{what} must be a list, not {node_kind(node)}",
+                "write it in brackets: [x, y] or [a, b, …]",
+            )
         return list(node.value)
 
     def scalar(self, node: yaml.Node, what: str) -> str:
         if not isinstance(node, yaml.ScalarNode):
-            raise self.problem(node, f"{what} must be a single value, not {node_kind(node)}")
+            raise self.problem(
+                node,
+                f"{what} must be a single value, not {node_kind(node)}",
+                "write one value (a number, a name, or text in quotes), not a list or a mapping",
+            )
         value: str = node.value  # a scalar node holds its text
         return value
 
@@ -195,7 +211,11 @@ class NodeReader:
         else:
             value = q.value
         if positive and not value > 0:
-            raise self.problem(node, f"{what} must be greater than zero, not {raw}")
+            raise self.problem(
+                node,
+                f"{what} must be greater than zero, not {raw}",
+                f"give {what} as a positive {dimension.label}",
+            )
         return self.in_range(node, what, value, dimension)
 
     def in_range(self, node: yaml.Node, what: str, value: float, dimension: Dimension | None) -> float:

@@ -57,6 +57,7 @@ def check_refs(joints: list[Joint], points: list[Point], located: dict[str, set[
                         Problem(
                             f"joint {j.name} is placed from {ref!r}, which is not a point of {' or '.join(j.links)}",
                             j.where,
+                            _points_of(j.links, located, j.name),
                         )
                     )
         if kind_of(j).role == "path" and len(j.links) == 2:
@@ -67,11 +68,25 @@ def check_refs(joints: list[Joint], points: list[Point], located: dict[str, set[
             if ref is not None and p.link not in located.get(ref, set()):
                 problems.append(
                     Problem(
-                        f"point {p.name} is placed from {ref!r}, which is not a point of {p.link}", p.where
+                        f"point {p.name} is placed from {ref!r}, which is not a point of {p.link}",
+                        p.where,
+                        _points_of((p.link,), located, p.name),
                     )
                 )
     problems.extend(placement_cycles([*joints, *points]))
     return problems
+
+
+def _points_of(links: Iterable[str], located: dict[str, set[str]], placed: str) -> str:
+    """The hint of a placement from a name that is not on the link: the names that are (but ``placed``)."""
+    on = sorted(
+        name
+        for name, carriers in located.items()
+        if carriers & set(links) and name != placed and not name.startswith("#")
+    )
+    return (
+        f"place it from a joint or point of {' or '.join(links)}: {', '.join(on[:12]) or 'none is named yet'}"
+    )
 
 
 def _slider_refs(
