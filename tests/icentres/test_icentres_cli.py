@@ -35,6 +35,25 @@ def test_icentres_at_infinity_prints_a_direction(run):
     assert "∞ at 90°" in result.output and "slider P: ⟂ path at infinity" in result.output
 
 
+def test_a_parallelogram_s_centres_at_infinity_point_along_its_links_with_no_rounding_shown(run, write):
+    # AB = CD = 40, AD = BC = 150 mm, crank at 60°: the coupler translates, so I13 is at infinity
+    # along the crank (60°); crank and rocker stay parallel, so I24 is at infinity along AD (0°),
+    # found from rounded velocities 1e-14° off it: shown as 0°, every direction in [0°, 180°)
+    path = write(
+        "units: {length: mm, angle: deg}\nlinks: [frame, crank, coupler, rocker]\njoints:\n"
+        "  A: {type: revolute, links: [frame, crank], at: [0, 0]}\n"
+        "  B: {type: revolute, links: [crank, coupler]}\n"
+        "  C: {type: revolute, links: [coupler, rocker], near: [180, 35]}\n"
+        "  D: {type: revolute, links: [rocker, frame], at: [150, 0]}\n"
+        "lengths: {AB: 40, BC: 150, CD: 40}\ndrive: {link: crank, angle: 60, rpm: 60}\n"
+    )
+    result = run("icentres", str(path))
+    assert "∞ at 60°" in result.output and "∞ at 0°" in result.output, result.output
+    data = json.loads(run("icentres", str(path), "--json").output)
+    angles = {c["name"]: c["angle"] for c in data["icentres"] if c["at_infinity"]}
+    assert angles == {"I13": pytest.approx(60.0, abs=1e-9), "I24": 0.0}
+
+
 def test_icentres_json_structure(run):
     result = run("icentres", SLIDER, "--json", "--units", "mm", "--angle", "135", "--rpm", "300")
     data = json.loads(result.output)

@@ -17,9 +17,13 @@ __all__ = ["icentres_dict", "icentres_table", "order_dict", "order_table"]
 
 
 def _angle(direction: tuple[float, float]) -> float:
-    """Direction of a centre at infinity in degrees, in [0, 180)."""
-    a = math.degrees(math.atan2(direction[1], direction[0]))
-    return 0.0 if abs(a - 180.0) < 1e-12 else a + 0.0
+    """Direction of a centre at infinity in degrees, in [0, 180).
+
+    To 1e-9°: a direction along x found from rounded velocities is 1e-14° off it, which is
+    rounding, not a direction (it printed as ``∞ at 9.925e-15°``).
+    """
+    a = round(math.degrees(math.atan2(direction[1], direction[0])), 9) % 180.0
+    return 0.0 if a >= 180.0 - 1e-9 else a + 0.0
 
 
 def _length_unit(units: OutputUnits | None) -> str:
