@@ -225,6 +225,14 @@ def test_velocities_exactly_at_a_toggle_are_refused_as_singular(write):
     assert p.stdout == ""
 
 
+def test_a_file_drawn_at_a_toggle_is_refused_at_its_drive_s_line(write):
+    """The same toggle, cos θ = 1/4, as the file's own drive angle: the refusal points at it."""
+    f = write(EQUAL_LINKS_TOGGLE.format(angle=repr(math.degrees(math.acos(0.25)))))
+    p = mech("velocity", str(f))
+    assert_bad_input(p, f)
+    assert f"{f}:8:" in p.stderr and "singular configuration" in p.stderr
+
+
 @pytest.mark.parametrize("angle", ["0", "180"])
 def test_parallelogram_folded_flat_is_refused(write, angle):
     """All four links on one line: the velocities are undetermined (once a ZeroDivisionError)."""

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -104,6 +105,7 @@ def _checked(
                 raise GeometryError(
                     _singular_message(comp, svd[2][n - 1], cond, drives),
                     hint="analyse a slightly different angle: velocities here are undetermined",
+                    **_drawn_at(comp, drawn),
                 )
         inverse = (comp.drawn_inverse() if drawn else pinv(svd)) if n else None
         return lambda rhs: snap_to_error(jac, inverse, refined(jac, lambda b: lin_solve(svd, b), rhs), rhs)
@@ -112,8 +114,17 @@ def _checked(
         raise GeometryError(
             _singular_message(comp, null, cond, drives),  # type: ignore[arg-type]
             hint="analyse a slightly different angle: velocities here are undetermined",
+            **_drawn_at(comp, drawn),
         )
     return lambda rhs: snap_to_error(jac, None, refined(jac, lambda b: form.solve(jac, b), rhs), rhs)
+
+
+def _drawn_at(comp: Compiled, drawn: bool) -> dict[str, Any]:
+    """Where a singular configuration is the file's own doing: its drive's angle, when it is the drawn one."""
+    drives = comp.mech.drives
+    if not drawn or not drives or drives[0].where is None:
+        return {}
+    return {"where": drives[0].where, "source": comp.mech.source}
 
 
 def equilibrated_condition(jac: np.ndarray) -> float:
