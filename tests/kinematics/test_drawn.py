@@ -269,3 +269,13 @@ def test_a_six_bar_drawn_to_two_decimals_solves_as_its_lengths_alone(name):
     for link, state in exact.links.items():
         assert kin.links[link].omega == pytest.approx(state.omega, rel=1e-12, abs=1e-15), link
     assert any("drawn positions moved" in n for n in kin.notes)
+
+
+def test_a_file_that_places_nothing_is_refused_at_its_first_ground_joint(write):
+    f = write(
+        "links: [frame, crank]\njoints:\n  A: {type: revolute, links: [frame, crank]}\n"
+        "drive: {link: crank, angle: 0, rpm: 10}\n"
+    )
+    p = mech("velocity", str(f))
+    assert_bad_input(p, f)
+    assert f"{f}:3:3: error: positions need geometry" in p.stderr and "at: [x, y]" in p.stderr

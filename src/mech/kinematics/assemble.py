@@ -132,9 +132,11 @@ def assemble(
     """
     mech = lay.mech
     if not mech.has_geometry:
+        grounded = [j for j in mech.joints if mech.ground in j.links]
         raise InputError(
             "positions need geometry: nothing in the file is placed",
-            where=Where(mech.path),
+            where=grounded[0].where if grounded and grounded[0].where else Where(mech.path),
+            source=mech.source,
             hint="place the ground joints with at: [x, y] and give the links' lengths "
             "(mech dof and mech classify need neither)",
         )
