@@ -418,3 +418,17 @@ def test_least_transmission_angle_at_the_seam_is_at_crank_0_not_360(run):
     assert f"least {mu:.4f}° at crank 0.0000°" in out.output and "360.0000" not in out.output
     t = json.loads(run("properties", "mechanisms/watt_six_bar.yaml", "--json").output)["transmission_angle"]
     assert t["min_crank_angle"] == 0.0
+
+
+def test_a_stroke_names_the_link_that_moves_the_slider_s_block_beside_its_joint():
+    from pathlib import Path
+
+    shaper = load(
+        Path(__file__).resolve().parents[2] / "mechanisms" / "crank_slotted_lever_quick_return.yaml"
+    )
+    strokes = cycle(shaper, steps=72).strokes
+    assert {j: (s.subject, s.link) for j, s in strokes.items()} == {
+        "slot": ("slot", "block"),  # the block slides in the lever's slot
+        "O1": ("lever", "lever"),
+        "stroke": ("stroke", "ram"),  # the ram on the frame's guide
+    }

@@ -164,6 +164,8 @@ class Stroke:
     low_angle: float
     high: float
     high_angle: float
+    #: The link that moves: the slider's block (``subject`` is then its joint), or the swinging link.
+    link: str = ""
 
     @property
     def value(self) -> float:
@@ -261,7 +263,9 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
     mu_max = (mu.max_value, mu.max_angle) if mu else None
     strokes: dict[str, Stroke] = {}
     turning: list[str] = []
+    movers = {j.name: j.links[0] for j in mech.joints}  # a prismatic joint's first link moves on the second
     for (joint, kind, subject), key in zip(subjects, slides_and_links, strict=True):
+        link = movers[joint] if kind == "displacement" else subject
         e = ext.get(key)
         if e is not None and _turns_on(sw, subject):
             turning.append(joint)
@@ -274,7 +278,7 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
             elif np.any(ok):  # does not move at all over the cycle
                 v = float(series[ok][0])
                 strokes[joint] = Stroke(
-                    joint, subject, "m" if kind == "displacement" else "rad", v, 0.0, v, 0.0
+                    joint, subject, "m" if kind == "displacement" else "rad", v, 0.0, v, 0.0, link
                 )
             continue
         strokes[joint] = Stroke(
@@ -285,6 +289,7 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
             e.min_angle,
             e.max_value,
             e.max_angle,
+            link,
         )
     limits = _limits(sw)
     return Cycle(

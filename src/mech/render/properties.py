@@ -214,6 +214,7 @@ def _cycle_dict(c: Cycle, length: str) -> dict[str, Any]:
         "stroke": {
             j: {
                 "subject": s.subject,
+                "link": s.link or s.subject,
                 "value": value(s.value, s.unit),
                 "unit": length if s.unit == "m" else "deg",
                 "low": place(s.low, s.unit),
@@ -340,7 +341,7 @@ def properties_table(props: LinkageProperties, console: ReportConsole, *, units:
         for j, s in d["stroke"].items():
             table.add_row(
                 j,
-                s["subject"],
+                s["link"],
                 f"{s['value']:.5g} {s['unit']}",
                 f"{s['low']:.5g}",
                 _deg_text(s["low_crank_angle"]),
