@@ -542,7 +542,9 @@ def run(
     report = Report.of(results, students=_students(sheets, files, owner) if sheets is not None else ())
     if not report.total and not report.errors:
         raise InputError(
-            f"no answers to check: none of the {len(files)} file{'s' if len(files) != 1 else ''} has an `answers` section",
+            "no answers to check: "
+            + ("the file has no" if len(files) == 1 else f"none of the {len(files)} files has an")
+            + " `answers` section",
             hint="add answers to the files, or give students' sheets with --answers",
         )
     return report
