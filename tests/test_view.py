@@ -365,3 +365,10 @@ def test_a_gear_s_pitch_point_and_a_rolling_wheel_s_contact_have_their_rows(tmp_
         omega = wheel["omega.wheel"][i]
         assert wheel["velocity.W"][i] == pytest.approx(0.0, abs=1e-9 * abs(omega) * 0.030)
         assert wheel["acceleration.W@wheel"][i] == pytest.approx(omega * omega * 0.030, rel=1e-6)
+
+
+def test_the_shown_angles_hold_no_rounding_residue(tmp_path):
+    # the clockwise cam's sweep reaches a turn's end 1e-15° from 0°: shown as 0°, each angle once
+    shown = _page_data(tmp_path, "cam_roller_program")["param"]["shown"]
+    assert all(x == 0.0 or 1e-6 < x < 360.0 for x in shown), [x for x in shown if 0 < x < 1e-6]
+    assert sorted(shown) == [float(k) for k in range(360)]

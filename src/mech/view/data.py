@@ -65,7 +65,7 @@ def page_data(mech: Mechanism, drawn: Kinematics, sw: Sweep) -> dict[str, Any]:
 def _parameter(mech: Mechanism, sw: Sweep, factor: float) -> dict[str, Any]:
     """What the slider moves: a crank's angle (shown in degrees) or a slider's position (file unit)."""
     if sw.parameter == "angle":
-        shown = [round_sig(math.degrees(a) % 360.0, 9) for a in sw.angles]
+        shown = [round_sig(_degrees_shown(a), 9) for a in sw.angles]
         turn = np.mod(sw.angles, 2 * math.pi)  # radians in [0, 2π), as the file's angle is read
         return {"kind": "angle", "si": as_list(turn, 10), "shown": shown, "drive": sw.drive, "unit": "°"}
     shown = [round_sig(a / factor, 9) for a in sw.angles]
@@ -76,6 +76,12 @@ def _parameter(mech: Mechanism, sw: Sweep, factor: float) -> dict[str, Any]:
         "drive": sw.drive,
         "unit": mech.length_unit,
     }
+
+
+def _degrees_shown(a: float) -> float:
+    """A crank angle in [0°, 360°) as the page shows it: a turn's end 1e-15° from 0° is 0°, not 7e-15°."""
+    d = math.degrees(a) % 360.0
+    return 0.0 if d < 1e-9 or d > 360.0 - 1e-9 else d
 
 
 def _marks(sw: Sweep, factor: float) -> list[dict[str, Any]]:
