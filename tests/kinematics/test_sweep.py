@@ -699,3 +699,22 @@ def test_an_asked_quantity_with_no_extremes_says_why_instead_of_vanishing():
     assert "omega.crank does not vary over the sweep: 10 rad/s throughout" in s.notes
     assert "alpha.crank does not vary over the sweep: 0 rad/s^2 throughout" in s.notes
     assert "angle.crank: the link turns right round (no largest or least angle)" in s.notes
+
+
+def test_a_speed_s_least_value_at_a_dead_centre_is_zero_not_its_rounding():
+    # A triple rocker (AB 100, BC 120, CD 80, AD 150 mm): the rocker stops where crank and coupler
+    # are in line, AC = 220 mm, at cos θ = (150² + 220² − 80²)/(2·150·220), θ = 12.2388°; there
+    # |v_C| is 0, found between steps as a difference of terms of 1 m/s (it read 2.3313e-13 m/s)
+    m = mech.loads(
+        "units: {length: mm, angle: deg}\nlinks: [frame, crank, coupler, rocker]\njoints:\n"
+        "  A: {type: revolute, links: [frame, crank], at: [0, 0]}\n"
+        "  B: {type: revolute, links: [crank, coupler]}\n"
+        "  C: {type: revolute, links: [coupler, rocker], near: [100, 150]}\n"
+        "  D: {type: revolute, links: [rocker, frame], at: [150, 0]}\n"
+        "lengths: {AB: 100, BC: 120, CD: 80}\ndrive: {link: crank, angle: 90, rpm: 60}\n"
+    )
+    sw = sweep(m, level="velocity")
+    (vc,) = [e for e in sw.extremes if e.quantity == "velocity.C"]
+    dead = math.acos((150**2 + 220**2 - 80**2) / (2 * 150 * 220))
+    assert vc.min_value == 0.0
+    assert vc.min_angle == pytest.approx(dead, abs=1e-7)

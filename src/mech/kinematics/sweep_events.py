@@ -450,12 +450,13 @@ def find_extremes(
     seam_event = any(min(abs(e.angle - phi[0]), abs(e.angle - phi[-1])) < 1e-9 for e in events)
     rows: list[tuple[str, str, int, float, float, float]] = []  # key, mode, k, lo, hi, grid value
     wraps: dict[str, bool] = {}
+    sizes: dict[str, float] = {}  # each quantity's largest |value|: its rounding is relative to it
     for key in keys:
         v = pick(data, names, key)
         valid = ok & np.isfinite(v)
         if not np.any(valid):
             continue
-        size = max(float(np.max(np.abs(v[valid]))), 1e-300)
+        size = sizes[key] = max(float(np.max(np.abs(v[valid]))), 1e-300)
         span = float(np.max(v[valid]) - np.min(v[valid]))
         if span <= 1e-12 * size:
             continue
@@ -513,6 +514,9 @@ def find_extremes(
         (amax, vmax), (amin, vmin) = results[(key, "max")], results[(key, "min")]
         if wraps[key]:
             amax, amin = _into(amax, phi), _into(amin, phi)
+        # a zero (a speed at a dead centre) is found as a difference of terms of the quantity's size:
+        # below 1e-10 of that it is rounding (2.3e-13 m/s among speeds of 1 m/s), and shown as 0
+        vmax, vmin = (0.0 if abs(x) <= 1e-10 * sizes[key] else x for x in (vmax, vmin))
         out.append(Extreme(key, quantity_unit(key), amax, vmax, amin, vmin))
     return tuple(out)
 
