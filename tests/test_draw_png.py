@@ -125,10 +125,17 @@ def test_sweep_plot_labels_the_refined_extremes_inside_the_axes():
             t.get_text()
         )
     texts = " | ".join(t.get_text() for _, t in labels)
-    # the rocker's speed is zero at its dead centres: the refined minimum is ~1e-16, never the grid's
+    # the rocker's speed is zero at its dead centres: the refined minimum (0, its rounding shown as 0),
+    # at the refined angle, never the grid's
     e = next(x for x in sw.extremes if x.quantity == "velocity.C")
-    assert f"at {math.degrees(e.min_angle):.2f}°" in texts
-    assert "×10⁻" in texts and "^" not in texts
+    assert e.min_value == 0.0 and f"min 0 at {math.degrees(e.min_angle):.2f}°" in texts
+    # a small value is written with ×10⁻ⁿ, never with a caret
+    tiny = Series(
+        "v", "m/s", [3e-7 * math.sin(math.radians(a)) for a in range(361)], ((90.0, 3e-7), (270.0, -3e-7))
+    )
+    small = sweep_figure(list(range(361)), [tiny])
+    written = " | ".join(t.get_text() for ax in small.axes for t in ax.texts)
+    assert "×10⁻" in written and "^" not in written, written
 
 
 def test_sweep_plot_rejects_mismatched_lengths(tmp_path):
