@@ -43,7 +43,11 @@ from __future__ import annotations
 
 import os
 
-os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # a shared 2-core machine: threads only add noise here
+# The whole commands run in the environment the user's shell gives them (:func:`user_env`): a BLAS
+# thread pool numpy starts there is part of what ``import numpy`` (the reference) and each command
+# cost a user.  This process's own µs timings run on one thread: there threads only add noise.
+os.environ.setdefault("MECH_BENCH_USER_BLAS", os.environ.get("OPENBLAS_NUM_THREADS", "unset"))
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import argparse
 import math
@@ -91,11 +95,22 @@ def venv(path: Path, install: bool) -> Path:
 CPU: dict[tuple[str, ...], list[float]] = {}
 
 
+def user_env() -> dict[str, str]:
+    """The environment as the user's shell gave it: OPENBLAS_NUM_THREADS only if they set it."""
+    env = dict(os.environ)
+    user = env.pop("MECH_BENCH_USER_BLAS", "unset")
+    if user == "unset":
+        env.pop("OPENBLAS_NUM_THREADS", None)
+    else:
+        env["OPENBLAS_NUM_THREADS"] = user
+    return env
+
+
 def run_once(argv: list[str]) -> float:
     """Wall seconds of one run of ``argv``; its CPU time (the child's, by getrusage) goes to :data:`CPU`."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
-    subprocess.run(argv, check=True, capture_output=True)
+    subprocess.run(argv, check=True, capture_output=True, env=user_env())
     wall = time.perf_counter() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
