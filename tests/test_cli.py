@@ -97,6 +97,9 @@ def test_too_few_drives_are_refused_by_the_count_with_the_inputs_needed(run, wri
         result = run(command, str(path))
         assert result.exit_code == 2 and result.stdout == ""
         assert "ring.yaml:11:8: error:" in result.stderr and "it needs 4 inputs" in result.stderr, command
+    # with no drive at all, the refusal points at the first moving link, where `links:` names it
+    result = run("velocity", str(write(text.split("drive:")[0], "ring0.yaml")))
+    assert "ring0.yaml:1:16: error:" in result.stderr and "but no drive" in result.stderr, result.stderr
 
 
 @pytest.mark.parametrize(

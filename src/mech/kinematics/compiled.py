@@ -228,10 +228,17 @@ def refuse_underdriven(mech: Mechanism) -> None:
         f"{mech.label} has {count} degree{'s' if count != 1 else ''} of freedom ({dof(mech).formula}; "
         f"special geometry can only add to that) but {drives}: it needs {count} "
         f"input{'s' if count != 1 else ''}, one drive per degree of freedom",
-        where=mech.drives[0].where if mech.drives else Where(mech.path),
+        # with no drive, at the driven link's likeliest place: the first moving link, where `links` names it
+        where=mech.drives[0].where if mech.drives else _first_moving_link(mech),
         hint=f"give one drive per degree of freedom: drive: [{{link: …, angle: …, rpm: …}}, …] ({count} of them)",
         source=mech.source,
     )
+
+
+def _first_moving_link(mech: Mechanism) -> Where:
+    """Where the file names its first moving link (the file itself when that is not known)."""
+    moving = [lk for lk in mech.links if not lk.is_ground and lk.where is not None]
+    return moving[0].where if moving else Where(mech.path)  # type: ignore[return-value]
 
 
 def instant_pairs(names: Sequence[str]) -> str:
