@@ -509,16 +509,24 @@ def find_extremes(
         )
     _at_events(backend, phi, data, ok, names, results, events)
     _unbounded(backend, names, results, [e for e in events if e.kind == "toggle"])
-    out = []
-    for key in dict.fromkeys(r[0] for r in rows):
-        (amax, vmax), (amin, vmin) = results[(key, "max")], results[(key, "min")]
-        if wraps[key]:
-            amax, amin = _into(amax, phi), _into(amin, phi)
-        # a zero (a speed at a dead centre) is found as a difference of terms of the quantity's size:
-        # below 1e-10 of that it is rounding (2.3e-13 m/s among speeds of 1 m/s), and shown as 0
-        vmax, vmin = (0.0 if abs(x) <= 1e-10 * sizes[key] else x for x in (vmax, vmin))
-        out.append(Extreme(key, quantity_unit(key), amax, vmax, amin, vmin))
-    return tuple(out)
+    return tuple(
+        _extreme(key, results, phi, wraps[key], sizes[key]) for key in dict.fromkeys(r[0] for r in rows)
+    )
+
+
+def _extreme(
+    key: str, results: dict[tuple[str, str], tuple[float, float]], phi: np.ndarray, wraps: bool, size: float
+) -> Extreme:
+    """One quantity's :class:`Extreme` from its refined largest and least values (angle, value).
+
+    A zero (a speed at a dead centre) is found as a difference of terms of the quantity's
+    ``size``: below 1e-10 of that it is rounding (2.3e-13 m/s among speeds of 1 m/s), shown as 0.
+    """
+    (amax, vmax), (amin, vmin) = results[(key, "max")], results[(key, "min")]
+    if wraps:
+        amax, amin = _into(amax, phi), _into(amin, phi)
+    vmax, vmin = (0.0 if abs(x) <= 1e-10 * size else x for x in (vmax, vmin))
+    return Extreme(key, quantity_unit(key), amax, vmax, amin, vmin)
 
 
 def left_out_notes(
