@@ -635,6 +635,18 @@ def test_a_follower_at_rest_over_a_dwell_is_one_dwell_with_no_dead_centre_inside
     assert math.degrees(ratio.fast) == pytest.approx(90.0, abs=1e-3)
 
 
+def test_a_lift_held_over_a_dwell_is_said_at_the_dwell_s_start():
+    # the roller rests at its lowest over 0°–90° of the sweep and at its highest over 180°–240°
+    # (the dwells worked in the test above): the least and largest lift are said where each dwell
+    # starts, not where refinement stopped on the plateau (the least was said at 359.9997°)
+    sw = sweep(mech.loads(ROLLER_CAM), level="velocity")
+    (lift,) = [e for e in sw.extremes if e.quantity == "displacement.S"]
+    starts = sorted(d.start for d in sw.dwells)
+    assert (lift.min_angle, lift.max_angle) == (starts[0], starts[1])
+    assert math.degrees(starts[0]) == pytest.approx(0.0, abs=1e-9)
+    assert math.degrees(starts[1]) == pytest.approx(180.0, abs=1e-6)
+
+
 def test_every_output_with_two_dead_centres_has_a_time_ratio_the_watt_rocker_by_the_cosine_rule():
     # The Watt six-bar's first loop: crank 30, coupler 110, rocker O4C 70, frame 100 mm.  Its rocker
     # reverses where crank and coupler are in line (the law of cosines: oracles.four_bar), so its

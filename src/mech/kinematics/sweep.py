@@ -103,7 +103,7 @@ from mech.kinematics.sweep_grid import (
     check_precision,
 )
 from mech.kinematics.sweep_jumps import jump_notes, with_jumps
-from mech.kinematics.sweep_rest import find_dwells, find_time_ratios
+from mech.kinematics.sweep_rest import find_dwells, find_time_ratios, held_over_dwells
 from mech.kinematics.sweep_result import DriveLaw, Dwell, Event, Extreme, Gap, Sweep, TimeRatio, frozen
 from mech.model import Mechanism
 from mech.options import SolveOptions
@@ -416,6 +416,7 @@ def _find(
     # an extreme of a position may lie at a toggle or change point, where refinement cannot look
     extremes = find_extremes(backend, fine, data, ok & ~singular, names, keys, toggles + changes, ok)
     extremes = with_jumps(backend, names, extremes, fine)  # a cam law's acceleration at a segment end
+    extremes = held_over_dwells(extremes, dwells)  # a value held over a dwell: at the dwell's start
     plan.notes.extend(unbounded_notes(extremes, lambda a: _at_text(plan, a)))  # rates ∞ at a toggle
     plan.notes.extend(jump_notes(extremes, lambda a: _at_text(plan, a)))  # a law's segment ends
     ratio, ratios, refused = find_time_ratios(fine, ok, dead, dwells, outputs, plan.lead is None)

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -27,9 +28,9 @@ import numpy as np
 from mech.kinematics.quantities import pick
 from mech.kinematics.runs import runs
 from mech.kinematics.sweep_backends import Walk
-from mech.kinematics.sweep_result import Dwell, Event, TimeRatio
+from mech.kinematics.sweep_result import Dwell, Event, Extreme, TimeRatio
 
-__all__ = ["EDGE", "REST", "find_dwells", "find_time_ratios"]
+__all__ = ["EDGE", "REST", "find_dwells", "find_time_ratios", "held_over_dwells"]
 
 _TWO_PI = 2.0 * math.pi
 #: An output whose rate is within this of its largest over the sweep is at rest (rounding at
@@ -175,6 +176,50 @@ def _edges(
     for (i, end, *_rest), a in zip(rows, 0.5 * (moving + resting), strict=True):
         out[i] = (float(a), out[i][1]) if end == 0 else (out[i][0], float(a))
     return out
+
+
+def held_over_dwells(extremes: Sequence[Extreme], dwells: Sequence[Dwell]) -> tuple[Extreme, ...]:
+    """Each extreme an output holds over a dwell, said at the dwell's start.
+
+    Held over an interval, the value has no one angle: refinement stops anywhere on the plateau,
+    or just past its edge, where the motion leaves it to within rounding (a roller's lowest
+    position held from 0° to 70° was said at 359.9998°).  The dwell's first angle is the one
+    the sweep's own line gives (``dwell of S from 0° to 70°``).
+    """
+    out = []
+    for e in extremes:
+        kind, _, subject = e.quantity.partition(".")
+        mine = [d for d in dwells if d.subject == subject] if kind in ("displacement", "angle") else []
+        if not mine:
+            out.append(e)
+            continue
+        angle = kind == "angle"
+        out.append(
+            replace(
+                e,
+                max_angle=_dwell_start(mine, e.max_angle, e.max_value, angle),
+                min_angle=_dwell_start(mine, e.min_angle, e.min_value, angle),
+            )
+        )
+    return tuple(out)
+
+
+def _dwell_start(dwells: Sequence[Dwell], at: float, value: float, angle: bool) -> float:
+    """The start of the dwell that holds ``value`` around ``at`` (within 1e-3 rad), else ``at``."""
+    for d in dwells:
+        held = d.value
+        gap = abs(math.remainder(value - held, _TWO_PI)) if angle else abs(value - held)
+        if gap > 1e-9 * max(abs(held), abs(value), 1e-12):
+            continue
+        a, s, t = (x % _TWO_PI for x in (at, d.start, d.end))
+        inside = (s - 1e-3 <= a <= t + 1e-3) if s <= t else (a >= s - 1e-3 or a <= t + 1e-3)
+        if (
+            inside
+            or abs(math.remainder(a - s, _TWO_PI)) <= 1e-3
+            or abs(math.remainder(a - t, _TWO_PI)) <= 1e-3
+        ):
+            return d.start
+    return at
 
 
 def find_time_ratios(
