@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import re
 from dataclasses import replace
 from pathlib import Path
 
@@ -125,10 +126,17 @@ def test_sweep_plot_labels_the_refined_extremes_inside_the_axes():
             t.get_text()
         )
     texts = " | ".join(t.get_text() for _, t in labels)
-    # the rocker's speed is zero at its dead centres: the refined minimum (0, its rounding shown as 0),
-    # at the refined angle, never the grid's
-    e = next(x for x in sw.extremes if x.quantity == "velocity.C")
-    assert e.min_value == 0.0 and f"min 0 at {math.degrees(e.min_angle):.2f}°" in texts
+
+    # the rocker's speed is zero at its dead centres, where crank and coupler are in line (C above
+    # AD): extended, AC = 40 + 150 and the crank along AC; folded, AC = 150 − 40 and the crank
+    # opposite; ∠CAD by the cosine rule with AD = 150, CD = 80.  The label says 0, at one of them
+    def along(ac: float) -> float:
+        return math.degrees(math.acos((150**2 + ac**2 - 80**2) / (2 * 150 * ac)))
+
+    dead = (along(190.0), 180.0 + along(110.0))
+    said = re.search(r"min 0 at ([0-9.]+)°", texts)
+    assert said is not None, texts
+    assert min(abs(float(said.group(1)) - d) for d in dead) < 0.006, (said.group(1), dead)
     # a small value is written with ×10⁻ⁿ, never with a caret
     tiny = Series(
         "v", "m/s", [3e-7 * math.sin(math.radians(a)) for a in range(361)], ((90.0, 3e-7), (270.0, -3e-7))

@@ -232,13 +232,30 @@ def test_a_sheet_of_a_student_the_class_was_not_made_for_is_graded_for_no_one(kl
     out = klass / "class_four_bar"
     p = mech("check", str(out), "--answers", str(sheets), "--gradebook", str(klass / "g2.csv"), "-j", "1")
     assert p.returncode == 1
-    assert "sheets graded for no one" in p.stdout and "none of them is zed's" in p.stdout, p.stdout
+    assert "sheets scored for no one" in p.stdout and "none of them is zed's" in p.stdout, p.stdout
     book = list(csv.reader(io.StringIO((klass / "g2.csv").read_text(encoding="utf-8"))))
     assert [r[0] for r in book[1:]] == sorted(STUDENTS)
     report = json.loads(mech("check", str(out), "--answers", str(sheets), "--json", "-j", "1").stdout)
     assert "zed" not in [s["student"] for s in report["students"]]
     (zed,) = [r for r in report["results"] if r["student"] == "zed"]
     assert [a["status"] for a in zed["answers"]] == ["error"]
+    # zed's sheet alone: the same row, shown (no student of the class answered)
+    alone = mech("check", str(out), "--answers", str(sheets / "zed.yaml"), "-j", "1")
+    assert alone.returncode == 1 and "none of them is zed's" in alone.stdout, alone.stdout
+    # beside a problem the class shares (one outside the class folder), zed is still scored for no one
+    shared = klass / "shared"
+    shared.mkdir()
+    (shared / "count.yaml").write_text(
+        "links: [frame, a, b, c]\njoints:\n  A: {type: revolute, links: [frame, a]}\n"
+        "  B: {type: revolute, links: [a, b]}\n  C: {type: revolute, links: [b, c]}\n"
+        "  D: {type: revolute, links: [c, frame]}\nasks: [dof]\n"
+    )
+    (sheets / "zed.yaml").write_text("four_bar:\n  omega.rocker: 1 rad/s cw\ncount:\n  dof: 1\n")
+    both = json.loads(
+        mech("check", str(out), str(shared), "--answers", str(sheets), "--json", "-j", "1").stdout
+    )
+    assert "zed" not in [s["student"] for s in both["students"]]
+    assert sorted(s["student"] for s in both["students"]) == sorted(STUDENTS)
 
 
 def test_fewer_distinct_variants_than_students_is_said(tmp_path: Path) -> None:

@@ -202,9 +202,7 @@ class Report:
 
     @property
     def outsiders(self) -> tuple[FileResult, ...]:
-        """Rows of sheets graded for no one: a student no variant of a class was made for."""
-        if not self.students:
-            return ()
+        """Rows of sheets scored for no one: a student no variant of a class was made for."""
         scored = set(self.students)
         return tuple(r for r in self.results if r.student is not None and r.student not in scored)
 
@@ -539,7 +537,7 @@ def run(
         results = copied(_exclude_lost(results, lost), class_key)
         results = _shared_names(results, sheets, index, used)
         results += _unmatched(sheets, index, {(student, key) for student, key, _ in used})
-    report = Report.of(results, students=_students(sheets, files, owner) if sheets is not None else ())
+    report = Report.of(results, students=_students(sheets, owner) if sheets is not None else ())
     if not report.total and not report.errors:
         raise InputError(
             "no answers to check: "
@@ -622,7 +620,7 @@ def _with_roster(sheets: tuple[Sheet, ...], owner: dict[str, str], answers: str)
 def _not_theirs(
     sheets: Sequence[Sheet], index: _Index, owner: dict[str, str], folders: dict[str, set[str]]
 ) -> list[FileResult]:
-    """An error row for a sheet entry that names only other students' variants: it is graded for no one."""
+    """An error row for a sheet entry that names only other students' variants: it is scored for no one."""
     out = []
     for s in sheets:
         for e in s.entries:
@@ -641,10 +639,11 @@ def _not_theirs(
     return out
 
 
-def _students(sheets: Sequence[Sheet], files: Sequence[str], owner: dict[str, str]) -> list[str]:
-    """Who is scored: every sheet's student, but where every problem is some student's own variant,
-    only those a variant was made for (another's sheet is an error row, not a gradebook line of 0/0)."""
-    if not files or len(owner) < len(files):
+def _students(sheets: Sequence[Sheet], owner: dict[str, str]) -> list[str]:
+    """Who is scored: every sheet's student, but where a class of variants is checked, those it was
+    made for (another's sheet is listed apart, not scored: no gradebook line of 0 out of 0), the
+    problems the class shares with them included."""
+    if not owner:
         return [s.student for s in sheets]
     roster = set(owner.values())
     return [s.student for s in sheets if s.student in roster]

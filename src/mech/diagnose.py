@@ -39,7 +39,6 @@ from typing import TYPE_CHECKING, Any
 
 from mech import grading
 from mech.answers import AnswerKey, AtInfinity, Compare
-from mech.errors import MechError
 from mech.grading import Analysis
 from mech.pairs import kind_of
 from mech.units import Dimension
@@ -361,7 +360,7 @@ def _resolved(an: Analysis, joint: Any, near: Vec) -> Analysis | None:
     flipped.level = an.level
     try:
         return _moved(an, flipped, joint)
-    except MechError:  # no dyad to close the other way, or that side breaks another row: assemble it
+    except Exception:  # no dyad to close the other way, that side breaks another row (or a bug): assemble it
         pass
     mech = an.mech
     moved = replace(joint, place=replace(joint.place, near=near))

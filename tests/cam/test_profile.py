@@ -238,6 +238,13 @@ def test_a_parabolic_segment_s_jerk_is_infinite_half_way_through_as_at_its_ends(
     assert a.acceleration_jumps == pytest.approx((D(150), D(220), D(290)))
     s2 = follower_motion(prog, [D(220) - 1e-6, D(220) + 1e-6]).d2s
     assert s2 == pytest.approx([-4 * 0.03 / D(140) ** 2, 4 * 0.03 / D(140) ** 2])  # a return: signs turned
+    # the s–v–a diagram draws that jump as a jump: its acceleration curve breaks at 220° too
+    from mech.draw.cam import _broken
+
+    theta = np.degrees(a.state.theta)
+    runs = _broken(theta, a.state.d2s, lambda t: t, lambda v: v, prog.breaks)
+    ends = sorted(round(run[0][0], 6) for run in runs)
+    assert any(abs(x - 220.0) < 1.0 for x in ends), ends
 
 
 @pytest.mark.parametrize(("sense", "branch"), [(1, 1), (-1, 1), (1, -1), (-1, -1)])

@@ -279,24 +279,32 @@ def test_the_other_branch_of_a_slider_crank_puts_the_slider_behind_the_crank():
 
 
 def test_the_other_branch_of_a_four_bar_is_the_rocker_pin_mirrored_in_bd():
+    # AB = 0.04 at 60°, BC = 0.15, CD = 0.08, AD = 0.15 m: C is where the circles (B, BC) and
+    # (D, CD) meet, the two points mirror images in BD; the drawing takes one, flipped the other.
+    # Then ω₃, ω₄ by the vector loop v_B + ω₃ k×(C − B) = ω₄ k×(C − D), v_B = ω₂ k×B, ω₂ = −4π.
     m = four_bar()
     drawn = solve(m, "velocity")
     other = solve(m, "velocity", SolveOptions(flipped=("C",)))
-    b, c, d = (np.array(drawn.positions[k]) for k in "BCD")
-    u = (d - b) / np.linalg.norm(d - b)
-    mirror = 2 * (b + (c - b) @ u * u) - c  # C reflected in the line BD
+    b = 0.04 * np.array([math.cos(math.radians(60)), math.sin(math.radians(60))])
+    d = np.array([0.15, 0.0])
+    dist = float(np.linalg.norm(d - b))
+    along = (0.15**2 - 0.08**2 + dist**2) / (2 * dist)
+    u = (d - b) / dist
+    foot, off = b + along * u, math.sqrt(0.15**2 - along**2) * np.array([-u[1], u[0]])
+    both = [foot + off, foot - off]
+    drawn_c = np.array(drawn.positions["C"])
+    mirror = max(both, key=lambda p: float(np.linalg.norm(p - drawn_c)))  # the one not drawn
+    assert min(float(np.linalg.norm(p - drawn_c)) for p in both) <= 1e-12
     assert np.allclose(other.positions["C"], mirror, rtol=0, atol=1e-12)
-    assert other.positions["B"] == drawn.positions["B"]
-    # ω₄ of that configuration from two positions a small crank turn apart (ω₂ = −4π rad/s)
-    h = 1e-6
-    angles = []
-    for dt in (-h, h):
-        kin = solve(m, "position", SolveOptions(angle=math.radians(60) + dt, flipped=("C",)))
-        cx, cy = kin.positions["C"]
-        angles.append(math.atan2(cy, cx - 0.15))
-    assert other.links["rocker"].omega == pytest.approx(
-        (angles[1] - angles[0]) / (2 * h) * -4 * math.pi, rel=1e-6
-    )
+    assert np.allclose(other.positions["B"], b, rtol=0, atol=1e-15)
+
+    def kx(w: float, r: np.ndarray) -> np.ndarray:
+        return np.array([-w * r[1], w * r[0]])
+
+    w2 = -4 * math.pi
+    _w3, w4 = np.linalg.solve(np.column_stack([kx(1.0, mirror - b), -kx(1.0, mirror - d)]), -kx(w2, b))
+    assert other.links["rocker"].omega == pytest.approx(w4, rel=1e-9)
+    assert math.dist(other.velocity("C"), kx(w4, mirror - d)) <= 1e-9 * abs(w4) * 0.08
 
 
 def test_another_side_that_breaks_the_redundant_link_is_refused():

@@ -231,7 +231,8 @@ def diagram_figure(a: CamAnalysis, *, title: str = "", jerk: bool = True) -> Fig
             page.add(
                 Line((x_of(s), y0), (x_of(s), y0 + ph), Style(stroke="#cccccc", width=0.2, dash=(1.0, 1.0)))
             )
-        pts = _broken(theta, values, x_of, y_of, a.layout.program.starts)
+        # broken where a derivative may jump: at each segment's start and at a law's own knot
+        pts = _broken(theta, values, x_of, y_of, a.layout.program.breaks)
         for run in pts:
             page.add(
                 Poly(
@@ -255,11 +256,15 @@ def diagram_figure(a: CamAnalysis, *, title: str = "", jerk: bool = True) -> Fig
 def _broken(
     theta: np.ndarray, values: np.ndarray, x_of: object, y_of: object, starts: Sequence[float]
 ) -> list[list[Vec]]:
-    """Polyline runs, broken where a value jumps at a segment's start: a jump is drawn as a jump."""
+    """Polyline runs, broken where a value jumps at ``starts`` (the programme's breaks): a jump is drawn as a jump."""
     assert callable(x_of) and callable(y_of)
     finite = values[np.isfinite(values)]
     span = float(finite.max() - finite.min()) if finite.size else 0.0
-    cuts = {int(np.searchsorted(theta, math.degrees(s))) for s in starts}
+    # the sample at a break may hold either side's value (a segment's start the later one's, a
+    # parabolic law's knot the earlier one's): a jump just before or just after it is cut
+    cuts = {
+        int(np.searchsorted(theta, math.degrees(s), side=side)) for s in starts for side in ("left", "right")
+    }
     runs: list[list[Vec]] = [[]]
     for i, (t, v) in enumerate(zip(theta, values, strict=True)):
         if i in cuts and runs[-1] and abs(float(v) - float(values[i - 1])) > 0.02 * span:

@@ -61,6 +61,7 @@ __all__ = [
     "continuation",
     "instant_pairs",
     "mobility",
+    "refuse_flipped",
     "refuse_underdriven",
     "solve",
 ]
@@ -221,6 +222,15 @@ def _closed_route(comp: Compiled, options: SolveOptions, lvl: int, moved: bool) 
     return 3 * comp.system.n < BLOCK_MIN and (lvl == 0 or not comp.singular)
 
 
+def refuse_flipped(options: SolveOptions, what: str) -> None:
+    """A sweep or a continuation follows the drawing's own branches: ``flipped`` is one instant's."""
+    if options.flipped:
+        raise UnsupportedError(
+            f"{what} follows the drawing's own branches; flipped closes dyads the other way at one instant",
+            hint="solve each instant with solve(..., options=SolveOptions(angle=…, flipped=…))",
+        )
+
+
 def continuation(
     mech: Mechanism, angles: Sequence[float], level: str, options: SolveOptions
 ) -> Iterator[Kinematics | None]:
@@ -234,11 +244,7 @@ def continuation(
     A singular step (a toggle) yields positions only.
     """
     lvl = LEVELS.index(level)
-    if options.flipped:
-        raise UnsupportedError(
-            "continuation follows the drawing's own branches; flipped closes dyads the other way at one instant",
-            hint="solve each instant with solve(..., options=SolveOptions(angle=…, flipped=…))",
-        )
+    refuse_flipped(options, "continuation")
     comp = compiled(mech, None)
     sys_, lay, drawn = comp.system, comp.layout, comp.drawn
     base = options.with_(angle=float(angles[0]) if len(angles) else None, method="newton")
@@ -341,7 +347,7 @@ def _closed_form(
     # away from the drawn configuration: its rates are not solved with Φ_q as drawn
     shifted = moved or bool(options.flipped)
     return (
-        (lambda: _state(comp, prog.split(out, lvl), drives, lvl, omega_ref, shifted)),
+        (lambda: _state(comp, prog, prog.split(out, lvl), drives, lvl, omega_ref, shifted)),
         (lambda: _moved_note(prog, phi, met)),
         near,
     )
@@ -420,6 +426,7 @@ def _way(prog: DyadProgram, phi: float) -> tuple[tuple, list] | None:
 
 def _state(
     comp: Compiled,
+    prog: DyadProgram,
     parts: dict[str, tuple],
     drives: tuple[Drive, ...],
     lvl: int,
@@ -438,10 +445,7 @@ def _state(
     """
     sys_ = comp.system
     n, scale = sys_.n, sys_.scale
-    q = np.empty(3 * n)
-    q[0::3] = np.asarray(parts["lx"]) / scale
-    q[1::3] = np.asarray(parts["ly"]) / scale
-    q[2::3] = parts["lt"]
+    q = prog.configuration(parts, scale)
     if lvl < 1:
         return q, None, None
     if moved:

@@ -83,7 +83,15 @@ from mech.kinematics.quantities import (
 )
 from mech.kinematics.result import Kinematics
 from mech.kinematics.runs import unwrap_runs
-from mech.kinematics.solve import SINGULAR, Compiled, compiled, instant_pairs, refuse_underdriven, solve
+from mech.kinematics.solve import (
+    SINGULAR,
+    Compiled,
+    compiled,
+    instant_pairs,
+    refuse_flipped,
+    refuse_underdriven,
+    solve,
+)
 from mech.kinematics.sweep_backends import Closed, Newton, law_series, newton_series, seam_shifts
 from mech.kinematics.sweep_events import (
     circuits_note,
@@ -261,11 +269,7 @@ def _checked_level(level: str, options: SolveOptions) -> int:
         raise InputError(
             "a sweep sets the crank angle itself", hint="give the range (--from, --to) instead of --angle"
         )
-    if options.flipped:
-        raise UnsupportedError(
-            "a sweep follows the drawing's own branches; flipped closes dyads the other way at one instant",
-            hint="solve each instant with solve(..., options=SolveOptions(angle=…, flipped=…))",
-        )
+    refuse_flipped(options, "a sweep")
     return LEVELS.index(level)
 
 

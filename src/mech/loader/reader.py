@@ -96,7 +96,7 @@ class NodeReader:
             raise self.problem(
                 node,
                 f"{what} must be a mapping (`key: value` lines), not {node_kind(node)}",
-                f"write {what} as `key: value` pairs, e.g. {{AB: 40, BC: 150}} or one per indented line",
+                f"write {what} as `key: value` pairs, in braces ({{a: 1, b: 2}}) or one per indented line",
             )
         out: dict[str, tuple[yaml.Node, yaml.Node]] = {}
         allowed_set = set(allowed) if allowed is not None else None

@@ -133,7 +133,7 @@ class Stream:
 
     def end(self, report: Report) -> None:
         """The teacher's excluded files, every student (with sheets), the closing line."""
-        if report.students:
+        if report.students or report.outsiders:
             self._teacher(report)
             by_student: dict[str, list[FileResult]] = {}
             if self.verbose or self.quiet:  # -q lists each student's failing answers (issue 22)
@@ -168,8 +168,8 @@ class Stream:
                     self._write(f"  {_PLAIN[v.status]:<7} {r.path} {v.key}: {message(v)}")
 
 
-#: The heading of the rows of sheets graded for no one (:attr:`~mech.batch.Report.outsiders`).
-OUTSIDERS = "sheets graded for no one (no variant of the class was made for their student)"
+#: The heading of the rows of sheets scored for no one (:attr:`~mech.batch.Report.outsiders`).
+OUTSIDERS = "sheets scored for no one (no variant of the class was made for their student)"
 
 
 def statistics_lines(report: Report) -> list[str]:

@@ -467,7 +467,7 @@ def _verified(prog: DyadProgram, sys_: System, angles: int) -> bool:
     """
     import numpy as np
 
-    n, scale = sys_.n, sys_.scale
+    scale = sys_.scale
     level = prog.positions_level()
     qs: list[np.ndarray] = []
     turned: list[float] = []
@@ -486,7 +486,7 @@ def _verified(prog: DyadProgram, sys_: System, angles: int) -> bool:
             if k == 0:
                 return False
             continue
-        qs.append(_q(parts, n, scale))
+        qs.append(prog.configuration(parts, scale))
         turned.append(phi - prog.drawn_angle)
     return _rows_hold(sys_, qs, turned)
 
@@ -501,18 +501,7 @@ def closes(prog: DyadProgram, sys_: System, phi: float, out: tuple) -> bool:
     parts = prog.split(out, 0)
     if min(parts["disc"], default=1.0) < -SLACK:
         return False
-    return _rows_hold(sys_, [_q(parts, sys_.n, sys_.scale)], [phi - prog.drawn_angle])
-
-
-def _q(parts: dict[str, tuple], n: int, scale: float) -> Any:
-    """The scaled coordinates (x, y, θ per link) of one configuration of the program."""
-    import numpy as np
-
-    q = np.empty(3 * n)
-    q[0::3] = np.asarray(parts["lx"]) / scale
-    q[1::3] = np.asarray(parts["ly"]) / scale
-    q[2::3] = parts["lt"]
-    return q
+    return _rows_hold(sys_, [prog.configuration(parts, sys_.scale)], [phi - prog.drawn_angle])
 
 
 def _rows_hold(sys_: System, qs: list[Any], turned: list[float]) -> bool:

@@ -169,6 +169,17 @@ class DyadProgram:
         xp = xp or MATH
         return self.function(level)(phi, omega, alpha, xp.sqrt, xp.cos, xp.sin, xp.atan2, xp.clip, *branch)
 
+    def configuration(self, parts: dict[str, tuple], scale: float) -> Any:
+        """The scaled coordinates q (x, y, θ per link, the solver's) of one configuration of
+        :meth:`split`'s ``parts``, its lengths divided by ``scale``."""
+        import numpy as np
+
+        q = np.empty(3 * len(self.links))
+        q[0::3] = np.asarray(parts["lx"]) / scale
+        q[1::3] = np.asarray(parts["ly"]) / scale
+        q[2::3] = parts["lt"]
+        return q
+
     def split(self, out: tuple, level: int) -> dict[str, tuple]:
         """Named slices of a raw output.
 
