@@ -222,26 +222,29 @@ def test_a_class_is_graded_against_its_own_variants_a_copy_is_diagnosed_and_mark
     assert rows["s04", "omega.rocker"]["message"] == "not answered: no sheet was handed in"
 
 
-def test_a_sheet_of_a_student_the_class_was_not_made_for_is_graded_for_no_one(klass: Path) -> None:
+def test_a_sheet_of_a_student_the_class_was_not_made_for_is_graded_for_no_one(tmp_path: Path) -> None:
     # "zed" is on no roster: their sheet names the class's problem, which is only others' variants.
     # It is an error row, shown apart; zed has no gradebook line (not a 0 out of 0 at 0 %).
+    klass, roster = tmp_path, STUDENTS[:3]
+    assert _variants(klass, "four_bar.yaml", FOUR_BAR, roster, "class_four_bar").returncode == 0
     sheets = klass / "outsider"
     sheets.mkdir()
     (sheets / "s01.yaml").write_text("four_bar: {}\n")
     (sheets / "zed.yaml").write_text("four_bar:\n  omega.rocker: 1 rad/s cw\n")
     out = klass / "class_four_bar"
-    p = mech("check", str(out), "--answers", str(sheets), "--gradebook", str(klass / "g2.csv"), "-j", "1")
+    g2 = klass / "g2.csv"
+    p = mech("check", str(out), "--answers", str(sheets), "--gradebook", str(g2), "--json", "-j", "1")
     assert p.returncode == 1
-    assert "sheets scored for no one" in p.stdout and "none of them is zed's" in p.stdout, p.stdout
-    book = list(csv.reader(io.StringIO((klass / "g2.csv").read_text(encoding="utf-8"))))
-    assert [r[0] for r in book[1:]] == sorted(STUDENTS)
-    report = json.loads(mech("check", str(out), "--answers", str(sheets), "--json", "-j", "1").stdout)
+    book = list(csv.reader(io.StringIO(g2.read_text(encoding="utf-8"))))
+    assert [r[0] for r in book[1:]] == sorted(roster)
+    report = json.loads(p.stdout)
     assert "zed" not in [s["student"] for s in report["students"]]
     (zed,) = [r for r in report["results"] if r["student"] == "zed"]
     assert [a["status"] for a in zed["answers"]] == ["error"]
-    # zed's sheet alone: the same row, shown (no student of the class answered)
+    # zed's sheet alone: the same row, shown apart (no student of the class answered)
     alone = mech("check", str(out), "--answers", str(sheets / "zed.yaml"), "-j", "1")
-    assert alone.returncode == 1 and "none of them is zed's" in alone.stdout, alone.stdout
+    assert alone.returncode == 1 and "sheets scored for no one" in alone.stdout, alone.stdout
+    assert "none of them is zed's" in alone.stdout
     # beside a problem the class shares (one outside the class folder), zed is still scored for no one
     shared = klass / "shared"
     shared.mkdir()
@@ -255,7 +258,7 @@ def test_a_sheet_of_a_student_the_class_was_not_made_for_is_graded_for_no_one(kl
         mech("check", str(out), str(shared), "--answers", str(sheets), "--json", "-j", "1").stdout
     )
     assert "zed" not in [s["student"] for s in both["students"]]
-    assert sorted(s["student"] for s in both["students"]) == sorted(STUDENTS)
+    assert sorted(s["student"] for s in both["students"]) == sorted(roster)
 
 
 def test_fewer_distinct_variants_than_students_is_said(tmp_path: Path) -> None:
