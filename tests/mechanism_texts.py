@@ -48,17 +48,20 @@ def slider_crank(
     near_x: float | None = None,
     extra: str = "",
     drive: str | None = None,
+    mm: bool = False,
 ) -> str:
     """In-line (or offset) slider crank, crank O at (origin, origin), path y = origin + offset.
 
     The slider starts near x = origin + r + L (ahead of the crank); ``drive`` replaces the
     crank drive written from ``angle`` and ``omega``; ``extra`` is appended (answers, …).
+    Lengths are in metres, or with ``mm`` in millimetres (the file says `units: {length: mm}`).
     """
     nx = origin + (near_x if near_x is not None else r + L)
     drive = drive or f"{{link: crank, angle: {angle!r}, omega: {omega!r}, direction: ccw}}"
     o, y = _num(origin), _num(origin + offset)
+    units = "units: {length: mm, angle: deg}\n" if mm else ""
     return f"""\
-links: [frame, crank, rod, piston]
+{units}links: [frame, crank, rod, piston]
 joints:
   O: {{type: revolute, links: [frame, crank], at: [{o}, {o}]}}
   A: {{type: revolute, links: [crank, rod]}}

@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 import pytest
-from tests.mechanism_texts import EXAMPLES
+from tests.mechanism_texts import EXAMPLES, slider_crank
 from tests.oracles.engine_torque import cycle_integrals, engine_torque
 from tests.oracles.newton_euler import four_bar_forces
 
@@ -129,17 +129,7 @@ def test_keys_without_a_value_here_are_errors_that_say_why():
 # along the line of stroke: on the piston, the rod (a two-force member) carries |P| / cos φ at A
 # and B, sin φ = r sin θ / l; on the rod, the pin B carries only the guide's share, |P| tan φ
 # (Hibbeler, *Engineering Mechanics: Statics*, § 6.6).  A's force is the same either way.
-PIN = """\
-units: {length: mm, angle: deg}
-links: [frame, crank, rod, piston]
-joints:
-  O: {type: revolute, links: [frame, crank], at: [0, 0]}
-  A: {type: revolute, links: [crank, rod]}
-  B: {type: revolute, links: [rod, piston], near: [250, 0]}
-  P: {type: prismatic, links: [piston, frame], path: {through: [0, 0], angle: 0}}
-lengths: {OA: 50, AB: 200}
-drive: {link: crank, angle: 60, rpm: 0, direction: ccw}
-"""
+PIN = slider_crank(50, 200, mm=True, drive="{link: crank, angle: 60, rpm: 0, direction: ccw}")
 
 
 @pytest.mark.parametrize("on", ["piston", "rod", None])

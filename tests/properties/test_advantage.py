@@ -26,6 +26,7 @@ from mech.errors import InputError
 from mech.kinematics import solve
 from mech.loader import load, loads
 from mech.properties.advantage import input_effort, mechanical_advantage
+from mechanism_texts import slider_crank
 
 
 def four_bar_text(d: float, a: float, b: float, c: float, angle: float, extra: str = "") -> str:
@@ -94,17 +95,7 @@ def test_input_torque_reads_a_load_table_at_the_drive_angle():
     # the piston's force is the row [10°, 80 N] … [170°, 80 N], so T = −80 N·dx_B/dθ.  The crank's
     # own torque table [[0, 0], [90, 9]] (span 90°) reads 3 N·m at 30° and again at 390° (= 30°
     # + 4 × 90°), balanced by −3 N·m.
-    base = """
-units: {length: mm, angle: deg}
-links: [frame, crank, rod, piston]
-joints:
-  O: {type: revolute, links: [frame, crank], at: [0, 0]}
-  A: {type: revolute, links: [crank, rod]}
-  B: {type: revolute, links: [rod, piston], near: [250, 0]}
-  P: {type: prismatic, links: [piston, frame], path: {through: [0, 0], angle: 0}}
-lengths: {OA: 50, AB: 200}
-drive: {link: crank, angle: ANGLE, rpm: 1500, direction: ccw}
-"""
+    base = slider_crank(50, 200, mm=True, drive="{link: crank, angle: ANGLE, rpm: 1500, direction: ccw}")
     force = "loads: {B: {force: {table: [[0, 0, 0], [10, 80, 0], [170, 80, 0], [360, 0, 0]]}, on: piston}}\n"
     r, rod, th = 0.05, 0.2, math.radians(30.0)
     dx = -r * math.sin(th) - r * r * math.sin(th) * math.cos(th) / math.sqrt(rod**2 - (r * math.sin(th)) ** 2)
