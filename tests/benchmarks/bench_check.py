@@ -12,10 +12,17 @@ peak resident memory of the largest process (the parent or a worker)::
     python tests/benchmarks/bench_check.py                 # 1,000 files ×5, then 10,000 files ×1
     python tests/benchmarks/bench_check.py -n 200 -r 3 --large 0
     python tests/benchmarks/bench_check.py --mech BEFORE/bin/mech AFTER/bin/mech --large 0
+    python tests/benchmarks/bench_check.py --floor --large 0     # and what no tree can beat
 
 With ``--mech``, each run is made with every given ``mech`` in turn (two trees installed in
 two virtual environments, compared in one interleaved run, so that the load of a shared
 machine hits both alike); the table gives each one's median and its ratio to the first's.
+
+With ``--floor``, it also measures, in the same run, what any tree built of these parts pays
+before its own work: the whole command on three files (one of each kind: the interpreter, the
+imports, numpy, the workers' start and first solves) and composing every file with PyYAML's C
+composer alone (the least reading a located error message needs), and prints the throughput
+that fixed cost and that reading alone would allow on this machine's cores.
 
 It also checks, from the JUnit file, that every file got exactly the verdicts it
 was built to get.  Targets (issue 10, 2 cores): ≥ 1,500 files/s on 1,000 files,
@@ -190,9 +197,15 @@ def main() -> None:
     parser.add_argument(
         "--mech", nargs="+", help="mech commands to compare, interleaved (the first is the reference)"
     )
+    parser.add_argument(
+        "--floor", action="store_true", help="measure the fixed cost and YAML reading no tree can avoid"
+    )
     args = parser.parse_args()
     if args.mech:
         compare(args)
+        return
+    if args.floor:
+        floor(args)
         return
 
     rows = []
@@ -272,6 +285,70 @@ def compare(args: argparse.Namespace) -> None:
         )
     print()
     print("verdicts: every file got exactly the verdicts it was built to get, with every mech")
+
+
+def compose_cpu(folder: Path) -> float:
+    """CPU seconds per file to compose every file of ``folder`` with PyYAML's C composer, nothing else.
+
+    In a fresh process of this interpreter: run the benchmark in the environment mech is installed in.
+    """
+    probe = (
+        "import sys, time, yaml\n"
+        "from pathlib import Path\n"
+        "texts = [p.read_text() for p in sorted(Path(sys.argv[1]).glob('*.yaml'))]\n"
+        "t = time.process_time()\n"
+        "for s in texts:\n"
+        "    try:\n"
+        "        yaml.compose(s, Loader=yaml.CSafeLoader)\n"
+        "    except yaml.YAMLError:\n"
+        "        pass  # the malformed file of each hundred\n"
+        "print((time.process_time() - t) / len(texts))\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", probe, str(folder)], capture_output=True, text=True, check=True
+    )
+    return float(out.stdout)
+
+
+def floor(args: argparse.Namespace) -> None:
+    """The whole command beside what it cannot avoid: its fixed cost and composing the YAML, interleaved."""
+    mech = shutil.which("mech")
+    if mech is None:
+        sys.exit("the mech command is not installed in this environment (pip install .)")
+    cores = os.cpu_count() or 1
+    with tempfile.TemporaryDirectory() as tmp:
+        folder, few = Path(tmp) / "hw", Path(tmp) / "few"
+        folder.mkdir()
+        few.mkdir()
+        expected = generate(folder, args.files)
+        for name in sorted(expected)[:3]:  # one of each kind: a count, a slider crank, a four-bar
+            shutil.copy(folder / Path(name).name, few / Path(name).name)
+        junit = Path(tmp) / "out.xml"
+        whole, fixed, parse = [], [], []
+        for _ in range(args.repeats):
+            whole.append(run_cpu(folder, junit, None, mech)[0])
+            if verdicts_from_junit(junit) != expected:
+                sys.exit("wrong verdicts")
+            fixed.append(run_cpu(few, junit, None, mech)[0])
+            parse.append(compose_cpu(folder))
+    n = args.files
+    t_whole, t_fixed, t_parse = (statistics.median(x) for x in (whole, fixed, parse))
+    ceiling = n / (t_fixed + n * t_parse / cores)
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    print(
+        f"mech check DIR --junit out.xml and its floor, interleaved, median of {args.repeats} "
+        f"({platform.python_implementation()} {platform.python_version()}, {cores} cores, "
+        f"load average {load:.1f} at the end)"
+    )
+    print()
+    print("| measured | median | files/s |")
+    print("| --- | ---: | ---: |")
+    print(f"| the whole command, {n:,} files | {t_whole:.2f} s | {n / t_whole:,.0f} |")
+    print(f"| the whole command, 3 files (its fixed cost) | {t_fixed:.2f} s | |")
+    print(f"| composing one file's YAML (C composer), CPU | {t_parse * 1e3:.3f} ms | |")
+    print(
+        f"| fixed cost + composing alone on {cores} cores | {t_fixed + n * t_parse / cores:.2f} s | {ceiling:,.0f} |"
+    )
 
 
 if __name__ == "__main__":
