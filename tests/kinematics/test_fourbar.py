@@ -324,3 +324,22 @@ def test_a_solve_next_to_a_toggle_names_it_its_angle_and_how_fast_omega_grows(wr
     assert f"{abs(w_coupler) * math.sqrt(delta):.3g}" in note
     # far from it, nothing is said
     assert not [n for n in solve(m, "velocity").notes if "toggle" in n]
+
+
+def test_the_general_route_next_to_a_toggle_says_which_links_are_how_far_from_in_line(write):
+    # the same toggle at 78.2802°, solved by Newton: 0.001° of input short of it, |BD| by the cosine
+    # rule, and how far BC and CD are from in line at C by the cosine rule on triangle BCD
+    from mech.loader import load
+
+    m = load(write(NON_GRASHOF))
+    theta = math.acos(3900 / 19200) - math.radians(0.001)
+    bd = math.sqrt(80**2 + 120**2 - 2 * 80 * 120 * math.cos(theta))
+    off = 180 - math.degrees(math.acos((60**2 + 70**2 - bd**2) / (2 * 60 * 70)))
+    kin = solve(m, "velocity", SolveOptions(angle=theta, method="newton"))
+    (note,) = [n for n in kin.notes if "toggle" in n]
+    assert f"coupler and rocker are {off:.3g}° from in line at C" in note
+    # the closed form says it too, its own way: the same solve, the same instant
+    (closed,) = [n for n in solve(m, "velocity", SolveOptions(angle=theta)).notes if "toggle" in n]
+    assert "0.001° from the toggle at 78.2802°" in closed
+    # far from it, neither route says anything
+    assert not [n for n in solve(m, "velocity", SolveOptions(method="newton")).notes if "toggle" in n]

@@ -35,6 +35,17 @@ __all__ = [
 #: answers to about 1e-6 relative; beyond it they would be silently wrong.
 SINGULAR = 1e6
 
+#: Two links within this sine of in line at their joint (about 1.1°) are next to a toggle, and
+#: a solve says so: the closed form by its dyads' own sines, the general route by the two links
+#: Φ_q's least-held motion turns (:func:`mech.kinematics.rates.near_toggle_note`).
+NEAR_TOGGLE = 0.02
+
+#: Φ_q's condition number, each equation and coordinate scaled to unit size, from which the
+#: general route looks for links next to a toggle.  Near one it goes as a few over the sine
+#: between the links (4.2/sin on a four-bar's coupler and rocker, 6.2/sin on a five-bar's middle
+#: links, measured), so below 50 no two links are within NEAR_TOGGLE of in line.
+NEAR_SINGULAR = 50.0
+
 
 #: Unknowns (3 per moving link) from which square systems are solved block by block
 #: (:mod:`.blocks`) rather than densely: below it one dense LU or SVD is cheaper than

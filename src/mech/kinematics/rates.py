@@ -19,10 +19,20 @@ import numpy as np
 from mech.errors import GeometryError, UnsupportedError
 from mech.kinematics.compiled import Compiled
 from mech.kinematics.drives import angle_text
-from mech.kinematics.linalg import SINGULAR, blocks_of, lin_solve, padded_svd, pinv, refined, snap_to_error
+from mech.kinematics.linalg import (
+    NEAR_SINGULAR,
+    NEAR_TOGGLE,
+    SINGULAR,
+    blocks_of,
+    lin_solve,
+    padded_svd,
+    pinv,
+    refined,
+    snap_to_error,
+)
 from mech.model import Drive
 
-__all__ = ["accel_rhs", "rate_rhs", "rates"]
+__all__ = ["accel_rhs", "near_toggle_note", "rate_rhs", "rates"]
 
 
 def rates(
@@ -156,10 +166,75 @@ def _scaled_message(comp: Compiled, cond: float, balanced: float, drives: tuple[
     )
 
 
-def _singular_message(comp: Compiled, v: np.ndarray, cond: float, drives: tuple[Drive, ...]) -> str:
+def _turned(comp: Compiled, v: np.ndarray) -> list[str]:
+    """The links a motion ``v`` of Φ_q's (near) null space moves most, the most first."""
     sys_ = comp.system
     weight = np.abs(v).reshape(-1, 3).max(axis=1)
-    moving = [sys_.links[i] for i in np.argsort(-weight) if weight[i] > 0.2 * weight.max()]
+    return [sys_.links[i] for i in np.argsort(-weight) if weight[i] > 0.2 * weight.max()]
+
+
+def near_toggle_note(comp: Compiled, q: np.ndarray) -> tuple[str, ...]:
+    """The general route's note next to a toggle: which two links are close to in line, and how close.
+
+    The closed form knows its dyads and says how far the drive is from the toggle
+    (:func:`mech.kinematics.solve._near_toggle_note`); the general route (several drives, a chain
+    that does not decompose) knows Φ_q.  Its least-held motion (the singular vector of the
+    smallest singular value) turns the two links that lose a constraint at the toggle; when they
+    are two binary links pinned together, the note gives how far from in line they are, judged
+    by the same sine as the dyads' (:data:`NEAR_TOGGLE`).  Looked for only where Φ_q, scaled
+    (:func:`equilibrated_condition`), is worse conditioned than :data:`NEAR_SINGULAR`; a large
+    chain solved block by block has no SVD of the whole and gets no note.
+    """
+    sys_ = comp.system
+    if blocks_of(sys_) is not None or not sys_.n:
+        return ()
+    jac = comp.jacobian if q is sys_.q0 else sys_.jacobian(q)
+    cond = equilibrated_condition(jac)
+    if cond < NEAR_SINGULAR:
+        return ()
+    svd = comp.drawn_svd() if q is sys_.q0 else padded_svd(jac)
+    turned = _turned(comp, svd[2][jac.shape[1] - 1])
+    if len(turned) != 2:
+        return ()
+    a, b = sorted(turned, key=sys_.links.index)  # in the file's order
+    grows = (
+        f"where velocities grow without bound (condition number {cond:.3g}, scaled; "
+        f"refused from 1e{round(math.log10(SINGULAR))})"
+    )
+    lay = comp.layout
+    pinned = [n for n in lay.on_link.get(a, ()) if b in lay.carriers.get(n, ()) and not n.startswith("#")]
+    ends = [[n for n in lay.on_link.get(k, ()) if not n.startswith("#")] for k in (a, b)]
+    if len(pinned) != 1 or any(len(e) != 2 or not set(e) <= sys_.local.keys() for e in ends):
+        # no two bars to measure: judged by the condition alone, where the measured four-bar and
+        # five-bar reach NEAR_TOGGLE (about 5/sin, see NEAR_SINGULAR)
+        return (
+            (f"next to a toggle: {a} and {b} are close to in line, {grows}",)
+            if cond * NEAR_TOGGLE >= 5
+            else ()
+        )
+    joint = pinned[0]
+    p, u, w = (_scaled_at(sys_, q, n) for n in (joint, *(n for e in ends for n in e if n != joint)))
+    d1, d2 = u - p, w - p
+    sine = abs(float(d1[0] * d2[1] - d1[1] * d2[0])) / (float(np.hypot(*d1) * np.hypot(*d2)) or 1.0)
+    if sine >= NEAR_TOGGLE:
+        return ()
+    return (
+        f"next to a toggle: {a} and {b} are {math.degrees(math.asin(sine)):.3g}° from in line at {joint}, {grows}",
+    )
+
+
+def _scaled_at(sys_: Any, q: np.ndarray, name: str) -> np.ndarray:
+    """Where location ``name`` is at ``q`` (scaled coordinates, on its carrier)."""
+    i, s = sys_.local[name]
+    if i >= sys_.n:  # on the ground: its local coordinates are global
+        return np.asarray(s, dtype=float)
+    x, y, th = q[3 * i : 3 * i + 3]
+    c, sn = math.cos(th), math.sin(th)
+    return np.array([x + c * s[0] - sn * s[1], y + sn * s[0] + c * s[1]])
+
+
+def _singular_message(comp: Compiled, v: np.ndarray, cond: float, drives: tuple[Drive, ...]) -> str:
+    moving = _turned(comp, v)
     where = ", ".join(
         f"{d.link} at {angle_text(d.angle)}" for d in drives if d.link is not None and d.angle is not None
     )

@@ -45,9 +45,9 @@ from mech.kinematics.dyads import (
 )
 from mech.kinematics.geometry import wrap_angle
 from mech.kinematics.layout import layout
-from mech.kinematics.linalg import BLOCK_MIN, SINGULAR, pinv, snap_to_error
+from mech.kinematics.linalg import BLOCK_MIN, NEAR_TOGGLE, SINGULAR, pinv, snap_to_error
 from mech.kinematics.moving import continue_along, move_from_drawing, move_to
-from mech.kinematics.rates import accel_rhs, rate_rhs, rates
+from mech.kinematics.rates import accel_rhs, near_toggle_note, rate_rhs, rates
 from mech.kinematics.result import Kinematics
 from mech.kinematics.result_fields import State, lazy_result, result
 from mech.model import Drive, Mechanism
@@ -140,7 +140,10 @@ def solve(mech: Mechanism, level: str = "velocity", options: SolveOptions | None
     notes = list(plan.notes)
     q = move_from_drawing(comp, drives, options, list(plan.targets), notes) if moved else comp.system.q0
     qd, qdd = rates(comp, q, drives, lvl, omega_ref)
-    return result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
+    if qd is None:
+        return result(comp, level, q, qd, qdd, omega_ref, moved, tuple(notes), drives)
+    told = lambda: (*notes, *near_toggle_note(comp, q))  # noqa: E731  (read when the notes are)
+    return lazy_result(comp, level, lambda: (q, qd, qdd), omega_ref, moved, told, drives)
 
 
 @dataclass(frozen=True, slots=True)
@@ -351,10 +354,6 @@ def _closed_form(
         (lambda: _moved_note(prog, phi, met)),
         near,
     )
-
-
-#: A dyad whose links are within this sine of in line (about 1.1°) is next to a toggle: the solve says so.
-NEAR_TOGGLE = 0.02
 
 
 def _near_toggle_note(comp: Compiled, prog: DyadProgram, phi: float, parts: dict[str, tuple]) -> str:
