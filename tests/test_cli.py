@@ -694,3 +694,24 @@ def test_a_large_angle_within_float_precision_is_its_turn_modulo_360(run):
     result = run("position", FOUR_BAR, "--angle", "1e8", "--json")
     assert result.exit_code == 0
     assert json.loads(result.stdout)["links"]["crank"]["angle"] == pytest.approx(280.0)
+
+
+def test_every_required_option_left_out_is_a_usage_error_naming_it():
+    # walks every command's declarations: a command with a required option (mech draw -o, mech
+    # view -o, mech variants --roster …) run without its options must stop before it runs (exit 2,
+    # a required option named), never reach the command with None
+    from mech.commands.params import COMMANDS
+
+    example = str(Path(__file__).resolve().parent.parent / "mechanisms" / "four_bar.yaml")
+    required = {
+        command: [p.names[0] for p in params if p.is_option and p.required]
+        for command, params in COMMANDS.items()
+    }
+    required = {command: names for command, names in required.items() if names}
+    assert {"draw", "view"} <= required.keys()  # the walk has something to walk
+    for command, names in required.items():
+        args = [example] if any(not q.is_option for q in COMMANDS[command]) else []
+        run = mech(command, *args)
+        assert run.returncode == 2, (command, run.stdout, run.stderr)
+        assert "Traceback" not in run.stderr
+        assert any(f"Missing option '{name}'" in run.stderr for name in names), (command, run.stderr)

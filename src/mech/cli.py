@@ -51,15 +51,18 @@ def params_of(command: str) -> Callable[[Callable[..., Any]], Callable[..., Any]
             elif p.kind == "flag":
                 fn = click.option(*p.names, p.dest, is_flag=True, help=p.help)(fn)
             else:
+                # no default=None passed: click 8.5 takes an explicit None as a default given, and
+                # then lets a required option (mech draw -o) go missing
+                given = {"default": p.default} if p.default is not None else {}
                 fn = click.option(
                     *p.names,
                     p.dest,
                     type=_type(p),
-                    default=p.default,
                     show_default=p.show_default,
                     required=p.required,
                     multiple=p.multiple,
                     help=p.help,
+                    **given,
                 )(fn)
         return fn
 
