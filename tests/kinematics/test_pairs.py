@@ -14,7 +14,7 @@ from cli_runner import assert_bad_input, close, mech, strict_json
 from mech.errors import GeometryError, InputError, UnsupportedError
 from mech.kinematics import mobility, solve
 from mech.options import SolveOptions
-from mechanism_texts import GEARS, ROLLER_CAM_POINT_K, ladder
+from mechanism_texts import EXAMPLES, GEARS, ROLLER_CAM_POINT_K, ladder
 
 
 def five_bar(drives):
@@ -614,3 +614,35 @@ drive: {link: pinion, rpm: 1200, direction: cw}
     assert result.exit_code == 2
     assert "toggle or dead-centre" not in result.stderr
     assert "ill-conditioned" in result.stderr and "not a toggle" in result.stderr
+
+
+@pytest.mark.parametrize(
+    ("example", "point", "hint"),
+    [
+        # the contact of a rolling pair runs round the wheel as it rolls: nothing names a point of it
+        (
+            "rolling_wheel.yaml",
+            "  T: {link: wheel, from: B, toward: W, offset: [0, 10]}\n",
+            "points fixed in the link",
+        ),
+        # a profile cam's contact runs round both profiles; its follower's own point is the roller's centre C
+        (
+            "eccentric_cam_roller.yaml",
+            "  T: {link: follower, from: K, toward: C, distance: 5}\n",
+            "place it from C",
+        ),
+    ],
+)
+def test_a_point_placed_from_a_contact_is_refused_at_its_line_naming_what_to_use(write, example, point, hint):
+    text = (EXAMPLES / example).read_text(encoding="utf-8").split("\nanswers:")[0]
+    if "\npoints:\n" in text:
+        text = text.replace("\npoints:\n", "\npoints:\n" + point, 1)
+    else:
+        text += "\npoints:\n" + point
+    path = write(text)
+    line = text.splitlines().index(point.rstrip("\n")) + 1
+    for command in ("position", "velocity", "icentres", "properties"):
+        run = mech(command, str(path))
+        assert_bad_input(run, path)
+        assert f"{path}:{line}:3: error: T is placed" in run.stderr
+        assert hint in run.stderr

@@ -137,6 +137,7 @@ def _layout(mech: Mechanism) -> Layout:
         for link_name in links:
             (point_locs if name in point_names else joint_locs)[link_name].append(name)
 
+    _placed_from_contacts(mech, carriers, problems)
     paths: list[PathSpec] = []
     for j in mech.joints:
         if kind_of(j).role == "path":
@@ -158,6 +159,40 @@ def _layout(mech: Mechanism) -> Layout:
     _reference_lines(mech, drives, on_link, problems)
     collect(problems, source=mech.source)
     return Layout(mech, carriers, alias, on_link, tuple(paths), contacts, tuple(drives))
+
+
+def _placed_from_contacts(
+    mech: Mechanism, carriers: dict[str, tuple[str, ...]], problems: list[Problem]
+) -> None:
+    """Refuse a point or joint placed from or toward a contact of the instant, naming what to use.
+
+    A profile cam's, a rolling or a gear pair's contact is a point of no link: it runs round
+    both profiles as they turn, so nothing fixed in a link is placed by it (the assembly has
+    no equation that moves it).  A cam's follower has an own point its joint's name stands for
+    elsewhere (DESIGN § 1.2: the roller's centre, the knife edge): the hint names it.
+    """
+    contacts = {j.name: j for j in mech.joints if carriers.get(j.name) == ()}
+    for item in (*mech.points, *mech.joints):
+        place = item.place
+        for word, ref in (("from", place.origin), ("toward", place.toward)):
+            pair = contacts.get(ref or "")
+            if pair is None:
+                continue
+            prof = dict(pair.profiles or {}).get(pair.links[-1])
+            own = getattr(getattr(prof, "centre", None) or getattr(prof, "point", None), "name", None)
+            hint = (
+                f"place it {word} {own}, the point of {pair.links[-1]} that {pair.name} stands for elsewhere"
+                if own in carriers
+                else "place it from points fixed in the link: its joints, or points with at:"
+            )
+            problems.append(
+                Problem(
+                    f"{item.name} is placed {word} {ref}, where the links of the {pair.type} joint {ref} touch: "
+                    "a point of no link (it runs round both profiles as they turn)",
+                    item.where,
+                    hint,
+                )
+            )
 
 
 def _carriers(mech: Mechanism) -> tuple[dict[str, tuple[str, ...]], dict[str, str]]:
