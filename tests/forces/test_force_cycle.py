@@ -296,3 +296,24 @@ def test_gauss_legendre_pieces_integrate_a_septic_exactly():
         for p, q in zip(a, b, strict=True)
     ]
     assert integrate(f, a, b) == pytest.approx(exact, rel=1e-14)
+
+
+def test_a_programme_cam_is_swept_at_once_and_pushes_along_its_normal_at_every_step():
+    # the cam's law row moves the follower; its push row (along the common normal at the contact)
+    # carries the force: batched, and equal to the instant's analysis at every step.  At the file's
+    # own instant, 60° into a simple-harmonic rise (h = 30 mm over 120°, base 40, roller 10, in
+    # line): tan φ = (ds/dθ) / (r_b + r_r + s) = 22.5 / 65, so the guide takes 100 tan φ sideways
+    text = (EXAMPLES / "cam_roller_program.yaml").read_text().split("\nanswers:")[0]
+    mech = loads(text + '\nloads: {K: {force: [0, -100], "on": follower}}\n', path="cam.yaml")
+    evaluator = Evaluator(mech)
+    assert evaluator.batched
+    angles = np.radians([-60.0, -10.0, -100.0, -200.0, -300.0])  # turning cw from +x
+    series = evaluator(angles)
+    for k, theta in enumerate(angles):
+        fa = analyse(mech, SolveOptions(angle=float(theta)))
+        assert fa.effort is not None
+        assert series.effort[k] == pytest.approx(fa.effort.value, rel=1e-9, abs=1e-12)
+        for i, (joint, _, _) in enumerate(series.pairs):
+            assert series.forces[k, i] == pytest.approx(fa.pair(joint).force, rel=1e-9, abs=1e-9)
+    guide = series.pairs.index(next(p for p in series.pairs if p[0] == "S"))
+    assert series.magnitude(guide)[0] == pytest.approx(100 * 22.5 / 65, rel=1e-9)

@@ -219,3 +219,43 @@ def test_gears_push_along_their_line_of_action_and_the_bearings_take_the_tooth_l
     assert fa.pair("O1").magnitude == pytest.approx(tooth, rel=1e-9)
     assert fa.pair("O2").magnitude == pytest.approx(tooth, rel=1e-9)
     assert fa.effort is not None and abs(fa.effort.value) == pytest.approx(5.0, rel=1e-9)
+
+
+def test_a_programme_cam_pushes_its_follower_along_the_common_normal_and_the_guide_takes_the_thrust():
+    # cam_roller_program.yaml at its drive angle, 60° into a simple-harmonic rise of h = 30 mm over
+    # β = 120°, base circle 40 mm, roller 10 mm, in line: s = h/2 (1 − cos πθ/β) = 15 mm and
+    # ds/dθ = (π h / 2β) sin(πθ/β) = 22.5 mm/rad.  The pressure angle of an in-line roller follower
+    # is tan φ = (ds/dθ) / (r_b + r_r + s) = 22.5 / 65.  Holding 100 N down on the follower: the cam
+    # pushes along the normal with 100 / cos φ, the guide takes 100 tan φ sideways, the camshaft's
+    # bearing takes the push back, and the torque is 100 N × ds/dθ = 2.25 N·m (virtual work).
+    from tests.mechanism_texts import EXAMPLES
+
+    text = (EXAMPLES / "cam_roller_program.yaml").read_text().split("\nanswers:")[0]
+    fa = analyse(loads(text + '\nloads: {K: {force: [0, -100], "on": follower}}\n', path="cam.yaml"))
+    tan_phi = 22.5 / 65
+    push = 100 * math.hypot(1, tan_phi)
+    contact = fa.pair("K")
+    assert contact.magnitude == pytest.approx(push, rel=1e-9)
+    assert abs(contact.normal) == pytest.approx(push, rel=1e-9)  # all of it along the normal
+    assert fa.pair("S").magnitude == pytest.approx(100 * tan_phi, rel=1e-9)
+    assert fa.pair("O").magnitude == pytest.approx(push, rel=1e-9)
+    assert fa.effort is not None and abs(fa.effort.value) == pytest.approx(2.25, rel=1e-9)
+
+
+def test_a_load_at_a_cam_joint_acts_on_its_followers_own_point():
+    # DESIGN § 1.2: a cam joint's name is the follower's own point, here the roller's centre C.
+    # eccentric_cam_roller.yaml: a circle of 40 mm about E, e = |OE| = 15 mm at 30°, an in-line
+    # roller of 10 mm on a vertical slide through O: y_C = e sin θ + √((R + r)² − e² cos² θ), so
+    # dy_C/dθ = e cos θ + e² sin θ cos θ / √((R + r)² − e² cos² θ) = 15.0082 mm/rad at 30°, and
+    # 100 N held down at C needs T = 100 N × dy_C/dθ (virtual work).
+    from tests.mechanism_texts import EXAMPLES
+
+    text = (EXAMPLES / "eccentric_cam_roller.yaml").read_text().split("\nanswers:")[0]
+    fa = analyse(loads(text + "\nloads: {K: {force: [0, -100]}}\n", path="cam.yaml"))
+    e, reach, th = 0.015, 0.050, math.radians(30)
+    root = math.sqrt(reach**2 - (e * math.cos(th)) ** 2)
+    dy = e * math.cos(th) + e**2 * math.sin(th) * math.cos(th) / root
+    assert fa.effort is not None and fa.effort.value == pytest.approx(100 * dy, rel=1e-9)
+    assert not [n for n in fa.notes if "does not say which it acts on" in n]
+    # on the follower, the load and the guide hold the cam's push: the contact carries the 100 N
+    assert fa.pair("K").normal is not None and abs(fa.pair("K").normal) >= 100 * (1 - 1e-9)

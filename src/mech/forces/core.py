@@ -32,11 +32,13 @@ import numpy as np
 
 from mech._records import dataclass
 from mech.model import Load, Mechanism
+from mech.pairs import kind_of
 
 __all__ = [
     "Motion",
     "Solved",
     "jacobian_si",
+    "load_link",
     "load_value",
     "locate",
     "multipliers",
@@ -174,8 +176,7 @@ def _loads(st: _Stack) -> np.ndarray:
     for load in st.mech.loads:
         value = load_value(load, st.motion.angle)
         if load.is_force:
-            link = load.on or _carrier(st.mech, load.target)
-            st.apply(q, link, value, st.where(load.target))
+            st.apply(q, load_link(st.mech, load), value, st.where(load.target))
         else:
             i = st.index(load.target)
             if i is not None:
@@ -194,8 +195,8 @@ def unsaid_on(mech: Mechanism) -> dict[str, tuple[str, ...]]:
     out: dict[str, tuple[str, ...]] = {}
     for load in mech.loads:
         joint = next((j for j in mech.joints if j.name == load.target), None)
-        if joint is None or not load.is_force or load.on is not None:
-            continue
+        if joint is None or not load.is_force or load.on is not None or kind_of(joint).higher:
+            continue  # a higher pair's name is its follower's own point: no choice to make
         moving = tuple(lk for lk in joint.links if lk != mech.ground)
         if len(moving) > 1:
             out[load.target] = moving
@@ -218,11 +219,22 @@ def unsaid_notes(mech: Mechanism) -> tuple[str, ...]:
     )
 
 
+def load_link(mech: Mechanism, load: Load) -> str:
+    """The link a force acts on: its ``on``, else the one its point is fixed in.
+
+    A higher pair's name (a cam's, a contact's, a rolling or gear pair's) is its follower's own
+    point (DESIGN § 1.2), so a load there acts on the follower, as the power balance of ``mech
+    properties`` takes it; a pin of several moving links gives the first (its own force is then
+    not given: :func:`unsaid_on`).  One answer for the solve and the free bodies.
+    """
+    return load.on or _carrier(mech, load.target)
+
+
 def _carrier(mech: Mechanism, target: str) -> str:
-    """The moving link a force at ``target`` acts on when the file does not say (the first; a pin of
-    several moving links then gives no force of its own: :func:`unsaid_on`)."""
     for j in mech.joints:
         if j.name == target:
+            if kind_of(j).higher:
+                return j.links[-1]
             return next(lk for lk in j.links if lk != mech.ground)
     for p in mech.points:
         if p.name == target:

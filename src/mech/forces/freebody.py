@@ -234,15 +234,14 @@ def _load_actions(
     """The loads, weight and input effort on ``link``."""
     import numpy as np
 
-    from mech.forces.core import load_value
+    from mech.forces.core import load_link, load_value
 
     out = []
     angle = np.array([fa.drive_angle or 0.0])
     for load in mech.loads:
         value = load_value(load, angle)
         if load.is_force:
-            on = load.on or next(lk for lk in kin.carriers.get(load.target, ()) if lk != mech.ground)
-            if on == link:
+            if load_link(mech, load) == link:
                 f = (float(value[0, 0]), float(value[0, 1]))
                 at = tuple(kin.positions[load.target])
                 out.append(Action(f"P{load.target}", f"load at {load.target}", f, at, load.target, 0.0, 0.0))

@@ -24,7 +24,7 @@ from dataclasses import replace
 
 from mech._records import dataclass
 from mech.errors import Problem, UnsupportedError, collect
-from mech.model import Drive, Joint, Mechanism, Ref, Vec
+from mech.model import Drive, Joint, Mechanism, Point, Ref, Vec
 from mech.pairs import kind_of
 from mech.pairs.path import PathSpec
 
@@ -172,7 +172,8 @@ def _placed_from_contacts(
     elsewhere (DESIGN § 1.2: the roller's centre, the knife edge): the hint names it.
     """
     contacts = {j.name: j for j in mech.joints if carriers.get(j.name) == ()}
-    for item in (*mech.points, *mech.joints):
+    items: list[Point | Joint] = [*mech.points, *mech.joints]
+    for item in items:
         place = item.place
         for word, ref in (("from", place.origin), ("toward", place.toward)):
             pair = contacts.get(ref or "")

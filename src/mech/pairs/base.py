@@ -291,6 +291,18 @@ class PairKind:
             if link in wrenches
         ]
 
+    def pushes(self, j: Joint) -> str | None:
+        """How this joint's force is carried where its kinematic rows only say how it moves: None (its
+        own rows carry it), ``"instant"`` (:meth:`reaction_rows`, at a solved instant: a force solve
+        over many angles then goes angle by angle) or ``"stacked"`` (:meth:`push`, from each
+        configuration of a stack: :mod:`mech.forces.series` solves all angles at once)."""
+        return "instant" if type(self).reaction_rows is not PairKind.reaction_rows else None
+
+    def push(self, j: Joint, sys_: Any, q: Any) -> tuple[Any, Any] | None:
+        """Where (scaled) and along which unit normal this joint pushes at the configuration ``q``
+        (scaled), when :meth:`pushes` says ``"stacked"``; :func:`push_row` makes its row."""
+        return None
+
     def reaction_rows(self, j: Joint, view: Any) -> Sequence[Sequence[float]] | None:
         """Rows that carry this pair's force where its kinematic rows only say how it moves (a gear
         pair on fixed centres keeps its speed ratio as an angle row, but pushes along its line of
@@ -317,6 +329,20 @@ class PairKind:
     def contact(self) -> str:
         """Lower (surface contact) or higher (line or point contact)."""
         return "higher" if self.line_contact else "lower"
+
+
+def push_row(view: Any, j: Joint, at: Vec, normal: Vec) -> list[float]:
+    """The row of a push along ``normal`` at ``at``: [n, (P − R₁) × n] on the first link, its opposite
+    on the second (R the link's origin).  Its multiplier is the force two profiles in contact put on
+    each other (a gear's tooth load, a cam's contact force); what the kinematic rows say of the pair
+    (a speed ratio, a follower's law) is the same constraint given the pins and slides."""
+    row = [0.0] * view.width
+    for link, sign in ((j.links[0], 1.0), (j.links[1], -1.0)):
+        col, (ox, oy) = view.column(link), view.origin(link)
+        row[col] += sign * normal[0]
+        row[col + 1] += sign * normal[1]
+        row[col + 2] += sign * ((at[0] - ox) * normal[1] - (at[1] - oy) * normal[0])
+    return row
 
 
 def contact_forces(

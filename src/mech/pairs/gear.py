@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from mech.errors import Problem
 from mech.fields import NUMBER, PROFILES, Fields, Reader, read_profiles, read_radii
-from mech.pairs.base import Carriers, PairKind, contact_forces
+from mech.pairs.base import Carriers, PairKind, contact_forces, push_row
 from mech.pairs.gearing import gear_centre, gear_normal, gear_row, line_of_action
 from mech.pairs.higher import see_contact
 from mech.specs import GearSpec
@@ -175,14 +175,7 @@ class Gear(PairKind):
         n = line_of_action(view.mech, j, kin.positions)
         if n is None or j.name in view.sys.path_dirs or j.name in view.sys.normals:
             return None
-        p = kin.positions[j.name]
-        row = [0.0] * view.width
-        for link, sign in ((j.links[0], 1.0), (j.links[1], -1.0)):
-            col, (ox, oy) = view.column(link), view.origin(link)
-            row[col] += sign * n[0]
-            row[col + 1] += sign * n[1]
-            row[col + 2] += sign * ((p[0] - ox) * n[1] - (p[1] - oy) * n[0])
-        return [row]
+        return [push_row(view, j, kin.positions[j.name], n)]
 
     def forces(
         self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from mech.cam.program import program_schema
 from mech.fields import NUMBER, PROFILES, Fields, Reader
-from mech.pairs.base import PairKind, contact_forces
+from mech.pairs.base import PairKind, contact_forces, push_row
 from mech.pairs.higher import read_contact, see_contact
 from mech.specs import ContactSpec
 
@@ -107,6 +107,26 @@ class Cam(PairKind):
             return list(program_profiles(mech, j).items())
         except MechError:
             return []
+
+    def pushes(self, j: Joint) -> str | None:
+        return "stacked" if _programme(j) else None
+
+    def push(self, j: Joint, sys_: Any, q: Any) -> tuple[Any, Any] | None:
+        """A programme's contact and common normal at ``q``, as its rows locate them."""
+        if not _programme(j):
+            return None
+        return sys_.contact_points[j.name](q), sys_.normals[j.name](q)
+
+    def reaction_rows(self, j: Joint, view: Any) -> list[list[float]] | None:
+        """A programme's row moves the follower by its law along its slide (or about its pivot), but
+        the cam pushes it along the common normal at the contact: that push's row carries the force
+        (:func:`~mech.pairs.base.push_row`), so that the follower's guide takes the side thrust.
+        Profiles and an instant's normal already write the contact's own row."""
+        geom = view.kin.joints.get(j.name) if _programme(j) else None
+        if geom is None or geom.at is None or geom.direction is None:
+            return None
+        tangent = geom.direction
+        return [push_row(view, j, geom.at, (tangent[1], -tangent[0]))]
 
     def forces(
         self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
