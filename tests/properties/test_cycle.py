@@ -432,3 +432,39 @@ def test_a_stroke_names_the_link_that_moves_the_slider_s_block_beside_its_joint(
         "O1": ("lever", "lever"),
         "stroke": ("stroke", "ram"),  # the ram on the frame's guide
     }
+
+
+# /tmp/audit2/findings/F2_triple_rocker_swing.yaml: a non-Grashof crank that cannot turn fully
+TRIPLE_ROCKER = """
+name: non-Grashof four-bar at its toggle
+units: {length: mm, angle: deg}
+links: [frame, crank, coupler, rocker]
+joints:
+  A: {type: revolute, links: [frame, crank], at: [0, 0]}
+  B: {type: revolute, links: [crank, coupler]}
+  C: {type: revolute, links: [coupler, rocker], near: [60, 40]}
+  D: {type: revolute, links: [rocker, frame], at: [40, 0]}
+lengths: {AB: 60, BC: 45, CD: 70}
+drive: {link: crank, angle: 90, rpm: 60}
+"""
+
+
+def test_triple_rocker_swing_is_over_both_branches_joined_at_the_input_toggles():
+    # AD = 40, AB = 60, BC = 45, CD = 70: s + l = 110 > p + q = 105, no link turns fully.  The
+    # crank stops at its toggles (B, C, D in line, BD = CD − BC = 25: cos θ = (60² + 40² − 25²)/
+    # (2·60·40), θ = ±17.61°) and goes back on the other closure of C: one circuit of two branches.
+    # The rocker's limits are where crank and coupler lie in line, AC = AB + BC = 105; in triangle
+    # ACD cos ∠ADC = (AD² + CD² − AC²)/(2·AD·CD) = (1600 + 4900 − 11025)/5600, so ψ = 180° ∓ ∠ADC
+    # (36.0955° and 323.9045°), at crank ±∠CAD, cos ∠CAD = (AC² + AD² − CD²)/(2·AC·AD) = 7725/8400.
+    # The crank's toggle (342.39°, rocker 313.43°) is the input's limit, not the rocker's.
+    adc = math.acos((40**2 + 70**2 - 105**2) / (2 * 40 * 70))
+    cad = math.acos((105**2 + 40**2 - 70**2) / (2 * 105 * 40))
+    result = cycle(loads(TRIPLE_ROCKER))
+    stroke = result.strokes["D"]
+    assert stroke.low == pytest.approx(math.pi - adc, abs=1e-9)
+    assert stroke.high == pytest.approx(math.pi + adc, abs=1e-9)
+    assert stroke.value == pytest.approx(2 * adc, abs=1e-9)  # 287.81°
+    assert (stroke.low_angle, stroke.high_angle) == pytest.approx((cad, 2 * math.pi - cad), abs=1e-7)
+    limits = sorted((lp.crank_angle, lp.value) for lp in result.limits if lp.output == "rocker")
+    expected = [(cad, math.pi - adc), (2 * math.pi - cad, math.pi + adc)]
+    assert [x for lp in limits for x in lp] == pytest.approx([x for lp in expected for x in lp], abs=1e-7)

@@ -37,6 +37,7 @@ if TYPE_CHECKING:  # pragma: no cover
     import numpy as np
 
     from mech.kinematics import Kinematics, Sweep
+    from mech.kinematics.sweep_result import Extreme
 
 __all__ = [
     "Cycle",
@@ -258,6 +259,12 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
     quantities = ([trans.quantity] if trans else []) + slides_and_links
     sw = _cycle_sweep(mech, base, options, steps, quantities, slides_and_links)
     ext = {e.quantity: e for e in sw.extremes}
+    other = _other_branch(mech, base, sw, options, quantities)
+    if other is not None:
+        joined = _whole_circuit(sw, other, ext)
+        # an output that comes round a whole turn over the joined circuit (a crank driven by its
+        # rocker) keeps the drawn branch's reading, as before: only swings are joined
+        ext, other = (joined, other) if joined is not None else (ext, None)
     mu = ext.get(trans.quantity) if trans else None  # 0 or 180° where coupler and output fold in line
     mu_min = (mu.min_value, mu.min_angle) if mu else None
     mu_max = (mu.max_value, mu.max_angle) if mu else None
@@ -292,6 +299,8 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
             link,
         )
     limits = _limits(sw)
+    if other is not None:  # the other branch's dead centres are the output's limits too
+        limits = tuple(sorted(limits + _limits(other), key=lambda lp: lp.crank_angle))
     return Cycle(
         sweep=sw,
         transmission=trans,
@@ -326,6 +335,115 @@ def _limits(sw: Sweep) -> tuple[LimitPosition, ...]:
         if d.reverses
     )
     return tuple(sorted(limits, key=lambda lp: lp.crank_angle))
+
+
+def _other_branch(
+    mech: Mechanism, base: Kinematics, sw: Sweep, options: SolveOptions, quantities: list[str]
+) -> Sweep | None:
+    """The drawn circuit's other assembly branch, swept over the same drive angles, or None.
+
+    A drive that cannot turn fully (a non-Grashof four-bar's input) stops at its toggles, where the
+    dyad folding flat has its two closures meet; the motion goes on through them on the dyad's
+    other closure, back over the same drive angles.  One circuit is then both branches, joined at
+    the two toggles, and an output's limits are over both: the extreme of one branch at a toggle is
+    the input's limit, not the output's (the output passes it moving).  Swept by the closed form,
+    from the drawing with that one dyad closed the other way (every other dyad keeping its side).
+
+    None when there is nothing to join (the drive turns fully), or when the sweep's two ends are
+    not toggles of one dyad of the closed form (several dyads, a Newton sweep): the circuit is
+    then not known to be these two branches.
+    """
+    import dataclasses
+
+    import numpy as np
+
+    from mech.errors import MechError
+    from mech.kinematics import solve, sweep
+    from mech.kinematics.compiled import compiled
+    from mech.kinematics.dyads import program
+
+    if len(sw.toggles) != 2 or not sw.gaps or not all(g.cannot_close for g in sw.gaps):
+        return None
+    whats = {t.subject for t in sw.toggles}
+    prog = program(compiled(mech, None))
+    if prog is None or len(whats) != 1:
+        return None
+    placed = [d[1] for d in prog.dyads if d[2] in whats]
+    if len(placed) != 1:
+        return None
+    try:
+        flipped = solve(
+            mech, "position", options.with_(omega=None, direction=None, alpha=None, flipped=(placed[0],))
+        )
+    except MechError:
+        return None
+    pos = flipped.positions
+    joints = tuple(
+        dataclasses.replace(j, place=dataclasses.replace(j.place, near=(pos[j.name][0], pos[j.name][1])))
+        if j.place.at is None and j.name in pos
+        else j
+        for j in mech.joints
+    )
+    try:
+        twin = sweep(
+            dataclasses.replace(mech, joints=joints),
+            sw.angles,
+            level="position",
+            options=options,
+            quantities=quantities or None,
+        )
+    except MechError:
+        return None
+    ends = sorted(t.angle for t in sw.toggles)
+    if len(twin.toggles) != 2 or not np.allclose(sorted(t.angle for t in twin.toggles), ends, atol=1e-9):
+        return None  # not the same stretch of the drive: not the circuit's other half
+    return twin
+
+
+def _whole_circuit(sw: Sweep, other: Sweep, ext: Mapping[str, Extreme]) -> dict[str, Extreme] | None:
+    """Each quantity's extremes over both branches of the circuit; None when a link's angle turns over it.
+
+    A link's angle is unwrapped along each sweep on its own; the other branch's is moved by whole
+    turns to meet this one's at the first toggle.  When it then misses by a whole turn at the
+    second, the link comes round a whole turn over the circuit.
+    """
+    import numpy as np
+
+    from mech.kinematics.sweep_result import Extreme
+
+    theirs = {e.quantity: e for e in other.extremes}
+    ok, ok2 = sw.assembled, other.assembled
+    both = ok & ok2
+    if not np.any(both):
+        return None
+    # the steps next to the two toggles, where the branches meet
+    ends = [int(np.argmin(np.where(both, np.abs(sw.angles - t.angle), np.inf))) for t in sw.toggles]
+    turn = 2.0 * math.pi
+    out: dict[str, Extreme] = {}
+    for q, e in ext.items():
+        f = theirs.get(q)
+        if f is None:
+            out[q] = e
+            continue
+        shift = 0.0
+        if q.startswith("angle."):
+            a, b = sw.series(q), other.series(q)
+            k = [round(float(a[i] - b[i]) / turn) for i in ends]
+            if k[0] != k[1]:
+                return None
+            shift = turn * k[0]
+        lo = (
+            (e.min_value, e.min_angle)
+            if e.min_value <= f.min_value + shift
+            else (f.min_value + shift, f.min_angle)
+        )
+        hi = (
+            (e.max_value, e.max_angle)
+            if e.max_value >= f.max_value + shift
+            else (f.max_value + shift, f.max_angle)
+        )
+        out[q] = Extreme(q, e.unit, hi[1], hi[0], lo[1], lo[0])
+    return out
 
 
 def _turns_on(sw: Sweep, subject: str) -> bool:
