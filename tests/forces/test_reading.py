@@ -65,6 +65,15 @@ def test_bad_dynamics_are_located_input_errors(extra, message, line):
     assert f"e.yaml:{line}:" in str(err.value)
 
 
+def test_a_bare_fluctuation_above_one_is_said_to_be_read_as_a_fraction():
+    # a bare number is a fraction (0.02 is 2 %): 2 is 200 %, meant as 2 % or 0.02
+    with pytest.raises(InputError) as err:
+        loads(BASE + "flywheel: {fluctuation: 2}\n", path="e.yaml")
+    text = str(err.value)
+    assert "e.yaml:12:25" in text
+    assert "2 is read as a fraction, 200 %" in text and "write 2 % or 0.02" in text
+
+
 def test_a_load_table_is_read_in_the_files_units_and_spans_its_cycle():
     m = loads(BASE + "loads: {B: {force: {table: [[0, 0, 0], [360, -1000, 0], [720, 0, 0]]}, on: piston}}\n")
     (load,) = m.loads

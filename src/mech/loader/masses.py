@@ -10,6 +10,7 @@ moments of inertia in kg·m² when bare, whatever the file's length unit; a
 
 from __future__ import annotations
 
+import math
 from functools import partial
 
 import yaml
@@ -101,6 +102,13 @@ def read_flywheel(r: NodeReader, node: yaml.Node) -> Flywheel:
             f"the coefficient of fluctuation must be a fraction or a percentage, not {raw!r}",
             "e.g. 2% or 0.02",
         ) from None
+    if not 0.0 < value < 1.0 and not raw.endswith("%") and value > 0.0 and math.isfinite(value):
+        raise r.problem(  # a bare number is a fraction: 2 is 200 %, not the 2 % meant
+            vnode,
+            f"the coefficient of fluctuation must lie between 0 and 100 %: {raw} is read as a fraction, "
+            f"{value * 100:g} %: write {raw} % or {value / 100:g}",
+            "it is (ω_max − ω_min)/ω_mean: ±1 % of speed is 2%",
+        )
     if not 0.0 < value < 1.0:
         raise r.problem(
             vnode,
