@@ -646,3 +646,36 @@ def test_a_point_placed_from_a_contact_is_refused_at_its_line_naming_what_to_use
         assert_bad_input(run, path)
         assert f"{path}:{line}:3: error: T is placed" in run.stderr
         assert hint in run.stderr
+
+
+GEAR_PAIR = """
+units: {{length: mm, angle: deg}}
+links: [frame, pinion, wheel]
+joints:
+  O1: {{type: revolute, links: [frame, pinion], at: [0, 0]}}
+  O2: {{type: revolute, links: [frame, wheel], at: [150, 0]}}
+  mesh: {{type: gear, links: [pinion, wheel], teeth: [20, 40], {fields}}}
+drive: {{link: pinion, rpm: 1200}}
+"""
+
+
+@pytest.mark.parametrize("angle", ["95", "90", "-5"])
+def test_a_gear_pressure_angle_outside_0_to_90_degrees_is_refused_where_written(angle):
+    # the tooth load along the normal has a torque arm r·cos φ: none at 90°, the wrong side past it
+    from mech.loader import loads
+
+    text = GEAR_PAIR.format(fields=f"module: 5, pressure_angle: {angle}")
+    with pytest.raises(InputError) as err:
+        loads(text, path="gears.yaml")
+    column = text.splitlines()[6].index("pressure_angle: ") + len("pressure_angle: ") + 1
+    assert f"gears.yaml:7:{column}" in str(err.value) and "90°" in str(err.value)
+    assert "20°" in (err.value.hint or "")
+
+
+def test_a_negative_gear_module_is_said_to_be_not_positive_not_missing():
+    from mech.loader import loads
+
+    with pytest.raises(InputError) as err:
+        loads(GEAR_PAIR.format(fields="module: -5, pressure_angle: 20"), path="gears.yaml")
+    assert "module must be greater than zero" in str(err.value)
+    assert "need a `module`" not in str(err.value)

@@ -60,7 +60,13 @@ def _read(r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> GearS
     )
     internal = bool(r.optional(fields, "internal", lambda n: r.boolean(n, "internal")))
     profiles = r.optional(fields, "profiles", lambda n: read_profiles(r, n, what, links)) or ()
-    if teeth is not None and module is None:
+    if pressure is not None and not 0.0 <= pressure < math.pi / 2:
+        r.problem(  # at 90° the tooth load along the normal carries no torque: nothing is determined
+            fields["pressure_angle"][1],
+            f"a pressure angle must lie from 0° up to, not including, 90°, not {math.degrees(pressure):g}°",
+            "typical values are 14.5°, 20° and 25°",
+        )
+    if teeth is not None and module is None and "module" not in fields:  # a bad module is said already
         r.problem(fields["teeth"][0], "gear teeth need a `module` to give the pitch radii")
     if radii is not None and teeth is not None:
         r.problem(fields["radii"][0], "give `radii` or `teeth` with `module`, not both")
