@@ -20,6 +20,7 @@ from hypothesis import strategies as st
 from mech.loader import load, loads
 from mech.properties.cycle import cycle, transmission_angle
 from mech.topology.grashof import FourBarLoop
+from mechanism_texts import EXAMPLES
 from oracles.transmission import crank_turns
 from oracles.transmission import diagonal_range as bd_range
 from oracles.transmission import transmission_angle as mu_closed
@@ -468,3 +469,44 @@ def test_triple_rocker_swing_is_over_both_branches_joined_at_the_input_toggles()
     limits = sorted((lp.crank_angle, lp.value) for lp in result.limits if lp.output == "rocker")
     expected = [(cad, math.pi - adc), (2 * math.pi - cad, math.pi + adc)]
     assert [x for lp in limits for x in lp] == pytest.approx([x for lp in expected for x in lp], abs=1e-7)
+
+
+def test_a_slider_whose_dyad_folds_at_the_inputs_toggles_travels_over_both_branches():
+    # Khurmi's six-link slider (mechanisms/khurmi_six_link_slider.yaml): the crank OA = 28 stops
+    # where the rod BD = 46 stands square to the guide y = −76 mm, and goes back with D on the
+    # rod's other closure: x_D = x_B ± √(46² − (y_B + 76)²), B from the four-bar O-A-B-C (AB = 44,
+    # BC = 49, C at (0, −65)).  The travel over the circuit is the greatest x_D of the drawn closure
+    # less the least of the other, each found here by a fine scan of θ refined by golden sections.
+    def b_of(theta: float, near: tuple[float, float]) -> tuple[float, float] | None:
+        a = (28 * math.cos(theta), 28 * math.sin(theta))
+        d = math.dist(a, (0, -65))
+        if not abs(44 - 49) <= d <= 44 + 49:
+            return None
+        along = (44**2 - 49**2 + d * d) / (2 * d)
+        h = math.sqrt(max(44**2 - along**2, 0.0))
+        ux, uy = (0 - a[0]) / d, (-65 - a[1]) / d
+        base = (a[0] + along * ux, a[1] + along * uy)
+        two = [(base[0] - h * uy, base[1] + h * ux), (base[0] + h * uy, base[1] - h * ux)]
+        return min(two, key=lambda p: math.dist(p, near))
+
+    def x_d(theta: float, sign: float) -> float | None:
+        b = b_of(theta, (45.6, -47.1))
+        if b is None or abs(b[1] + 76) > 46:
+            return None
+        return b[0] + sign * math.sqrt(46**2 - (b[1] + 76) ** 2)
+
+    def extreme(sign: float) -> float:
+        f = lambda t: -sign * (x_d(t, sign) or -sign * math.inf)  # noqa: E731  (least of −sign·x)
+        grid = [math.radians(k / 20) for k in range(360 * 20)]
+        t = min(grid, key=f)
+        lo, hi = t - math.radians(0.05), t + math.radians(0.05)
+        for _ in range(80):
+            m1, m2 = lo + (hi - lo) * 0.382, lo + (hi - lo) * 0.618
+            lo, hi = (lo, m2) if f(m1) < f(m2) else (m1, hi)
+        return x_d((lo + hi) / 2, sign)  # type: ignore[return-value]
+
+    travel = (extreme(+1) - extreme(-1)) / 1000
+    result = cycle(load(EXAMPLES / "khurmi_six_link_slider.yaml"))
+    assert result.strokes["guide"].value == pytest.approx(travel, rel=1e-9)
+    # the lever, which the rod's closure does not move, has its dead centre listed once
+    assert len([lp for lp in result.limits if lp.output == "lever"]) == 1

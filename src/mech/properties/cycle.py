@@ -300,7 +300,7 @@ def cycle(mech: Mechanism, *, options: SolveOptions | None = None, steps: int = 
         )
     limits = _limits(sw)
     if other is not None:  # the other branch's dead centres are the output's limits too
-        limits = tuple(sorted(limits + _limits(other), key=lambda lp: lp.crank_angle))
+        limits = _joined_limits(limits, _limits(other), base.size)
     return Cycle(
         sweep=sw,
         transmission=trans,
@@ -335,6 +335,24 @@ def _limits(sw: Sweep) -> tuple[LimitPosition, ...]:
         if d.reverses
     )
     return tuple(sorted(limits, key=lambda lp: lp.crank_angle))
+
+
+def _joined_limits(
+    ours: tuple[LimitPosition, ...], theirs: tuple[LimitPosition, ...], size: float
+) -> tuple[LimitPosition, ...]:
+    """Both branches' dead centres, each once: an output the flipped dyad does not move (a lever
+    placed before it) has the same dead centre on both, at the same drive angle and position."""
+
+    def same(a: LimitPosition, b: LimitPosition) -> bool:
+        scale = size if a.unit == "m" else 1.0
+        return (
+            a.output == b.output
+            and abs(math.remainder(a.crank_angle - b.crank_angle, 2 * math.pi)) <= 1e-9
+            and abs(a.value - b.value) <= 1e-9 * scale
+        )
+
+    more = tuple(lp for lp in theirs if not any(same(lp, o) for o in ours))
+    return tuple(sorted(ours + more, key=lambda lp: lp.crank_angle))
 
 
 def _other_branch(
