@@ -259,3 +259,30 @@ def test_a_load_at_a_cam_joint_acts_on_its_followers_own_point():
     assert not [n for n in fa.notes if "does not say which it acts on" in n]
     # on the follower, the load and the guide hold the cam's push: the contact carries the 100 N
     assert fa.pair("K").normal is not None and abs(fa.pair("K").normal) >= 100 * (1 - 1e-9)
+
+
+def test_an_epicyclic_train_shares_its_arms_torque_between_its_two_meshes():
+    # sun 20, planet 30, fixed ring 80 mm (no pressure angle), the sun and the arm on two pins at
+    # one axis, 10 N·m cw held on the arm.  The planet is pushed alike by sun and ring (moments about
+    # its centre: F_s r_p = F_r r_p), the arm's pin takes both: 2F (r_s + r_p) = 10 N·m, F = 100 N,
+    # the arm's pivot 200 N; the sun needs F r_s = 2 N·m, which is the power balance's
+    # T_s ω_s = T_a ω_a with ω_a/ω_s = r_s/(r_s + r_r) = 1/5
+    text = """\
+units: {length: mm, angle: deg}
+links: [frame, sun, arm, planet]
+joints:
+  O: {type: revolute, links: [frame, sun], at: [0, 0]}
+  O2: {type: revolute, links: [frame, arm], at: [0, 0]}
+  Q: {type: revolute, links: [arm, planet], at: [50, 0]}
+  m1: {type: gear, links: [sun, planet], radii: [20, 30]}
+  m2: {type: gear, links: [planet, frame], radii: [30, 80], internal: true}
+drive: {link: sun, rpm: 1000, direction: ccw}
+loads: {arm: {torque: -10}}
+"""
+    fa = analyse(loads(text, path="epicyclic.yaml"))
+    assert fa.pair("m1").magnitude == pytest.approx(100, rel=1e-9)
+    assert fa.pair("m2").magnitude == pytest.approx(100, rel=1e-9)
+    assert fa.pair("Q").magnitude == pytest.approx(200, rel=1e-9)
+    assert fa.pair("O2").magnitude == pytest.approx(200, rel=1e-9)
+    assert fa.pair("O").magnitude == pytest.approx(100, rel=1e-9)
+    assert fa.effort is not None and fa.effort.value == pytest.approx(2.0, rel=1e-9)

@@ -172,3 +172,30 @@ def test_a_flat_faced_programme_cams_centre_is_on_the_normal_at_the_contact_not_
     x = math.pi * 0.020 / (2 * math.radians(120)) * math.sin(math.pi * 45 / 120)
     assert abs(i23[0]) == pytest.approx(x, rel=1e-9)
     assert i23[1] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_an_epicyclic_trains_gear_centres_are_its_pitch_points_by_kennedy():
+    # sun 20, planet 30, ring 80 mm fixed (the frame, pinned to sun and arm at one axis): the ring
+    # mesh's normal meets the line of the arm's pins (I13, I34) at the pitch point (80, 0) mm, and
+    # the sun mesh's normal then meets the frame's line I12–I14 at (20, 0) mm
+    import json
+
+    from cli_runner import mech
+
+    text = """\
+units: {length: mm, angle: deg}
+links: [frame, sun, arm, planet]
+joints:
+  O: {type: revolute, links: [frame, sun], at: [0, 0]}
+  O2: {type: revolute, links: [frame, arm], at: [0, 0]}
+  Q: {type: revolute, links: [arm, planet], at: [50, 0]}
+  m1: {type: gear, links: [sun, planet], radii: [20, 30], pressure_angle: 20}
+  m2: {type: gear, links: [planet, frame], radii: [30, 80], internal: true, pressure_angle: 20}
+drive: {link: sun, rpm: 1000, direction: ccw}
+"""
+    run = mech("icentres", "-", "--json", input=text)
+    assert run.returncode == 0, run.stderr
+    found = {c["name"]: c for c in json.loads(run.stdout)["icentres"]}
+    for name, x in (("I14", 0.080), ("I24", 0.020)):
+        assert "Kennedy" in found[name]["method"], found[name]
+        assert found[name]["point"] == pytest.approx([x, 0.0], abs=1e-15)

@@ -309,6 +309,33 @@ def test_epicyclic_train_follows_willis():
     assert kin.links["planet"].omega - w_arm == pytest.approx(-(10.0 - w_arm) * rs / rp, rel=1e-12)
 
 
+def test_an_epicyclic_train_whose_sun_and_arm_turn_on_two_pins_at_one_axis_follows_willis_to_accelerations():
+    # the sun pinned to the frame at O, the arm at O2 on the same point: the sun's centre is fixed in
+    # the arm too, so both meshes roll relative to the arm (Willis): with the ring fixed,
+    # ω_a = ω_s r_s / (r_s + r_r) and (ω_p − ω_a) = −(ω_s − ω_a) r_s / r_p, the same for α; the
+    # planet's centre turns on a circle of r_s + r_p about O with the arm
+    rs, rp, rr = 0.02, 0.03, 0.08
+    m = build(
+        ["frame", "sun", "arm", "planet"],
+        {
+            "O": {"links": ["frame", "sun"], "at": (0, 0)},
+            "O2": {"links": ["frame", "arm"], "at": (0, 0)},
+            "Q": {"links": ["arm", "planet"], "at": (rs + rp, 0)},
+            "m1": {"type": "gear", "links": ["sun", "planet"], "radii": (rs, rp)},
+            "m2": {"type": "gear", "links": ["planet", "frame"], "radii": (rp, rr), "internal": True},
+        },
+        drive={"link": "sun", "omega": 10.0, "alpha": 4.0},
+    )
+    kin = solve(m, "acceleration")
+    w_a, a_a = 10.0 * rs / (rs + rr), 4.0 * rs / (rs + rr)
+    assert kin.links["arm"].omega == pytest.approx(w_a, rel=1e-12)
+    assert kin.links["arm"].alpha == pytest.approx(a_a, rel=1e-12)
+    assert kin.links["planet"].omega - w_a == pytest.approx(-(10.0 - w_a) * rs / rp, rel=1e-12)
+    assert kin.links["planet"].alpha - a_a == pytest.approx(-(4.0 - a_a) * rs / rp, rel=1e-12)
+    r = rs + rp  # Q at (r, 0): a = (−ω² r, α r)
+    assert kin.acceleration("Q") == pytest.approx((-(w_a**2) * r, a_a * r), rel=1e-12)
+
+
 def test_rolling_wheel_on_ground_driven_by_its_axle():
     R = 0.05
     m = build(
@@ -679,3 +706,30 @@ def test_a_negative_gear_module_is_said_to_be_not_positive_not_missing():
         loads(GEAR_PAIR.format(fields="module: -5, pressure_angle: 20"), path="gears.yaml")
     assert "module must be greater than zero" in str(err.value)
     assert "need a `module`" not in str(err.value)
+
+
+def test_gears_whose_centres_no_one_link_holds_are_refused_accelerations_saying_why():
+    # each gear turns on an arm of its own: the pitch circles are given, but no link holds both
+    # centres, so the pair is known only as it touches now (not for want of a profile)
+    text = """\
+units: {length: mm, angle: deg}
+links: [frame, a, b, g1, g2]
+joints:
+  P1: {type: revolute, links: [frame, a], at: [0, 0]}
+  P2: {type: revolute, links: [frame, b], at: [200, 0]}
+  Q1: {type: revolute, links: [a, g1], at: [70, 0]}
+  Q2: {type: revolute, links: [b, g2], at: [130, 0]}
+  m: {type: gear, links: [g1, g2], radii: [30, 30]}
+drive:
+  - {link: a, angle: 0, rpm: 10}
+  - {link: b, angle: 180, rpm: 10, direction: cw}
+  - {link: g1, angle: 0, rpm: 60, relative_to: a, about: Q1}
+"""
+    from mech.loader import loads
+
+    m = loads(text, path="apart.yaml")
+    solve(m, "velocity")  # the instant's rates are known
+    with pytest.raises(UnsupportedError) as err:
+        solve(m, "acceleration")
+    assert "no one link, an arm or the frame, holds both centres" in str(err.value)
+    assert "no profile is given" not in str(err.value)

@@ -27,7 +27,7 @@ from mech.kinematics.result import Mobility
 from mech.model import Mechanism
 from mech.pairs import kind_of
 
-__all__ = ["Compiled", "compiled", "instant_pairs", "mobility", "refuse_underdriven"]
+__all__ = ["Compiled", "compiled", "instant_pairs", "instant_why", "mobility", "refuse_underdriven"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -239,6 +239,21 @@ def _first_moving_link(mech: Mechanism) -> Where:
     """Where the file names its first moving link (the file itself when that is not known)."""
     moving = [lk for lk in mech.links if not lk.is_ground and lk.where is not None]
     return moving[0].where if moving else Where(mech.path)  # type: ignore[return-value]
+
+
+def instant_why(mech: Mechanism, names: Sequence[str]) -> str:
+    """Why the pairs ``names`` are known at the drawn instant only, for the refusals that say so.
+
+    A gear pair with its pitch circles given rolls relative to a link both its centres are fixed
+    in (:func:`mech.pairs.gearing.gear_row`); where there is none, the circles are known only as
+    they touch now, which is not for want of a profile.
+    """
+    joints = [mech.joint(n) for n in names]
+    if joints and all(j.radii or getattr(j.spec, "pitch_radii", None) for j in joints):
+        return (
+            "the pitch circles are given, but no one link, an arm or the frame, holds both centres of a pair"
+        )
+    return "no profile is given"
 
 
 def instant_pairs(names: Sequence[str]) -> str:

@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from mech.errors import GeometryError, UnsupportedError
-from mech.kinematics.compiled import Compiled, instant_pairs
+from mech.kinematics.compiled import Compiled, instant_pairs, instant_why
 from mech.kinematics.constraints import System
 from mech.kinematics.drives import angle_text
 from mech.kinematics.geometry import wrap_angle
@@ -43,7 +43,7 @@ def move_from_drawing(
     if sys_.velocity_only:
         raise UnsupportedError(
             f"cannot move {comp.mech.label} to another angle: {instant_pairs(sys_.velocity_only)} "
-            "only the instant drawn (no profile is given)",
+            f"only the instant drawn ({instant_why(comp.mech, sys_.velocity_only)})",
             hint="analyse the drawn angle, or draw the mechanism at the angle you need",
         )
     passed: list[float] = []

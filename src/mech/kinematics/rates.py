@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from mech.errors import GeometryError, UnsupportedError
-from mech.kinematics.compiled import Compiled
+from mech.kinematics.compiled import Compiled, instant_pairs, instant_why
 from mech.kinematics.drives import angle_text
 from mech.kinematics.linalg import (
     NEAR_SINGULAR,
@@ -54,9 +54,9 @@ def rates(
         if lvl >= 2:
             if sys_.velocity_only:
                 raise UnsupportedError(
-                    f"accelerations need the curvature of the profiles at "
-                    f"{', '.join(sys_.velocity_only)}: the file gives only the instant's contact "
-                    "point and normal (velocities are available)",
+                    f"accelerations need the curvature of the profiles at {', '.join(sys_.velocity_only)}, but "
+                    f"{instant_pairs(sys_.velocity_only)} only the instant drawn "
+                    f"({instant_why(comp.mech, sys_.velocity_only)}); velocities are available",
                     hint="ask for velocities (mech velocity; level='velocity' from Python)",
                 )
             qdd = lin(accel_rhs(comp, q, qd, drives, omega_ref))

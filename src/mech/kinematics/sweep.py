@@ -72,6 +72,7 @@ import numpy as np
 
 from mech._records import dataclass
 from mech.errors import InputError, UnsupportedError
+from mech.kinematics.compiled import instant_why
 from mech.kinematics.dyads import ACCURATE_COND, DyadProgram, program
 from mech.kinematics.march import MAX_SPAN, Marcher
 from mech.kinematics.quantities import (
@@ -283,7 +284,7 @@ def _assembled(mech: Mechanism, options: SolveOptions) -> tuple[Kinematics, Comp
     if comp.system.velocity_only:
         raise UnsupportedError(
             f"cannot sweep {mech.label}: {instant_pairs(comp.system.velocity_only)} only the instant drawn "
-            "(no profile is given)",
+            f"({instant_why(mech, comp.system.velocity_only)})",
         )
     return base, comp
 

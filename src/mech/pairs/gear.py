@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 from mech.errors import Problem
 from mech.fields import NUMBER, PROFILES, Fields, Reader, read_profiles, read_radii
 from mech.pairs.base import Carriers, PairKind, contact_forces, push_row
-from mech.pairs.gearing import gear_centre, gear_normal, gear_row, line_of_action
+from mech.pairs.gearing import gear_centres, gear_normal, gear_row, line_of_action
 from mech.pairs.higher import see_contact
 from mech.specs import GearSpec
 from mech.units import Dimension
@@ -130,9 +130,10 @@ class Gear(PairKind):
         if j.name in positions:
             return
         radii = getattr(j.spec, "pitch_radii", None)
-        c1, c2 = (gear_centre(view, lk, positions) for lk in j.links)
-        if radii is None or c1 is None or c2 is None:
+        centres = gear_centres(view, j, positions)
+        if radii is None or centres is None:
             return
+        c1, c2 = centres
         d = math.hypot(c2[0] - c1[0], c2[1] - c1[1]) or 1.0
         e = ((c2[0] - c1[0]) / d, (c2[1] - c1[1]) / d)
         if j.internal and radii[0] > radii[1]:  # the ring is the first gear: pitch point beyond the second
@@ -152,9 +153,10 @@ class Gear(PairKind):
         computed from it would be wrong.
         """
         radii = getattr(j.spec, "pitch_radii", None)
-        c1, c2 = (gear_centre(view, lk, positions) for lk in j.links)
-        if radii is None or c1 is None or c2 is None:
+        centres = gear_centres(view, j, positions)
+        if radii is None or centres is None:
             return None
+        c1, c2 = centres
         d = math.hypot(c2[0] - c1[0], c2[1] - c1[1])
         want = abs(radii[0] - radii[1]) if j.internal else radii[0] + radii[1]
         if abs(d - want) <= _AGREE * max(want, d):

@@ -18,7 +18,7 @@ if TYPE_CHECKING:
     from mech.pairs.base import Carriers
     from mech.pairs.rows import RowBuilder
 
-__all__ = ["carrier_of", "gear_centre", "gear_normal", "gear_row", "line_of_action"]
+__all__ = ["carrier_of", "gear_centre", "gear_centres", "gear_normal", "gear_row", "line_of_action"]
 
 Vec = tuple[float, float]
 
@@ -29,8 +29,40 @@ def gear_centre(view: Carriers, link: str, positions: Mapping[str, Vec]) -> Vec 
     return positions[pins[0]] if len(pins) == 1 else None
 
 
+def gear_centres(view: Carriers, j: Joint, positions: Mapping[str, Vec]) -> tuple[Vec, Vec] | None:
+    """Both gears' centres: each gear's only pin, or, for a gear pinned more than once (a fixed ring
+    that is the frame), its pin on the carrier both centres are fixed in (:func:`carrier_of`: the
+    arm of an epicyclic train); None when a centre is not known.  The one reading of a gear's centre
+    for its pitch point, its drawing's check, its line of action and its rows."""
+    g1, g2 = j.links
+    c1, c2 = carrier_of(view, g1, positions), carrier_of(view, g2, positions)
+    common = [c for c in c1 if c in c2 and c not in (g1, g2)]
+    out: list[Vec] = []
+    for link, fixed_in in ((g1, c1), (g2, c2)):
+        only = gear_centre(view, link, positions)
+        if only is None and not common:
+            return None
+        out.append(only if only is not None else positions[fixed_in[common[0]]])
+    return out[0], out[1]
+
+
+class _Pins:
+    """Who carries each pin, read off the file (where no layout is at hand: a solved instant)."""
+
+    def __init__(self, mech: Mechanism) -> None:
+        self.carriers = {k.name: tuple(k.links) for k in mech.joints if kind_of(k).role == "pin"}
+        self.on_link = {
+            lk.name: tuple(n for n, links in self.carriers.items() if lk.name in links) for lk in mech.links
+        }
+
+
 def carrier_of(view: Carriers, link: str, positions: Mapping[str, Vec]) -> dict[str, str]:
-    """Pins of ``link`` with the other link each joins it to: ``{other_link: joint}``."""
+    """The links ``link``'s centre is fixed in, each with the pin at that centre: ``{other_link: joint}``.
+
+    The links it is pinned to, and the links pinned on one of those at the same point (coaxial: an
+    epicyclic train's sun pinned to the frame where its arm turns, the sun's centre fixed in the
+    arm too), so that a gear pair finds the carrier both its centres are fixed in.
+    """
     out: dict[str, str] = {}
     for name in view.on_link.get(link, ()):
         carriers = view.carriers.get(name, ())
@@ -38,7 +70,20 @@ def carrier_of(view: Carriers, link: str, positions: Mapping[str, Vec]) -> dict[
             for c in carriers:
                 if c != link:
                     out.setdefault(c, name)
+    for other, pin in list(out.items()):
+        here = positions[pin]
+        for name in view.on_link.get(other, ()):
+            if name == pin or name not in positions or not _same_point(positions[name], here):
+                continue
+            for c in view.carriers.get(name, ()):
+                if c not in (link, other):
+                    out.setdefault(c, pin)
     return out
+
+
+def _same_point(a: Vec, b: Vec) -> bool:
+    """Two drawn pins at one point (to rounding of their coordinates)."""
+    return math.dist(a, b) <= 1e-12 * max(1.0, abs(a[0]), abs(a[1]), abs(b[0]), abs(b[1]))
 
 
 def gear_row(b: RowBuilder, j: Joint) -> tuple[dict[int, float], float] | None:
@@ -83,10 +128,8 @@ def gear_row(b: RowBuilder, j: Joint) -> tuple[dict[int, float], float] | None:
 
 def gear_normal(view: Carriers, j: Joint, positions: Mapping[str, Vec]) -> float | None:
     """Line of action of a gear pair: the common tangent turned by the pressure angle."""
-    centres = [gear_centre(view, lk, positions) for lk in j.links]
-    if centres[0] is None or centres[1] is None:
-        return None
-    return _action_angle(j, centres[0], centres[1])
+    centres = gear_centres(view, j, positions)
+    return None if centres is None else _action_angle(j, *centres)
 
 
 def _action_angle(j: Joint, c1: Vec, c2: Vec) -> float:
@@ -97,15 +140,12 @@ def _action_angle(j: Joint, c1: Vec, c2: Vec) -> float:
 def line_of_action(mech: Mechanism, j: Joint, positions: Mapping[str, Vec]) -> Vec | None:
     """A gear pair's common normal: the common tangent of the pitch circles turned by the pressure angle.
 
-    Each gear's centre is its only pin; without both centres there is no line
-    of action to draw (the pitch point is then taken as a rolling contact).
+    Each gear's centre as :func:`gear_centres` reads it; without both there is no line of
+    action to draw (the pitch point is then taken as a rolling contact).
     """
-    centres = []
-    for lk in j.links:
-        pins = [k.name for k in mech.joints_of(lk) if kind_of(k).role == "pin" and k.name in positions]
-        if len(pins) != 1:
-            return None
-        centres.append(positions[pins[0]])
+    centres = gear_centres(_Pins(mech), j, positions)
+    if centres is None:
+        return None
     if centres[0] == centres[1]:
         return None
     a = _action_angle(j, centres[0], centres[1])
