@@ -314,9 +314,10 @@ def _tables(data: dict[str, Any], console: ReportConsole, units: OutputUnits) ->
         unit = "N·m" if e["kind"] == "torque" else "N"
         sense = f" {e['sense']}" if e["sense"] else ""
         what = "input torque on" if e["kind"] == "torque" else "input force along"
+        signs = "ccw +" if e["kind"] == "torque" else "+ along the path"
         console.print(
             f"{what} {e['driver']}: {_g(abs(e['value']) if e['sense'] else e['value'])} {unit}{sense} "
-            f"= loads {_g(e['loads'])} + inertia {_g(e['inertia'])} + gravity {_g(e['gravity'])} (signed, ccw +)",
+            f"= loads {_g(e['loads'])} + inertia {_g(e['inertia'])} + gravity {_g(e['gravity'])} (signed, {signs})",
             soft_wrap=True,
         )
     if data["inertia"]:
