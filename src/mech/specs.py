@@ -200,9 +200,9 @@ class GearSpec:
 
     @property
     def pitch_radii(self) -> Vec | None:
-        """``radii``, or ``teeth × module / 2``; None when the file gives neither."""
+        """``radii``, or ``teeth × module / 2``; None when the file gives neither, or a rack's (a null radius)."""
         if self.radii is not None:
-            return self.radii
+            return None if None in self.radii else self.radii
         if self.teeth is not None and self.module is not None:
             return (self.teeth[0] * self.module / 2.0, self.teeth[1] * self.module / 2.0)
         return None

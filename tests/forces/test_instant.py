@@ -286,3 +286,38 @@ loads: {arm: {torque: -10}}
     assert fa.pair("O2").magnitude == pytest.approx(200, rel=1e-9)
     assert fa.pair("O").magnitude == pytest.approx(100, rel=1e-9)
     assert fa.effort is not None and fa.effort.value == pytest.approx(2.0, rel=1e-9)
+
+
+RACK = """\
+units: {{length: mm, angle: deg}}
+links: [frame, pinion, rack]
+joints:
+  O: {{type: revolute, links: [frame, pinion], at: [0, 0]}}
+  S: {{type: prismatic, links: [rack, frame], path: {{through: [0, -50], angle: 0}}, point: R}}
+  mesh: {{type: gear, links: [pinion, rack], pressure_angle: 20, {pitch}}}
+points:
+  R: {{link: rack, at: [0, -50]}}
+loads:
+  R: {{force: [-1000, 0]}}
+drive: {{link: pinion, rpm: 60, direction: ccw}}
+"""
+
+
+@pytest.mark.parametrize(
+    "pitch",
+    [
+        "radii: [50, null]",  # the shorthand: a pitch circle on a pitch line
+        "profiles: {pinion: {circle: {centre: O, radius: 50}}, rack: {line: {through: R, angle: 0}}}",
+    ],
+)
+def test_a_rack_and_pinion_push_along_the_line_of_action(pitch):
+    # 1000 N held on the rack along its pitch line, pinion of pitch radius 50 mm, φ = 20°: the
+    # teeth push along the line of action with 1000 / cos φ, the rack's guide takes 1000 tan φ
+    # (the radial part), the pinion's bearing the whole tooth load, and T = 1000 N × 0.05 m
+    fa = analyse(loads(RACK.format(pitch=pitch), path="rack.yaml"))
+    phi = math.radians(20)
+    assert fa.pair("mesh").magnitude == pytest.approx(1000 / math.cos(phi), rel=1e-9)
+    assert fa.pair("mesh").normal == pytest.approx(1000 / math.cos(phi), rel=1e-9)
+    assert fa.pair("S").magnitude == pytest.approx(1000 * math.tan(phi), rel=1e-9)
+    assert fa.pair("O").magnitude == pytest.approx(1000 / math.cos(phi), rel=1e-9)
+    assert fa.effort is not None and fa.effort.value == pytest.approx(50.0, rel=1e-9)

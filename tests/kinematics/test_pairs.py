@@ -733,3 +733,29 @@ drive:
         solve(m, "acceleration")
     assert "no one link, an arm or the frame, holds both centres" in str(err.value)
     assert "no profile is given" not in str(err.value)
+
+
+def test_a_gear_with_a_null_radius_is_a_rack_that_moves_with_its_pinion():
+    # radii: [50, null] (DESIGN § 1.1, as for rolling): the pinion's pitch circle rolls on the rack's
+    # pitch line under it, so the rack slides r ω per unit time and r θ over a turn θ
+    from mech.kinematics import sweep
+    from mech.loader import loads
+
+    text = """\
+units: {length: mm, angle: deg}
+links: [frame, pinion, rack]
+joints:
+  O: {type: revolute, links: [frame, pinion], at: [0, 0]}
+  S: {type: prismatic, links: [rack, frame], path: {through: [0, -50], angle: 0}, point: R}
+  mesh: {type: gear, links: [pinion, rack], radii: [50, null], pressure_angle: 20}
+points:
+  R: {link: rack, at: [0, -50]}
+drive: {link: pinion, rpm: 60, direction: ccw}
+"""
+    m = loads(text, path="rack.yaml")
+    kin = solve(m, "acceleration", SolveOptions(alpha=3.0))
+    w = 2 * math.pi
+    assert kin.velocity("R") == pytest.approx((0.05 * w, 0.0), abs=1e-12)
+    assert kin.acceleration("R") == pytest.approx((0.05 * 3.0, 0.0), abs=1e-12)
+    sw = sweep(m, [0.0, math.pi / 2, math.pi], level="position", quantities=["displacement.S"])
+    assert sw.series("displacement.S") == pytest.approx([0.0, 0.05 * math.pi / 2, 0.05 * math.pi], abs=1e-12)

@@ -15,11 +15,11 @@ from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 from mech.errors import Problem
-from mech.fields import NUMBER, PROFILES, Fields, Reader, read_profiles, read_radii
+from mech.fields import NUMBER, PROFILES, RADII, Fields, Reader, read_profiles, read_radii
 from mech.pairs.base import Carriers, PairKind, contact_forces, push_row
-from mech.pairs.gearing import gear_centres, gear_normal, gear_row, line_of_action
+from mech.pairs.gearing import gear_centres, gear_normal, gear_row, is_rack, line_of_action
 from mech.pairs.higher import see_contact
-from mech.specs import GearSpec
+from mech.specs import GearSpec, Line
 from mech.units import Dimension
 
 if TYPE_CHECKING:
@@ -53,7 +53,7 @@ def _read(r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> GearS
     pressure = r.optional(
         fields, "pressure_angle", lambda n: r.number(n, "the pressure angle", Dimension.ANGLE)
     )
-    radii = r.optional(fields, "radii", lambda n: read_radii(r, n, what, nulls=False))
+    radii = r.optional(fields, "radii", lambda n: read_radii(r, n, what, nulls=True))  # null: a rack
     teeth = r.optional(fields, "teeth", lambda n: _teeth(r, n))
     module = r.optional(
         fields, "module", lambda n: r.number(n, "the module", Dimension.LENGTH, positive=True)
@@ -89,7 +89,7 @@ class Gear(PairKind):
         {
             "normal": NUMBER,
             "pressure_angle": NUMBER,
-            "radii": {"type": "array", "items": NUMBER, "minItems": 2, "maxItems": 2},
+            "radii": RADII,
             "teeth": {
                 "type": "array",
                 "items": {"type": "integer", "minimum": 1},
@@ -120,8 +120,9 @@ class Gear(PairKind):
         return contact(view, j, self.drawn_profiles(view.mech, j, view.positions.get(j.name)), pitch=True)
 
     def contact_problem(self, j: Joint) -> Problem | None:
-        """Pitch radii (or teeth and module) put the pitch point between the centres: no ``at`` needed."""
-        if getattr(j.spec, "pitch_radii", None) is not None:
+        """Pitch radii (or teeth and module) put the pitch point between the centres, and a rack's
+        (``radii: [r, null]``) under its pinion: no ``at`` needed."""
+        if getattr(j.spec, "pitch_radii", None) is not None or j.radii is not None:
             return None
         return super().contact_problem(j)
 
@@ -181,8 +182,10 @@ class Gear(PairKind):
         if j.name not in kin.positions or not any(r == j.name for r in view.sys.row_names):
             return None
         n = line_of_action(view.mech, j, kin.positions)
-        if n is None or j.name in view.sys.path_dirs or j.name in view.sys.normals:
+        if n is None or j.name in view.sys.path_dirs:
             return None
+        if j.name in view.sys.normals and not is_rack(view.mech, j):
+            return None  # pitch curves that roll: their own rows push along the contact's normal
         return [push_row(view, j, kin.positions[j.name], n)]
 
     def forces(
@@ -193,7 +196,9 @@ class Gear(PairKind):
         from dataclasses import replace
 
         out = contact_forces(j, wrenches, at, direction)
-        return [replace(f, normal=f.magnitude) if f.normal is None else f for f in out]
+        # a rack's pitch line is its profiles' tangent, but its teeth push along the line of action
+        rack = (j.radii is not None and None in j.radii) or any(isinstance(pr, Line) for _, pr in j.profiles)
+        return [replace(f, normal=f.magnitude) if f.normal is None or rack else f for f in out]
 
     def rows(self, b: RowBuilder, j: Joint) -> None:
         """Pitch circles on one carrier roll (holonomic); pitch curves given roll; else the instant."""
@@ -204,7 +209,10 @@ class Gear(PairKind):
         if holo is not None:
             b.angle.append(Angle(holo[0], holo[1], j.name))
             return
-        if j.profiles and moving_contact(b, j, rolls=True, held=True):  # a rack and pinion
-            return
+        rack = j.radii is not None and None in j.radii  # radii: [r, null], a pitch circle on a pitch line
+        if (j.profiles or rack) and moving_contact(
+            b, j, rolls=True, held=True, radii=j.radii if rack else None
+        ):
+            return  # a rack and pinion, or pitch curves that roll
         normal = j.normal if j.normal is not None else gear_normal(b, j, b.pos)
         instant_normal(b, j, normal)

@@ -18,7 +18,15 @@ if TYPE_CHECKING:
     from mech.pairs.base import Carriers
     from mech.pairs.rows import RowBuilder
 
-__all__ = ["carrier_of", "gear_centre", "gear_centres", "gear_normal", "gear_row", "line_of_action"]
+__all__ = [
+    "carrier_of",
+    "gear_centre",
+    "gear_centres",
+    "gear_normal",
+    "gear_row",
+    "is_rack",
+    "line_of_action",
+]
 
 Vec = tuple[float, float]
 
@@ -44,6 +52,24 @@ def gear_centres(view: Carriers, j: Joint, positions: Mapping[str, Vec]) -> tupl
             return None
         out.append(only if only is not None else positions[fixed_in[common[0]]])
     return out[0], out[1]
+
+
+def is_rack(mech: Mechanism, j: Joint) -> bool:
+    """A rack and pinion: one of the pair's links turns on no pin (it slides)."""
+    pins = _Pins(mech)
+    return [bool(pins.on_link.get(lk)) for lk in j.links].count(False) == 1
+
+
+def _rack(view: Carriers, j: Joint, positions: Mapping[str, Vec]) -> tuple[Vec, Vec] | None:
+    """A rack and pinion's "centres": the pinion's, and the pitch point for the rack's (the line of
+    centres is then the perpendicular from the pinion's centre to the pitch line)."""
+    if j.name not in positions:
+        return None
+    c = [gear_centre(view, lk, positions) if view.on_link.get(lk) else None for lk in j.links]
+    if c.count(None) != 1:
+        return None
+    p = positions[j.name]
+    return (c[0], p) if c[0] is not None else (p, c[1])  # type: ignore[return-value]
 
 
 class _Pins:
@@ -143,7 +169,8 @@ def line_of_action(mech: Mechanism, j: Joint, positions: Mapping[str, Vec]) -> V
     Each gear's centre as :func:`gear_centres` reads it; without both there is no line of
     action to draw (the pitch point is then taken as a rolling contact).
     """
-    centres = gear_centres(_Pins(mech), j, positions)
+    pins = _Pins(mech)
+    centres = gear_centres(pins, j, positions) or _rack(pins, j, positions)
     if centres is None:
         return None
     if centres[0] == centres[1]:
