@@ -321,3 +321,30 @@ def test_a_rack_and_pinion_push_along_the_line_of_action(pitch):
     assert fa.pair("S").magnitude == pytest.approx(1000 * math.tan(phi), rel=1e-9)
     assert fa.pair("O").magnitude == pytest.approx(1000 / math.cos(phi), rel=1e-9)
     assert fa.effort is not None and fa.effort.value == pytest.approx(50.0, rel=1e-9)
+
+
+@pytest.mark.parametrize("torque", [10.0, -10.0])
+def test_gear_teeth_push_apart_whichever_way_the_load_turns(torque):
+    # gear_pair.yaml: wheel of pitch radius 100 mm at +x of the pinion, φ = 20°.  The tooth load on
+    # the wheel has a tangential part |T|/r = 100 N, its sign the load's, and a radial part
+    # 100 tan φ = 36.40 N that always pushes the wheel away from the pinion (+x): teeth only push,
+    # so a reversed load meets the other flanks and the mirror line of action
+    from tests.mechanism_texts import EXAMPLES
+
+    text = (EXAMPLES / "gear_pair.yaml").read_text().split("\nanswers:")[0]
+    fa = analyse(loads(text + f"\nloads: {{wheel: {{torque: {torque}}}}}\n", path="gears.yaml"))
+    fx, fy = fa.pair("mesh").force
+    assert fx == pytest.approx(100 * math.tan(math.radians(20)), rel=1e-9)
+    assert abs(fy) == pytest.approx(100, rel=1e-9)
+    assert fa.pair("O2").force == pytest.approx((-fx, -fy), rel=1e-9)
+
+
+@pytest.mark.parametrize("load", [-1000, 1000])
+def test_a_racks_teeth_push_it_away_from_its_pinion_whichever_way_it_is_loaded(load):
+    # the rack under its pinion: the radial part of the tooth load, 1000 tan 20° = 363.97 N, pushes
+    # it down (−y) whether the load along the pitch line is +x or −x
+    text = RACK.format(pitch="radii: [50, null]").replace("force: [-1000, 0]", f"force: [{load}, 0]")
+    fa = analyse(loads(text, path="rack.yaml"))
+    fx, fy = fa.pair("mesh").force
+    assert fy == pytest.approx(-1000 * math.tan(math.radians(20)), rel=1e-9)
+    assert fx == pytest.approx(-load, rel=1e-9)

@@ -81,13 +81,25 @@ def at_instant(mech: Mechanism, kin: Any, comp: Any, *, static: bool = False) ->
     """
     sys_ = comp.system
     about = drive_pivot(mech, kin)
+    motion = motion_of(kin, sys_, static=static)
+    flanks: dict[str, float] = {}
     solved = solve(
         mech,
         sys_,
-        motion_of(kin, sys_, static=static),
+        motion,
         about=np.array([about]),
-        rows=lambda jac: _reaction_rows(mech, kin, sys_, jac),
+        rows=lambda jac: _reaction_rows(mech, kin, sys_, jac, flanks),
     )
+    if bool(solved.determinate[0]):  # teeth only push: a tooth load that pulls is on the other flanks
+        flanks = _other_flanks(mech, kin, sys_, solved)
+        if flanks:
+            solved = solve(
+                mech,
+                sys_,
+                motion,
+                about=np.array([about]),
+                rows=lambda jac: _reaction_rows(mech, kin, sys_, jac, flanks),
+            )
     determinate = bool(solved.determinate[0])
     pairs: tuple[PairForce, ...] = ()
     note = ""
@@ -146,11 +158,13 @@ def _rate(kin: Any) -> float:
     return float(kin.sliding(d.joint))
 
 
-def _reaction_rows(mech: Mechanism, kin: Any, sys_: Any, jac: np.ndarray) -> np.ndarray:
+def _reaction_rows(
+    mech: Mechanism, kin: Any, sys_: Any, jac: np.ndarray, flanks: dict[str, float]
+) -> np.ndarray:
     """The Jacobian with the rows of a pair that carries its force otherwise (a gear on fixed
-    centres) replaced by its kind's."""
+    centres) replaced by its kind's (on the mirror line of action where ``flanks`` says −1)."""
     names = np.array(sys_.row_names)
-    view = _View(mech, kin, sys_)
+    view = _View(mech, kin, sys_, flanks)
     for j in mech.joints:
         rows = kind_of(j).reaction_rows(j, view)
         if rows is None:
@@ -163,8 +177,8 @@ def _reaction_rows(mech: Mechanism, kin: Any, sys_: Any, jac: np.ndarray) -> np.
 class _View:
     """What a kind's :meth:`~mech.pairs.base.PairKind.reaction_rows` reads: the solved instant in SI."""
 
-    def __init__(self, mech: Mechanism, kin: Any, sys_: Any) -> None:
-        self.mech, self.kin, self.sys = mech, kin, sys_
+    def __init__(self, mech: Mechanism, kin: Any, sys_: Any, flanks: dict[str, float]) -> None:
+        self.mech, self.kin, self.sys, self.flanks = mech, kin, sys_, flanks
 
     def column(self, link: str) -> int:
         """The first of the link's three columns (ground's are last)."""
@@ -176,6 +190,20 @@ class _View:
 
     def origin(self, link: str) -> Vec:
         return tuple(self.kin.links[link].origin)  # type: ignore[return-value]
+
+
+def _other_flanks(mech: Mechanism, kin: Any, sys_: Any, solved: Solved) -> dict[str, float]:
+    """The pairs whose solved force pulls where they can only push (gear teeth), each to be solved
+    again on its mirror line of action (:meth:`~mech.pairs.base.PairKind.other_flank`)."""
+    out: dict[str, float] = {}
+    for j in mech.joints:
+        second = j.links[-1]
+        on_links = reactions(solved, sys_, j.name, j.links) if kind_of(j).pushes(j) else {}
+        if second in on_links:
+            fx, fy = (float(v) for v in on_links[second][0][:2])
+            if kind_of(j).other_flank(j, mech, kin.positions, (fx, fy)):
+                out[j.name] = -1.0
+    return out
 
 
 def _pair_forces(mech: Mechanism, kin: Any, sys_: Any, solved: Solved) -> tuple[PairForce, ...]:

@@ -303,6 +303,12 @@ class PairKind:
         (scaled), when :meth:`pushes` says ``"stacked"``; :func:`push_row` makes its row."""
         return None
 
+    def other_flank(self, j: Joint, mech: Mechanism, positions: Mapping[str, Vec], force: Vec) -> bool:
+        """Whether the force ``force`` its :meth:`reaction_rows` carried on the second link pulls where
+        the pair can only push (gear teeth): the force is then solved again on the mirror line
+        (the view's ``flanks``, −1).  Never, by default."""
+        return False
+
     def reaction_rows(self, j: Joint, view: Any) -> Sequence[Sequence[float]] | None:
         """Rows that carry this pair's force where its kinematic rows only say how it moves (a gear
         pair on fixed centres keeps its speed ratio as an angle row, but pushes along its line of

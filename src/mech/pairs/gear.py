@@ -17,13 +17,13 @@ from typing import TYPE_CHECKING, Any
 from mech.errors import Problem
 from mech.fields import NUMBER, PROFILES, RADII, Fields, Reader, read_profiles, read_radii
 from mech.pairs.base import Carriers, PairKind, contact_forces, push_row
-from mech.pairs.gearing import gear_centres, gear_normal, gear_row, is_rack, line_of_action
+from mech.pairs.gearing import gear_centres, gear_normal, gear_row, is_rack, line_of_action, pulls
 from mech.pairs.higher import see_contact
 from mech.specs import GearSpec, Line
 from mech.units import Dimension
 
 if TYPE_CHECKING:
-    from mech.model import Joint
+    from mech.model import Joint, Mechanism
     from mech.pairs.base import InstantView, PairForce, Wrench
     from mech.pairs.glyph import GlyphView, Shape
     from mech.pairs.rows import RowBuilder
@@ -181,12 +181,16 @@ class Gear(PairKind):
         kin = view.kin
         if j.name not in kin.positions or not any(r == j.name for r in view.sys.row_names):
             return None
-        n = line_of_action(view.mech, j, kin.positions)
+        n = line_of_action(view.mech, j, kin.positions, view.flanks.get(j.name, 1.0))
         if n is None or j.name in view.sys.path_dirs:
             return None
         if j.name in view.sys.normals and not is_rack(view.mech, j):
             return None  # pitch curves that roll: their own rows push along the contact's normal
         return [push_row(view, j, kin.positions[j.name], n)]
+
+    def other_flank(self, j: Joint, mech: Mechanism, positions: Mapping[str, Vec], force: Vec) -> bool:
+        """Whether the tooth load ``force`` solved on the line of action pulls: the other flanks push."""
+        return pulls(mech, j, positions, force)
 
     def forces(
         self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None

@@ -158,12 +158,38 @@ def gear_normal(view: Carriers, j: Joint, positions: Mapping[str, Vec]) -> float
     return None if centres is None else _action_angle(j, *centres)
 
 
-def _action_angle(j: Joint, c1: Vec, c2: Vec) -> float:
-    """The line of action's direction (rad): the line of centres turned by a right angle less the pressure angle."""
-    return math.atan2(c2[1] - c1[1], c2[0] - c1[0]) + math.pi / 2.0 - (j.pressure_angle or 0.0)
+def _action_angle(j: Joint, c1: Vec, c2: Vec, flank: float = 1.0) -> float:
+    """The line of action's direction (rad): the line of centres turned by a right angle less the
+    pressure angle (``flank`` −1: more, the teeth's other flanks in contact)."""
+    return math.atan2(c2[1] - c1[1], c2[0] - c1[0]) + math.pi / 2.0 - flank * (j.pressure_angle or 0.0)
 
 
-def line_of_action(mech: Mechanism, j: Joint, positions: Mapping[str, Vec]) -> Vec | None:
+def pulls(mech: Mechanism, j: Joint, positions: Mapping[str, Vec], force: Vec) -> bool:
+    """Whether ``force`` on the pair's second gear at the pitch point would pull the teeth apart.
+
+    Teeth only push: on a gear with teeth outside (a pinion, a wheel) the tooth load's radial part
+    points from the pitch point toward its centre, on a ring (teeth inside) away from it, on a rack
+    into its body, away from the pinion.  A load the other way means the other flanks are in
+    contact, and the line of action is the mirror one (:func:`line_of_action`, ``flank`` −1).
+    """
+    pins = _Pins(mech)
+    centres = gear_centres(pins, j, positions) or _rack(pins, j, positions)
+    if centres is None or j.name not in positions or not j.pressure_angle:
+        return False
+    p = positions[j.name]
+    d = [math.dist(p, c) for c in centres]
+    ring = 1 if j.internal and d[1] > d[0] else 0 if j.internal else None
+    # judge on a gear with teeth outside: the first unless it is the ring (the force on it is −force)
+    k = 0 if ring != 0 else 1
+    if d[k] == 0.0:  # the rack's own "centre" is the pitch point: judge on the pinion
+        k = 1 - k
+    on = force if k == 1 else (-force[0], -force[1])
+    c = centres[k]
+    inward = (c[0] - p[0]) * on[0] + (c[1] - p[1]) * on[1]
+    return inward < 0.0
+
+
+def line_of_action(mech: Mechanism, j: Joint, positions: Mapping[str, Vec], flank: float = 1.0) -> Vec | None:
     """A gear pair's common normal: the common tangent of the pitch circles turned by the pressure angle.
 
     Each gear's centre as :func:`gear_centres` reads it; without both there is no line of
@@ -175,5 +201,5 @@ def line_of_action(mech: Mechanism, j: Joint, positions: Mapping[str, Vec]) -> V
         return None
     if centres[0] == centres[1]:
         return None
-    a = _action_angle(j, centres[0], centres[1])
+    a = _action_angle(j, centres[0], centres[1], flank)
     return (math.cos(a), math.sin(a))
