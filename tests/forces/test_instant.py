@@ -348,3 +348,29 @@ def test_a_racks_teeth_push_it_away_from_its_pinion_whichever_way_it_is_loaded(l
     fx, fy = fa.pair("mesh").force
     assert fy == pytest.approx(-1000 * math.tan(math.radians(20)), rel=1e-9)
     assert fx == pytest.approx(-load, rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("links", "radii"), [("[planet, frame]", "[30, 80]"), ("[frame, planet]", "[80, 30]")]
+)
+def test_a_load_at_a_fixed_rings_pitch_point_goes_straight_into_the_ring(links, radii):
+    # 100 N at the ring's pitch point acts on the planet (the moving link of the pair, whichever
+    # order the file gives), where the planet touches the fixed ring: the ring takes it all, and
+    # nothing else carries anything (the point is the planet's instant centre: no torque)
+    text = f"""\
+units: {{length: mm, angle: deg}}
+links: [frame, sun, arm, planet]
+joints:
+  O: {{type: revolute, links: [frame, sun], at: [0, 0]}}
+  O2: {{type: revolute, links: [frame, arm], at: [0, 0]}}
+  Q: {{type: revolute, links: [arm, planet], at: [50, 0]}}
+  m1: {{type: gear, links: [sun, planet], radii: [20, 30]}}
+  m2: {{type: gear, links: {links}, radii: {radii}, internal: true}}
+drive: {{link: sun, rpm: 1000, direction: ccw}}
+loads: {{m2: {{force: [0, 100]}}}}
+"""
+    fa = analyse(loads(text, path="epicyclic.yaml"))
+    assert fa.pair("m2").magnitude == pytest.approx(100, rel=1e-9)
+    for pin in ("O", "O2", "Q", "m1"):
+        assert fa.pair(pin).magnitude == pytest.approx(0.0, abs=1e-9)
+    assert fa.effort is not None and fa.effort.value == pytest.approx(0.0, abs=1e-9)

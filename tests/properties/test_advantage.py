@@ -317,3 +317,29 @@ drive: {link: pinion, rpm: 1200, direction: cw}
     ring = json.loads(result.output)["mechanical_advantage"]["ring"]
     assert ring["value"] == pytest.approx(1.0, rel=1e-12)
     assert ring["by_icentres"] is None and "0/0" in ring["construction"]
+
+
+@pytest.mark.parametrize(
+    ("links", "radii"), [("[planet, frame]", "[30, 80]"), ("[frame, planet]", "[80, 30]")]
+)
+def test_a_load_at_a_fixed_rings_pitch_point_does_no_work_by_either_route(links, radii):
+    # the planet's point at the ring's pitch point is its instant centre (it rolls on the fixed
+    # ring): a force there does no work, so no input torque holds it — by the velocity solution and
+    # by virtual work alike, which differentiates the planet's own point there, not the pitch point
+    # (that runs round the ring with the arm: 0.08 m × ω_arm/ω_sun = 0.016 m/rad, 1.6 N·m at 100 N)
+    text = f"""\
+units: {{length: mm, angle: deg}}
+links: [frame, sun, arm, planet]
+joints:
+  O: {{type: revolute, links: [frame, sun], at: [0, 0]}}
+  O2: {{type: revolute, links: [frame, arm], at: [0, 0]}}
+  Q: {{type: revolute, links: [arm, planet], at: [50, 0]}}
+  m1: {{type: gear, links: [sun, planet], radii: [20, 30]}}
+  m2: {{type: gear, links: {links}, radii: {radii}, internal: true}}
+drive: {{link: sun, rpm: 1000, direction: ccw}}
+loads: {{m2: {{force: [0, 100]}}}}
+"""
+    m = loads(text, path="epicyclic.yaml")
+    effort = input_effort(m, solve(m, "velocity"))
+    assert effort.value == pytest.approx(0.0, abs=1e-9)
+    assert effort.by_virtual_work == pytest.approx(0.0, abs=1e-9)

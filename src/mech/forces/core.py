@@ -32,13 +32,12 @@ import numpy as np
 
 from mech._records import dataclass
 from mech.model import Load, Mechanism
-from mech.pairs import kind_of
+from mech.pairs import kind_of, load_link
 
 __all__ = [
     "Motion",
     "Solved",
     "jacobian_si",
-    "load_link",
     "load_value",
     "locate",
     "multipliers",
@@ -186,7 +185,7 @@ def _loads(st: _Stack) -> np.ndarray:
 
 def unsaid_on(mech: Mechanism) -> dict[str, tuple[str, ...]]:
     """Forces at a pin of two or more moving links that do not say which they act on: pin → its
-    moving links (the first takes the load, :func:`_carrier`).
+    moving links (the first takes the load, :func:`mech.pairs.load_link`).
 
     DESIGN § 1.4: such a load says which link it acts on (``on: piston``).  Where it does not,
     the power balance (the input effort) is the same whichever link takes it, and so is every
@@ -195,7 +194,7 @@ def unsaid_on(mech: Mechanism) -> dict[str, tuple[str, ...]]:
     out: dict[str, tuple[str, ...]] = {}
     for load in mech.loads:
         joint = next((j for j in mech.joints if j.name == load.target), None)
-        if joint is None or not load.is_force or load.on is not None or kind_of(joint).higher:
+        if joint is None or not load.is_force or load.on is not None or kind_of(joint).role == "contact":
             continue  # a higher pair's name is its follower's own point: no choice to make
         moving = tuple(lk for lk in joint.links if lk != mech.ground)
         if len(moving) > 1:
@@ -217,29 +216,6 @@ def unsaid_notes(mech: Mechanism) -> tuple[str, ...]:
         f"{unsaid_text(pin, links)}; it is shown with the load on {links[0]}"
         for pin, links in unsaid_on(mech).items()
     )
-
-
-def load_link(mech: Mechanism, load: Load) -> str:
-    """The link a force acts on: its ``on``, else the one its point is fixed in.
-
-    A higher pair's name (a cam's, a contact's, a rolling or gear pair's) is its follower's own
-    point (DESIGN § 1.2), so a load there acts on the follower, as the power balance of ``mech
-    properties`` takes it; a pin of several moving links gives the first (its own force is then
-    not given: :func:`unsaid_on`).  One answer for the solve and the free bodies.
-    """
-    return load.on or _carrier(mech, load.target)
-
-
-def _carrier(mech: Mechanism, target: str) -> str:
-    for j in mech.joints:
-        if j.name == target:
-            if kind_of(j).higher:
-                return j.links[-1]
-            return next(lk for lk in j.links if lk != mech.ground)
-    for p in mech.points:
-        if p.name == target:
-            return p.link
-    raise KeyError(target)
 
 
 def _inertia(st: _Stack) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, ...]]:

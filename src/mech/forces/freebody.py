@@ -234,7 +234,8 @@ def _load_actions(
     """The loads, weight and input effort on ``link``."""
     import numpy as np
 
-    from mech.forces.core import load_link, load_value
+    from mech.forces.core import load_value
+    from mech.pairs import load_link
 
     out = []
     angle = np.array([fa.drive_angle or 0.0])

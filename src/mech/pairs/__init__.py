@@ -20,7 +20,7 @@ from mech.pairs.base import PairKind
 from mech.pairs.registry import KINDS, kind_of, register
 
 if TYPE_CHECKING:
-    from mech.model import Joint, Mechanism
+    from mech.model import Joint, Load, Mechanism
     from mech.specs import JointSpec
 
 __all__ = [
@@ -29,7 +29,9 @@ __all__ = [
     "closure_of",
     "higher_pairs",
     "kind_of",
+    "load_link",
     "located_on",
+    "point_link",
     "points_of",
     "register",
     "spec_of",
@@ -72,3 +74,37 @@ def higher_pairs(joints: Iterable[Joint]) -> tuple[tuple[str, tuple[str, ...]], 
     return tuple(
         (j.name, tuple(j.links)) for j in joints if j.type in KINDS and KINDS[j.type].role == "contact"
     )
+
+
+def load_link(mech: Mechanism, load: Load) -> str:
+    """The link a force acts on: its ``on``, else the one its point is fixed in (:func:`point_link`).
+
+    One answer for the force solve, its free bodies and the power balance of ``mech properties``.
+    """
+    if load.on is not None:
+        return load.on
+    link = point_link(mech, load.target)
+    if link is None:
+        raise KeyError(load.target)
+    return link
+
+
+def point_link(mech: Mechanism, name: str) -> str | None:
+    """The moving link the point ``name`` is taken on: a point's link, a joint's moving link.
+
+    A higher pair's name (a cam's, a contact's, a rolling or gear pair's: :func:`higher_pairs`) is
+    its follower's own point (DESIGN § 1.2): the pair's second link, or its moving one where the
+    second is the frame (a planet on its fixed ring).  A pin of several moving links gives the
+    first (a load there without ``on`` leaves the pin's own force undetermined).  None: a joint on
+    the frame alone.
+    """
+    for pt in mech.points:
+        if pt.name == name:
+            return pt.link
+    for j in mech.joints:
+        if j.name == name:
+            moving = [lk for lk in j.links if lk != mech.ground]
+            if not moving:
+                return None
+            return moving[-1] if KINDS[j.type].role == "contact" else moving[0]
+    raise KeyError(name)

@@ -46,7 +46,7 @@ from typing import Any
 from mech.errors import InputError, UnsupportedError
 from mech.model import Mechanism
 from mech.options import SolveOptions
-from mech.pairs import located_on, points_of
+from mech.pairs import higher_pairs, point_link, points_of
 
 __all__ = ["Advantage", "InputEffort", "input_effort", "mechanical_advantage"]
 
@@ -137,15 +137,11 @@ def _driver(mech: Mechanism, kin: Any) -> tuple[str, str, float]:
 
 
 def _carrier(mech: Mechanism, point: str) -> str:
-    """The link a point output moves with (a named point's link; a joint's first moving link)."""
-    for p in mech.points:
-        if p.name == point:
-            return p.link
-    joint = mech.joint(point)
-    moving = [lk for lk in located_on(joint) if lk != mech.ground]
-    if not moving:
+    """The link a point output moves with (:func:`mech.pairs.point_link`: a higher pair's follower)."""
+    link = point_link(mech, point)
+    if link is None:
         raise InputError(f"{point} is fixed to the ground: it has no mechanical advantage")
-    return moving[0]
+    return link
 
 
 def _output(mech: Mechanism, kin: Any, output: str) -> tuple[str, str]:
@@ -354,6 +350,8 @@ def _displacements(mech: Mechanism, kin: Any, options: SolveOptions) -> Any:
             da = plus.links[n].angle - minus.links[n].angle
             da = math.atan2(math.sin(da), math.cos(da))
             lks[n] = da / (2 * h)
+            o1, o0 = plus.links[n].origin, minus.links[n].origin
+            pts[f"#origin {n}"] = ((o1[0] - o0[0]) / (2 * h), (o1[1] - o0[1]) / (2 * h))
         return pts, lks
 
     # Richardson's table on h, h/2, h/4: the central difference's error series is in h², h⁴ …
@@ -367,7 +365,16 @@ def _displacements(mech: Mechanism, kin: Any, options: SolveOptions) -> Any:
         n: (extrapolate(p1[n][0], p2[n][0], p4[n][0]), extrapolate(p1[n][1], p2[n][1], p4[n][1])) for n in p4
     }
     lks = {n: extrapolate(l1[n], l2[n], l4[n]) for n in l4}
-    return pts, lks
+    # A contact's name (a pitch point, where profiles touch) is no point of a link: it runs along
+    # the profiles.  What a load there works through is its follower's own point at that place
+    # (DESIGN § 1.2, mech.pairs.load_link): the link's rigid motion, δr = δr_O + δφ × (r − r_O).
+    for name, _ in higher_pairs(mech.joints):
+        link = point_link(mech, name)
+        if name in pts and link is not None:
+            (ox, oy), (dx, dy), dphi = kin.links[link].origin, pts[f"#origin {link}"], lks[link]
+            px, py = kin.positions[name]
+            pts[name] = (dx - dphi * (py - oy), dy + dphi * (px - ox))
+    return {n: v for n, v in pts.items() if not n.startswith("#origin ")}, lks
 
 
 # -- public ---------------------------------------------------------------------------------------
