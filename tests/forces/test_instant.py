@@ -374,3 +374,56 @@ loads: {{m2: {{force: [0, 100]}}}}
     for pin in ("O", "O2", "Q", "m1"):
         assert fa.pair(pin).magnitude == pytest.approx(0.0, abs=1e-9)
     assert fa.effort is not None and fa.effort.value == pytest.approx(0.0, abs=1e-9)
+
+
+@pytest.mark.parametrize(("alpha", "side"), [(0.0, -1), (0.0, 1), (30.0, -1), (-50.0, 1)])
+def test_a_rack_given_by_radii_lies_along_its_slide_on_its_side_of_the_pinion(alpha, side):
+    # radii: [50, null] with no contact drawn: the pitch line runs along the rack's slide (at α),
+    # tangent to the pinion's pitch circle on the slide's side.  1000 N along the slide on the
+    # rack: tooth load 1000/cos 20°, radial part 1000 tan 20° pushing the rack away from the
+    # pinion (along side·n, n the slide's normal), torque 1000 N × 0.05 m, rack speed ω r = 0.1π
+    a = math.radians(alpha)
+    u, n = (math.cos(a), math.sin(a)), (-math.sin(a), math.cos(a))
+    c = (side * 50 * n[0], side * 50 * n[1])
+    text = f"""\
+units: {{length: mm, angle: deg}}
+links: [frame, pinion, rack]
+joints:
+  O: {{type: revolute, links: [frame, pinion], at: [0, 0]}}
+  S: {{type: prismatic, links: [rack, frame], path: {{through: [{c[0]!r}, {c[1]!r}], angle: {alpha!r}}}, point: R}}
+  mesh: {{type: gear, links: [pinion, rack], radii: [50, null], pressure_angle: 20}}
+points:
+  R: {{link: rack, at: [{c[0]!r}, {c[1]!r}]}}
+loads:
+  R: {{force: [{-1000 * u[0]!r}, {-1000 * u[1]!r}]}}
+drive: {{link: pinion, rpm: 60, direction: ccw}}
+"""
+    fa = analyse(loads(text, path="rack.yaml"))
+    phi = math.radians(20)
+    fx, fy = fa.pair("mesh").force
+    assert math.hypot(fx, fy) == pytest.approx(1000 / math.cos(phi), rel=1e-9)
+    assert side * (fx * n[0] + fy * n[1]) == pytest.approx(1000 * math.tan(phi), rel=1e-9)
+    assert fa.pair("S").magnitude == pytest.approx(1000 * math.tan(phi), rel=1e-9)
+    assert fa.effort is not None and abs(fa.effort.value) == pytest.approx(50.0, rel=1e-9)
+    assert abs(fa.kinematics.sliding("S")) == pytest.approx(0.05 * 2 * math.pi, rel=1e-9)
+
+
+def test_a_rack_with_a_pin_on_it_is_still_a_rack():
+    # the rack drives a rod by a pin T: T is no gear centre, the teeth still push along the line of
+    # action (radial part 1000 tan 20° = 363.97 N, down, away from the pinion above it); the rod
+    # (T (100, −50) → U (200, −80) mm) pulls the rack with (−1000, 300) N, the guide takes the rest
+    text = RACK.format(pitch="radii: [50, null]").replace(
+        "links: [frame, pinion, rack]", "links: [frame, pinion, rack, rod, block]"
+    )
+    text = text.replace(
+        "points:",
+        "  T: {type: revolute, links: [rack, rod], at: [100, -50]}\n"
+        "  U: {type: revolute, links: [rod, block], at: [200, -80]}\n"
+        "  P2: {type: prismatic, links: [block, frame], path: {through: [0, -80], angle: 0}}\npoints:",
+    ).replace("  R: {force: [-1000, 0]}", "  U: {force: [-1000, 0], on: block}")
+    fa = analyse(loads(text, path="rack.yaml"))
+    fx, fy = fa.pair("mesh").force
+    assert fx == pytest.approx(1000, rel=1e-9)
+    assert fy == pytest.approx(-1000 * math.tan(math.radians(20)), rel=1e-9)
+    # the rack: mesh (1000, −363.97) + rod (−1000, 300) + guide = 0; on the frame, the guide's opposite
+    assert fa.pair("S").force[1] == pytest.approx(300 - 1000 * math.tan(math.radians(20)), rel=1e-9)

@@ -17,9 +17,9 @@ from typing import TYPE_CHECKING, Any
 from mech.errors import Problem
 from mech.fields import NUMBER, PROFILES, RADII, Fields, Reader, read_profiles, read_radii
 from mech.pairs.base import Carriers, PairKind, contact_forces, push_row
-from mech.pairs.gearing import gear_centres, gear_normal, gear_row, is_rack, line_of_action, pulls
+from mech.pairs.gearing import gear_centres, gear_normal, gear_row, line_of_action, pulls, rack_link
 from mech.pairs.higher import see_contact
-from mech.specs import GearSpec, Line
+from mech.specs import GearSpec
 from mech.units import Dimension
 
 if TYPE_CHECKING:
@@ -184,7 +184,7 @@ class Gear(PairKind):
         n = line_of_action(view.mech, j, kin.positions, view.flanks.get(j.name, 1.0))
         if n is None or j.name in view.sys.path_dirs:
             return None
-        if j.name in view.sys.normals and not is_rack(view.mech, j):
+        if j.name in view.sys.normals and rack_link(j) is None:
             return None  # pitch curves that roll: their own rows push along the contact's normal
         return [push_row(view, j, kin.positions[j.name], n)]
 
@@ -201,7 +201,7 @@ class Gear(PairKind):
 
         out = contact_forces(j, wrenches, at, direction)
         # a rack's pitch line is its profiles' tangent, but its teeth push along the line of action
-        rack = (j.radii is not None and None in j.radii) or any(isinstance(pr, Line) for _, pr in j.profiles)
+        rack = rack_link(j) is not None
         return [replace(f, normal=f.magnitude) if f.normal is None or rack else f for f in out]
 
     def rows(self, b: RowBuilder, j: Joint) -> None:

@@ -24,8 +24,9 @@ __all__ = [
     "gear_centres",
     "gear_normal",
     "gear_row",
-    "is_rack",
     "line_of_action",
+    "pulls",
+    "rack_link",
 ]
 
 Vec = tuple[float, float]
@@ -41,7 +42,10 @@ def gear_centres(view: Carriers, j: Joint, positions: Mapping[str, Vec]) -> tupl
     """Both gears' centres: each gear's only pin, or, for a gear pinned more than once (a fixed ring
     that is the frame), its pin on the carrier both centres are fixed in (:func:`carrier_of`: the
     arm of an epicyclic train); None when a centre is not known.  The one reading of a gear's centre
-    for its pitch point, its drawing's check, its line of action and its rows."""
+    for its pitch point, its drawing's check, its line of action and its rows; a rack has none
+    (:func:`rack_link`: a pin on it, to a rod, is no centre)."""
+    if rack_link(j) is not None:
+        return None
     g1, g2 = j.links
     c1, c2 = carrier_of(view, g1, positions), carrier_of(view, g2, positions)
     common = [c for c in c1 if c in c2 and c not in (g1, g2)]
@@ -54,22 +58,33 @@ def gear_centres(view: Carriers, j: Joint, positions: Mapping[str, Vec]) -> tupl
     return out[0], out[1]
 
 
-def is_rack(mech: Mechanism, j: Joint) -> bool:
-    """A rack and pinion: one of the pair's links turns on no pin (it slides)."""
-    pins = _Pins(mech)
-    return [bool(pins.on_link.get(lk)) for lk in j.links].count(False) == 1
+def rack_link(j: Joint) -> str | None:
+    """The pair's rack: the link whose pitch curve is a straight line (``radii: [r, null]``, or a
+    ``line`` profile against the other's circle); None for two gears.  The one reading of a rack for
+    its rows, its line of action and its tooth load."""
+    from mech.specs import Circle, Line
+
+    if j.radii is not None and None in j.radii:
+        return j.links[j.radii.index(None)]
+    profiles = dict(j.profiles)
+    for link, other in (j.links, reversed(j.links)):
+        if isinstance(profiles.get(link), Line) and isinstance(profiles.get(other), Circle):
+            return link
+    return None
 
 
 def _rack(view: Carriers, j: Joint, positions: Mapping[str, Vec]) -> tuple[Vec, Vec] | None:
     """A rack and pinion's "centres": the pinion's, and the pitch point for the rack's (the line of
     centres is then the perpendicular from the pinion's centre to the pitch line)."""
-    if j.name not in positions:
+    rack = rack_link(j)
+    if rack is None or j.name not in positions:
         return None
-    c = [gear_centre(view, lk, positions) if view.on_link.get(lk) else None for lk in j.links]
-    if c.count(None) != 1:
+    pinion = next(lk for lk in j.links if lk != rack)
+    c = gear_centre(view, pinion, positions)
+    if c is None:
         return None
     p = positions[j.name]
-    return (c[0], p) if c[0] is not None else (p, c[1])  # type: ignore[return-value]
+    return (c, p) if j.links[0] == pinion else (p, c)
 
 
 class _Pins:

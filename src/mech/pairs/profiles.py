@@ -102,11 +102,31 @@ def drawn_profiles(
         circle = out[other]
         assert isinstance(circle, Circle) and circle.centre.xy is not None
         cx, cy = circle.centre.xy
-        at = j.place.at if j.place.at is not None else (cx, cy - circle.radius)
+        at = j.place.at if j.place.at is not None else _beside(b, link, (cx, cy), circle.radius)
         # the line is tangent to the circle at the contact point: perpendicular to centre → contact
         angle = math.atan2(at[1] - cy, at[0] - cx) + math.pi / 2.0
         out[link] = Line(Ref(xy=at), angle=angle)
     return out
+
+
+def _beside(b: RowBuilder, link: str, centre: tuple[float, float], radius: float) -> tuple[float, float]:
+    """Where a straight pitch line on ``link`` touches the circle about ``centre`` when nothing is drawn.
+
+    A rack slides on a path: its pitch line runs along the path, on the path's side of the
+    pinion (above it, below it, tilted).  A link that slides on nothing (the ground a wheel rolls
+    on) is under the circle, as DESIGN § 1.1 draws it.
+    """
+    slides = (b.path(j.name) for j in b.mech.joints if link in j.links)
+    slide = next((ps for ps in slides if ps is not None and ps.slider == link), None)
+    if slide is not None and slide.point in b.pos:
+        a = b.path_angle(slide)
+        n = (-math.sin(a), math.cos(a))
+        px, py = b.pos[slide.point]
+        side = n[0] * (px - centre[0]) + n[1] * (py - centre[1])
+        if side != 0.0:
+            k = math.copysign(radius, side)
+            return (centre[0] + k * n[0], centre[1] + k * n[1])
+    return (centre[0], centre[1] - radius)
 
 
 def _geo(b: RowBuilder, j: Joint, link: str, prof: Profile) -> _Geo | None:
