@@ -427,3 +427,55 @@ def test_a_rack_with_a_pin_on_it_is_still_a_rack():
     assert fy == pytest.approx(-1000 * math.tan(math.radians(20)), rel=1e-9)
     # the rack: mesh (1000, −363.97) + rod (−1000, 300) + guide = 0; on the frame, the guide's opposite
     assert fa.pair("S").force[1] == pytest.approx(300 - 1000 * math.tan(math.radians(20)), rel=1e-9)
+
+
+def test_a_flat_faced_follower_s_guide_takes_a_couple_and_no_normal_force():
+    # a flat face square to its stroke touches the cam ds/dθ from its axis (here 60° into a 20 mm
+    # simple-harmonic rise over 120°: ds/dθ = π h / 2β = 15 mm/rad): 100 N held down on the axis
+    # meets the cam's 100 N up, 15 mm off it, so the guide takes the couple 100 × 0.015 = 1.5 N·m
+    # and no side force, and the cam needs 100 N × 15 mm/rad = 1.5 N·m
+    text = """\
+units: {length: mm, angle: deg}
+links: [frame, cam, follower]
+joints:
+  O: {type: revolute, links: [frame, cam], at: [0, 0]}
+  S: {type: prismatic, links: [follower, frame], path: {through: [0, 0], angle: 90}}
+  K: {type: cam, links: [cam, follower],
+      program: {base_radius: 25, follower: flat,
+                segments: [{rise: 20, over: 120, law: shm}, {dwell: 30},
+                           {return: 20, over: 120, law: shm}, {dwell: 90}]}}
+drive: {link: cam, angle: 60, rpm: 100, direction: cw}
+loads: {K: {force: [0, -100], "on": follower}}
+"""
+    fa = analyse(loads(text, path="flat.yaml"))
+    guide = fa.pair("S")
+    assert guide.force == (0.0, 0.0) and guide.offset is None
+    assert abs(guide.couple) == pytest.approx(1.5, rel=1e-9)
+    assert fa.pair("K").force[1] == pytest.approx(100, rel=1e-9)
+    assert fa.effort is not None and abs(fa.effort.value) == pytest.approx(1.5, rel=1e-9)
+
+
+OSCILLATING_CAM = """\
+units: {{length: mm, angle: deg}}
+links: [frame, cam, arm]
+joints:
+  O: {{type: revolute, links: [frame, cam], at: [0, 0]}}
+  P: {{type: revolute, links: [arm, frame], at: [100, 0]}}
+  K: {{type: cam, links: [cam, arm], near: [30, 30],
+      program: {{base_radius: 30, follower: roller, roller_radius: 10,
+                segments: [{{rise: 20, over: 90, law: cycloidal}}, {{dwell: 60}},
+                           {{return: 20, over: 120, law: shm}}, {{dwell: 90}}]}}}}
+lengths: {{PK: 80}}
+drive: {{link: cam, angle: 45, rpm: 200, direction: ccw}}
+loads: {{arm: {{torque: {torque}}}}}
+"""
+
+
+def test_a_cam_that_would_have_to_pull_its_follower_says_so():
+    # a couple on the arm one way presses the roller on the cam, the other way lifts it off: the
+    # cam cannot pull, so the second is said, with the force the cam would need
+    pressed = analyse(loads(OSCILLATING_CAM.format(torque=5), path="cam.yaml"))
+    lifted = analyse(loads(OSCILLATING_CAM.format(torque=-5), path="cam.yaml"))
+    assert not [n for n in pressed.notes if "only pushes" in n]
+    (note,) = [n for n in lifted.notes if "only pushes" in n]
+    assert f"{lifted.pair('K').magnitude:.6g} N" in note and "arm leaves cam" in note

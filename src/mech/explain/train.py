@@ -15,36 +15,33 @@ from typing import Any
 from mech.explain.worked import Line, Worked, g
 from mech.model import Mechanism
 from mech.pairs import kind_of
-from mech.pairs.gearing import carrier_of
+from mech.pairs.gearing import common_carrier
 
 __all__ = ["working"]
 
 
-def _radii(
-    mech: Mechanism, kin: Any, j: Any, carrier: str, c1: dict[str, str], c2: dict[str, str]
-) -> tuple[float, float, str]:
-    """The pitch radii of a mesh (given, teeth × module / 2, or as drawn) and how they are named."""
+def _radii(mech: Mechanism, kin: Any, j: Any, pins: tuple[str, str]) -> tuple[float, float, str]:
+    """The pitch radii of a mesh (given, teeth × module / 2, or as drawn from its centres ``pins``)
+    and how they are named."""
     if j.teeth is not None:
         z1, z2 = j.teeth  # the radii are in the ratio of the teeth: the ratio is written with them
         return float(z1), float(z2), f"z = {z1} and {z2}"
     if j.radii is not None and None not in j.radii:
         return j.radii[0], j.radii[1], f"r = {g(j.radii[0] * 1000)} and {g(j.radii[1] * 1000)} mm"
     p = kin.positions[j.name]
-    o1, o2 = kin.positions[c1[carrier]], kin.positions[c2[carrier]]
+    o1, o2 = kin.positions[pins[0]], kin.positions[pins[1]]
     r1, r2 = math.dist(p, o1), math.dist(p, o2)
     return r1, r2, f"r = {g(r1 * 1000)} and {g(r2 * 1000)} mm (as drawn)"
 
 
 def _stage(mech: Mechanism, kin: Any, j: Any, known: str, other: str) -> Line | None:
     """One mesh: ``other``'s ω from ``known``'s, relative to the arm both centres are pinned to."""
-    view = _view(kin)
-    c_known, c_other = carrier_of(view, known, kin.positions), carrier_of(view, other, kin.positions)
-    arms = [c for c in c_known if c in c_other and c not in (known, other)]
-    if not arms:
+    held = common_carrier(_view(kin), j, kin.positions)
+    if held is None:
         return None
-    arm = arms[0]
+    arm, pin1, pin2 = held
     first = j.links[0] == known
-    r_a, r_b, named = _radii(mech, kin, j, arm, c_known if first else c_other, c_other if first else c_known)
+    r_a, r_b, named = _radii(mech, kin, j, (pin1, pin2))
     if not first:
         r_a, r_b = r_b, r_a
     internal = j.internal

@@ -33,6 +33,7 @@ import numpy as np
 from mech._records import dataclass
 from mech.model import Load, Mechanism
 from mech.pairs import kind_of, load_link
+from mech.pairs.base import push_row
 
 __all__ = [
     "Motion",
@@ -41,6 +42,7 @@ __all__ = [
     "load_value",
     "locate",
     "multipliers",
+    "push_rows",
     "reactions",
     "solve",
     "unsaid_notes",
@@ -241,16 +243,62 @@ def _inertia(st: _Stack) -> tuple[np.ndarray, np.ndarray, tuple[np.ndarray, ...]
     return inertia, weights, (centres, accel, alpha, force, couple, weight)
 
 
-def jacobian_si(sys_: Any, motion: Motion) -> np.ndarray:
-    """Φ_q of every configuration with the ground's columns, x and y columns per metre (K, m, 3n + 3)."""
+def scaled_q(sys_: Any, motion: Motion) -> np.ndarray:
+    """The stack's configurations in the constraint system's coordinates (K, 3n): scaled, from its centre."""
     pose = motion.pose
     q = np.empty((motion.size, 3 * sys_.n))
     q[:, 0::3] = (pose[:, :, 0] - float(sys_.centre[0])) / sys_.scale
     q[:, 1::3] = (pose[:, :, 1] - float(sys_.centre[1])) / sys_.scale
     q[:, 2::3] = pose[:, :, 2]
+    return q
+
+
+def jacobian_si(sys_: Any, motion: Motion) -> np.ndarray:
+    """Φ_q of every configuration with the ground's columns, x and y columns per metre (K, m, 3n + 3)."""
+    q = scaled_q(sys_, motion)
     jac = np.asarray(sys_.jacobian(q, ground=True)).reshape(motion.size, sys_.m, -1)
     cols = np.tile([1.0 / sys_.scale, 1.0 / sys_.scale, 1.0], sys_.n + 1)
     return jac * cols
+
+
+def push_rows(mech: Mechanism, sys_: Any, motion: Motion, jac: np.ndarray) -> np.ndarray:
+    """``jac`` with the row of each pair that pushes along its common normal (a programme cam) made
+    that push's (:func:`~mech.pairs.base.push_row`), at every configuration of the stack: where the
+    kind's :meth:`~mech.pairs.base.PairKind.push` says it touches and along which normal."""
+    pushing = [j for j in mech.joints if kind_of(j).pushes(j) == "stacked"]
+    if not pushing:
+        return jac
+    names, qs = np.array(sys_.row_names), scaled_q(sys_, motion)
+    centre, scale = np.asarray(sys_.centre, float), float(sys_.scale)
+    ground = (float(centre[0]), float(centre[1]))  # the ground's frame: the system's centre, unturned
+    for j in pushing:
+        row = int(np.flatnonzero(names == j.name)[0])
+        for k in range(motion.size):
+            touch = kind_of(j).push(j, sys_, qs[k])
+            if touch is None:
+                continue
+            at, normal = touch
+            frames = _Frames(sys_, motion.pose[k], ground)
+            jac[k, row] = push_row(frames, j, tuple(np.asarray(at) * scale + centre), tuple(normal))
+    return jac
+
+
+class _Frames:
+    """What :func:`~mech.pairs.base.push_row` reads of one configuration: columns, link origins (SI)."""
+
+    def __init__(self, sys_: Any, pose: np.ndarray, ground: tuple[float, float]) -> None:
+        self.sys, self.pose, self.ground = sys_, pose, ground
+
+    @property
+    def width(self) -> int:
+        return 3 * (self.sys.n + 1)
+
+    def column(self, link: str) -> int:
+        return 3 * self.sys.link_index.get(link, self.sys.n)
+
+    def origin(self, link: str) -> tuple[float, float]:
+        i = self.sys.link_index.get(link)
+        return self.ground if i is None else (float(self.pose[i][0]), float(self.pose[i][1]))
 
 
 def multipliers(moving: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

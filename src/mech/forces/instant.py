@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from mech.forces.core import Motion, Solved, reactions, solve, unsaid_notes
+from mech.forces.core import Motion, Solved, push_rows, reactions, solve, unsaid_notes
 from mech.forces.result import Effort, ForceAnalysis, Inertia, PairForce
 from mech.model import Mechanism
 from mech.options import SolveOptions
@@ -88,7 +88,7 @@ def at_instant(mech: Mechanism, kin: Any, comp: Any, *, static: bool = False) ->
         sys_,
         motion,
         about=np.array([about]),
-        rows=lambda jac: _reaction_rows(mech, kin, sys_, jac, flanks),
+        rows=lambda jac: _reaction_rows(mech, kin, sys_, motion, jac, flanks),
     )
     if bool(solved.determinate[0]):  # teeth only push: a tooth load that pulls is on the other flanks
         flanks = _other_flanks(mech, kin, sys_, solved)
@@ -98,7 +98,7 @@ def at_instant(mech: Mechanism, kin: Any, comp: Any, *, static: bool = False) ->
                 sys_,
                 motion,
                 about=np.array([about]),
-                rows=lambda jac: _reaction_rows(mech, kin, sys_, jac, flanks),
+                rows=lambda jac: _reaction_rows(mech, kin, sys_, motion, jac, flanks),
             )
     determinate = bool(solved.determinate[0])
     pairs: tuple[PairForce, ...] = ()
@@ -124,7 +124,7 @@ def at_instant(mech: Mechanism, kin: Any, comp: Any, *, static: bool = False) ->
         determinate=determinate,
         note=note,
         static=static,
-        notes=unsaid_notes(mech),
+        notes=unsaid_notes(mech) + _force_notes(mech, kin, pairs),
         kinematics=kin,
     )
 
@@ -159,10 +159,11 @@ def _rate(kin: Any) -> float:
 
 
 def _reaction_rows(
-    mech: Mechanism, kin: Any, sys_: Any, jac: np.ndarray, flanks: dict[str, float]
+    mech: Mechanism, kin: Any, sys_: Any, motion: Motion, jac: np.ndarray, flanks: dict[str, float]
 ) -> np.ndarray:
     """The Jacobian with the rows of a pair that carries its force otherwise (a gear on fixed
     centres) replaced by its kind's (on the mirror line of action where ``flanks`` says −1)."""
+    jac = push_rows(mech, sys_, motion, jac)
     names = np.array(sys_.row_names)
     view = _View(mech, kin, sys_, flanks)
     for j in mech.joints:
@@ -206,11 +207,27 @@ def _other_flanks(mech: Mechanism, kin: Any, sys_: Any, solved: Solved) -> dict[
     return out
 
 
+#: A pair's force component below this times the largest pair force of the instant is rounding:
+#: zero (a guide that takes only a couple has a normal force of 6e-15 N, not an offset of 2e14 m).
+ROUNDING = 1e-12
+
+
+def _force_notes(mech: Mechanism, kin: Any, pairs: tuple[PairForce, ...]) -> tuple[str, ...]:
+    """What each pair's kind says of its solved force (:meth:`~mech.pairs.base.PairKind.force_note`)."""
+    joints = {j.name: j for j in mech.joints}
+    said = (kind_of(joints[p.joint]).force_note(joints[p.joint], mech, kin.positions, p) for p in pairs)
+    return tuple(n for n in said if n)
+
+
 def _pair_forces(mech: Mechanism, kin: Any, sys_: Any, solved: Solved) -> tuple[PairForce, ...]:
     """Each joint's force, as its kind reads it from what its rows put on its links."""
     out: list[PairForce] = []
+    reacted = {j.name: reactions(solved, sys_, j.name, j.links) for j in mech.joints}
+    largest = max(
+        (float(np.hypot(*w[0][:2])) for on_links in reacted.values() for w in on_links.values()), default=0.0
+    )
     for j in mech.joints:
-        on_links = reactions(solved, sys_, j.name, j.links)
+        on_links = reacted[j.name]
         if not on_links:
             continue
         geom = kin.joints.get(j.name)
@@ -219,6 +236,7 @@ def _pair_forces(mech: Mechanism, kin: Any, sys_: Any, solved: Solved) -> tuple[
         wrenches = {}
         for link, w in on_links.items():
             fx, fy, m = (float(v) for v in w[0])
+            fx, fy = (0.0 if abs(f) <= ROUNDING * largest else f for f in (fx, fy))
             if at is not None:  # the moment about the pair's point
                 ox, oy = kin.links[link].origin
                 m -= (at[0] - ox) * fy - (at[1] - oy) * fx

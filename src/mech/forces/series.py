@@ -20,19 +20,19 @@ instead, through :func:`mech.forces.analyse` (the same solve on a stack of one).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
+from functools import partial
 from typing import Any
 
 import numpy as np
 
 from mech._records import dataclass
 from mech.errors import MechError
-from mech.forces.core import Motion, reactions, solve
+from mech.forces.core import Motion, push_rows, reactions, solve
 from mech.forces.instant import drive_options
 from mech.model import Mechanism
 from mech.options import SolveOptions
 from mech.pairs import kind_of
-from mech.pairs.base import push_row
 
 __all__ = ["Evaluator", "ForceSeries", "PairKey", "pair_keys"]
 
@@ -136,35 +136,14 @@ class Evaluator:
                 {k: v[take] for k, v in motion.named.items()},
             )
             solved = solve(
-                self.mech, self.sys, part, about=_pivot(self.mech, self.sys, part), rows=self._pushes(part)
+                self.mech,
+                self.sys,
+                part,
+                about=_pivot(self.mech, self.sys, part),
+                rows=partial(push_rows, self.mech, self.sys, part),
             )
             _fill(out, take, solved, self.sys, self.pairs)
         return out
-
-    def _pushes(self, motion: Motion) -> Callable[[np.ndarray], np.ndarray] | None:
-        """The rows of the pairs that push along a common normal (a programme cam), at each step."""
-        pushing = [j for j in self.mech.joints if kind_of(j).pushes(j) == "stacked"]
-        if not pushing:
-            return None
-        sys_, names = self.sys, np.array(self.sys.row_names)
-        centre, scale = np.asarray(sys_.centre, float), float(sys_.scale)
-        ground = np.append(centre, 0.0)  # the ground's frame: the system's centre, unturned
-
-        def rows(jac: np.ndarray) -> np.ndarray:
-            jac = jac.copy()
-            for j in pushing:
-                row = int(np.flatnonzero(names == j.name)[0])
-                for k in range(motion.size):
-                    pose = motion.pose[k]
-                    q = np.empty(3 * sys_.n)
-                    q[0::3], q[1::3] = (pose[:, 0] - centre[0]) / scale, (pose[:, 1] - centre[1]) / scale
-                    q[2::3] = pose[:, 2]
-                    at, normal = kind_of(j).push(j, sys_, q)  # type: ignore[misc]
-                    frames = _Frames(sys_, pose, ground)
-                    jac[k, row] = push_row(frames, j, tuple(np.asarray(at) * scale + centre), tuple(normal))
-            return jac
-
-        return rows
 
     def _sweep(self, angles: np.ndarray, *, analyse: bool) -> Any:
         from mech.kinematics import sweep
@@ -198,25 +177,6 @@ class Evaluator:
             out.shaking[k] = fa.shaking_force
             out.moment[k] = fa.shaking_moment
         return out
-
-
-class _Frames:
-    """What :func:`~mech.pairs.base.push_row` reads of one step of a stack: columns and link origins (SI)."""
-
-    def __init__(self, sys_: Any, pose: np.ndarray, ground: np.ndarray) -> None:
-        self.sys, self.pose, self.ground = sys_, pose, ground
-
-    @property
-    def width(self) -> int:
-        return 3 * (self.sys.n + 1)
-
-    def column(self, link: str) -> int:
-        return 3 * self.sys.link_index.get(link, self.sys.n)
-
-    def origin(self, link: str) -> tuple[float, float]:
-        i = self.sys.link_index.get(link)
-        x, y = (self.ground if i is None else self.pose[i])[:2]
-        return float(x), float(y)
 
 
 def _empty(angles: np.ndarray, pairs: tuple[PairKey, ...]) -> ForceSeries:

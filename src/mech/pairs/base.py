@@ -57,6 +57,9 @@ class PairForce:
     pair the point of the guide where the normal force acts, ``offset`` (m) along
     the path from the slider's point.  ``normal`` is the signed component along the
     pair's normal (a slider's side thrust, a cam's or a gear's tooth load), None for a pin.
+    ``couple`` (N·m, ccw +) is what a sliding pair takes about the slider's point: N·offset,
+    or, with no normal force, a couple alone (a guide holding a follower from turning), when
+    ``offset`` is None.
     """
 
     joint: str
@@ -66,6 +69,7 @@ class PairForce:
     at: Vec | None
     normal: float | None = None
     offset: float | None = None
+    couple: float | None = None
 
     @property
     def magnitude(self) -> float:
@@ -308,6 +312,13 @@ class PairKind:
         the pair can only push (gear teeth): the force is then solved again on the mirror line
         (the view's ``flanks``, −1).  Never, by default."""
         return False
+
+    def force_note(
+        self, j: Joint, mech: Mechanism, positions: Mapping[str, Vec], force: PairForce
+    ) -> str | None:
+        """What the solved ``force`` of the pair means that a reader must be told (a cam that would
+        have to pull its follower), or None."""
+        return None
 
     def reaction_rows(self, j: Joint, view: Any) -> Sequence[Sequence[float]] | None:
         """Rows that carry this pair's force where its kinematic rows only say how it moves (a gear

@@ -20,6 +20,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "carrier_of",
+    "common_carrier",
     "gear_centre",
     "gear_centres",
     "gear_normal",
@@ -46,16 +47,23 @@ def gear_centres(view: Carriers, j: Joint, positions: Mapping[str, Vec]) -> tupl
     (:func:`rack_link`: a pin on it, to a rod, is no centre)."""
     if rack_link(j) is not None:
         return None
+    held = common_carrier(view, j, positions)
+    out: list[Vec] = []
+    for k, link in enumerate(j.links):
+        only = gear_centre(view, link, positions)
+        if only is None and held is None:
+            return None
+        out.append(only if only is not None else positions[held[1 + k]])  # type: ignore[index]
+    return out[0], out[1]
+
+
+def common_carrier(view: Carriers, j: Joint, positions: Mapping[str, Vec]) -> tuple[str, str, str] | None:
+    """The link both gears' centres are fixed in (the frame, an arm, coaxial pins included:
+    :func:`carrier_of`) and each gear's pin on it; None when there is none."""
     g1, g2 = j.links
     c1, c2 = carrier_of(view, g1, positions), carrier_of(view, g2, positions)
     common = [c for c in c1 if c in c2 and c not in (g1, g2)]
-    out: list[Vec] = []
-    for link, fixed_in in ((g1, c1), (g2, c2)):
-        only = gear_centre(view, link, positions)
-        if only is None and not common:
-            return None
-        out.append(only if only is not None else positions[fixed_in[common[0]]])
-    return out[0], out[1]
+    return (common[0], c1[common[0]], c2[common[0]]) if common else None
 
 
 def rack_link(j: Joint) -> str | None:
@@ -138,12 +146,11 @@ def gear_row(b: RowBuilder, j: Joint) -> tuple[dict[int, float], float] | None:
     """
     pos = b.pos
     g1, g2 = j.links
-    c1, c2 = carrier_of(b, g1, pos), carrier_of(b, g2, pos)
-    common = [c for c in c1 if c in c2 and c not in (g1, g2)]
-    if not common:
+    held = common_carrier(b, j, pos)
+    if held is None:
         return None
-    carrier = common[0]
-    o1, o2 = pos[c1[carrier]], pos[c2[carrier]]
+    carrier, pin1, pin2 = held
+    o1, o2 = pos[pin1], pos[pin2]
     given = getattr(j.spec, "pitch_radii", None) or j.radii  # a gear's (teeth × module / 2), or circles
     internal = j.internal
     radii: tuple[float, float]

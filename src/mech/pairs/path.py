@@ -119,6 +119,12 @@ class PathPair(PairKind):
         fx, fy, m = wrenches[guide]
         u = direction or (1.0, 0.0)
         normal = float(-u[1] * fx + u[0] * fy)
-        offset = float(m / normal) if normal != 0.0 else 0.0
+        if normal == 0.0:  # no normal force: the guide takes a couple alone, acting nowhere
+            return [PairForce(j.name, guide, j.links[0], (fx, fy), at, normal=normal, couple=float(m))]
+        offset = float(m / normal)
         acts = (float(at[0] + offset * u[0]), float(at[1] + offset * u[1]))
-        return [PairForce(j.name, guide, j.links[0], (fx, fy), acts, normal=normal, offset=offset)]
+        return [
+            PairForce(
+                j.name, guide, j.links[0], (fx, fy), acts, normal=normal, offset=offset, couple=float(m)
+            )
+        ]

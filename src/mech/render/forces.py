@@ -190,6 +190,7 @@ def _pair_dict(p: PairForce, num: dict[str, int], units: OutputUnits) -> dict[st
         "at": _vec(p.at, units.length),
         "normal": p.normal,
         "offset": None if p.offset is None else to_unit(p.offset, units.length),
+        "couple": p.couple,
     }
 
 
@@ -307,6 +308,12 @@ def _tables(data: dict[str, Any], console: ReportConsole, units: OutputUnits) ->
                 console.print(
                     f"  {p['joint']}: the normal force acts {p['offset']:.6g} {format_unit(units.length)} "
                     "along the path from the slider's point",
+                    soft_wrap=True,
+                )
+            elif p["offset"] is None and p["couple"]:
+                console.print(
+                    f"  {p['joint']}: no normal force; a couple of {p['couple']:.6g} N·m (ccw +) on the guide, "
+                    "which holds the slider from turning",
                     soft_wrap=True,
                 )
     e = data["input"]

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from mech.cam.program import program_schema
 from mech.fields import NUMBER, PROFILES, Fields, Reader
-from mech.pairs.base import PairKind, contact_forces, push_row
+from mech.pairs.base import PairKind, contact_forces
 from mech.pairs.higher import read_contact, see_contact
 from mech.specs import ContactSpec
 
@@ -117,16 +117,30 @@ class Cam(PairKind):
             return None
         return sys_.contact_points[j.name](q), sys_.normals[j.name](q)
 
-    def reaction_rows(self, j: Joint, view: Any) -> list[list[float]] | None:
-        """A programme's row moves the follower by its law along its slide (or about its pivot), but
-        the cam pushes it along the common normal at the contact: that push's row carries the force
-        (:func:`~mech.pairs.base.push_row`), so that the follower's guide takes the side thrust.
-        Profiles and an instant's normal already write the contact's own row."""
-        geom = view.kin.joints.get(j.name) if _programme(j) else None
-        if geom is None or geom.at is None or geom.direction is None:
+    def force_note(
+        self, j: Joint, mech: Mechanism, positions: Mapping[str, Vec], force: PairForce
+    ) -> str | None:
+        """A cam only pushes: a contact force that pulls the follower toward the cam's pivot means
+        the follower leaves the cam there, unless a spring or its weight keeps it on (judged on a
+        disc cam, whose profile every ray from its pivot crosses once: the outward normal at the
+        contact then points away from the pivot)."""
+        cam = j.links[0]
+        pins = [
+            k.name
+            for k in mech.joints_of(cam)
+            if k.name != j.name and k.name in positions and k.type == "revolute"
+        ]
+        if force.at is None or len(pins) != 1 or force.on != j.links[1]:
             return None
-        tangent = geom.direction
-        return [push_row(view, j, geom.at, (tangent[1], -tangent[0]))]
+        o = positions[pins[0]]
+        away = (force.at[0] - o[0]) * force.force[0] + (force.at[1] - o[1]) * force.force[1]
+        if away >= 0.0:
+            return None
+        return (
+            f"at {j.name}, {cam} would have to pull {force.on} toward it ({force.magnitude:.6g} N): a cam "
+            f"only pushes, so {force.on} leaves {cam} here unless a spring or its weight holds it on "
+            "(add that force as a load)"
+        )
 
     def forces(
         self, j: Joint, wrenches: Mapping[str, Wrench], at: Vec | None, direction: Vec | None
