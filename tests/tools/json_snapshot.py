@@ -46,6 +46,8 @@ COMMANDS: tuple[tuple[str, ...], ...] = (
     ("sweep", "--level", "acceleration", "--steps", "72", "--json"),
     ("cam", "--json"),
     ("check", "--json", "-j", "1"),
+    ("forces", "--json"),
+    ("sweep", "--level", "forces", "--steps", "12", "--json"),
 )
 
 

@@ -240,6 +240,7 @@ def _pair_forces(mech: Mechanism, kin: Any, sys_: Any, solved: Solved) -> tuple[
             if at is not None:  # the moment about the pair's point
                 ox, oy = kin.links[link].origin
                 m -= (at[0] - ox) * fy - (at[1] - oy) * fx
+                m = 0.0 if abs(m) <= ROUNDING * largest * (kin.size or 1.0) else m + 0.0  # never −0
             wrenches[link] = (fx, fy, m)
         out.extend(kind_of(j).forces(j, wrenches, at, direction))
     return tuple(out)
