@@ -261,10 +261,18 @@ def jacobian_si(sys_: Any, motion: Motion) -> np.ndarray:
     return jac * cols
 
 
-def push_rows(mech: Mechanism, sys_: Any, motion: Motion, jac: np.ndarray) -> np.ndarray:
+def push_rows(
+    mech: Mechanism,
+    sys_: Any,
+    motion: Motion,
+    jac: np.ndarray,
+    made: dict[tuple[str, int], list[float]] | None = None,
+) -> np.ndarray:
     """``jac`` with the row of each pair that pushes along its common normal (a programme cam) made
     that push's (:func:`~mech.pairs.base.push_row`), at every configuration of the stack: where the
-    kind's :meth:`~mech.pairs.base.PairKind.push` says it touches and along which normal."""
+    kind's :meth:`~mech.pairs.base.PairKind.push` says it touches and along which normal.  ``made``
+    keeps the rows by (joint, step) for another solve of the same stack."""
+    made = {} if made is None else made
     pushing = [j for j in mech.joints if kind_of(j).pushes(j) == "stacked"]
     if not pushing:
         return jac
@@ -274,12 +282,14 @@ def push_rows(mech: Mechanism, sys_: Any, motion: Motion, jac: np.ndarray) -> np
     for j in pushing:
         row = int(np.flatnonzero(names == j.name)[0])
         for k in range(motion.size):
-            touch = kind_of(j).push(j, sys_, qs[k])
-            if touch is None:
-                continue
-            at, normal = touch
-            frames = _Frames(sys_, motion.pose[k], ground)
-            jac[k, row] = push_row(frames, j, tuple(np.asarray(at) * scale + centre), tuple(normal))
+            if (j.name, k) not in made:
+                touch = kind_of(j).push(j, sys_, qs[k])
+                if touch is None:
+                    continue
+                at, normal = touch
+                frames = _Frames(sys_, motion.pose[k], ground)
+                made[j.name, k] = push_row(frames, j, tuple(np.asarray(at) * scale + centre), tuple(normal))
+            jac[k, row] = made[j.name, k]
     return jac
 
 

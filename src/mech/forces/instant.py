@@ -30,13 +30,18 @@ __all__ = ["analyse", "at_instant", "drive_options", "drive_pivot", "has_speed",
 Vec = tuple[float, float]
 
 
-def analyse(mech: Mechanism, options: SolveOptions | None = None) -> ForceAnalysis:
+def analyse(
+    mech: Mechanism, options: SolveOptions | None = None, *, flanks: dict[str, float] | None = None
+) -> ForceAnalysis:
     """The forces of ``mech`` at its drive's angle (``options`` as for :func:`mech.kinematics.solve`).
 
     With masses and a drive speed the links' inertia counts (d'Alembert: the
     mechanism is solved to accelerations; without masses to velocities); a drive
     without a speed (or at a speed of zero) is a static problem: the rates are taken
     at unit speed for the power balance only, and no inertia acts.
+
+    ``flanks`` (:func:`at_instant`): the gear flanks in contact at a nearby instant, tried first
+    and updated.
 
     Raises
     ------
@@ -49,7 +54,7 @@ def analyse(mech: Mechanism, options: SolveOptions | None = None) -> ForceAnalys
     comp = compiled(mech, None)
     # accelerations only where they act: a massless mechanism (a cam known at its instant) needs rates alone
     kin = solve(mech, "acceleration" if mech.masses and not static else "velocity", options)
-    return at_instant(mech, kin, comp, static=static)
+    return at_instant(mech, kin, comp, static=static, flanks=flanks)
 
 
 def has_speed(mech: Mechanism, options: SolveOptions) -> bool:
@@ -73,33 +78,35 @@ def drive_options(mech: Mechanism, options: SolveOptions) -> tuple[SolveOptions,
     return options.with_(speed=1.0), True
 
 
-def at_instant(mech: Mechanism, kin: Any, comp: Any, *, static: bool = False) -> ForceAnalysis:
+def at_instant(
+    mech: Mechanism, kin: Any, comp: Any, *, static: bool = False, flanks: dict[str, float] | None = None
+) -> ForceAnalysis:
     """The force analysis of ``mech`` at the instant ``kin`` was solved for (acceleration level,
     or velocity level when ``static``: no inertia, the rates only for the power balance).
 
-    ``comp`` is the compiled mechanism (:func:`mech.kinematics.solve.compiled`).
+    ``comp`` is the compiled mechanism (:func:`mech.kinematics.solve.compiled`).  Gear teeth only
+    push: a tooth load that would pull is solved again on the other flanks.  ``flanks`` (gear
+    joint → ±1, the flanks in contact) are tried first when given, and left as found: a sweep
+    passes the last step's, and solves again only where the load turns.
     """
     sys_ = comp.system
     about = drive_pivot(mech, kin)
     motion = motion_of(kin, sys_, static=static)
-    flanks: dict[str, float] = {}
-    solved = solve(
-        mech,
-        sys_,
-        motion,
-        about=np.array([about]),
-        rows=lambda jac: _reaction_rows(mech, kin, sys_, motion, jac, flanks),
-    )
-    if bool(solved.determinate[0]):  # teeth only push: a tooth load that pulls is on the other flanks
-        flanks = _other_flanks(mech, kin, sys_, solved)
-        if flanks:
-            solved = solve(
-                mech,
-                sys_,
-                motion,
-                about=np.array([about]),
-                rows=lambda jac: _reaction_rows(mech, kin, sys_, motion, jac, flanks),
-            )
+    chosen = dict(flanks or {})
+    pushed: dict[tuple[str, int], list[float]] = {}  # each push row, made once for both solves
+
+    def rows(jac: np.ndarray) -> np.ndarray:
+        return _reaction_rows(mech, kin, sys_, motion, jac, chosen, pushed)
+
+    solved = solve(mech, sys_, motion, about=np.array([about]), rows=rows)
+    if bool(solved.determinate[0]):
+        turned = _other_flanks(mech, kin, sys_, solved)
+        if turned:
+            chosen.update({name: -chosen.get(name, 1.0) for name in turned})
+            solved = solve(mech, sys_, motion, about=np.array([about]), rows=rows)
+    if flanks is not None:
+        flanks.clear()
+        flanks.update(chosen)
     determinate = bool(solved.determinate[0])
     pairs: tuple[PairForce, ...] = ()
     note = ""
@@ -159,11 +166,17 @@ def _rate(kin: Any) -> float:
 
 
 def _reaction_rows(
-    mech: Mechanism, kin: Any, sys_: Any, motion: Motion, jac: np.ndarray, flanks: dict[str, float]
+    mech: Mechanism,
+    kin: Any,
+    sys_: Any,
+    motion: Motion,
+    jac: np.ndarray,
+    flanks: dict[str, float],
+    pushed: dict[tuple[str, int], list[float]],
 ) -> np.ndarray:
     """The Jacobian with the rows of a pair that carries its force otherwise (a gear on fixed
     centres) replaced by its kind's (on the mirror line of action where ``flanks`` says −1)."""
-    jac = push_rows(mech, sys_, motion, jac)
+    jac = push_rows(mech, sys_, motion, jac, pushed)
     names = np.array(sys_.row_names)
     view = _View(mech, kin, sys_, flanks)
     for j in mech.joints:
@@ -193,17 +206,17 @@ class _View:
         return tuple(self.kin.links[link].origin)  # type: ignore[return-value]
 
 
-def _other_flanks(mech: Mechanism, kin: Any, sys_: Any, solved: Solved) -> dict[str, float]:
-    """The pairs whose solved force pulls where they can only push (gear teeth), each to be solved
+def _other_flanks(mech: Mechanism, kin: Any, sys_: Any, solved: Solved) -> list[str]:
+    """The pairs whose solved force pulls where they can only push (gear teeth): each is solved
     again on its mirror line of action (:meth:`~mech.pairs.base.PairKind.other_flank`)."""
-    out: dict[str, float] = {}
+    out: list[str] = []
     for j in mech.joints:
         second = j.links[-1]
         on_links = reactions(solved, sys_, j.name, j.links) if kind_of(j).pushes(j) else {}
         if second in on_links:
             fx, fy = (float(v) for v in on_links[second][0][:2])
             if kind_of(j).other_flank(j, mech, kin.positions, (fx, fy)):
-                out[j.name] = -1.0
+                out.append(j.name)
     return out
 
 

@@ -157,9 +157,10 @@ class Evaluator:
 
         out = _empty(angles, self.pairs)
         where = {key: i for i, key in enumerate(self.pairs)}
+        flanks: dict[str, float] = {}  # the gear flanks in contact at the last step: tried first at the next
         for k, theta in enumerate(angles):
             try:
-                fa = analyse(self.mech, self.options.with_(angle=float(theta)))
+                fa = analyse(self.mech, self.options.with_(angle=float(theta)), flanks=flanks)
             except MechError:
                 continue
             out.solved[k] = True
