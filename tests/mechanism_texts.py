@@ -276,3 +276,22 @@ def expected_refusal(text: str, command: str) -> str | None:
     if command == "acceleration" and any(j.get("type") == "cam" and "normal" in j for j in joints):
         return "curvature"
     return None
+
+
+def epicyclic(ring: str = "[planet, frame]", extra: str = "", pressure: str = "") -> str:
+    """An epicyclic train in mm: sun 20, planet 30, the frame a fixed ring of 80, the sun and the
+    arm on two pins at one axis (the origin), the planet's centre Q at (50, 0); the sun driven at
+    1000 rpm ccw.  ``ring`` lists the ring mesh's links (either order: its radii follow), ``pressure``
+    is appended to both meshes (``", pressure_angle: 20"``), ``extra`` to the file (loads …)."""
+    radii = "[30, 80]" if ring.startswith("[planet") else "[80, 30]"
+    return f"""\
+units: {{length: mm, angle: deg}}
+links: [frame, sun, arm, planet]
+joints:
+  O: {{type: revolute, links: [frame, sun], at: [0, 0]}}
+  O2: {{type: revolute, links: [frame, arm], at: [0, 0]}}
+  Q: {{type: revolute, links: [arm, planet], at: [50, 0]}}
+  m1: {{type: gear, links: [sun, planet], radii: [20, 30]{pressure}}}
+  m2: {{type: gear, links: {ring}, radii: {radii}, internal: true{pressure}}}
+drive: {{link: sun, rpm: 1000, direction: ccw}}
+{extra}"""

@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 import pytest
-from tests.mechanism_texts import lift
+from tests.mechanism_texts import epicyclic, lift
 from tests.oracles.newton_euler import four_bar_forces
 from tests.oracles.slider_crank import slider_crank
 
@@ -267,18 +267,7 @@ def test_an_epicyclic_train_shares_its_arms_torque_between_its_two_meshes():
     # its centre: F_s r_p = F_r r_p), the arm's pin takes both: 2F (r_s + r_p) = 10 N·m, F = 100 N,
     # the arm's pivot 200 N; the sun needs F r_s = 2 N·m, which is the power balance's
     # T_s ω_s = T_a ω_a with ω_a/ω_s = r_s/(r_s + r_r) = 1/5
-    text = """\
-units: {length: mm, angle: deg}
-links: [frame, sun, arm, planet]
-joints:
-  O: {type: revolute, links: [frame, sun], at: [0, 0]}
-  O2: {type: revolute, links: [frame, arm], at: [0, 0]}
-  Q: {type: revolute, links: [arm, planet], at: [50, 0]}
-  m1: {type: gear, links: [sun, planet], radii: [20, 30]}
-  m2: {type: gear, links: [planet, frame], radii: [30, 80], internal: true}
-drive: {link: sun, rpm: 1000, direction: ccw}
-loads: {arm: {torque: -10}}
-"""
+    text = epicyclic(extra="loads: {arm: {torque: -10}}\n")
     fa = analyse(loads(text, path="epicyclic.yaml"))
     assert fa.pair("m1").magnitude == pytest.approx(100, rel=1e-9)
     assert fa.pair("m2").magnitude == pytest.approx(100, rel=1e-9)
@@ -350,25 +339,12 @@ def test_a_racks_teeth_push_it_away_from_its_pinion_whichever_way_it_is_loaded(l
     assert fx == pytest.approx(-load, rel=1e-9)
 
 
-@pytest.mark.parametrize(
-    ("links", "radii"), [("[planet, frame]", "[30, 80]"), ("[frame, planet]", "[80, 30]")]
-)
-def test_a_load_at_a_fixed_rings_pitch_point_goes_straight_into_the_ring(links, radii):
+@pytest.mark.parametrize("ring", ["[planet, frame]", "[frame, planet]"])
+def test_a_load_at_a_fixed_rings_pitch_point_goes_straight_into_the_ring(ring):
     # 100 N at the ring's pitch point acts on the planet (the moving link of the pair, whichever
     # order the file gives), where the planet touches the fixed ring: the ring takes it all, and
     # nothing else carries anything (the point is the planet's instant centre: no torque)
-    text = f"""\
-units: {{length: mm, angle: deg}}
-links: [frame, sun, arm, planet]
-joints:
-  O: {{type: revolute, links: [frame, sun], at: [0, 0]}}
-  O2: {{type: revolute, links: [frame, arm], at: [0, 0]}}
-  Q: {{type: revolute, links: [arm, planet], at: [50, 0]}}
-  m1: {{type: gear, links: [sun, planet], radii: [20, 30]}}
-  m2: {{type: gear, links: {links}, radii: {radii}, internal: true}}
-drive: {{link: sun, rpm: 1000, direction: ccw}}
-loads: {{m2: {{force: [0, 100]}}}}
-"""
+    text = epicyclic(ring, extra="loads: {m2: {force: [0, 100]}}\n")
     fa = analyse(loads(text, path="epicyclic.yaml"))
     assert fa.pair("m2").magnitude == pytest.approx(100, rel=1e-9)
     for pin in ("O", "O2", "Q", "m1"):

@@ -181,18 +181,9 @@ def test_an_epicyclic_trains_gear_centres_are_its_pitch_points_by_kennedy():
     import json
 
     from cli_runner import mech
+    from mechanism_texts import epicyclic
 
-    text = """\
-units: {length: mm, angle: deg}
-links: [frame, sun, arm, planet]
-joints:
-  O: {type: revolute, links: [frame, sun], at: [0, 0]}
-  O2: {type: revolute, links: [frame, arm], at: [0, 0]}
-  Q: {type: revolute, links: [arm, planet], at: [50, 0]}
-  m1: {type: gear, links: [sun, planet], radii: [20, 30], pressure_angle: 20}
-  m2: {type: gear, links: [planet, frame], radii: [30, 80], internal: true, pressure_angle: 20}
-drive: {link: sun, rpm: 1000, direction: ccw}
-"""
+    text = epicyclic(pressure=", pressure_angle: 20")
     run = mech("icentres", "-", "--json", input=text)
     assert run.returncode == 0, run.stderr
     found = {c["name"]: c for c in json.loads(run.stdout)["icentres"]}
