@@ -51,9 +51,12 @@ def gear_centres(view: Carriers, j: Joint, positions: Mapping[str, Vec]) -> tupl
     out: list[Vec] = []
     for k, link in enumerate(j.links):
         only = gear_centre(view, link, positions)
-        if only is None and held is None:
+        if only is not None:
+            out.append(only)
+        elif held is not None:
+            out.append(positions[held[1 + k]])
+        else:
             return None
-        out.append(only if only is not None else positions[held[1 + k]])  # type: ignore[index]
     return out[0], out[1]
 
 
