@@ -352,15 +352,19 @@ def test_a_load_at_a_fixed_rings_pitch_point_goes_straight_into_the_ring(ring):
     assert fa.effort is not None and fa.effort.value == pytest.approx(0.0, abs=1e-9)
 
 
-@pytest.mark.parametrize(("alpha", "side"), [(0.0, -1), (0.0, 1), (30.0, -1), (-50.0, 1)])
-def test_a_rack_given_by_radii_lies_along_its_slide_on_its_side_of_the_pinion(alpha, side):
+@pytest.mark.parametrize(
+    ("alpha", "side", "through"),
+    [(0.0, -1, 1), (0.0, 1, 1), (30.0, -1, 1), (-50.0, 1, 1), (30.0, -1, 0), (90.0, -1, 0)],
+)
+def test_a_rack_given_by_radii_lies_along_its_slide_on_its_side_of_the_pinion(alpha, side, through):
     # radii: [50, null] with no contact drawn: the pitch line runs along the rack's slide (at α),
     # tangent to the pinion's pitch circle on the slide's side.  1000 N along the slide on the
     # rack: tooth load 1000/cos 20°, radial part 1000 tan 20° pushing the rack away from the
-    # pinion (along side·n, n the slide's normal), torque 1000 N × 0.05 m, rack speed ω r = 0.1π
+    # pinion (along side·n, n the slide's normal), torque 1000 N × 0.05 m, rack speed ω r = 0.1π.
+    # A slide drawn through the pinion's centre (``through`` 0) puts the rack on its right-hand side
     a = math.radians(alpha)
     u, n = (math.cos(a), math.sin(a)), (-math.sin(a), math.cos(a))
-    c = (side * 50 * n[0], side * 50 * n[1])
+    c = (through * side * 50 * n[0], through * side * 50 * n[1])
     text = f"""\
 units: {{length: mm, angle: deg}}
 links: [frame, pinion, rack]

@@ -112,9 +112,11 @@ def drawn_profiles(
 def _beside(b: RowBuilder, link: str, centre: tuple[float, float], radius: float) -> tuple[float, float]:
     """Where a straight pitch line on ``link`` touches the circle about ``centre`` when nothing is drawn.
 
-    A rack slides on a path: its pitch line runs along the path, on the path's side of the
-    pinion (above it, below it, tilted).  A link that slides on nothing (the ground a wheel rolls
-    on) is under the circle, as DESIGN § 1.1 draws it.
+    A rack slides on a path: its pitch line runs along the path (a rack's teeth are cut along the
+    way it slides), on the path's side of the pinion (above it, below it, tilted), or, where the
+    path passes through the pinion's centre, on its right-hand side (under a path to +x).  A link
+    that slides on nothing (the ground a wheel rolls on) is under the circle, as DESIGN § 1.1
+    draws it.
     """
     slides = (b.path(j.name) for j in b.mech.joints if link in j.links)
     slide = next((ps for ps in slides if ps is not None and ps.slider == link), None)
@@ -123,9 +125,8 @@ def _beside(b: RowBuilder, link: str, centre: tuple[float, float], radius: float
         n = (-math.sin(a), math.cos(a))
         px, py = b.pos[slide.point]
         side = n[0] * (px - centre[0]) + n[1] * (py - centre[1])
-        if side != 0.0:
-            k = math.copysign(radius, side)
-            return (centre[0] + k * n[0], centre[1] + k * n[1])
+        k = math.copysign(radius, side) if side != 0.0 else -radius
+        return (centre[0] + k * n[0], centre[1] + k * n[1])
     return (centre[0], centre[1] - radius)
 
 
