@@ -267,3 +267,31 @@ loads: {crank: {torque: 15}}
     (line,) = [x for x in run.stdout.splitlines() if x.startswith("input force along")]
     assert "(signed, + along the path)" in line and "ccw" not in line
     assert f"{-15 * w:.6g} N" in line
+
+
+@pytest.mark.parametrize(
+    "name",
+    ["eccentric_cam_roller.yaml", "four_bar_inertia_forces.yaml", "rolling_wheel.yaml", "gear_pair.yaml"],
+)
+def test_every_pin_force_is_drawn_from_its_pin(name):
+    # a drawing whose sheet grows to hold a pitch circle or a cam's profile moves its items: the
+    # force arrows must move with them (they floated 18 and 29 mm off on the cam's and rack's)
+    from mech.draw.forces import forces_drawing
+    from mech.forces import analyse
+    from mech.loader import loads
+    from mech.shapes import Circle, Line
+    from tests.mechanism_texts import epicyclic
+
+    text = (EXAMPLES / name).read_text(encoding="utf-8").split("\nanswers:")[0]
+    if "loads:" not in text:
+        text += "\nloads: {%s: {torque: 1}}\n" % text.split("links: [")[1].split(",")[1].strip()
+    for m in (loads(text, path=name), loads(epicyclic(extra="loads: {arm: {torque: -10}}\n"), path="e.yaml")):
+        fa = analyse(m)
+        fig = forces_drawing(m, fa)
+        pins = {i.name: i.centre for i in fig.items if isinstance(i, Circle) and i.cls == "pin"}
+        tails = {i.name: i.p0 for i in fig.items if isinstance(i, Line) and i.cls == "force"}
+        num = {lk.name: k + 1 for k, lk in enumerate(m.links)}
+        for p in fa.pairs:
+            label = f"F{num[p.by]}{num[p.on]}".translate(str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉"))
+            if p.joint in pins and label in tails:
+                assert tails[label] == pytest.approx(pins[p.joint], abs=1e-9), (name, p.joint)

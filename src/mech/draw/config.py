@@ -44,6 +44,8 @@ __all__ = ["View", "configuration", "display_name", "link_colours", "link_member
 Vec = tuple[float, float]
 
 MARGIN = 14.0  # mm around the drawing, for labels and ground symbols
+#: Where a drawing's title sits (mm): a fitted sheet that grows moves it, and so tells by how much.
+TITLE_AT = (MARGIN - 6, 5.5)
 TITLE_H = 9.0
 FOOT_H = 11.0
 _SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
@@ -190,7 +192,7 @@ def configuration(
     shapes = glyphs(mech, sheet(tr))
     width, height = view.size
     page = Page(width, height)
-    page.add(Text((MARGIN - 6, 5.5), title, 3.4, "start", bold=True, cls="title"))
+    page.add(Text(TITLE_AT, title, 3.4, "start", bold=True, cls="title"))
     factor = _unit_factor(mech.length_unit)  # the scale first: what is placed later keeps off it
     page.extend(scale_bar((MARGIN - 6, height - 7), view.scale / factor, mech.length_unit))
 
@@ -231,7 +233,7 @@ def curves_figure(
     tr = view.transform()
     width, height = view.size
     page = Page(width, height)
-    page.add(Text((MARGIN - 6, 5.5), title, 3.4, "start", bold=True, cls="title"))
+    page.add(Text(TITLE_AT, title, 3.4, "start", bold=True, cls="title"))
     page.extend(_curves(curves, tr, view))
     sheet = Sheet(mech, kin, pos, {}, tr, link_colours(mech))
     pivots_only = [

@@ -23,7 +23,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mech.draw.config import MARGIN, configuration, fit_view, link_colours
+from mech.draw.config import MARGIN, TITLE_AT, configuration, fit_view, link_colours
 from mech.draw.scene import Figure, Page, Transform, arrow, nice_scale
 from mech.draw.scene import place_label as _place
 from mech.shapes import INK, Circle, Item, Line, Poly, Style, Text
@@ -156,7 +156,7 @@ def _configuration_panel(mech: Mechanism, fa: ForceAnalysis) -> Figure:
         view = fit_view(list(pos.values()) + tips, (130.0, 95.0))
     fig = configuration(mech, kin, view=view, title="Forces on the configuration")
     page = Page(fig.width, fig.height + 6.0, list(fig.items))
-    tr = view.transform()
+    tr = _as_drawn(fig, view.transform())
     drawn: list[Item] = list(fig.items)
     for at, f, label, dashed in arrows:
         colour = _INERTIA if dashed else _FORCE
@@ -181,6 +181,16 @@ def _configuration_panel(mech: Mechanism, fa: ForceAnalysis) -> Figure:
         Text((MARGIN - 6, fig.height + 1.5), f"forces: 1 cm = {per_cm:g} N", 2.8, "start", INK, cls="scale")
     )
     return page.figure("Forces on the configuration")
+
+
+def _as_drawn(fig: Figure, tr: Transform) -> Transform:
+    """``tr`` moved as the drawing was: a sheet grows (its items moved) so that a pitch circle or a
+    cam's profile past the view's edge is not cut, and the arrows must go where the pins went."""
+    title = next((i for i in fig.items if isinstance(i, Text) and i.cls == "title"), None)
+    if title is None:
+        return tr
+    dx, dy = title.at[0] - TITLE_AT[0], title.at[1] - TITLE_AT[1]
+    return Transform(tr.scale, tr.world, (tr.origin[0] + dx, tr.origin[1] + dy))
 
 
 def _load_arrows(mech: Mechanism, fa: ForceAnalysis) -> list[tuple[Vec, Vec, str, bool]]:
@@ -234,7 +244,7 @@ def free_body_panel(mech: Mechanism, body: FreeBody) -> Figure:
     legend = _legend(body)
     page = Page(max(width, 60.0), height + 4.2 * len(legend))
     title = f"Free body of link {body.number} ({body.link})"
-    page.add(Text((MARGIN - 6, 5.5), title, 3.4, "start", bold=True, cls="title"))
+    page.add(Text(TITLE_AT, title, 3.4, "start", bold=True, cls="title"))
     page.extend(_outline_items(outline, tr, link_colours(mech).get(body.link, INK)))
     drawn: list[Item] = list(page.items)
     for a in forces:
