@@ -276,15 +276,17 @@ loads: {crank: {torque: 15}}
 def test_every_pin_force_is_drawn_from_its_pin(name):
     # a drawing whose sheet grows to hold a pitch circle or a cam's profile moves its items: the
     # force arrows must move with them (they floated 18 and 29 mm off on the cam's and rack's)
+    from tests.mechanism_texts import epicyclic
+
     from mech.draw.forces import forces_drawing
     from mech.forces import analyse
     from mech.loader import loads
     from mech.shapes import Circle, Line
-    from tests.mechanism_texts import epicyclic
 
     text = (EXAMPLES / name).read_text(encoding="utf-8").split("\nanswers:")[0]
     if "loads:" not in text:
-        text += "\nloads: {%s: {torque: 1}}\n" % text.split("links: [")[1].split(",")[1].strip()
+        driven = text.split("links: [")[1].split(",")[1].strip()
+        text += f"\nloads: {{{driven}: {{torque: 1}}}}\n"
     for m in (loads(text, path=name), loads(epicyclic(extra="loads: {arm: {torque: -10}}\n"), path="e.yaml")):
         fa = analyse(m)
         fig = forces_drawing(m, fa)
