@@ -317,3 +317,14 @@ def test_a_programme_cam_is_swept_at_once_and_pushes_along_its_normal_at_every_s
             assert series.forces[k, i] == pytest.approx(fa.pair(joint).force, rel=1e-9, abs=1e-9)
     guide = series.pairs.index(next(p for p in series.pairs if p[0] == "S"))
     assert series.magnitude(guide)[0] == pytest.approx(100 * 22.5 / 65, rel=1e-9)
+
+
+def test_a_steady_effort_swings_no_energy_and_names_no_greatest_or_least_speed():
+    # a gear pair held by a constant torque: T is the same at every angle, so E(θ) = ∫(T_mean − T) dθ
+    # is 0 throughout — what is left is rounding (3e-13 J was said, greatest at 0° and least at 142°)
+    text = (EXAMPLES / "gear_pair.yaml").read_text().split("\nanswers:")[
+        0
+    ] + "\nloads: {wheel: {torque: 10}}\n"
+    cycle = force_cycle(loads(text, path="gears.yaml"), steps=36)
+    assert cycle.fluctuation == 0.0
+    assert cycle.greatest is None and cycle.least is None

@@ -290,6 +290,10 @@ def _speed(mech: Mechanism, ev: Evaluator) -> float | None:
     return None if ev.static else ev.speed
 
 
+#: An energy swing below this times the largest |effort| × the range is rounding (ΔE = 0).
+_STEADY = 1e-10
+
+
 @dataclass(frozen=True)
 class _Totals:
     energy: np.ndarray
@@ -363,13 +367,16 @@ def _over_range(
     origin = float(np.interp(grid[0], breaks, at_breaks))
     j, k = int(np.argmax(energy)), int(np.argmin(energy))
     sign = 1.0 if grid[-1] >= grid[0] else -1.0
+    fluctuation = float(energy[j] - energy[k])
+    # a constant effort (a gear train's) swings the energy by rounding only: no greatest, no least
+    steady = fluctuation <= _STEADY * float(np.nanmax(np.abs(dense.effort), initial=0.0)) * (hi - lo)
     totals = _Totals(
         _on_grid(grid, dense.angles, dense.effort, mean, breaks, at_breaks) - origin,
         total / (hi - lo),
         sign * total,
-        float(energy[j] - energy[k]),
-        (float(where[j]), float(energy[j] - origin)),
-        (float(where[k]), float(energy[k] - origin)),
+        0.0 if steady else fluctuation,
+        None if steady else (float(where[j]), float(energy[j] - origin)),
+        None if steady else (float(where[k]), float(energy[k] - origin)),
     )
     return totals, _peaks(peak_jobs)
 

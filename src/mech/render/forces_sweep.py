@@ -282,7 +282,9 @@ def _table(d: dict[str, Any], console: ReportConsole) -> None:
         )
         console.print(
             f"  fluctuation of energy ΔE = {_g(d['fluctuation'])} J: the energy (and the speed) is greatest at "
-            f"{at(d['energy_max']['angle'])} and least at {at(d['energy_min']['angle'])}",
+            f"{at(d['energy_max']['angle'])} and least at {at(d['energy_min']['angle'])}"
+            if d["energy_max"] is not None and d["energy_min"] is not None
+            else "  fluctuation of energy ΔE = 0 J: the effort is steady, the speed does not vary",
             soft_wrap=True,
         )
     fw = d["flywheel"]
