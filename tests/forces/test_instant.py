@@ -459,3 +459,16 @@ def test_a_cam_that_would_have_to_pull_its_follower_says_so():
     assert not [n for n in pressed.notes if "only pushes" in n]
     (note,) = [n for n in lifted.notes if "only pushes" in n]
     assert f"{lifted.pair('K').magnitude:.6g} N" in note and "arm leaves cam" in note
+
+
+def test_a_load_at_a_pitch_point_between_two_moving_gears_asks_which_it_acts_on():
+    # the pitch point is a point of the pinion and of the rack alike: the input torque is the same
+    # either way, but the force the mesh carries is not (1064 N with the load on the rack, 0 on the
+    # pinion), so without `on` it is said, as at a pin of two moving links
+    text = RACK.format(pitch="radii: [50, null]").replace(
+        "  R: {force: [-1000, 0]}", "  mesh: {force: [-1000, 0]}"
+    )
+    fa = analyse(loads(text, path="rack.yaml"))
+    (note,) = [n for n in fa.notes if "does not say which it acts on" in n]
+    assert "on: pinion or on: rack" in note
+    assert fa.effort is not None and abs(fa.effort.value) == pytest.approx(50.0, rel=1e-9)

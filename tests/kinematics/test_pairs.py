@@ -759,3 +759,29 @@ drive: {link: pinion, rpm: 60, direction: ccw}
     assert kin.acceleration("R") == pytest.approx((0.05 * 3.0, 0.0), abs=1e-12)
     sw = sweep(m, [0.0, math.pi / 2, math.pi], level="position", quantities=["displacement.S"])
     assert sw.series("displacement.S") == pytest.approx([0.0, 0.05 * math.pi / 2, 0.05 * math.pi], abs=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("mesh", "says", "hint"),
+    [
+        ("teeth: [20, null], module: 5", "a rack has no tooth count", "radii: [r, null]"),
+        ("radii: [50, null], internal: true", "a rack (a null radius) has no inside", "leave internal out"),
+    ],
+)
+def test_a_rack_written_as_a_gear_pair_is_refused_where_it_cannot_be_one(mesh, says, hint):
+    from mech.loader import loads
+
+    text = f"""\
+units: {{length: mm, angle: deg}}
+links: [frame, pinion, rack]
+joints:
+  O: {{type: revolute, links: [frame, pinion], at: [0, 0]}}
+  S: {{type: prismatic, links: [rack, frame], path: {{through: [0, -50], angle: 0}}}}
+  mesh: {{type: gear, links: [pinion, rack], {mesh}}}
+drive: {{link: pinion, rpm: 60}}
+"""
+    with pytest.raises(InputError) as err:
+        loads(text, path="rack.yaml")
+    problem = err.value.problems[0]
+    assert says in problem.message and hint in (problem.hint or "")
+    assert problem.where is not None and problem.where.line == 6

@@ -32,7 +32,7 @@ import numpy as np
 
 from mech._records import dataclass
 from mech.model import Load, Mechanism
-from mech.pairs import kind_of, load_link
+from mech.pairs import kind_of, load_link, point_link
 from mech.pairs.base import push_row
 
 __all__ = [
@@ -187,7 +187,7 @@ def _loads(st: _Stack) -> np.ndarray:
 
 def unsaid_on(mech: Mechanism) -> dict[str, tuple[str, ...]]:
     """Forces at a pin of two or more moving links that do not say which they act on: pin → its
-    moving links (the first takes the load, :func:`mech.pairs.load_link`).
+    moving links (:func:`mech.pairs.load_link` says which takes the load).
 
     DESIGN § 1.4: such a load says which link it acts on (``on: piston``).  Where it does not,
     the power balance (the input effort) is the same whichever link takes it, and so is every
@@ -196,8 +196,12 @@ def unsaid_on(mech: Mechanism) -> dict[str, tuple[str, ...]]:
     out: dict[str, tuple[str, ...]] = {}
     for load in mech.loads:
         joint = next((j for j in mech.joints if j.name == load.target), None)
-        if joint is None or not load.is_force or load.on is not None or kind_of(joint).role == "contact":
-            continue  # a higher pair's name is its follower's own point: no choice to make
+        if joint is None or not load.is_force or load.on is not None:
+            continue
+        kind = kind_of(joint)
+        if kind.role == "contact" and not kind.rolls:
+            continue  # a cam's or a contact's name is its follower's own point: no choice to make
+        # a pin, or a pitch point (gears, rolling): a point of each link it joins, alike
         moving = tuple(lk for lk in joint.links if lk != mech.ground)
         if len(moving) > 1:
             out[load.target] = moving
@@ -215,7 +219,7 @@ def unsaid_text(pin: str, links: tuple[str, ...]) -> str:
 def unsaid_notes(mech: Mechanism) -> tuple[str, ...]:
     """The notes of a force solve (one instant or the cycle) for each load :func:`unsaid_on` finds."""
     return tuple(
-        f"{unsaid_text(pin, links)}; it is shown with the load on {links[0]}"
+        f"{unsaid_text(pin, links)}; it is shown with the load on {point_link(mech, pin)}"
         for pin, links in unsaid_on(mech).items()
     )
 

@@ -15,7 +15,7 @@ from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 from mech.errors import Problem
-from mech.fields import NUMBER, PROFILES, RADII, Fields, Reader, read_profiles, read_radii
+from mech.fields import NUMBER, PROFILES, RADII, Fields, Reader, is_null, read_profiles, read_radii
 from mech.pairs.base import Carriers, PairKind, contact_forces, push_row
 from mech.pairs.gearing import gear_centres, gear_normal, gear_row, line_of_action, pulls, rack_link
 from mech.pairs.higher import see_contact
@@ -41,6 +41,12 @@ def _teeth(r: Reader, node: Any) -> tuple[int, int]:
         raise r.problem(node, "teeth must be a pair [z1, z2]")
     out = []
     for item in items:
+        if is_null(item):  # a rack has no count of teeth round a circle
+            raise r.problem(
+                item,
+                "a rack has no tooth count",
+                "write a rack and pinion with radii: [r, null] (the pinion's pitch radius r = teeth × module / 2)",
+            )
         raw = r.scalar(item, "a tooth count")
         if not re.fullmatch(r"\d+", raw.strip()) or int(raw) < 1:
             raise r.problem(item, f"a tooth count must be a whole number above zero, not {raw!r}")
@@ -69,7 +75,17 @@ def _read(r: Reader, fields: Fields, what: str, links: tuple[str, ...]) -> GearS
     if teeth is not None and module is None and "module" not in fields:  # a bad module is said already
         r.problem(fields["teeth"][0], "gear teeth need a `module` to give the pitch radii")
     if radii is not None and teeth is not None:
-        r.problem(fields["radii"][0], "give `radii` or `teeth` with `module`, not both")
+        r.problem(
+            fields["radii"][0],
+            "give `radii` or `teeth` with `module`, not both",
+            "the pitch radii are teeth × module / 2: keep one of the two",
+        )
+    if radii is not None and None in radii and internal:
+        r.problem(
+            fields["internal"][0],
+            "a rack (a null radius) has no inside: it cannot be internal",
+            "leave internal out for a rack and pinion",
+        )
     return GearSpec(
         normal=normal,
         pressure_angle=pressure,
