@@ -785,3 +785,23 @@ drive: {{link: pinion, rpm: 60}}
     problem = err.value.problems[0]
     assert says in problem.message and hint in (problem.hint or "")
     assert problem.where is not None and problem.where.line == 6
+
+
+def test_a_racks_radius_given_to_the_rack_is_refused_with_the_order_to_write(write):
+    # radii follow links: [null, 50] for links [pinion, rack] gives the circle to the rack, which
+    # slides on no pin; the message says so and how to write it, where it was "needs at"
+    path = write(
+        """\
+units: {length: mm, angle: deg}
+links: [frame, pinion, rack]
+joints:
+  O: {type: revolute, links: [frame, pinion], at: [0, 0]}
+  S: {type: prismatic, links: [rack, frame], path: {through: [0, -50], angle: 0}}
+  mesh: {type: gear, links: [pinion, rack], radii: [null, 50]}
+drive: {link: pinion, rpm: 60}
+"""
+    )
+    run = mech("velocity", str(path))
+    assert_bad_input(run, path)
+    assert "the pitch circle is given to rack, which turns on no single pin" in run.stderr
+    assert "write radii: [50, null]" in run.stderr

@@ -17,10 +17,18 @@ from typing import TYPE_CHECKING, Any
 from mech.errors import Problem
 from mech.fields import NUMBER, PROFILES, RADII, Fields, Reader, is_null, read_profiles, read_radii
 from mech.pairs.base import Carriers, PairKind, contact_forces, push_row
-from mech.pairs.gearing import gear_centres, gear_normal, gear_row, line_of_action, pulls, rack_link
+from mech.pairs.gearing import (
+    gear_centre,
+    gear_centres,
+    gear_normal,
+    gear_row,
+    line_of_action,
+    pulls,
+    rack_link,
+)
 from mech.pairs.higher import see_contact
 from mech.specs import GearSpec
-from mech.units import Dimension
+from mech.units import Dimension, to_unit
 
 if TYPE_CHECKING:
     from mech.model import Joint, Mechanism
@@ -230,6 +238,21 @@ class Gear(PairKind):
             b.angle.append(Angle(holo[0], holo[1], j.name))
             return
         rack = j.radii is not None and None in j.radii  # radii: [r, null], a pitch circle on a pitch line
+        if rack and j.radii is not None:
+            pinion, radius = next((lk, r) for lk, r in zip(j.links, j.radii, strict=True) if r is not None)
+            if gear_centre(b, pinion, b.pos) is None:
+                swapped = [
+                    f"{to_unit(radius, b.mech.length_unit):g}" if r is None else "null" for r in j.radii
+                ]
+                b.problems.append(
+                    Problem(
+                        f"gear {j.name}: the pitch circle is given to {pinion}, which turns on no single pin "
+                        "(it slides: it is the rack)",
+                        j.where,
+                        f"radii follow links ({', '.join(j.links)}): write radii: [{', '.join(swapped)}]",
+                    )
+                )
+                return
         if (j.profiles or rack) and moving_contact(
             b, j, rolls=True, held=True, radii=j.radii if rack else None
         ):
