@@ -310,3 +310,31 @@ def test_half_the_stroke() -> None:
     body = slider_crank(0.1, 0.4) + "answers:\n"
     assert verdict("stroke.P: 0.2", body).status == PASS
     assert_diagnosed("stroke.P: 0.1", "half the stroke", body)
+
+
+RACK_AND_PINION = """\
+units: {length: mm, angle: deg}
+links: [frame, pinion, rack]
+joints:
+  O: {type: revolute, links: [frame, pinion], at: [0, 0]}
+  S: {type: prismatic, links: [rack, frame], path: {through: [0, -50], angle: 0}, point: R}
+  mesh: {type: gear, links: [pinion, rack], radii: [50, null], pressure_angle: 20}
+points:
+  R: {link: rack, at: [0, -50]}
+loads:
+  R: {force: [-1000, 0]}
+drive: {link: pinion, rpm: 60, direction: ccw}
+answers:
+"""
+
+
+@pytest.mark.parametrize(
+    ("answer", "words"),
+    [
+        # 1000 N held along the pitch line: the tooth load is 1000 / cos 20° = 1064.18 N
+        ("force.mesh: 1000 N", "the tangential part only"),
+        ("force.mesh: 363.97 N", "the radial part only"),  # 1000 tan 20°
+    ],
+)
+def test_a_tooth_load_worked_as_one_of_its_parts(answer, words) -> None:
+    assert_diagnosed(answer, words, RACK_AND_PINION)

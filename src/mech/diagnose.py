@@ -209,8 +209,25 @@ def _cheap(
         )
     elif family == "stroke":
         yield "half the stroke (the amplitude, not the travel from one end to the other)", right / 2.0
+    elif family == "force" and names and right:
+        yield from _tooth_parts(names[0], right, an)
     for text, raw in _physics(family, names, an):
         yield text, to_space(raw)
+
+
+def _tooth_parts(joint: str, right: float, an: Analysis) -> Iterator[tuple[str, float]]:
+    """A tooth load worked as its tangential part (the torque over the pitch radius) or its radial
+    part: the teeth push along the line of action, at the pressure angle φ to the pitch line."""
+    from mech.pairs import kind_of
+
+    j = next((k for k in an.mech.joints if k.name == joint), None)
+    phi = getattr(j, "pressure_angle", None) if j is not None and kind_of(j).meshes else None
+    if phi:
+        yield (
+            "the tangential part only (the tooth load is along the line of action: F_t / cos φ)",
+            right * math.cos(phi),
+        )
+        yield "the radial part only (F_t tan φ, the part that pushes the gears apart)", right * math.sin(phi)
 
 
 def _turns(akey: AnswerKey, right: float) -> str:
