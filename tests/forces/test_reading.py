@@ -84,3 +84,16 @@ def test_a_load_table_is_read_in_the_files_units_and_spans_its_cycle():
     )
     assert load.period == pytest.approx(4 * math.pi)  # a four-stroke engine's two turns
     assert load.on == "piston" and load.is_force
+
+
+def test_a_load_at_one_links_point_of_a_contact_says_what_to_load_instead():
+    # K@cam is the cam's point at the contact (DESIGN § 1.2), an answer key's name; a load is put
+    # on K (the follower's own point) or a point placed there, not refused as an unknown name
+    from tests.mechanism_texts import EXAMPLES
+
+    text = (EXAMPLES / "cam_roller_program.yaml").read_text().split("\nanswers:")[0]
+    with pytest.raises(InputError) as err:
+        loads(text + "\nloads:\n  K@cam: {force: [0, -100]}\n", path="cam.yaml")
+    problem = err.value.problems[0]
+    assert "the point of cam at K's contact" in problem.message
+    assert problem.hint is not None and problem.hint.startswith("load K, the follower's own point")

@@ -38,6 +38,15 @@ def read_loads(
                 r.problem(knode, f"{name} is a point: load it with a force", "e.g. {force: [0, -500]}")
                 continue
             load = r.guard(partial(_force, r, fields, name, knode, carriers[name]), None)
+        elif "@" in name and name.split("@")[0] in {j.name for j in joints}:
+            joint, link = name.split("@", 1)
+            r.problem(
+                knode,
+                f"loads names {name!r}, the point of {link} at {joint}'s contact: a load is put on a named "
+                "point or a link",
+                f"load {joint}, the follower's own point (DESIGN § 1.2), or a point of {link} placed there",
+            )
+            continue
         else:
             r.problem(
                 knode,
