@@ -297,3 +297,14 @@ def test_every_pin_force_is_drawn_from_its_pin(name):
             label = f"F{num[p.by]}{num[p.on]}".translate(str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉"))
             if p.joint in pins and label in tails:
                 assert tails[label] == pytest.approx(pins[p.joint], abs=1e-9), (name, p.joint)
+
+
+def test_a_force_drawing_states_the_drive_angle_as_mech_forces_does(tmp_path):
+    # a programme cam turning cw, 60° into its programme: −60° from +x in both (the drawing said 300°)
+    cam = str(EXAMPLES / "cam_roller_program.yaml")
+    out = tmp_path / "cam.svg"
+    drawn = mech("draw", cam, "-o", str(out), "--forces")
+    assert drawn.returncode == 0, drawn.stderr
+    said = mech("forces", cam)
+    assert "at drive angle -60°" in said.stdout
+    assert "forces at the drive's angle -60°" in out.read_text(encoding="utf-8")

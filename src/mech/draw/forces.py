@@ -123,7 +123,9 @@ def forces_drawing(mech: Mechanism, fa: ForceAnalysis, *, free_body: Sequence[st
     page = Page()
     page.add(Text((8.0, 6.0), mech.label, 4.0, "start", bold=True, cls="heading"))
     state = "forces at the drive's angle" + (
-        f" {math.degrees(fa.drive_angle) % 360:.4g}°" if fa.drive_angle is not None else ""
+        f" {math.degrees(fa.drive_angle):.4g}°"
+        if fa.drive_angle is not None
+        else ""  # as mech forces says it
     )
     if fa.effort is not None:
         unit = "N·m" if fa.effort.kind == "torque" else "N"
