@@ -122,10 +122,9 @@ def forces_drawing(mech: Mechanism, fa: ForceAnalysis, *, free_body: Sequence[st
         panels.append(free_body_panel(mech, cut(mech, kin, fa, link)))
     page = Page()
     page.add(Text((8.0, 6.0), mech.label, 4.0, "start", bold=True, cls="heading"))
+    # the drive's angle as mech forces and mech velocity state it (−60° for a cw cam, not 300°)
     state = "forces at the drive's angle" + (
-        f" {math.degrees(fa.drive_angle):.4g}°"
-        if fa.drive_angle is not None
-        else ""  # as mech forces says it
+        f" {math.degrees(fa.drive_angle):.4g}°" if fa.drive_angle is not None else ""
     )
     if fa.effort is not None:
         unit = "N·m" if fa.effort.kind == "torque" else "N"

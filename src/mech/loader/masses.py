@@ -102,7 +102,7 @@ def read_flywheel(r: NodeReader, node: yaml.Node) -> Flywheel:
             f"the coefficient of fluctuation must be a fraction or a percentage, not {raw!r}",
             "e.g. 2% or 0.02",
         ) from None
-    if not 0.0 < value < 1.0 and not raw.endswith("%") and value > 0.0 and math.isfinite(value):
+    if 1.0 <= value < math.inf and not raw.endswith("%"):
         raise r.problem(  # a bare number is a fraction: 2 is 200 %, not the 2 % meant
             vnode,
             f"the coefficient of fluctuation must lie between 0 and 100 %: {raw} is read as a fraction, "

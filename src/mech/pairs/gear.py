@@ -145,7 +145,7 @@ class Gear(PairKind):
 
     def contact_problem(self, j: Joint) -> Problem | None:
         """Pitch radii (or teeth and module) put the pitch point between the centres, and a rack's
-        (``radii: [r, null]``) under its pinion: no ``at`` needed."""
+        (``radii: [r, null]``) on its pinion's pitch circle, along the rack's slide: no ``at`` needed."""
         if getattr(j.spec, "pitch_radii", None) is not None or j.radii is not None:
             return None
         return super().contact_problem(j)

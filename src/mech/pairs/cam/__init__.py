@@ -124,12 +124,10 @@ class Cam(PairKind):
         the follower leaves the cam there, unless a spring or its weight keeps it on (judged on a
         disc cam, whose profile every ray from its pivot crosses once: the outward normal at the
         contact then points away from the pivot)."""
+        from mech.pairs.table import kind_of
+
         cam = j.links[0]
-        pins = [
-            k.name
-            for k in mech.joints_of(cam)
-            if k.name != j.name and k.name in positions and k.type == "revolute"
-        ]
+        pins = [k.name for k in mech.joints_of(cam) if kind_of(k).role == "pin" and k.name in positions]
         if force.at is None or len(pins) != 1 or force.on != j.links[1]:
             return None
         o = positions[pins[0]]
