@@ -295,3 +295,43 @@ joints:
   m2: {{type: gear, links: {ring}, radii: {radii}, internal: true{pressure}}}
 drive: {{link: sun, rpm: 1000, direction: ccw}}
 {extra}"""
+
+
+def rack_and_pinion(
+    pitch: str = "radii: [50, null]",
+    *,
+    pressure: str = ", pressure_angle: 20",
+    loads: str = "R: {force: [-1000, 0]}",
+    extra: str = "",
+) -> str:
+    """A pinion of pitch radius 50 mm turning on the origin at 60 rpm ccw, its rack sliding along
+    y = −50 mm (its point R at (0, −50)); ``pitch`` and ``pressure`` are the mesh's fields (line 6
+    of the file), ``loads`` its one load (none when empty), ``extra`` appended (answers …)."""
+    load = f"loads:\n  {loads}\n" if loads else ""
+    return f"""\
+units: {{length: mm, angle: deg}}
+links: [frame, pinion, rack]
+joints:
+  O: {{type: revolute, links: [frame, pinion], at: [0, 0]}}
+  S: {{type: prismatic, links: [rack, frame], path: {{through: [0, -50], angle: 0}}, point: R}}
+  mesh: {{type: gear, links: [pinion, rack], {pitch}{pressure}}}
+points:
+  R: {{link: rack, at: [0, -50]}}
+{load}drive: {{link: pinion, rpm: 60, direction: ccw}}
+{extra}"""
+
+
+#: An in-line slider crank (crank 0.1 m, rod 0.3 m) driven by its piston at 2 m/s from x = 0.3 m,
+#: a torque of 15 N·m held on the crank.
+SLIDER_DRIVEN = """\
+units: {length: m, angle: deg}
+links: [frame, crank, rod, piston]
+joints:
+  O: {type: revolute, links: [frame, crank], at: [0, 0]}
+  A: {type: revolute, links: [crank, rod], near: [0.02, 0.1]}
+  B: {type: revolute, links: [rod, piston], at: [0.3, 0]}
+  P: {type: prismatic, links: [piston, frame], path: {through: [0, 0], angle: 0}}
+lengths: {OA: 0.1, AB: 0.3}
+drive: {joint: P, speed: 2}
+loads: {crank: {torque: 15}}
+"""

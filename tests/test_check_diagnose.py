@@ -23,7 +23,7 @@ import pytest
 
 from mech.check import FAIL, PASS, check
 from mech.loader import loads
-from mechanism_texts import slider_crank
+from mechanism_texts import rack_and_pinion, slider_crank
 
 MM = 1e-3
 AB, BC, CD, AD = 40 * MM, 150 * MM, 80 * MM, 150 * MM
@@ -312,20 +312,7 @@ def test_half_the_stroke() -> None:
     assert_diagnosed("stroke.P: 0.1", "half the stroke", body)
 
 
-RACK_AND_PINION = """\
-units: {length: mm, angle: deg}
-links: [frame, pinion, rack]
-joints:
-  O: {type: revolute, links: [frame, pinion], at: [0, 0]}
-  S: {type: prismatic, links: [rack, frame], path: {through: [0, -50], angle: 0}, point: R}
-  mesh: {type: gear, links: [pinion, rack], radii: [50, null], pressure_angle: 20}
-points:
-  R: {link: rack, at: [0, -50]}
-loads:
-  R: {force: [-1000, 0]}
-drive: {link: pinion, rpm: 60, direction: ccw}
-answers:
-"""
+RACK_AND_PINION = rack_and_pinion(extra="answers:\n")
 
 
 @pytest.mark.parametrize(

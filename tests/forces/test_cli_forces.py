@@ -248,21 +248,11 @@ def test_a_force_command_in_a_real_process_leaves_no_traceback():
 def test_a_slider_drives_input_force_is_signed_along_its_path():
     # a torque of 15 N·m ccw on the crank held by a force on the slider: the power balance
     # F v + M ω = 0 gives F = −M ω / v, ω the crank's for the slider's v (law of cosines)
+    from tests.mechanism_texts import SLIDER_DRIVEN
     from tests.oracles.slider_crank import slider_driven_crank
 
-    text = """\
-links: [frame, crank, rod, piston]
-joints:
-  O: {type: revolute, links: [frame, crank], at: [0, 0]}
-  A: {type: revolute, links: [crank, rod], near: [0.02, 0.1]}
-  B: {type: revolute, links: [rod, piston], at: [0.3, 0]}
-  P: {type: prismatic, links: [piston, frame], path: {through: [0, 0], angle: 0}}
-lengths: {OA: 0.1, AB: 0.3}
-drive: {joint: P, speed: 2}
-loads: {crank: {torque: 15}}
-"""
     _, w = slider_driven_crank(0.1, 0.3, 0.3, 1.0)
-    run = mech("forces", "-", input=text)
+    run = mech("forces", "-", input=SLIDER_DRIVEN)
     assert run.returncode == 0, run.stderr
     (line,) = [x for x in run.stdout.splitlines() if x.startswith("input force along")]
     assert "(signed, + along the path)" in line and "ccw" not in line

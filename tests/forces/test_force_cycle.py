@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 import pytest
-from tests.mechanism_texts import EXAMPLES, lift
+from tests.mechanism_texts import EXAMPLES, SLIDER_DRIVEN, lift
 from tests.oracles.engine_torque import cycle_integrals, engine_torque
 from tests.oracles.newton_euler import four_bar_forces
 from tests.oracles.slider_crank import slider_driven_crank
@@ -210,20 +210,6 @@ def test_a_static_sweep_gives_the_mean_torque_of_the_change_in_potential_energy(
     assert cycle.work == pytest.approx(gained, rel=1e-10)
     assert cycle.mean == pytest.approx(gained / math.radians(120), rel=1e-10)
     assert any("static" in n for n in cycle.notes) and any("whole number" in n for n in cycle.notes)
-
-
-SLIDER_DRIVEN = """\
-units: {length: m, angle: deg}
-links: [frame, crank, rod, piston]
-joints:
-  O: {type: revolute, links: [frame, crank], at: [0, 0]}
-  A: {type: revolute, links: [crank, rod], near: [0.02, 0.1]}
-  B: {type: revolute, links: [rod, piston], at: [0.3, 0]}
-  P: {type: prismatic, links: [piston, frame], path: {through: [0, 0], angle: 0}}
-lengths: {OA: 0.1, AB: 0.3}
-drive: {joint: P, speed: 2}
-loads: {crank: {torque: 15}}
-"""
 
 
 def test_a_slider_drives_force_over_its_stroke_does_the_loads_work():

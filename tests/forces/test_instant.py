@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 import pytest
-from tests.mechanism_texts import epicyclic, lift
+from tests.mechanism_texts import epicyclic, lift, rack_and_pinion
 from tests.oracles.newton_euler import four_bar_forces
 from tests.oracles.slider_crank import slider_crank
 
@@ -277,21 +277,6 @@ def test_an_epicyclic_train_shares_its_arms_torque_between_its_two_meshes():
     assert fa.effort is not None and fa.effort.value == pytest.approx(2.0, rel=1e-9)
 
 
-RACK = """\
-units: {{length: mm, angle: deg}}
-links: [frame, pinion, rack]
-joints:
-  O: {{type: revolute, links: [frame, pinion], at: [0, 0]}}
-  S: {{type: prismatic, links: [rack, frame], path: {{through: [0, -50], angle: 0}}, point: R}}
-  mesh: {{type: gear, links: [pinion, rack], pressure_angle: 20, {pitch}}}
-points:
-  R: {{link: rack, at: [0, -50]}}
-loads:
-  R: {{force: [-1000, 0]}}
-drive: {{link: pinion, rpm: 60, direction: ccw}}
-"""
-
-
 @pytest.mark.parametrize(
     "pitch",
     [
@@ -303,7 +288,7 @@ def test_a_rack_and_pinion_push_along_the_line_of_action(pitch):
     # 1000 N held on the rack along its pitch line, pinion of pitch radius 50 mm, φ = 20°: the
     # teeth push along the line of action with 1000 / cos φ, the rack's guide takes 1000 tan φ
     # (the radial part), the pinion's bearing the whole tooth load, and T = 1000 N × 0.05 m
-    fa = analyse(loads(RACK.format(pitch=pitch), path="rack.yaml"))
+    fa = analyse(loads(rack_and_pinion(pitch), path="rack.yaml"))
     phi = math.radians(20)
     assert fa.pair("mesh").magnitude == pytest.approx(1000 / math.cos(phi), rel=1e-9)
     assert fa.pair("mesh").normal == pytest.approx(1000 / math.cos(phi), rel=1e-9)
@@ -332,7 +317,7 @@ def test_gear_teeth_push_apart_whichever_way_the_load_turns(torque):
 def test_a_racks_teeth_push_it_away_from_its_pinion_whichever_way_it_is_loaded(load):
     # the rack under its pinion: the radial part of the tooth load, 1000 tan 20° = 363.97 N, pushes
     # it down (−y) whether the load along the pitch line is +x or −x
-    text = RACK.format(pitch="radii: [50, null]").replace("force: [-1000, 0]", f"force: [{load}, 0]")
+    text = rack_and_pinion().replace("force: [-1000, 0]", f"force: [{load}, 0]")
     fa = analyse(loads(text, path="rack.yaml"))
     fx, fy = fa.pair("mesh").force
     assert fy == pytest.approx(-1000 * math.tan(math.radians(20)), rel=1e-9)
@@ -392,7 +377,7 @@ def test_a_rack_with_a_pin_on_it_is_still_a_rack():
     # the rack drives a rod by a pin T: T is no gear centre, the teeth still push along the line of
     # action (radial part 1000 tan 20° = 363.97 N, down, away from the pinion above it); the rod
     # (T (100, −50) → U (200, −80) mm) pulls the rack with (−1000, 300) N, the guide takes the rest
-    text = RACK.format(pitch="radii: [50, null]").replace(
+    text = rack_and_pinion().replace(
         "links: [frame, pinion, rack]", "links: [frame, pinion, rack, rod, block]"
     )
     text = text.replace(
@@ -465,9 +450,7 @@ def test_a_load_at_a_pitch_point_between_two_moving_gears_asks_which_it_acts_on(
     # the pitch point is a point of the pinion and of the rack alike: the input torque is the same
     # either way, but the force the mesh carries is not (1064 N with the load on the rack, 0 on the
     # pinion), so without `on` it is said, as at a pin of two moving links
-    text = RACK.format(pitch="radii: [50, null]").replace(
-        "  R: {force: [-1000, 0]}", "  mesh: {force: [-1000, 0]}"
-    )
+    text = rack_and_pinion().replace("  R: {force: [-1000, 0]}", "  mesh: {force: [-1000, 0]}")
     fa = analyse(loads(text, path="rack.yaml"))
     (note,) = [n for n in fa.notes if "does not say which it acts on" in n]
     assert "on: pinion or on: rack" in note

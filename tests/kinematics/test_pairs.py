@@ -14,7 +14,7 @@ from cli_runner import assert_bad_input, close, mech, strict_json
 from mech.errors import GeometryError, InputError, UnsupportedError
 from mech.kinematics import mobility, solve
 from mech.options import SolveOptions
-from mechanism_texts import EXAMPLES, GEARS, ROLLER_CAM_POINT_K, ladder
+from mechanism_texts import EXAMPLES, GEARS, ROLLER_CAM_POINT_K, ladder, rack_and_pinion
 
 
 def five_bar(drives):
@@ -741,18 +741,7 @@ def test_a_gear_with_a_null_radius_is_a_rack_that_moves_with_its_pinion():
     from mech.kinematics import sweep
     from mech.loader import loads
 
-    text = """\
-units: {length: mm, angle: deg}
-links: [frame, pinion, rack]
-joints:
-  O: {type: revolute, links: [frame, pinion], at: [0, 0]}
-  S: {type: prismatic, links: [rack, frame], path: {through: [0, -50], angle: 0}, point: R}
-  mesh: {type: gear, links: [pinion, rack], radii: [50, null], pressure_angle: 20}
-points:
-  R: {link: rack, at: [0, -50]}
-drive: {link: pinion, rpm: 60, direction: ccw}
-"""
-    m = loads(text, path="rack.yaml")
+    m = loads(rack_and_pinion(loads=""), path="rack.yaml")
     kin = solve(m, "acceleration", SolveOptions(alpha=3.0))
     w = 2 * math.pi
     assert kin.velocity("R") == pytest.approx((0.05 * w, 0.0), abs=1e-12)
@@ -771,17 +760,8 @@ drive: {link: pinion, rpm: 60, direction: ccw}
 def test_a_rack_written_as_a_gear_pair_is_refused_where_it_cannot_be_one(mesh, says, hint):
     from mech.loader import loads
 
-    text = f"""\
-units: {{length: mm, angle: deg}}
-links: [frame, pinion, rack]
-joints:
-  O: {{type: revolute, links: [frame, pinion], at: [0, 0]}}
-  S: {{type: prismatic, links: [rack, frame], path: {{through: [0, -50], angle: 0}}}}
-  mesh: {{type: gear, links: [pinion, rack], {mesh}}}
-drive: {{link: pinion, rpm: 60}}
-"""
     with pytest.raises(InputError) as err:
-        loads(text, path="rack.yaml")
+        loads(rack_and_pinion(mesh, pressure="", loads=""), path="rack.yaml")
     problem = err.value.problems[0]
     assert says in problem.message and hint in (problem.hint or "")
     assert problem.where is not None and problem.where.line == 6
@@ -790,17 +770,7 @@ drive: {{link: pinion, rpm: 60}}
 def test_a_racks_radius_given_to_the_rack_is_refused_with_the_order_to_write(write):
     # radii follow links: [null, 50] for links [pinion, rack] gives the circle to the rack, which
     # slides on no pin; the message says so and how to write it, where it was "needs at"
-    path = write(
-        """\
-units: {length: mm, angle: deg}
-links: [frame, pinion, rack]
-joints:
-  O: {type: revolute, links: [frame, pinion], at: [0, 0]}
-  S: {type: prismatic, links: [rack, frame], path: {through: [0, -50], angle: 0}}
-  mesh: {type: gear, links: [pinion, rack], radii: [null, 50]}
-drive: {link: pinion, rpm: 60}
-"""
-    )
+    path = write(rack_and_pinion("radii: [null, 50]", pressure="", loads=""))
     run = mech("velocity", str(path))
     assert_bad_input(run, path)
     assert "the pitch circle is given to rack, which turns on no single pin" in run.stderr
